@@ -1,0 +1,46 @@
+# The two commands of the README:  `make serve`  and  `make test`.
+# Both build the virtual environment from pyproject.toml first (idempotent), so they work on a
+# fresh machine with only Python 3.11, make and (for the browser tests) apt.
+PY      ?= python3
+VENV    := .venv
+BIN     := $(VENV)/bin
+STAMP   := $(VENV)/.installed-stamp
+PORT    ?= 5006
+export NUMBA_CACHE_DIR ?= $(CURDIR)/.numba_cache
+
+.PHONY: setup browser serve test lint bench workprecision clean
+
+$(STAMP): pyproject.toml
+	$(PY) -m venv $(VENV)
+	$(BIN)/pip install -q --upgrade pip
+	$(BIN)/pip install -q -e ".[app,test]"
+	touch $(STAMP)
+
+setup: $(STAMP)
+
+# Debian's chromium for the Playwright tests (Playwright's own browser download does not work here).
+browser:
+	@command -v chromium >/dev/null 2>&1 || { \
+	  echo "installing Debian chromium (apt)"; \
+	  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null; }
+
+serve: setup
+	$(BIN)/fpu warm
+	$(BIN)/panel serve app/main.py --port $(PORT) --address 0.0.0.0 \
+	  --allow-websocket-origin='*' --liveness --num-threads 2
+
+test: setup browser
+	$(BIN)/ruff check fpucore app tests benchmarks
+	$(BIN)/python -m pytest -q
+
+lint: setup
+	$(BIN)/ruff check fpucore app tests benchmarks && $(BIN)/ruff format --check fpucore app tests benchmarks
+
+bench: setup
+	$(BIN)/python -m benchmarks.run
+
+workprecision: setup
+	$(BIN)/python -m benchmarks.work_precision
+
+clean:
+	rm -rf $(VENV) .numba_cache .pytest_cache

@@ -1,0 +1,353 @@
+"""Thin adapter between the dashboard and fpucore: cached, thread-safe, timed.
+
+The app computes nothing itself: every number shown comes from fpucore's public API through the
+functions below.  They add three things the views need:
+
+* a process-wide cache keyed by *rounded* parameters (12 significant digits), shared by all
+  scenes and all browser sessions, with in-flight de-duplication (two sessions asking for the
+  same discrete wave wait for one solve instead of running two);
+* wall time of the underlying computation (``Computed.elapsed_s``) and whether it was cached;
+* ``NotAvailable`` when an optional fpucore module (wave, floquet, simulate) is missing or
+  broken, so a scene can say so instead of failing.
+
+Bad parameters surface as ``fpucore.errors.ParameterError`` exactly as fpucore raises them.
+"""
+
+from __future__ import annotations
+
+import importlib
+import inspect
+import math
+import threading
+import time
+from collections import OrderedDict
+from collections.abc import Callable, Hashable
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from fpucore.errors import ParameterError
+from fpucore.law import CubicLaw
+
+__all__ = ["Computed", "NotAvailable", "ParameterError", "CACHE", "law"]
+
+
+class NotAvailable(RuntimeError):
+    """An fpucore module or function this scene needs is missing (not built yet) or broken."""
+
+
+def core(module: str, *names: str):
+    """Import ``fpucore.<module>`` and return the requested attributes (or the module)."""
+    try:
+        mod = importlib.import_module(f"fpucore.{module}")
+    except Exception as exc:  # a module still being written may fail in any way
+        raise NotAvailable(f"fpucore.{module} could not be imported ({type(exc).__name__}: {exc})")
+    if not names:
+        return mod
+    missing = [n for n in names if not hasattr(mod, n)]
+    if missing:
+        raise NotAvailable(f"fpucore.{module} has no {', '.join(missing)} yet")
+    out = tuple(getattr(mod, n) for n in names)
+    return out[0] if len(out) == 1 else out
+
+
+def available(module: str, *names: str) -> str | None:
+    """None if the module (and names) can be used, else the reason it cannot."""
+    try:
+        core(module, *names)
+    except NotAvailable as exc:
+        return str(exc)
+    return None
+
+
+def rnd(x: float, digits: int = 12) -> float:
+    """Round to ``digits`` significant digits: the cache key of a float parameter."""
+    x = float(x)
+    if not math.isfinite(x) or x == 0.0:
+        return x
+    return float(f"{x:.{digits}g}")
+
+
+# --------------------------------------------------------------------------- cache
+@dataclass(frozen=True)
+class Computed:
+    """A value from fpucore with the wall time of its computation (s) and whether it was cached."""
+
+    value: Any
+    elapsed_s: float
+    cached: bool
+
+
+class ResultCache:
+    """Thread-safe LRU cache with in-flight de-duplication (one computation per key)."""
+
+    def __init__(self, max_items: int = 400):
+        self.max_items = max_items
+        self._data: OrderedDict[Hashable, tuple[Any, float]] = OrderedDict()
+        self._inflight: dict[Hashable, threading.Event] = {}
+        self._lock = threading.Lock()
+        self.hits = 0
+        self.misses = 0
+
+    def get(self, key: Hashable, fn: Callable[[], Any]) -> Computed:
+        while True:
+            with self._lock:
+                if key in self._data:
+                    self._data.move_to_end(key)
+                    self.hits += 1
+                    value, elapsed = self._data[key]
+                    return Computed(value, elapsed, True)
+                ev = self._inflight.get(key)
+                if ev is None:
+                    ev = self._inflight[key] = threading.Event()
+                    break
+            ev.wait(600.0)  # another thread computes this key; then re-check the cache
+        try:
+            t0 = time.perf_counter()
+            value = fn()
+            elapsed = time.perf_counter() - t0
+            with self._lock:
+                self.misses += 1
+                self._data[key] = (value, elapsed)
+                while len(self._data) > self.max_items:
+                    self._data.popitem(last=False)
+            return Computed(value, elapsed, False)
+        finally:
+            with self._lock:
+                self._inflight.pop(key, None)
+            ev.set()
+
+    def peek(self, key: Hashable):
+        with self._lock:
+            item = self._data.get(key)
+        return None if item is None else item[0]
+
+    def items_like(self, prefix: tuple) -> list[tuple[Hashable, Any]]:
+        """Cached (key, value) pairs whose key starts with ``prefix`` (for continuation)."""
+        with self._lock:
+            return [(k, v[0]) for k, v in self._data.items() if k[: len(prefix)] == prefix]
+
+    def clear(self) -> None:
+        with self._lock:
+            self._data.clear()
+
+
+CACHE = ResultCache()
+
+
+# --------------------------------------------------------------------------- QC (cheap)
+def law(a: float, b: float) -> CubicLaw:
+    """The cubic law f(w) = a w³ + b w² + w (raises ParameterError for a ≥ 0 or b ≤ 0)."""
+    return CubicLaw(a=float(a), b=float(b))
+
+
+def qc_wave(a: float, b: float, mode: str, w_plus: float, V: float) -> Computed:
+    """QC superkink (mode "superkink": from w_plus) or solitary wave (mode "solitary")."""
+    from fpucore import qc
+
+    lw = law(a, b)
+    if mode == "superkink":
+        return CACHE.get(("qc_sk", rnd(a), rnd(b), rnd(w_plus)),
+                         lambda: qc.superkink_from_w_plus(lw, w_plus))  # fmt: skip
+    return CACHE.get(("qc_sw", rnd(a), rnd(b), rnd(w_plus), rnd(V)),
+                     lambda: qc.solitary(lw, w_plus, V))  # fmt: skip
+
+
+def _interior(lo: float, hi: float, n: int) -> np.ndarray:
+    """n points strictly inside (lo, hi), clustered towards both ends (sonic and SK limits)."""
+    s = 0.5 - 0.5 * np.cos(np.pi * (np.arange(n) + 0.5) / n)
+    return lo + (hi - lo) * s
+
+
+def qc_family(a: float, b: float, w_plus: float, n: int = 160) -> Computed:
+    """Amplitude and renormalized energy of the QC solitary waves over both velocity intervals
+    (eqs. SWQC_amp, Eren_QC) for fixed w_plus: dict of arrays per interval "below"/"above"."""
+    from fpucore import qc
+
+    lw = law(a, b)
+
+    def run():
+        out = {}
+        (cp, vsk), (_, cm) = qc.solitary_intervals(lw, w_plus)
+        for name, (lo, hi) in (("below", (cp, vsk)), ("above", (vsk, cm))):
+            Vs, amp, en, err, kinds = [], [], [], [], []
+            for V in _interior(lo, hi, n):
+                try:
+                    sw = qc.solitary(lw, w_plus, float(V))
+                except ParameterError:  # round-off at the very ends of the interval
+                    continue
+                Vs.append(V)
+                amp.append(sw.amplitude)
+                en.append(sw.energy)
+                err.append(max(sw.first_integral_residual, sw.energy_error))
+                kinds.append(sw.kind)
+            out[name] = {
+                "V": np.array(Vs), "amplitude": np.array(amp), "energy": np.array(en),
+                "error": np.array(err), "kind": kinds[0] if kinds else "",
+            }  # fmt: skip
+        out["c_plus"], out["V_SK"], out["c_minus"] = cp, vsk, cm
+        return out
+
+    return CACHE.get(("qc_family", rnd(a), rnd(b), rnd(w_plus), n), run)
+
+
+def phase_plane(a: float, b: float, w_plus: float, V: float, n_grid: int = 241) -> Computed:
+    """fpucore.qc_phase.phase_plane for the current parameters."""
+    fn = core("qc_phase", "phase_plane")
+    lw = law(a, b)
+    return CACHE.get(("phase", rnd(a), rnd(b), rnd(w_plus), rnd(V), n_grid),
+                     lambda: fn(lw, w_plus, V, n_grid=n_grid))  # fmt: skip
+
+
+def existence_diagram(a: float, b: float, n: int = 400) -> Computed:
+    """fpucore.qc_diagram.existence_diagram: arrays w_plus, c_plus, V_SK, c_minus."""
+    fn = core("qc_diagram", "existence_diagram")
+    lw = law(a, b)
+    return CACHE.get(("diagram", rnd(a), rnd(b), n), lambda: fn(lw, n=n))
+
+
+# --------------------------------------------------------------------------- discrete (costly)
+def _accepts(fn: Callable, name: str) -> bool:
+    try:
+        return name in inspect.signature(fn).parameters
+    except (TypeError, ValueError):
+        return False
+
+
+def _nearest_guess(prefix: tuple, V: float):
+    """Closest cached discrete solution of the same family (continuation seed), or None."""
+    best, dist = None, math.inf
+    for key, val in CACHE.items_like(prefix):
+        d = abs(key[len(prefix)] - V)
+        if d < dist and getattr(val, "converged", False):
+            best, dist = val, d
+    return best
+
+
+def discrete_wave(
+    a: float, b: float, mode: str, w_plus: float, V: float, N: int | None, tol: float
+) -> Computed:
+    """Discrete traveling wave (fixed point of eq. nonlin_map) via fpucore.wave.
+
+    Superkink: ``wave.solve_superkink(law, V, branch)`` with the branch of w_plus; solitary:
+    ``wave.solve_solitary(law, w_plus, V)``.  If the solver takes an initial guess, the
+    nearest cached solution of the same family is passed (parameter continuation).
+    """
+    lw = law(a, b)
+    N = None if N is None else int(N)
+    if mode == "superkink":
+        solve = core("wave", "solve_superkink")
+        from fpucore import qc
+
+        sk = qc.superkink_from_w_plus(lw, w_plus)  # validates w_plus, gives V_SK and branch
+        prefix = ("wave_sk", rnd(a), rnd(b), sk.branch, N, rnd(tol, 3))
+        key = prefix + (rnd(sk.V),)
+        kwargs = dict(branch=sk.branch, N=N, tol=tol)
+        args = (lw, sk.V)
+        V = sk.V
+    else:
+        solve = core("wave", "solve_solitary")
+        prefix = ("wave_sw", rnd(a), rnd(b), rnd(w_plus), N, rnd(tol, 3))
+        key = prefix + (rnd(V),)
+        kwargs = dict(N=N, tol=tol)
+        args = (lw, w_plus, V)
+
+    def run():
+        for gname in ("guess", "initial_guess", "x0"):
+            if _accepts(solve, gname):
+                seed = _nearest_guess(prefix, V)
+                if seed is not None:
+                    kwargs[gname] = seed
+                break
+        return solve(*args, **kwargs)
+
+    return CACHE.get(key, run)
+
+
+def floquet_spectrum(
+    a: float, b: float, mode: str, w_plus: float, V: float, N: int | None, tol: float
+) -> tuple[Computed, Computed]:
+    """(discrete wave, Floquet spectrum of it) — the wave comes from the shared cache."""
+    spectrum = core("floquet", "spectrum")
+    r = discrete_wave(a, b, mode, w_plus, V, N, tol)
+    key = ("floquet", id(r.value))
+    key = ("floquet", rnd(a), rnd(b), mode, rnd(w_plus), rnd(V), N, rnd(tol, 3))
+    return r, CACHE.get(key, lambda: spectrum(r.value))
+
+
+def floquet_sweep(
+    a: float, b: float, kind: str, w_plus: float | None, V_values, N: int, progress=None
+) -> Computed:
+    """max |μ| against V for the family (fpucore.floquet.sweep)."""
+    sweep = core("floquet", "sweep")
+    lw = law(a, b)
+    Vs = tuple(rnd(v) for v in V_values)
+    wp = None if w_plus is None else rnd(w_plus)
+    return CACHE.get(("fsweep", rnd(a), rnd(b), kind, wp, Vs, int(N)),
+                     lambda: sweep(lw, kind=kind, V_values=np.array(Vs), w_plus=w_plus, N=int(N),
+                                   progress=progress))  # fmt: skip
+
+
+def discrete_family(
+    a: float, b: float, w_plus: float, V_values, N: int | None, tol: float, progress=None
+) -> Computed:
+    """Discrete solitary waves at the given velocities (amplitude/energy dots of Figs.
+    SWamp_cubic_DvsQC, SWenergy_cubic_DvsQC); failures are kept as messages, not dropped."""
+    Vs = tuple(rnd(v) for v in V_values)
+
+    def run():
+        rows = []
+        for i, V in enumerate(Vs):
+            try:
+                r = discrete_wave(a, b, "solitary", w_plus, V, N, tol).value
+                rows.append(r)
+            except ParameterError as exc:
+                rows.append(exc)
+            if progress is not None:
+                progress(i + 1, len(Vs))
+        return rows
+
+    return CACHE.get(("dfamily", rnd(a), rnd(b), rnd(w_plus), Vs, N, rnd(tol, 3)), run)
+
+
+# --------------------------------------------------------------------------- simulation
+def simulate(kind: str, a: float, b: float, params: dict, progress=None) -> Computed:
+    """Direct simulation via fpucore.simulate: kind "riemann" | "gaussian" | "seeded".
+
+    ``params`` holds the keyword arguments of the fpucore function (for "seeded" also
+    mode/w_plus/V/N/tol of the seeding wave, which comes from the shared cache).
+    """
+    sim = core("simulate")
+    lw = law(a, b)
+    p = dict(params)
+    key = ("sim", kind, rnd(a), rnd(b), tuple(sorted((k, str(v)) for k, v in p.items())))
+    extra = {}
+    if progress is not None:
+        extra["progress"] = progress
+
+    def call(fn, *args, **kw):
+        if "progress" in extra and not _accepts(fn, "progress"):
+            extra.pop("progress")
+        return fn(*args, **kw, **extra)
+
+    if kind == "riemann":
+        fn = core("simulate", "riemann")
+        return CACHE.get(key, lambda: call(fn, lw, p.pop("w_left"), p.pop("w_right"), **p))
+    if kind == "gaussian":
+        fn = core("simulate", "gaussian")
+        return CACHE.get(key, lambda: call(fn, lw, p.pop("w_B"), p.pop("A"), **p))
+    if kind == "seeded":
+        fn = core("simulate", "seeded")
+        wave_args = [p.pop(k) for k in ("mode", "w_plus", "V", "N", "tol")]
+
+        def run():
+            r = discrete_wave(a, b, *wave_args).value
+            if not getattr(r, "converged", True):
+                raise ParameterError("V", wave_args[2], "a converged traveling wave",
+                                     f"the seeding wave did not converge: {r.message}")  # fmt: skip
+            return call(fn, r, **p)
+
+        return CACHE.get(key, run)
+    del sim
+    raise ParameterError("kind", kind, "'riemann', 'gaussian' or 'seeded'")

@@ -1,0 +1,100 @@
+"""QC diagrams: the existence diagram V vs w₊ (Fig. SWvelocities_cubic) and the solitary-wave
+family curves amplitude/energy vs V for one w₊ (Fig. SWamp_energy_QCcubic)."""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import qc
+from .errors import ParameterError, require_finite
+from .law import HardeningSofteningLaw
+
+
+@dataclass(frozen=True)
+class ExistenceDiagram:
+    """Arrays over the admissible w₊ ∈ (α, β) (n,): c₊, V_SK, c₋.  For w₊ < w* the band
+    (c₊, V_SK) holds tensile waves (TSW) and (V_SK, c₋) compressive ones (CSW); for w₊ > w* the
+    other way round.  Mirror V → −V for the full (symmetric) figure."""
+
+    w_plus: np.ndarray
+    c_plus: np.ndarray
+    V_SK: np.ndarray
+    c_minus: np.ndarray
+    w_star: float
+    alpha: float
+    beta: float
+    elapsed_s: float
+
+
+def existence_diagram(law: HardeningSofteningLaw, n: int = 400) -> ExistenceDiagram:
+    t0 = time.perf_counter()
+    if not (isinstance(n, int) and 3 <= n <= 100_000):
+        raise ParameterError("n", n, "an integer in [3, 100000]")
+    a, b, ws = law.alpha, law.beta, law.w_star
+    wp = a + (b - a) * (np.arange(n) + 0.5) / n  # open interval
+    c2, A = float(law.df(ws)), law.abs_a
+    e = (wp - ws) ** 2
+    return ExistenceDiagram(
+        wp, np.sqrt(c2 - 3 * A * e), np.sqrt(c2 - A * e), np.sqrt(c2 - 0.75 * A * e),
+        ws, a, b, time.perf_counter() - t0,
+    )  # fmt: skip
+
+
+def classify(law: HardeningSofteningLaw, w_plus: float, V: float) -> str:
+    """What lives at (w₊, V): "tensile", "compressive", "superkink" (|V| = V_SK to 1e-9) or
+    raises ParameterError naming the valid intervals.  Used e.g. for clicks on the diagram."""
+    w_plus, V = require_finite("w_plus", w_plus), abs(require_finite("V", V))
+    cp, vsk, cm = qc.sound_speeds(law, w_plus)
+    if abs(V - vsk) <= 1e-9 * vsk:
+        return "superkink"
+    return qc.solitary(law, w_plus, V).kind
+
+
+@dataclass(frozen=True)
+class SolitaryFamily:
+    """QC solitary waves along V for one w₊: arrays for the interval below V_SK and above it."""
+
+    w_plus: float
+    V_below: np.ndarray
+    amp_below: np.ndarray
+    energy_below: np.ndarray
+    kind_below: str
+    V_above: np.ndarray
+    amp_above: np.ndarray
+    energy_above: np.ndarray
+    kind_above: str
+    c_plus: float
+    V_SK: float
+    c_minus: float
+    sk_amplitude: float
+    elapsed_s: float
+
+
+def solitary_family(law: HardeningSofteningLaw, w_plus: float, n: int = 160) -> SolitaryFamily:
+    """Amplitude (eq. SWQC_amp) and E_ren^QC (eq. Eren_QC) along both velocity intervals,
+    with points clustered toward both ends (the energy diverges at V_SK)."""
+    t0 = time.perf_counter()
+    (cp, vsk), (_, cm) = qc.solitary_intervals(law, w_plus)
+    t = 0.5 * (1.0 - np.cos(np.pi * (np.arange(n) + 0.5) / n))
+
+    def run(lo, hi):
+        Vs = lo + (hi - lo) * t
+        out = []
+        for V in Vs:
+            try:
+                s = qc.solitary(law, w_plus, float(V))
+                out.append((V, s.amplitude, s.energy, s.kind))
+            except ParameterError:  # a point that rounds onto an interval end
+                continue
+        V_, amp, en, kinds = zip(*out, strict=True)
+        return np.array(V_), np.array(amp), np.array(en), kinds[0]
+
+    Vb, ab, eb, kb = run(cp, vsk)
+    Va, aa, ea, ka = run(vsk, cm)
+    sk = qc.superkink_from_w_plus(law, w_plus)
+    return SolitaryFamily(
+        w_plus, Vb, ab, eb, kb, Va, aa, ea, ka, cp, vsk, cm, sk.amplitude, time.perf_counter() - t0
+    )
