@@ -61,7 +61,8 @@ def run(args) -> int:
         f"speeds   c+ = {out['c_plus']:.10g}   V_SK = {out['V_SK']:.10g}   "
         f"c- = {out['c_minus']:.10g}",
         f"superkink  w+ = {out['w_plus']:.10g} -> w- = {sk['w_minus']:.10g}, p = {sk['p']:.10g} "
-        f"(Rayleigh residual {sk['rayleigh_residual']:.1e}, driving force {sk['driving_force']:.1e})",
+        f"(Rayleigh residual {sk['rayleigh_residual']:.1e}, "
+        f"driving force {sk['driving_force']:.1e})",
     ]
     if "solitary" in out:
         s = out["solitary"]

@@ -49,8 +49,7 @@ def _require_w_plus(law: CubicLaw, w_plus: float) -> float:
             w_plus,
             f"(alpha, w*) or (w*, beta) = {fmt_interval(law.alpha, law.w_star)} or "
             f"{fmt_interval(law.w_star, law.beta)}",
-            "at w_plus = w* the superkink and solitary-wave families degenerate "
-            "(c+ = V_SK = c-)",
+            "at w_plus = w* the superkink and solitary-wave families degenerate (c+ = V_SK = c-)",
         )
     return w_plus
 
@@ -195,7 +194,9 @@ def superkink_from_V(law: HardeningSofteningLaw, V: float, branch: str = "lower"
     V = _require_V(V)
     lo, hi = superkink_velocity_bounds(law)
     if not lo < V < hi:
-        raise ParameterError("V", V, fmt_interval(lo, hi), "superkink velocities, eq. V_bounds_cubic")
+        raise ParameterError(
+            "V", V, fmt_interval(lo, hi), "superkink velocities, eq. V_bounds_cubic"
+        )
     if branch not in ("lower", "upper"):
         raise ParameterError("branch", branch, "'lower' (w_plus < w*) or 'upper' (w_plus > w*)")
     delta = math.sqrt((hi - V) * (hi + V) / law.abs_a)  # no cancellation near V_hi
@@ -366,7 +367,11 @@ def solitary(law: HardeningSofteningLaw, w_plus: float, V: float) -> QCSolitary:
     )  # fmt: skip
     xi = np.linspace(0.0, 12.0 / gamma, 64)
     w, wp = sw.profile(xi), sw.dprofile(xi)
-    scale = V * V * (dM * dM + np.abs(w - w_B) * abs(dM)) + 1e-300
+    d = w - w_B  # scale = size of the terms that cancel in H (so the ratio is round-off)
+    scale = (
+        np.abs(law.phi(w)) + abs(float(law.phi(w_B))) + abs(float(law.f(w_B)) * d)
+        + V * V * (d * d + wp * wp / 24.0) + 1e-300
+    )  # fmt: skip
     fi = float(np.max(np.abs(first_integral(law, w, wp, w_B, V)) / scale))
     object.__setattr__(sw, "first_integral_residual", fi)
     object.__setattr__(sw, "elapsed_s", time.perf_counter() - t0)

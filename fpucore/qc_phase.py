@@ -102,7 +102,10 @@ def phase_plane(
         if abs(V - vsk) <= sk_tol * vsk:
             sk = qc.superkink_from_w_plus(law, w_plus)
             w, wp = _orbit_points(sk, n_orbit)
-            orbits = [Orbit("kink", "heteroclinic", w, wp), Orbit("antikink", "heteroclinic", w, -wp)]
+            orbits = [
+                Orbit("kink", "heteroclinic", w, wp),
+                Orbit("antikink", "heteroclinic", w, -wp),
+            ]
             regime = "superkink"
         elif cp < V < cm:
             sw = qc.solitary(law, w_plus, V)
@@ -110,7 +113,11 @@ def phase_plane(
             orbits = [Orbit(f"{sw.kind} solitary wave", "homoclinic", w, wp)]
             regime, ref = sw.kind, sw.w_B
 
-    ws = [c.w for c in cps] + [float(np.min(o.w)) for o in orbits] + [float(np.max(o.w)) for o in orbits]
+    ws = (
+        [c.w for c in cps]
+        + [float(np.min(o.w)) for o in orbits]
+        + [float(np.max(o.w)) for o in orbits]
+    )
     lo, hi = min(ws), max(ws)
     pad = 0.25 * max(hi - lo, 0.5)
     w_grid = np.linspace(max(lo - pad, law.alpha), min(hi + pad, law.beta), n_grid)
@@ -122,7 +129,9 @@ def phase_plane(
     H = first = qc.first_integral(law, W, WP, ref, V)
     levels = [float(qc.first_integral(law, c.w, 0.0, ref, V)) for c in cps if c.kind == "saddle"]
     span = float(np.ptp(first)) or 1.0
-    res = max([float(np.max(np.abs(qc.first_integral(law, o.w, o.wp, ref, V)))) for o in orbits] + [0.0])
+    res = max(
+        [float(np.max(np.abs(qc.first_integral(law, o.w, o.wp, ref, V)))) for o in orbits] + [0.0]
+    )
     return PhasePlane(
         w_plus, V, w_grid, wp_grid, H, cps, levels, orbits, regime, res / span,
         time.perf_counter() - t0,

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .law import CubicLaw, dforce, ddforce, force
+from .law import CubicLaw, ddforce, dforce, force
 
 
 def warm_all() -> list[str]:
