@@ -42,7 +42,8 @@ def core(module: str, *names: str):
     try:
         mod = importlib.import_module(f"fpucore.{module}")
     except Exception as exc:  # a module still being written may fail in any way
-        raise NotAvailable(f"fpucore.{module} could not be imported ({type(exc).__name__}: {exc})")
+        msg = f"fpucore.{module} could not be imported ({type(exc).__name__}: {exc})"
+        raise NotAvailable(msg) from None
     if not names:
         return mod
     missing = [n for n in names if not hasattr(mod, n)]
@@ -148,56 +149,30 @@ def qc_wave(a: float, b: float, mode: str, w_plus: float, V: float) -> Computed:
 
     lw = law(a, b)
     if mode == "superkink":
-        return CACHE.get(("qc_sk", rnd(a), rnd(b), rnd(w_plus)),
-                         lambda: qc.superkink_from_w_plus(lw, w_plus))  # fmt: skip
-    return CACHE.get(("qc_sw", rnd(a), rnd(b), rnd(w_plus), rnd(V)),
-                     lambda: qc.solitary(lw, w_plus, V))  # fmt: skip
-
-
-def _interior(lo: float, hi: float, n: int) -> np.ndarray:
-    """n points strictly inside (lo, hi), clustered towards both ends (sonic and SK limits)."""
-    s = 0.5 - 0.5 * np.cos(np.pi * (np.arange(n) + 0.5) / n)
-    return lo + (hi - lo) * s
+        return CACHE.get(
+            ("qc_sk", rnd(a), rnd(b), rnd(w_plus)), lambda: qc.superkink_from_w_plus(lw, w_plus)
+        )
+    return CACHE.get(
+        ("qc_sw", rnd(a), rnd(b), rnd(w_plus), rnd(V)), lambda: qc.solitary(lw, w_plus, V)
+    )
 
 
 def qc_family(a: float, b: float, w_plus: float, n: int = 160) -> Computed:
-    """Amplitude and renormalized energy of the QC solitary waves over both velocity intervals
-    (eqs. SWQC_amp, Eren_QC) for fixed w_plus: dict of arrays per interval "below"/"above"."""
-    from fpucore import qc
-
+    """fpucore.qc_diagram.solitary_family: amplitude (eq. SWQC_amp) and E_ren (eq. Eren_QC)
+    of the QC solitary waves along both velocity intervals for fixed w_plus."""
+    fn = core("qc_diagram", "solitary_family")
     lw = law(a, b)
-
-    def run():
-        out = {}
-        (cp, vsk), (_, cm) = qc.solitary_intervals(lw, w_plus)
-        for name, (lo, hi) in (("below", (cp, vsk)), ("above", (vsk, cm))):
-            Vs, amp, en, err, kinds = [], [], [], [], []
-            for V in _interior(lo, hi, n):
-                try:
-                    sw = qc.solitary(lw, w_plus, float(V))
-                except ParameterError:  # round-off at the very ends of the interval
-                    continue
-                Vs.append(V)
-                amp.append(sw.amplitude)
-                en.append(sw.energy)
-                err.append(max(sw.first_integral_residual, sw.energy_error))
-                kinds.append(sw.kind)
-            out[name] = {
-                "V": np.array(Vs), "amplitude": np.array(amp), "energy": np.array(en),
-                "error": np.array(err), "kind": kinds[0] if kinds else "",
-            }  # fmt: skip
-        out["c_plus"], out["V_SK"], out["c_minus"] = cp, vsk, cm
-        return out
-
-    return CACHE.get(("qc_family", rnd(a), rnd(b), rnd(w_plus), n), run)
+    return CACHE.get(("qc_family", rnd(a), rnd(b), rnd(w_plus), n), lambda: fn(lw, w_plus, n=n))
 
 
 def phase_plane(a: float, b: float, w_plus: float, V: float, n_grid: int = 241) -> Computed:
     """fpucore.qc_phase.phase_plane for the current parameters."""
     fn = core("qc_phase", "phase_plane")
     lw = law(a, b)
-    return CACHE.get(("phase", rnd(a), rnd(b), rnd(w_plus), rnd(V), n_grid),
-                     lambda: fn(lw, w_plus, V, n_grid=n_grid))  # fmt: skip
+    return CACHE.get(
+        ("phase", rnd(a), rnd(b), rnd(w_plus), rnd(V), n_grid),
+        lambda: fn(lw, w_plus, V, n_grid=n_grid),
+    )
 
 
 def existence_diagram(a: float, b: float, n: int = 400) -> Computed:
@@ -215,24 +190,14 @@ def _accepts(fn: Callable, name: str) -> bool:
         return False
 
 
-def _nearest_guess(prefix: tuple, V: float):
-    """Closest cached discrete solution of the same family (continuation seed), or None."""
-    best, dist = None, math.inf
-    for key, val in CACHE.items_like(prefix):
-        d = abs(key[len(prefix)] - V)
-        if d < dist and getattr(val, "converged", False):
-            best, dist = val, d
-    return best
-
-
 def discrete_wave(
     a: float, b: float, mode: str, w_plus: float, V: float, N: int | None, tol: float
 ) -> Computed:
     """Discrete traveling wave (fixed point of eq. nonlin_map) via fpucore.wave.
 
     Superkink: ``wave.solve_superkink(law, V, branch)`` with the branch of w_plus; solitary:
-    ``wave.solve_solitary(law, w_plus, V)``.  If the solver takes an initial guess, the
-    nearest cached solution of the same family is passed (parameter continuation).
+    ``wave.solve_solitary(law, w_plus, V)``.  Families (sweeps) use fpucore.continuation,
+    which seeds each solve from its neighbour.
     """
     lw = law(a, b)
     N = None if N is None else int(N)
@@ -241,28 +206,16 @@ def discrete_wave(
         from fpucore import qc
 
         sk = qc.superkink_from_w_plus(lw, w_plus)  # validates w_plus, gives V_SK and branch
-        prefix = ("wave_sk", rnd(a), rnd(b), sk.branch, N, rnd(tol, 3))
-        key = prefix + (rnd(sk.V),)
+        key = ("wave_sk", rnd(a), rnd(b), sk.branch, N, rnd(tol, 3), rnd(sk.V))
         kwargs = dict(branch=sk.branch, N=N, tol=tol)
         args = (lw, sk.V)
-        V = sk.V
     else:
         solve = core("wave", "solve_solitary")
-        prefix = ("wave_sw", rnd(a), rnd(b), rnd(w_plus), N, rnd(tol, 3))
-        key = prefix + (rnd(V),)
+        key = ("wave_sw", rnd(a), rnd(b), rnd(w_plus), N, rnd(tol, 3), rnd(V))
         kwargs = dict(N=N, tol=tol)
         args = (lw, w_plus, V)
 
-    def run():
-        for gname in ("guess", "initial_guess", "x0"):
-            if _accepts(solve, gname):
-                seed = _nearest_guess(prefix, V)
-                if seed is not None:
-                    kwargs[gname] = seed
-                break
-        return solve(*args, **kwargs)
-
-    return CACHE.get(key, run)
+    return CACHE.get(key, lambda: solve(*args, **kwargs))
 
 
 def floquet_spectrum(
@@ -271,42 +224,53 @@ def floquet_spectrum(
     """(discrete wave, Floquet spectrum of it) — the wave comes from the shared cache."""
     spectrum = core("floquet", "spectrum")
     r = discrete_wave(a, b, mode, w_plus, V, N, tol)
-    key = ("floquet", id(r.value))
     key = ("floquet", rnd(a), rnd(b), mode, rnd(w_plus), rnd(V), N, rnd(tol, 3))
     return r, CACHE.get(key, lambda: spectrum(r.value))
 
 
 def floquet_sweep(
-    a: float, b: float, kind: str, w_plus: float | None, V_values, N: int, progress=None
+    a: float,
+    b: float,
+    kind: str,
+    w_plus: float | None,
+    V_values,
+    N: int,
+    branch: str = "lower",
+    progress=None,
 ) -> Computed:
-    """max |μ| against V for the family (fpucore.floquet.sweep)."""
+    """max |μ| against V for the family (fpucore.floquet.sweep; progress(i, n, ...))."""
     sweep = core("floquet", "sweep")
     lw = law(a, b)
     Vs = tuple(rnd(v) for v in V_values)
     wp = None if w_plus is None else rnd(w_plus)
-    return CACHE.get(("fsweep", rnd(a), rnd(b), kind, wp, Vs, int(N)),
-                     lambda: sweep(lw, kind=kind, V_values=np.array(Vs), w_plus=w_plus, N=int(N),
-                                   progress=progress))  # fmt: skip
+    return CACHE.get(
+        ("fsweep", rnd(a), rnd(b), kind, wp, Vs, int(N), branch),
+        lambda: sweep(
+            lw,
+            kind=kind,
+            V_values=np.array(Vs),
+            w_plus=w_plus,
+            N=int(N),
+            branch=branch,
+            progress=progress,
+        ),
+    )
 
 
 def discrete_family(
     a: float, b: float, w_plus: float, V_values, N: int | None, tol: float, progress=None
 ) -> Computed:
     """Discrete solitary waves at the given velocities (amplitude/energy dots of Figs.
-    SWamp_cubic_DvsQC, SWenergy_cubic_DvsQC); failures are kept as messages, not dropped."""
+    SWamp_cubic_DvsQC, SWenergy_cubic_DvsQC) via fpucore.continuation.solitary_family, which
+    continues each solve from its neighbour.  Returns the list of wave results."""
+    family = core("continuation", "solitary_family")
+    lw = law(a, b)
     Vs = tuple(rnd(v) for v in V_values)
 
     def run():
-        rows = []
-        for i, V in enumerate(Vs):
-            try:
-                r = discrete_wave(a, b, "solitary", w_plus, V, N, tol).value
-                rows.append(r)
-            except ParameterError as exc:
-                rows.append(exc)
-            if progress is not None:
-                progress(i + 1, len(Vs))
-        return rows
+        cb = None if progress is None else (lambda i, n, *rest: progress(i, n))
+        fam = family(lw, w_plus, np.array(Vs), N=N, tol=tol, progress=cb)
+        return list(fam.results)
 
     return CACHE.get(("dfamily", rnd(a), rnd(b), rnd(w_plus), Vs, N, rnd(tol, 3)), run)
 
@@ -344,8 +308,12 @@ def simulate(kind: str, a: float, b: float, params: dict, progress=None) -> Comp
         def run():
             r = discrete_wave(a, b, *wave_args).value
             if not getattr(r, "converged", True):
-                raise ParameterError("V", wave_args[2], "a converged traveling wave",
-                                     f"the seeding wave did not converge: {r.message}")  # fmt: skip
+                raise ParameterError(
+                    "V",
+                    wave_args[2],
+                    "a converged traveling wave",
+                    f"the seeding wave did not converge: {r.message}",
+                )
             return call(fn, r, **p)
 
         return CACHE.get(key, run)

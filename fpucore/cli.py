@@ -52,12 +52,13 @@ def add_law_args(p: argparse.ArgumentParser) -> None:
 
 
 def build_parser() -> argparse.ArgumentParser:
-    from . import cli_qc, cli_warm
+    from . import cli_floquet, cli_qc, cli_warm, cli_wave
 
     parser = _Parser(prog="fpu", description=__doc__.splitlines()[0])
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
-    for mod in (cli_qc, cli_warm):
+    for mod in (cli_qc, cli_warm, cli_wave, cli_floquet):
         mod.register(sub)
+    __import__(f"{__package__}.cli_simulate", fromlist=["register"]).register(sub)
     return parser
 
 

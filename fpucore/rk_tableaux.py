@@ -49,9 +49,7 @@ def _frozen(x: np.ndarray) -> np.ndarray:
 
 
 _S = _dop.N_STAGES  # 12
-DOP853 = Tableau(
-    "dop853", _frozen(_dop.A[:_S, :_S]), _frozen(_dop.B[:_S]), _frozen(_dop.C[:_S]), 8
-)
+DOP853 = Tableau("dop853", _frozen(_dop.A[:_S, :_S]), _frozen(_dop.B[:_S]), _frozen(_dop.C[:_S]), 8)
 
 RK4 = Tableau(
     "rk4",

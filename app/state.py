@@ -1,0 +1,174 @@
+"""The explorer's single state owner: parameters, slider ranges and validity.
+
+``ExplorerState`` holds what a link must reproduce (a, b, w_plus, V, mode, tab, N, tol) and
+derives from fpucore's closed forms the ranges the sliders may take:
+
+* w_plus: the admissible interval (alpha, beta) with the degenerate point w* excluded;
+* V (solitary mode): (c_+, V_SK) ∪ (V_SK, c_-) (eq. wB), V_SK marked;
+* V (superkink mode): V = V_SK(w_plus) (eq. cubic_cond2), within eq. V_bounds_cubic.
+
+Parameters are deliberately unbounded (a URL may carry anything); ``problem()`` says in one
+sentence what is wrong with the current combination, and views show that sentence instead of
+a plot.  In superkink mode V and w_plus are tied: moving one moves the other along the branch.
+"""
+
+from __future__ import annotations
+
+import math
+
+import param
+
+from fpucore import qc
+from fpucore.errors import ParameterError
+
+from . import compute
+
+TABS = ("force", "phase", "profiles", "diagram", "floquet", "simulation")
+MODES = ("solitary", "superkink")
+
+
+class ExplorerState(param.Parameterized):
+    """Single source of truth for the dashboard (synced with the URL query string)."""
+
+    a = param.Number(-1.0, doc="cubic coefficient a < 0 of f(w) = a w^3 + b w^2 + w")
+    b = param.Number(10.0, doc="quadratic coefficient b > 0")
+    w_plus = param.Number(1.0, doc="strain w_+ ahead of the superkink")
+    V = param.Number(5.0, doc="velocity V > 0")
+    mode = param.Selector(default="solitary", objects=list(MODES))
+    tab = param.Selector(default="force", objects=list(TABS))
+    N = param.Integer(500, bounds=(20, 20000), doc="number of lattice sites of the discrete solve")
+    tol = param.Number(1e-10, bounds=(1e-14, 1e-2), doc="Newton tolerance of the discrete solve")
+
+    def __init__(self, **params):
+        super().__init__(**params)
+        self._tying = False
+        self.param.watch(self._tie, ["w_plus", "V", "mode", "a", "b"])
+        if self.mode == "superkink":
+            self._tie_superkink(from_V=False)
+
+    # ------------------------------------------------------------------ derived quantities
+    def law(self):
+        """CubicLaw(a, b); raises ParameterError for invalid a, b."""
+        return compute.law(self.a, self.b)
+
+    def w_plus_range(self) -> tuple[float, float, float]:
+        """(alpha, w*, beta): w_plus ranges over (alpha, beta) without w* (eq. cubic_more)."""
+        lw = self.law()
+        return lw.alpha, lw.w_star, lw.beta
+
+    def speeds(self) -> tuple[float, float, float]:
+        """(c_+, V_SK, c_-) for the current w_plus (eqs. cplus, cubic_cond2, cminus_cubic)."""
+        return qc.sound_speeds(self.law(), self.w_plus)
+
+    def V_range(self) -> tuple[float, float]:
+        """Slider range of V: (c_+, c_-) in solitary mode, the superkink bounds otherwise."""
+        if self.mode == "superkink":
+            return qc.superkink_velocity_bounds(self.law())
+        cp, _, cm = self.speeds()
+        return cp, cm
+
+    def problem(self) -> str | None:
+        """None if (a, b, w_plus, V, mode) defines a wave, else a one-sentence explanation."""
+        try:
+            lw = self.law()
+            if self.mode == "superkink":
+                sk = qc.superkink_from_w_plus(lw, self.w_plus)
+                if abs(self.V - sk.V) > 1e-9 * sk.V:
+                    qc.superkink_from_V(lw, self.V)  # raises with the superkink V interval
+                    return f"in superkink mode V = V_SK(w_plus) = {sk.V:.10g}, not {self.V:.10g}"
+            else:
+                qc.solitary_intervals(lw, self.w_plus)
+                cp, vsk, cm = qc.sound_speeds(lw, self.w_plus)
+                if self.V == vsk:
+                    return (
+                        f"V = V_SK = {vsk:.10g} is the superkink itself: switch the mode to "
+                        "'superkink' or move V into (c+, V_SK) or (V_SK, c-)."
+                    )
+                qc.solitary(lw, self.w_plus, self.V)
+        except ParameterError as exc:
+            return str(exc)
+        return None
+
+    def summary(self) -> dict:
+        """The numbers the sidebar shows (NaN-free: invalid parts are left out)."""
+        out: dict = {}
+        try:
+            alpha, ws, beta = self.w_plus_range()
+            out.update(alpha=alpha, w_star=ws, beta=beta)
+            cp, vsk, cm = self.speeds()
+            out.update(c_plus=cp, V_SK=vsk, c_minus=cm)
+            out["V_lo"], out["V_hi"] = qc.superkink_velocity_bounds(self.law())
+        except ParameterError:
+            pass
+        return out
+
+    def kind(self) -> str:
+        """What the current parameters describe: superkink / tensile / compressive / invalid."""
+        if self.problem() is not None:
+            return "invalid"
+        if self.mode == "superkink":
+            return "superkink"
+        return qc.solitary(self.law(), self.w_plus, self.V).kind
+
+    # ------------------------------------------------------------------ coupling
+    def _tie(self, *events):
+        if self._tying:
+            return
+        names = {e.name for e in events}
+        if self.mode == "superkink":
+            self._tie_superkink(from_V=names == {"V"})
+        elif "w_plus" in names and "V" not in names and len(events) == 1:
+            self._remap_V(events[0].old)
+
+    def _tie_superkink(self, from_V: bool) -> None:
+        """Keep V = V_SK(w_plus) (or w_plus = w_+(V) on the same branch) in superkink mode."""
+        try:
+            lw = self.law()
+            if from_V:
+                branch = "lower" if self.w_plus < lw.w_star else "upper"
+                new = {"w_plus": qc.superkink_from_V(lw, self.V, branch=branch).w_plus}
+            else:
+                new = {"V": qc.superkink_from_w_plus(lw, self.w_plus).V}
+        except ParameterError:
+            return  # leave the invalid value in place: problem() explains it
+        self._tying = True
+        try:
+            self.param.update(**new)
+        finally:
+            self._tying = False
+
+    def _remap_V(self, old_w_plus: float) -> None:
+        """Solitary mode: when w_plus moves, keep V at the same relative position inside the
+        same interval (below/above V_SK), so a slider move never produces an invalid state."""
+        try:
+            lw = self.law()
+            (cp0, vsk0), (_, cm0) = qc.solitary_intervals(lw, old_w_plus)
+            (cp1, vsk1), (_, cm1) = qc.solitary_intervals(lw, self.w_plus)
+        except ParameterError:
+            return
+        V = self.V
+        if cp0 < V < vsk0:
+            s, (lo, hi) = (V - cp0) / (vsk0 - cp0), (cp1, vsk1)
+        elif vsk0 < V < cm0:
+            s, (lo, hi) = (V - vsk0) / (cm0 - vsk0), (vsk1, cm1)
+        else:
+            return
+        newV = lo + s * (hi - lo)
+        if math.isfinite(newV) and lo < newV < hi:
+            self._tying = True
+            try:
+                self.V = newV
+            finally:
+                self._tying = False
+
+    # ------------------------------------------------------------------ actions
+    def pick(self, w_plus: float, V: float) -> None:
+        """Set (w_plus, V) at once, e.g. from a click on the existence diagram; V < 0 clicks
+        (the diagram is symmetric) are mirrored to V > 0."""
+        self._tying = True
+        try:
+            self.param.update(w_plus=float(w_plus), V=abs(float(V)))
+        finally:
+            self._tying = False
+        if self.mode == "superkink":
+            self._tie_superkink(from_V=False)

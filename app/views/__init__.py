@@ -1,0 +1,19 @@
+"""One thin view class per scene (tab); each only renders what fpucore computed."""
+
+from .diagram import DiagramScene
+from .floquet import FloquetScene
+from .force_law import ForceLawScene
+from .phase_plane import PhasePlaneScene
+from .profiles import ProfilesScene
+from .simulation import SimulationScene
+
+SCENES = (
+    ForceLawScene,
+    PhasePlaneScene,
+    ProfilesScene,
+    DiagramScene,
+    FloquetScene,
+    SimulationScene,
+)
+
+__all__ = ["SCENES"] + [cls.__name__ for cls in SCENES]

@@ -1,0 +1,57 @@
+"""Server warm-up (``panel serve --setup app/warm.py``): runs once before the server accepts
+connections, so no visitor waits for Numba compilation or for the default view.
+
+1. fpucore's JIT warm-up (loads or compiles every Numba kernel; with cache=True and a writable
+   NUMBA_CACHE_DIR the compiled code is reused from disk across restarts);
+2. renders every scene once for the default parameters, which fills the process-wide result
+   cache (QC scenes, the default discrete wave and its Floquet spectrum) and imports/initializes
+   HoloViews' Bokeh backend.  Modules that are not available are skipped.
+"""
+
+from __future__ import annotations
+
+import logging
+import os
+import time
+
+log = logging.getLogger("fpu-explorer")
+
+
+def warm(verbose: bool = True, scenes: str | None = None) -> dict[str, float]:
+    """Warm the JIT and the cache; returns seconds spent per step.
+
+    ``scenes``: comma-separated scene keys to pre-render, "all" (default, from the environment
+    variable FPU_WARM_SCENES) or "none".  The browser tests use "force,phase" to start fast.
+    """
+    scenes = scenes or os.environ.get("FPU_WARM_SCENES", "all")
+    times: dict[str, float] = {}
+    t0 = time.perf_counter()
+    try:
+        from fpucore.warm import warm_all
+
+        warm_all()
+    except Exception as exc:  # warm-up must never keep the server from starting
+        log.warning("fpucore warm-up skipped: %s", exc)
+    times["jit"] = time.perf_counter() - t0
+
+    from app.explorer import Explorer
+
+    explorer = Explorer()
+    for scene in explorer.scenes:
+        if scenes != "all" and scene.key not in scenes.split(","):
+            continue
+        t = time.perf_counter()
+        explorer.state.tab = scene.key
+        scene.refresh()
+        times[scene.key] = time.perf_counter() - t
+    if verbose:
+        print(
+            "fpu-explorer warm-up:",
+            ", ".join(f"{k} {v:.2f}s" for k, v in times.items()),
+            flush=True,
+        )
+    return times
+
+
+if __name__ in ("__main__", "panel_setup_module"):
+    warm()

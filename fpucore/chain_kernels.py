@@ -1,0 +1,462 @@
+"""Numba kernels for direct simulation of the FPU chain (paper eq. FPUsystem, strain–velocity form).
+
+State vector ``y`` (length 2L+2) for a chain of L springs (sites n = 1…L of eq. Riemann_data are
+indices 0…L−1) joining particles 0…L:
+
+    y[0:L]       strains   w_n                 ẇ_n = v_n − v_{n−1}            (eq. FPUsystem)
+    y[L:2L+1]    velocities v_j, j = 0…L        v̇_j = f(w_{j+1}) − f(w_j)
+    y[2L+1]      displacement u_0 of particle 0 (only enters the dead-load energy)
+
+The ghost forces f(w_0) = ``fL`` and f(w_{L+1}) = ``fR`` close the chain:
+  * ``BC_LOAD`` with fL = fR = 0: stress-free ends (literal free ends);
+  * ``BC_LOAD`` with fL = f(w_left), fR = f(w_right): fixed boundary strains (eq. fixedBCs) — a
+    constant (dead) load on the end particles;
+  * ``BC_FIXED_PARTICLES``: end particles held at rest, v_0 = v_L = 0 (in strain form: zero strain
+    gradient, w_0 = w_1, w_{L+1} = w_L).
+
+Two steppers, both advancing ``y`` in place from t to t_stop (a chunk between two output times) and
+calling the same observer after every accepted step:
+  * :func:`erk_chunk` — adaptive embedded RK (DOP853 or DOPRI5 tableau from fpucore.rk_embedded),
+    scipy/Hairer step-size control, RMS error norm with scale atol + rtol·max(|y|, |y_new|);
+  * :func:`yoshida_chunk` — 4th-order symplectic Yoshida composition of velocity Verlet with a
+    fixed step (kick-drift-kick in (w, v); the map is symplectic because w = D u is linear).
+
+Observer (:func:`_observe`): per site, the extrema in time of w_n(t) (hysteresis “zigzag” with
+prominence ``thr``) and the crossings of a level (w*), located inside the step with the quintic
+Hermite interpolant built from w, ẇ, ẅ at both step ends (ẅ is read off the RHS), plus probe time
+series at chosen sites on a fixed time grid (same interpolant).  After every step the strains are
+checked against the convex interval (α, β): leaving it stops the run (status ``ST_LEFT_CONVEX``).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from . import law as _law
+
+BC_LOAD = 0
+BC_FIXED_PARTICLES = 1
+
+ST_OK = 0
+ST_BUDGET = 2
+ST_LEFT_CONVEX = 3
+ST_STEP_UNDERFLOW = 4
+ST_NONFINITE = 5
+
+
+# --------------------------------------------------------------------------- right-hand side
+@njit(cache=True, nogil=True)
+def forces(y, L, law_id, p, fL, fR, g):
+    """g[0] = fL, g[1..L] = f(w_1..w_L), g[L+1] = fR.  g: (L+2,)."""
+    g[0] = fL
+    g[L + 1] = fR
+    for n in range(L):
+        g[n + 1] = _law.force(law_id, p, y[n])
+
+
+@njit(cache=True, nogil=True)
+def assemble(y, L, bc, g, out):
+    """out = dy/dt from the state y and the forces g (see :func:`forces`)."""
+    for n in range(L):
+        out[n] = y[L + n + 1] - y[L + n]
+    for j in range(L + 1):
+        out[L + j] = g[j + 1] - g[j]
+    if bc == BC_FIXED_PARTICLES:
+        out[L] = 0.0
+        out[2 * L] = 0.0
+    out[2 * L + 1] = y[L]
+
+
+@njit(cache=True, nogil=True)
+def rhs(y, L, law_id, p, bc, fL, fR, g, out):
+    """Right-hand side of eq. FPUsystem with the boundary closure; g is (L+2,) work."""
+    forces(y, L, law_id, p, fL, fR, g)
+    assemble(y, L, bc, g, out)
+
+
+# --------------------------------------------------------------------------- Hermite helpers
+@njit(cache=True, nogil=True)
+def _h5coef(w0, w1, d0, d1, a0, a1, h, c):
+    """Coefficients c[0..5] (in s = (t−t0)/h) of the quintic Hermite interpolant."""
+    m0 = h * d0
+    m1 = h * d1
+    q0 = h * h * a0
+    q1 = h * h * a1
+    c[0] = w0
+    c[1] = m0
+    c[2] = 0.5 * q0
+    c[3] = -10.0 * w0 - 6.0 * m0 - 1.5 * q0 + 0.5 * q1 - 4.0 * m1 + 10.0 * w1
+    c[4] = 15.0 * w0 + 8.0 * m0 + 1.5 * q0 - q1 + 7.0 * m1 - 15.0 * w1
+    c[5] = -6.0 * w0 - 3.0 * m0 - 0.5 * q0 + 0.5 * q1 - 3.0 * m1 + 6.0 * w1
+
+
+@njit(cache=True, nogil=True)
+def _poly(c, s):
+    return c[0] + s * (c[1] + s * (c[2] + s * (c[3] + s * (c[4] + s * c[5]))))
+
+
+@njit(cache=True, nogil=True)
+def _dpoly(c, s):
+    return c[1] + s * (2.0 * c[2] + s * (3.0 * c[3] + s * (4.0 * c[4] + s * 5.0 * c[5])))
+
+
+@njit(cache=True, nogil=True)
+def _root(c, deriv, level):
+    """Root in [0, 1] of P(s) − level (deriv=False) or P′(s) (deriv=True); sign change assumed."""
+    lo = 0.0
+    hi = 1.0
+    flo = _dpoly(c, lo) if deriv else _poly(c, lo) - level
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        fm = _dpoly(c, mid) if deriv else _poly(c, mid) - level
+        if (fm > 0.0) == (flo > 0.0):
+            lo = mid
+            flo = fm
+        else:
+            hi = mid
+        if hi - lo < 1e-15:
+            break
+    return 0.5 * (lo + hi)
+
+
+# --------------------------------------------------------------------------- observer
+@njit(cache=True, nogil=True)
+def _record(n, sgn, t, w, ev_t, ev_w, ev_s, ev_n):
+    k = ev_n[n]
+    if k < ev_t.shape[1]:
+        ev_t[n, k] = t
+        ev_w[n, k] = w
+        ev_s[n, k] = sgn
+        ev_n[n] = k + 1
+
+
+@njit(cache=True, nogil=True)
+def _observe(
+    t0, h, y0, k0, y1, k1, L, thr, level, zz, zt, zdir, ev_t, ev_w, ev_s, ev_n,
+    cr_t, cr_s, cr_n, probe_idx, probe_t, probe_out, pcount, c,
+):  # fmt: skip
+    """Record extrema / level crossings of every w_n inside [t0, t0+h] and probe samples.
+
+    zz : (L, 3) per-site [candidate extremum value, running min, running max]; zt : (L,)
+    candidate time; zdir : (L,) int8 zigzag direction (+1 looking for a max, −1 for a min, 0 not
+    started).  ev_* : (L, K) confirmed extrema (time, value, sign ±1), ev_n : (L,) counts.
+    cr_* : (L, KC) crossings of ``level`` (time, direction ±1), cr_n : counts.
+    probe_idx : (P,) sites; probe_t : (M,) sorted times; probe_out : (P, M); pcount : (1,) next.
+    c : (6,) work.
+    """
+    for n in range(L):
+        w0 = y0[n]
+        w1 = y1[n]
+        d0 = k0[n]
+        d1 = k1[n]
+        ext = 0
+        if d0 > 0.0 and d1 <= 0.0:
+            ext = 1
+        elif d0 < 0.0 and d1 >= 0.0:
+            ext = -1
+        crossed = (w0 - level) * (w1 - level) < 0.0 and cr_n[n] < cr_t.shape[1]
+        if ext != 0 or crossed:
+            a0 = k0[L + n + 1] - k0[L + n]
+            a1 = k1[L + n + 1] - k1[L + n]
+            _h5coef(w0, w1, d0, d1, a0, a1, h, c)
+            if crossed:
+                s = _root(c, False, level)
+                k = cr_n[n]
+                cr_t[n, k] = t0 + s * h
+                cr_s[n, k] = 1 if w1 > w0 else -1
+                cr_n[n] = k + 1
+            if ext != 0:
+                s = _root(c, True, 0.0)
+                te = t0 + s * h
+                we = _poly(c, s)
+                dirn = zdir[n]
+                if ext == 1:
+                    if dirn == 1:
+                        if we > zz[n, 0]:
+                            zz[n, 0] = we
+                            zt[n] = te
+                    elif dirn == -1:
+                        if we - zz[n, 0] > thr:
+                            _record(n, -1, zt[n], zz[n, 0], ev_t, ev_w, ev_s, ev_n)
+                            zdir[n] = 1
+                            zz[n, 0] = we
+                            zt[n] = te
+                    elif we - zz[n, 1] > thr:
+                        zdir[n] = 1
+                        zz[n, 0] = we
+                        zt[n] = te
+                else:
+                    if dirn == -1:
+                        if we < zz[n, 0]:
+                            zz[n, 0] = we
+                            zt[n] = te
+                    elif dirn == 1:
+                        if zz[n, 0] - we > thr:
+                            _record(n, 1, zt[n], zz[n, 0], ev_t, ev_w, ev_s, ev_n)
+                            zdir[n] = -1
+                            zz[n, 0] = we
+                            zt[n] = te
+                    elif zz[n, 2] - we > thr:
+                        zdir[n] = -1
+                        zz[n, 0] = we
+                        zt[n] = te
+        if w1 < zz[n, 1]:
+            zz[n, 1] = w1
+        if w1 > zz[n, 2]:
+            zz[n, 2] = w1
+    # probes on the fixed time grid
+    M = probe_t.size
+    k = pcount[0]
+    t1 = t0 + h
+    while k < M and probe_t[k] <= t1 * (1.0 + 1e-15):
+        s = (probe_t[k] - t0) / h
+        for i in range(probe_idx.size):
+            n = probe_idx[i]
+            a0 = k0[L + n + 1] - k0[L + n]
+            a1 = k1[L + n + 1] - k1[L + n]
+            _h5coef(y0[n], y1[n], k0[n], k1[n], a0, a1, h, c)
+            probe_out[i, k] = _poly(c, s)
+        k += 1
+    pcount[0] = k
+
+
+@njit(cache=True, nogil=True)
+def _check_convex(y, L, alpha, beta, bad):
+    """Index of the first strain outside (α, β) or non-finite, else −1; bad[0] = its value.
+    Also keeps the running extremes of all strains in bad[2] (min) and bad[3] (max)."""
+    lo = bad[2]
+    hi = bad[3]
+    first = -1
+    for n in range(L):
+        x = y[n]
+        if x < lo:
+            lo = x
+        if x > hi:
+            hi = x
+        if first < 0 and not (alpha < x < beta):
+            bad[0] = x
+            first = n
+    bad[2] = lo
+    bad[3] = hi
+    return first
+
+
+# --------------------------------------------------------------------------- adaptive RK
+@njit(cache=True, nogil=True)
+def _combo(y, K, rows, cf, nc, out):
+    """out = y + Σ_q cf[q] K[rows[q]] (y None: no y term); up to eight stages per memory pass
+    (the passes, not the flops, dominate the cost of a DOP853 step)."""
+    nn = out.size
+    if y is None:
+        for m in range(nn):
+            out[m] = 0.0
+    else:
+        for m in range(nn):
+            out[m] = y[m]
+    q = 0
+    while q + 8 <= nc:
+        a0, a1, a2, a3 = cf[q], cf[q + 1], cf[q + 2], cf[q + 3]
+        a4, a5, a6, a7 = cf[q + 4], cf[q + 5], cf[q + 6], cf[q + 7]
+        k0, k1, k2, k3 = K[rows[q]], K[rows[q + 1]], K[rows[q + 2]], K[rows[q + 3]]
+        k4, k5, k6, k7 = K[rows[q + 4]], K[rows[q + 5]], K[rows[q + 6]], K[rows[q + 7]]
+        for m in range(nn):
+            out[m] += (a0 * k0[m] + a1 * k1[m] + a2 * k2[m] + a3 * k3[m]) + (
+                a4 * k4[m] + a5 * k5[m] + a6 * k6[m] + a7 * k7[m]
+            )
+        q += 8
+    while q + 4 <= nc:
+        a0, a1, a2, a3 = cf[q], cf[q + 1], cf[q + 2], cf[q + 3]
+        k0, k1, k2, k3 = K[rows[q]], K[rows[q + 1]], K[rows[q + 2]], K[rows[q + 3]]
+        for m in range(nn):
+            out[m] += a0 * k0[m] + a1 * k1[m] + a2 * k2[m] + a3 * k3[m]
+        q += 4
+    while q < nc:
+        a0 = cf[q]
+        k0 = K[rows[q]]
+        for m in range(nn):
+            out[m] += a0 * k0[m]
+        q += 1
+
+
+@njit(cache=True, nogil=True)
+def erk_chunk(
+    y, t, t_stop, h, A, B, E5, E3, dual, err_exp, rtol, atol, max_steps,
+    L, law_id, p, bc, fL, fR, alpha, beta, K, W, g, stats, bad,
+    thr, level, zz, zt, zdir, ev_t, ev_w, ev_s, ev_n, cr_t, cr_s, cr_n,
+    probe_idx, probe_t, probe_out, pcount, c,
+):  # fmt: skip
+    """Advance y from t to t_stop with an embedded explicit RK pair and error control.
+
+    K : (s+1, 2L+2) stage work, K[0] must hold f(y) on entry and holds f(y) on exit (FSAL);
+    W : (3, 2L+2) work.
+    h : proposed step on entry.  stats (float64, 6): [steps, rejected, rhs evaluations,
+    Σ local error (RMS-norm × RMS scale), max error norm, unused], accumulated.
+    bad (float64, 4): [value, site] of a strain that left (α, β), [min, max] of all strains.
+    Returns (t, h_next, status).
+    """
+    s = B.size
+    nn = y.size
+    ynew = W[0]
+    x5 = W[1]
+    x3 = W[2]
+    # nonzero pattern of the (sparse) tableau: rows[i, :cnt[i]] stages used by stage i,
+    # row s: the solution weights B, row s+1: error weights E5/E3
+    rows = np.zeros((s + 2, s + 1), np.int64)
+    cnt = np.zeros(s + 2, np.int64)
+    for i in range(s):
+        for j in range(i):
+            if A[i, j] != 0.0:
+                rows[i, cnt[i]] = j
+                cnt[i] += 1
+        if B[i] != 0.0:
+            rows[s, cnt[s]] = i
+            cnt[s] += 1
+    for i in range(s + 1):
+        if E5[i] != 0.0 or E3[i] != 0.0:
+            rows[s + 1, cnt[s + 1]] = i
+            cnt[s + 1] += 1
+    cf = np.zeros(s + 1)
+    cf3 = np.zeros(s + 1)
+    status = 0
+    while t < t_stop:
+        if stats[0] >= max_steps:
+            status = ST_BUDGET
+            break
+        rem = t_stop - t
+        clamped = h >= rem
+        hh = rem if clamped else h
+        for i in range(1, s):
+            for q in range(cnt[i]):
+                cf[q] = hh * A[i, rows[i, q]]
+            _combo(y, K, rows[i], cf, cnt[i], ynew)
+            rhs(ynew, L, law_id, p, bc, fL, fR, g, K[i])
+        for q in range(cnt[s]):
+            cf[q] = hh * B[rows[s, q]]
+        _combo(y, K, rows[s], cf, cnt[s], ynew)
+        rhs(ynew, L, law_id, p, bc, fL, fR, g, K[s])
+        stats[2] += s
+        for q in range(cnt[s + 1]):
+            cf[q] = E5[rows[s + 1, q]]
+            cf3[q] = E3[rows[s + 1, q]]
+        _combo(None, K, rows[s + 1], cf, cnt[s + 1], x5)
+        _combo(None, K, rows[s + 1], cf3, cnt[s + 1], x3)
+        e5 = 0.0
+        e3 = 0.0
+        sc2 = 0.0
+        for m in range(nn):
+            sc = atol + rtol * max(abs(y[m]), abs(ynew[m]))
+            inv = 1.0 / sc
+            e5 += (x5[m] * inv) ** 2
+            e3 += (x3[m] * inv) ** 2
+            sc2 += sc * sc
+        if dual:
+            den = e5 + 0.01 * e3
+            err = 0.0 if den == 0.0 else hh * e5 / math.sqrt(den * nn)
+        else:
+            err = hh * math.sqrt(e5 / nn)
+        if not math.isfinite(err):
+            h = 0.2 * hh
+            stats[1] += 1
+            if h < 1e-14 * max(1.0, abs(t)):
+                status = ST_NONFINITE
+                break
+            continue
+        if err < 1.0:
+            fac = 10.0 if err == 0.0 else min(10.0, 0.9 * err**err_exp)
+            if not clamped:
+                h = hh * fac
+            _observe(t, hh, y, K[0], ynew, K[s], L, thr, level, zz, zt, zdir, ev_t, ev_w, ev_s,
+                     ev_n, cr_t, cr_s, cr_n, probe_idx, probe_t, probe_out, pcount, c)  # fmt: skip
+            for m in range(nn):
+                y[m] = ynew[m]
+                K[0, m] = K[s, m]
+            t = t_stop if clamped else t + hh
+            stats[0] += 1
+            stats[3] += err * math.sqrt(sc2 / nn)
+            if err > stats[4]:
+                stats[4] = err
+            bi = _check_convex(y, L, alpha, beta, bad)
+            if bi >= 0:
+                bad[1] = bi
+                status = ST_LEFT_CONVEX
+                break
+        else:
+            h = hh * max(0.2, 0.9 * err**err_exp)
+            stats[1] += 1
+            if h < 1e-14 * max(1.0, abs(t)):
+                status = ST_STEP_UNDERFLOW
+                break
+    return t, h, status
+
+
+# --------------------------------------------------------------------------- symplectic
+@njit(cache=True, nogil=True)
+def _kick(y, L, bc, g, dt):
+    for j in range(L + 1):
+        y[L + j] += dt * (g[j + 1] - g[j])
+    if bc == BC_FIXED_PARTICLES:
+        y[L] = 0.0
+        y[2 * L] = 0.0
+
+
+@njit(cache=True, nogil=True)
+def _drift(y, L, dt):
+    for n in range(L):
+        y[n] += dt * (y[L + n + 1] - y[L + n])
+    y[2 * L + 1] += dt * y[L]
+
+
+@njit(cache=True, nogil=True)
+def yoshida_chunk(
+    y, t, t_stop, h, max_steps, L, law_id, p, bc, fL, fR, alpha, beta, k0, k1, y0, g, stats, bad,
+    thr, level, zz, zt, zdir, ev_t, ev_w, ev_s, ev_n, cr_t, cr_s, cr_n,
+    probe_idx, probe_t, probe_out, pcount, c,
+):  # fmt: skip
+    """Advance y from t to t_stop with the 4th-order Yoshida composition of velocity Verlet,
+    fixed step h (the last step of the chunk is shortened to land on t_stop).
+
+    On entry g must hold the forces at y and k0 = f(y); both hold the values at y on exit.
+    Returns (t, h, status).
+    """
+    cbr = 2.0 ** (1.0 / 3.0)
+    c1 = 1.0 / (2.0 - cbr)
+    c0 = -cbr * c1
+    nn = y.size
+    status = 0
+    while t < t_stop:
+        if stats[0] >= max_steps:
+            status = ST_BUDGET
+            break
+        rem = t_stop - t
+        clamped = h >= rem * (1.0 - 1e-12)
+        hh = rem if clamped else h
+        for m in range(nn):
+            y0[m] = y[m]
+        # K(c1/2) D(c1) K((c1+c0)/2) D(c0) K((c0+c1)/2) D(c1) K(c1/2); g is FSAL
+        _kick(y, L, bc, g, 0.5 * c1 * hh)
+        _drift(y, L, c1 * hh)
+        forces(y, L, law_id, p, fL, fR, g)
+        _kick(y, L, bc, g, 0.5 * (c1 + c0) * hh)
+        _drift(y, L, c0 * hh)
+        forces(y, L, law_id, p, fL, fR, g)
+        _kick(y, L, bc, g, 0.5 * (c0 + c1) * hh)
+        _drift(y, L, c1 * hh)
+        forces(y, L, law_id, p, fL, fR, g)
+        _kick(y, L, bc, g, 0.5 * c1 * hh)
+        assemble(y, L, bc, g, k1)
+        stats[2] += 3
+        _observe(t, hh, y0, k0, y, k1, L, thr, level, zz, zt, zdir, ev_t, ev_w, ev_s, ev_n,
+                 cr_t, cr_s, cr_n, probe_idx, probe_t, probe_out, pcount, c)  # fmt: skip
+        for m in range(nn):
+            k0[m] = k1[m]
+        t = t_stop if clamped else t + hh
+        stats[0] += 1
+        bi = _check_convex(y, L, alpha, beta, bad)
+        if bi >= 0:
+            bad[1] = bi
+            status = ST_LEFT_CONVEX
+            break
+    return t, h, status

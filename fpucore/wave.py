@@ -1,0 +1,475 @@
+"""Discrete superkinks and solitary waves (paper §5) as fixed points of the one-period-and-shift
+map (eqs. period, nonlin_map, nonlin_system, fixedBCs).
+
+    r = solve_superkink(law, V, branch="lower", N=None, tol=1e-12)
+    r = solve_solitary(law, w_plus, V, N=None, tol=1e-12)
+
+Route: QC closed form (eqs. SKsoln_cubic, SWsoln_cubic) → initial guess w_n(0) = w_QC(n),
+ẇ_n(0) = −V w_QC′(n) (ansatz ξ = n − V t) → damped Newton with the exact banded Jacobian
+(:mod:`fpucore.wave_system`).  If that fails: solve on the shorter automatic chain and grow N,
+then continuation in V from a velocity where the QC guess converges (:mod:`fpucore.continuation`).
+N=None picks N from the wave's width (:mod:`fpucore.wave_tails`).  The RK step count m is chosen
+by step doubling so the integrator error stays at the tolerance, and re-checked at the solution.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+from dataclasses import replace as _replace
+
+import numpy as np
+
+from . import period_map as pm
+from . import qc
+from . import wave_tails as wt
+from .errors import ParameterError, fmt_interval, require_finite
+from .wave_system import NewtonOutcome, WaveSystem, newton
+
+M_STEPS = (6, 8, 10, 12, 14, 16, 20, 24, 32, 40, 48, 64, 80, 96, 128)
+
+
+@dataclass(frozen=True)
+class WaveResult:
+    """A discrete traveling wave at t = 0 and its error budget.
+
+    kind : "superkink" | "tensile" | "compressive".  V : velocity.  N : sites n = −N/2 … N/2−1.
+    n : (N,) int64 site indices; w, wdot : (N,) w_n(0), ẇ_n(0).  w_left, w_right : the fixed
+    boundary strains w_{−N/2−1}, w_{N/2} (eq. fixedBCs).  w_plus : state ahead (the superkink's
+    w₊ for solitary waves, whose background is w_B = w_left = w_right).
+    residual : max-norm of eq. nonlin_system; dropped_residual : |ẇ_{N/2}(T) − ẇ_{N/2−1}(0)|.
+    tail_error : |w − w_∞|, |ẇ| at the 3 outermost sites per end (truncation by finite N).
+    integrator_error : step-doubling |Φ_m − Φ_2m| at the solution (m RK steps per period).
+    jacobian_truncation : largest tangent-window edge value (neglected Jacobian entries < it).
+    amplitude : |w(0) − w_B| (solitary, paper's w_amp) or |w_left − w_right| (superkink).
+    energy : E_ren^D of eq. Eren_D (solitary waves; NaN for superkinks, whose two backgrounds
+    differ).  qc_max_deviation : max_n |w_n − w_QC(n)|.  route : how it converged.
+    """
+
+    kind: str
+    V: float
+    N: int
+    n: np.ndarray
+    w: np.ndarray
+    wdot: np.ndarray
+    w_left: float
+    w_right: float
+    w_plus: float
+    law: object
+    residual: float
+    dropped_residual: float
+    converged: bool
+    iterations: int
+    residual_history: tuple
+    elapsed_s: float
+    message: str
+    amplitude: float
+    energy: float
+    qc_max_deviation: float
+    tail_error: float
+    integrator_error: float
+    jacobian_truncation: float
+    m: int
+    K: int
+    jacobian: str
+    route: str
+    v: np.ndarray
+    branch: str | None = None
+
+    @property
+    def status(self) -> str:
+        return "converged" if self.converged else "failed"
+
+    @property
+    def T(self) -> float:
+        return 1.0 / self.V
+
+    def as_dict(self, profile: bool = True) -> dict:
+        d = {
+            k: getattr(self, k)
+            for k in (
+                "kind",
+                "V",
+                "N",
+                "w_left",
+                "w_right",
+                "w_plus",
+                "residual",
+                "dropped_residual",
+                "iterations",
+                "converged",
+                "elapsed_s",
+                "amplitude",
+                "energy",
+                "qc_max_deviation",
+                "tail_error",
+                "integrator_error",
+                "jacobian_truncation",
+                "m",
+                "K",
+                "jacobian",
+                "route",
+                "message",
+                "branch",
+            )
+        }
+        d["status"] = self.status
+        d["residual_history"] = list(self.residual_history)
+        if profile:
+            d["n"], d["w"], d["wdot"] = self.n, self.w, self.wdot
+        return d
+
+
+# =============================================================================== helpers
+@dataclass(frozen=True)
+class _Spec:
+    """Everything fixed by (law, kind, w_plus/branch, V): boundary states, pinning, QC guess."""
+
+    kind: str
+    V: float
+    w_left: float
+    w_right: float
+    w_plus: float
+    pin: str
+    pin_value: float
+    qcw: object  # QC object with profile/dprofile
+    amplitude_qc: float
+    branch: str | None
+
+
+def _superkink_spec(law, V, branch) -> _Spec:
+    sk = qc.superkink_from_V(law, V, branch)  # validates V and branch
+    return _Spec(
+        "superkink",
+        sk.V,
+        sk.w_minus,
+        sk.w_plus,
+        sk.w_plus,
+        "w",
+        law.w_star,
+        sk,
+        sk.amplitude,
+        branch,
+    )
+
+
+def _solitary_spec(law, w_plus, V) -> _Spec:
+    sw = qc.solitary(law, w_plus, V)  # validates w_plus and V
+    return _Spec(sw.kind, sw.V, sw.w_B, sw.w_B, sw.w_plus, "wd", 0.0, sw, sw.amplitude, None)
+
+
+def qc_guess(spec: _Spec, N: int) -> np.ndarray:
+    """Interleaved (w_n, ẇ_n) from the QC profile: ẇ_n(0) = −V w′(n)."""
+    n = (np.arange(N) - N // 2).astype(float)
+    x = np.empty(2 * N)
+    with np.errstate(over="ignore"):  # cosh overflow far in the tails → w′ = 0 there
+        x[0::2] = spec.qcw.profile(n)
+        x[1::2] = -spec.V * np.nan_to_num(spec.qcw.dprofile(n))
+    return x
+
+
+def resize(x: np.ndarray, N_old: int, N_new: int, w_left: float, w_right: float) -> np.ndarray:
+    """Re-centre an interleaved state on a chain of N_new sites (pad with the tail states)."""
+    n_new = np.arange(N_new) - N_new // 2
+    y = np.empty(2 * N_new)
+    y[0::2] = np.where(n_new < 0, w_left, w_right)
+    y[1::2] = 0.0
+    idx = n_new + N_old // 2
+    ok = (idx >= 0) & (idx < N_old)
+    y[0::2][ok] = x[0::2][idx[ok]]
+    y[1::2][ok] = x[1::2][idx[ok]]
+    return y
+
+
+def _required_N(law, spec: _Spec, tail_tol: float) -> int:
+    L = wt.required_half_width(
+        law, spec.V, spec.qcw.profile, spec.w_left, spec.w_right, spec.amplitude_qc, tail_tol
+    )
+    return wt.auto_N(L)
+
+
+def _choose_N(law, spec: _Spec, N, tol) -> int:
+    """Automatic N, or validate the user's N against the wave's width."""
+    scale = max(1.0, abs(spec.w_left), abs(spec.w_right))
+    if N is None:
+        N_auto = _required_N(law, spec, 0.1 * tol * scale)
+        if N_auto > wt.N_MAX:
+            raise ParameterError(
+                "V",
+                spec.V,
+                _valid_V(law, spec),
+                f"the wave is too wide here: its tails need N = {_fmt_N(N_auto)} sites "
+                f"(> N_MAX = {wt.N_MAX}); move V away from the sonic / superkink limit",
+            )
+        return N_auto
+    if isinstance(N, bool) or not isinstance(N, (int, np.integer)):
+        raise ParameterError("N", N, "an even integer")
+    N = int(N)
+    if N % 2 or not (wt.N_MIN <= N <= wt.N_MAX):
+        raise ParameterError("N", N, f"an even integer in [{wt.N_MIN}, {wt.N_MAX}]")
+    N_fit = _required_N(law, spec, 1e-6 * spec.amplitude_qc)
+    if N < N_fit:
+        raise ParameterError(
+            "N",
+            N,
+            f"N >= {_fmt_N(N_fit)} for this wave",
+            "N too small for the wave width (tails would be cut at > 1e-6 of the amplitude); "
+            "use N=None for automatic N",
+        )
+    return N
+
+
+def _fmt_N(N: int) -> str:
+    return str(N) if N < 10**9 else "unbounded"
+
+
+def _valid_V(law, spec: _Spec) -> str:
+    if spec.kind == "superkink":
+        return fmt_interval(*qc.superkink_velocity_bounds(law))
+    (a, b), (c, d) = qc.solitary_intervals(law, spec.w_plus)
+    return f"{fmt_interval(a, b)} or {fmt_interval(c, d)}"
+
+
+def _choose_m(law, spec: _Spec, x: np.ndarray, N: int, int_tol: float, m_min: int = 6) -> int:
+    """Smallest m in M_STEPS (≥ m_min) whose step-doubling error at x is ≤ int_tol."""
+    w, wd = x[0::2], x[1::2]
+    for m in M_STEPS:
+        if m < m_min:
+            continue
+        e = pm.step_doubling_error(law, w, wd, 1.0 / spec.V, m, spec.w_left, spec.w_right)
+        if e <= int_tol:
+            return m
+    return M_STEPS[-1]
+
+
+def _choose_K(law, spec: _Spec, x: np.ndarray, m: int) -> int:
+    res = pm.integrate(
+        law, x[0::2], x[1::2], 1.0 / spec.V, m, spec.w_left, spec.w_right, store_df=True
+    )
+    return pm.spread_radius(res, level=1e-18) + 2
+
+
+def _system(law, spec: _Spec, N: int, m: int, K: int) -> WaveSystem:
+    return WaveSystem(law, spec.V, N, spec.w_left, spec.w_right, spec.pin, spec.pin_value, m, K)
+
+
+# =============================================================================== solver core
+def _solve(law, spec: _Spec, N, tol, jacobian, max_iter, time_budget_s, predictor=None):
+    t0 = time.perf_counter()
+    N = _choose_N(law, spec, N, tol)
+    scale = max(1.0, abs(spec.w_left), abs(spec.w_right))
+    int_tol = tol * scale
+    x0 = predictor(N) if predictor is not None else qc_guess(spec, N)
+    m = _choose_m(law, spec, x0, N, int_tol)
+    K = _choose_K(law, spec, x0, m)
+    sysN = _system(law, spec, N, m, K)
+    hist: list = []
+    routes: list[str] = []
+
+    tail_ok = 1e-5 * spec.amplitude_qc + 1e3 * tol * scale
+    bad_tails: list[float] = []
+
+    def run(sys_, x, budget_left):
+        o = newton(sys_, x, tol, max_iter, jacobian, max(1.0, budget_left))
+        hist.extend(o.residual_history)
+        if o.converged:  # a fixed point whose tails miss the boundary states is another wave
+            te = wt.tail_error(o.x[0::2], o.x[1::2], spec.w_left, spec.w_right)
+            if te > tail_ok:
+                bad_tails.append(te)
+                o = _replace(
+                    o,
+                    converged=False,
+                    message=f"converged to a wave whose tails miss "
+                    f"the boundary states (tail error {te:.3g}); try a larger N",
+                )
+        return o
+
+    left = lambda: time_budget_s - (time.perf_counter() - t0)  # noqa: E731
+    out = run(sysN, x0, left())
+    routes.append("predictor" if predictor is not None else "qc-guess")
+    # rescue 1: far-field directions are nearly null at large N: converge short, then grow N
+    N_s = _required_N(law, spec, 0.1 * tol * scale)
+    if not out.converged and left() > 0 and N_s < N:
+        o_s = run(
+            _system(law, spec, N_s, m, K), resize(x0, N, N_s, spec.w_left, spec.w_right), left()
+        )
+        if o_s.converged:
+            out = run(sysN, resize(o_s.x, N_s, N, spec.w_left, spec.w_right), left())
+            routes.append(f"grow-N from {N_s}")
+    # rescue 2: a short chain can trap Newton on a wave clipped by the ends: solve long, cut
+    N_b = max(4 * N, 256)
+    if not out.converged and left() > 0 and N < 256 and predictor is None:
+        o_b = run(_system(law, spec, N_b, m, K), qc_guess(spec, N_b), left())
+        if o_b.converged:
+            out = run(sysN, resize(o_b.x, N_b, N, spec.w_left, spec.w_right), left())
+            routes.append(f"cut-N from {N_b}")
+    # rescue 3: continuation in V from the family's easy end
+    if not out.converged and left() > 0 and predictor is None:
+        from .continuation import continue_to  # late import: continuation builds on this module
+
+        x_c, N_c, note = continue_to(law, spec, tol, jacobian, left(), max_iter)
+        routes.append(note)
+        if x_c is not None:
+            out = run(sysN, resize(x_c, N_c, N, spec.w_left, spec.w_right), left())
+    # integrator error at the solution; refine m if the guess-based choice was optimistic
+    x = out.x
+    ierr = _integrator_error(law, spec, x, m)
+    while out.converged and ierr > 10 * int_tol and m < M_STEPS[-1] and left() > 0:
+        m = next(mm for mm in M_STEPS if mm > m)
+        sysN = _system(law, spec, N, m, K)
+        out = run(sysN, x, left())
+        x = out.x
+        ierr = _integrator_error(law, spec, x, m)
+        routes.append(f"m->{m}")
+    return _result(law, spec, N, m, K, out, hist, ierr, jacobian, "; ".join(routes), t0)
+
+
+def _integrator_error(law, spec: _Spec, x: np.ndarray, m: int) -> float:
+    return pm.step_doubling_error(law, x[0::2], x[1::2], 1.0 / spec.V, m, spec.w_left, spec.w_right)
+
+
+def particle_velocities(w: np.ndarray, wdot: np.ndarray, V: float, w_left: float) -> np.ndarray:
+    """Particle velocities v_n(0) for n = −N/2−1 … N/2−1 (N+1 values) of a traveling wave.
+
+    Derivation: eq. FPUsystem gives ẇ_n = v_n − v_{n−1} at every t, so at t = 0
+        v_n = v_{−N/2−1} + Σ_{k=−N/2}^{n} ẇ_k(0).
+    The boundary strain w_{−N/2−1} is held fixed, so particle −N/2−1 moves with the constant
+    far-field velocity v_−.  The traveling-wave ansatz u_n(t) = U(n − Vt) gives v = −V U′ and
+    w(ξ) = U(ξ) − U(ξ−1), which fixes v only up to a Galilean constant; the Rankine–Hugoniot
+    condition (eq. RHconds) −V(w₊ − w₋) = v₊ − v₋ holds for v_± = −V w_±, the normalisation the
+    paper's renormalisation (−½V² w_B², eqs. Eren_QC, Eren_D) assumes.  Hence
+    v_{−N/2−1} = −V w_left; the other end then returns v_{N/2−1} ≈ −V w_right up to the tail
+    error (checked in tests).
+    """
+    v = np.empty(w.size + 1)
+    v[0] = -V * w_left
+    v[1:] = v[0] + np.cumsum(wdot)
+    return v
+
+
+def renormalized_energy(law, w, wdot, V, w_left, w_right, w_B) -> float:
+    """E_ren^D (eq. Eren_D): Σ_n {½v_n² + ½(Φ(w_n) + Φ(w_{n+1})) − Φ(w_B) − ½V²w_B²} over the
+    particles n = −N/2−1 … N/2−1 (particle n sits between springs w_n and w_{n+1}); beyond the
+    chain the summand vanishes to the tail error."""
+    v = particle_velocities(w, wdot, V, w_left)
+    ws = np.concatenate([[w_left], w, [w_right]])
+    ph = law.phi(ws)
+    terms = 0.5 * v**2 + 0.5 * (ph[:-1] + ph[1:]) - float(law.phi(w_B)) - 0.5 * V * V * w_B**2
+    return float(math.fsum(terms))
+
+
+def _result(law, spec, N, m, K, out: NewtonOutcome, hist, ierr, jacobian, route, t0):
+    x = out.x
+    w, wd = x[0::2].copy(), x[1::2].copy()
+    n = np.arange(N, dtype=np.int64) - N // 2
+    with np.errstate(over="ignore"):
+        dev = float(np.max(np.abs(w - spec.qcw.profile(n.astype(float)))))
+    if spec.kind == "superkink":
+        amp, energy = abs(spec.w_left - spec.w_right), math.nan
+    else:
+        amp = abs(w[N // 2] - spec.w_left)
+        energy = renormalized_energy(law, w, wd, spec.V, spec.w_left, spec.w_right, spec.w_left)
+    v = particle_velocities(w, wd, spec.V, spec.w_left)
+    msg = out.message
+    if out.converged:
+        msg = f"converged: residual {out.residual:.3g} in {len(hist) - 1} iterations ({route})"
+    else:
+        msg = f"NOT converged ({route}): {msg}"
+    return WaveResult(
+        kind=spec.kind,
+        V=spec.V,
+        N=N,
+        n=n,
+        w=w,
+        wdot=wd,
+        w_left=spec.w_left,
+        w_right=spec.w_right,
+        w_plus=spec.w_plus,
+        law=law,
+        residual=out.residual,
+        dropped_residual=out.dropped_residual,
+        converged=out.converged,
+        iterations=len(hist) - 1,
+        residual_history=tuple(hist),
+        elapsed_s=time.perf_counter() - t0,
+        message=msg,
+        amplitude=amp,
+        energy=energy,
+        qc_max_deviation=dev,
+        tail_error=wt.tail_error(w, wd, spec.w_left, spec.w_right),
+        integrator_error=ierr,
+        jacobian_truncation=out.jacobian_truncation,
+        m=m,
+        K=K,
+        jacobian=jacobian,
+        route=route,
+        v=v,
+        branch=spec.branch,
+    )
+
+
+def _check_common(tol, jacobian, max_iter, time_budget_s):
+    tol = require_finite("tol", tol)
+    if not (1e-15 <= tol <= 1e-3):
+        raise ParameterError("tol", tol, "[1e-15, 1e-3]")
+    if jacobian not in ("exact", "fd"):
+        raise ParameterError("jacobian", jacobian, "'exact' or 'fd'")
+    if not (isinstance(max_iter, int) and 1 <= max_iter <= 1000):
+        raise ParameterError("max_iter", max_iter, "an integer in [1, 1000]")
+    time_budget_s = require_finite("time_budget_s", time_budget_s)
+    if time_budget_s <= 0:
+        raise ParameterError("time_budget_s", time_budget_s, "> 0")
+    return tol, time_budget_s
+
+
+# =============================================================================== public API
+def solve_superkink(
+    law,
+    V: float,
+    branch: str = "lower",
+    N: int | None = None,
+    tol: float = 1e-12,
+    jacobian: str = "exact",
+    max_iter: int = 40,
+    time_budget_s: float = 300.0,
+    predictor=None,
+) -> WaveResult:
+    """Discrete superkink with velocity V (paper §5), pinned by w_1(T) = w* (eq. nonlin_system).
+
+    V must lie in the superkink interval of eq. V_bounds_cubic; branch "lower" (w₊ < w* < w₋,
+    a front with w′ < 0) or "upper" (mirror image).  Boundary strains: w_left = w₋, w_right = w₊
+    (eq. fixedBCs, w± from eq. wpm_cubic).  N=None: automatic from the wave's width.
+    jacobian="fd" uses the paper's finite-difference Jacobian (dense; slow, for comparison).
+    Non-convergence returns converged=False with the reason in ``message``.
+    """
+    tol, time_budget_s = _check_common(tol, jacobian, max_iter, time_budget_s)
+    spec = _superkink_spec(law, require_finite("V", V), branch)
+    return _solve(law, spec, N, tol, jacobian, max_iter, time_budget_s, predictor)
+
+
+def solve_solitary(
+    law,
+    w_plus: float,
+    V: float,
+    N: int | None = None,
+    tol: float = 1e-12,
+    jacobian: str = "exact",
+    max_iter: int = 40,
+    time_budget_s: float = 300.0,
+    predictor=None,
+) -> WaveResult:
+    """Discrete solitary wave for the state w₊ ahead of the associated superkink (paper §5).
+
+    V in (c₊, V_SK) (background w_B = w₊) or (V_SK, c₋) (w_B = w_S(V), eq. wB); pinning
+    ẇ_1(T) = 0 puts the extremum at n = 0; boundary strains w_left = w_right = w_B.
+    """
+    tol, time_budget_s = _check_common(tol, jacobian, max_iter, time_budget_s)
+    spec = _solitary_spec(law, require_finite("w_plus", w_plus), require_finite("V", V))
+    return _solve(law, spec, N, tol, jacobian, max_iter, time_budget_s, predictor)
+
+
+def warm(law) -> None:
+    """Compile/load every jitted route used here (for ``fpucore.warm``): one small superkink."""
+    lo, hi = qc.superkink_velocity_bounds(law)
+    solve_superkink(law, 0.5 * (lo + hi), N=64)
