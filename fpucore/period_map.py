@@ -335,15 +335,19 @@ def spread_radius(res: PeriodResult, level: float = 1e-17, K_probe: int = 40) ->
     window half-width for which the neglected part of each Jacobian column is below ``level``.
     """
     m, s, N = res.dfs.shape
-    K_probe = int(min(K_probe, max(1, N)))
     i_max = int(np.argmax(res.dfs[0, 0]))
     sites = np.unique(np.array([i_max, N // 2, 0, N - 1]))
     cols = np.concatenate([sites, sites + N])
-    out, _ = tangent_columns(res, cols, K_probe, periodic=False)
-    mag = np.max(np.abs(out), axis=(0, 1))  # (W,)
-    dist = np.abs(np.arange(mag.size) - K_probe)
-    above = dist[mag > level]
-    return int(above.max()) + 1 if above.size else 1
+    K_probe = int(min(K_probe, max(1, N)))
+    while True:
+        out, _ = tangent_columns(res, cols, K_probe, periodic=False)
+        mag = np.max(np.abs(out), axis=(0, 1))  # (W,)
+        dist = np.abs(np.arange(mag.size) - K_probe)
+        above = dist[mag > level]
+        r = int(above.max()) + 1 if above.size else 1
+        if r <= K_probe or K_probe >= N:  # not saturated (or the whole chain is covered)
+            return min(r, max(1, N))
+        K_probe = min(2 * K_probe, N)
 
 
 def rk_steps_for(V: float, c_max: float, hw: float = 0.35) -> int:

@@ -157,7 +157,8 @@ class QCSuperkink:
 
     def dprofile(self, xi):
         xi = np.asarray(xi, dtype=float)
-        return -0.5 * (self.w_minus - self.w_plus) * self.p / np.cosh(self.p * xi) ** 2
+        E = np.exp(-2.0 * self.p * np.abs(xi))  # sech² = 4E/(1+E)², no overflow at large |ξ|
+        return -2.0 * (self.w_minus - self.w_plus) * self.p * E / (1.0 + E) ** 2
 
     def as_dict(self) -> dict:
         return {
