@@ -20,7 +20,13 @@ def _wave(law) -> None:
     wave.warm(law)
 
 
-ROUTES = [("law", _law_kernels), ("wave", _wave)]
+def _floquet(law) -> None:
+    from . import floquet
+
+    floquet.spectrum(floquet.HomogeneousState(law, 1.0, 5.0, 16))
+
+
+ROUTES = [("law", _law_kernels), ("wave", _wave), ("floquet", _floquet)]
 
 
 def warm_all() -> list[str]:
