@@ -91,7 +91,9 @@ def continue_to(
         x0 = wave.qc_guess(sp, N)
         m = wave._choose_m(law, sp, x0, N, tol * scale)
         K = wave._choose_K(law, sp, x0, m)
-        o = newton(wave._system(law, sp, N, m, K), x0, tol, max_iter, jacobian, max(1.0, left()))
+        o = newton(
+            wave._system(law, sp, N, m, K), x0, tol * scale, max_iter, jacobian, max(1.0, left())
+        )
         if o.converged:
             start = (sp, o.x, N, m, K)
             break
@@ -124,7 +126,7 @@ def continue_to(
         o = newton(
             wave._system(law, sp1, N, m, K),
             pred,
-            tol,
+            tol * scale,
             min(25, max_iter),
             jacobian,
             max(1.0, left()),

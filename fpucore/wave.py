@@ -259,7 +259,9 @@ def _solve(law, spec: _Spec, N, tol, jacobian, max_iter, time_budget_s, predicto
     t0 = time.perf_counter()
     N = _choose_N(law, spec, N, tol)
     scale = max(1.0, abs(spec.w_left), abs(spec.w_right))
-    int_tol = tol * scale
+    # residual and integrator tolerances are relative to the strain scale: the round-off floor of
+    # eq. nonlin_system grows with |w| (b = 100 or a = -0.01 stagnate at ~3e-14 x scale > 1e-12)
+    int_tol = res_tol = tol * scale
     x0 = predictor(N) if predictor is not None else qc_guess(spec, N)
     m = _choose_m(law, spec, x0, N, int_tol)
     K = _choose_K(law, spec, x0, m)
@@ -271,7 +273,7 @@ def _solve(law, spec: _Spec, N, tol, jacobian, max_iter, time_budget_s, predicto
     bad_tails: list[float] = []
 
     def run(sys_, x, budget_left):
-        o = newton(sys_, x, tol, max_iter, jacobian, max(1.0, budget_left))
+        o = newton(sys_, x, res_tol, max_iter, jacobian, max(1.0, budget_left))
         hist.extend(o.residual_history)
         if o.converged:  # a fixed point whose tails miss the boundary states is another wave
             te = wt.tail_error(o.x[0::2], o.x[1::2], spec.w_left, spec.w_right)
@@ -441,6 +443,8 @@ def solve_superkink(
     a front with w′ < 0) or "upper" (mirror image).  Boundary strains: w_left = w₋, w_right = w₊
     (eq. fixedBCs, w± from eq. wpm_cubic).  N=None: automatic from the wave's width.
     jacobian="fd" uses the paper's finite-difference Jacobian (dense; slow, for comparison).
+    tol: Newton stops at residual <= tol x max(1, |w_left|, |w_right|) (relative to the strain
+    scale); the step count m keeps the step-doubling error below the same bound.
     Non-convergence returns converged=False with the reason in ``message``.
     """
     tol, time_budget_s = _check_common(tol, jacobian, max_iter, time_budget_s)
@@ -463,6 +467,7 @@ def solve_solitary(
 
     V in (c₊, V_SK) (background w_B = w₊) or (V_SK, c₋) (w_B = w_S(V), eq. wB); pinning
     ẇ_1(T) = 0 puts the extremum at n = 0; boundary strains w_left = w_right = w_B.
+    tol is relative to the strain scale, as in :func:`solve_superkink`.
     """
     tol, time_budget_s = _check_common(tol, jacobian, max_iter, time_budget_s)
     spec = _solitary_spec(law, require_finite("w_plus", w_plus), require_finite("V", V))
