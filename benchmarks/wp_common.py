@@ -55,9 +55,10 @@ def markdown(rows: list[Row], floors: list[Floor]) -> str:
         out.append("|---|---|---|---|---|---|")
         base = fl[0].seconds if fl else float("nan")
         for r in (r for r in rows if r.route == route):
+            ratio = f"{r.seconds / base:.3g}" if fl else "—"
             out.append(
                 f"| {r.method} | {r.setting} | {r.error:.2e} | {r.seconds * 1e3:.3g} | "
-                f"{r.seconds / base:.3g} | {r.note} |"
+                f"{ratio} | {r.note} |"
             )
         out.append("")
     return "\n".join(out)

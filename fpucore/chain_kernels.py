@@ -60,13 +60,17 @@ def forces(y, L, law_id, p, fL, fR, g):
 @njit(cache=True, nogil=True)
 def assemble(y, L, bc, g, out):
     """out = dy/dt from the state y and the forces g (see :func:`forces`)."""
+    # explicit views: the loops then vectorise (with raw offsets into y/out they did not)
+    v = y[L : 2 * L + 1]
+    ow = out[:L]
+    ov = out[L : 2 * L + 1]
     for n in range(L):
-        out[n] = y[L + n + 1] - y[L + n]
+        ow[n] = v[n + 1] - v[n]
     for j in range(L + 1):
-        out[L + j] = g[j + 1] - g[j]
+        ov[j] = g[j + 1] - g[j]
     if bc == BC_FIXED_PARTICLES:
-        out[L] = 0.0
-        out[2 * L] = 0.0
+        ov[0] = 0.0
+        ov[L] = 0.0
     out[2 * L + 1] = y[L]
 
 
@@ -104,22 +108,44 @@ def _dpoly(c, s):
 
 
 @njit(cache=True, nogil=True)
+def _d2poly(c, s):
+    return 2.0 * c[2] + s * (6.0 * c[3] + s * (12.0 * c[4] + s * 20.0 * c[5]))
+
+
+@njit(cache=True, nogil=True)
 def _root(c, deriv, level):
-    """Root in [0, 1] of P(s) − level (deriv=False) or P′(s) (deriv=True); sign change assumed."""
+    """Root in [0, 1] of P(s) − level (deriv=False) or P′(s) (deriv=True), given a sign change:
+    Newton from the secant guess, safeguarded by bisection of the bracket (≤ 60 iterations)."""
     lo = 0.0
     hi = 1.0
-    flo = _dpoly(c, lo) if deriv else _poly(c, lo) - level
+    if deriv:
+        flo = _dpoly(c, lo)
+        fhi = _dpoly(c, hi)
+    else:
+        flo = _poly(c, lo) - level
+        fhi = _poly(c, hi) - level
+    x = flo / (flo - fhi) if flo != fhi else 0.5
     for _ in range(60):
-        mid = 0.5 * (lo + hi)
-        fm = _dpoly(c, mid) if deriv else _poly(c, mid) - level
-        if (fm > 0.0) == (flo > 0.0):
-            lo = mid
-            flo = fm
+        if deriv:
+            fx = _dpoly(c, x)
+            dfx = _d2poly(c, x)
         else:
-            hi = mid
-        if hi - lo < 1e-15:
-            break
-    return 0.5 * (lo + hi)
+            fx = _poly(c, x) - level
+            dfx = _dpoly(c, x)
+        if fx == 0.0:
+            return x
+        if (fx > 0.0) == (flo > 0.0):
+            lo = x
+            flo = fx
+        else:
+            hi = x
+        xn = x - fx / dfx if dfx != 0.0 else 0.5 * (lo + hi)
+        if not (lo < xn < hi):
+            xn = 0.5 * (lo + hi)
+        if abs(xn - x) < 1e-15 or hi - lo < 1e-15:
+            return xn
+        x = xn
+    return x
 
 
 # --------------------------------------------------------------------------- observer
@@ -153,10 +179,11 @@ def _observe(
         d0 = k0[n]
         d1 = k1[n]
         ext = 0
-        if d0 > 0.0 and d1 <= 0.0:
-            ext = 1
-        elif d0 < 0.0 and d1 >= 0.0:
-            ext = -1
+        if ev_n[n] < ev_t.shape[1]:  # a full event list needs no more extrema
+            if d0 > 0.0 and d1 <= 0.0:
+                ext = 1
+            elif d0 < 0.0 and d1 >= 0.0:
+                ext = -1
         crossed = (w0 - level) * (w1 - level) < 0.0 and cr_n[n] < cr_t.shape[1]
         if ext != 0 or crossed:
             a0 = k0[L + n + 1] - k0[L + n]
@@ -247,38 +274,94 @@ def _check_convex(y, L, alpha, beta, bad):
 # --------------------------------------------------------------------------- adaptive RK
 @njit(cache=True, nogil=True)
 def _combo(y, K, rows, cf, nc, out):
-    """out = y + Σ_q cf[q] K[rows[q]] (y None: no y term); up to eight stages per memory pass
-    (the passes, not the flops, dominate the cost of a DOP853 step)."""
+    """out = y + Σ_q cf[q] K[rows[q]], up to eight stages per memory pass, y folded into the
+    first pass.  ``rows``/``cf`` must have room for nc rounded up to a multiple of 4: the padding
+    entries get weight 0 (the passes, not the flops, dominate the cost of a DOP853 step)."""
     nn = out.size
-    if y is None:
-        for m in range(nn):
-            out[m] = 0.0
-    else:
-        for m in range(nn):
-            out[m] = y[m]
+    ncp = (nc + 3) // 4 * 4
+    for q in range(nc, ncp):
+        cf[q] = 0.0
+        rows[q] = rows[0]
     q = 0
-    while q + 8 <= nc:
-        a0, a1, a2, a3 = cf[q], cf[q + 1], cf[q + 2], cf[q + 3]
-        a4, a5, a6, a7 = cf[q + 4], cf[q + 5], cf[q + 6], cf[q + 7]
-        k0, k1, k2, k3 = K[rows[q]], K[rows[q + 1]], K[rows[q + 2]], K[rows[q + 3]]
-        k4, k5, k6, k7 = K[rows[q + 4]], K[rows[q + 5]], K[rows[q + 6]], K[rows[q + 7]]
-        for m in range(nn):
-            out[m] += (a0 * k0[m] + a1 * k1[m] + a2 * k2[m] + a3 * k3[m]) + (
-                a4 * k4[m] + a5 * k5[m] + a6 * k6[m] + a7 * k7[m]
-            )
-        q += 8
-    while q + 4 <= nc:
-        a0, a1, a2, a3 = cf[q], cf[q + 1], cf[q + 2], cf[q + 3]
-        k0, k1, k2, k3 = K[rows[q]], K[rows[q + 1]], K[rows[q + 2]], K[rows[q + 3]]
-        for m in range(nn):
-            out[m] += a0 * k0[m] + a1 * k1[m] + a2 * k2[m] + a3 * k3[m]
-        q += 4
-    while q < nc:
-        a0 = cf[q]
-        k0 = K[rows[q]]
-        for m in range(nn):
-            out[m] += a0 * k0[m]
-        q += 1
+    while q < ncp:
+        first = q == 0
+        if q + 8 <= ncp:
+            a0, a1, a2, a3 = cf[q], cf[q + 1], cf[q + 2], cf[q + 3]
+            a4, a5, a6, a7 = cf[q + 4], cf[q + 5], cf[q + 6], cf[q + 7]
+            k0, k1, k2, k3 = K[rows[q]], K[rows[q + 1]], K[rows[q + 2]], K[rows[q + 3]]
+            k4, k5, k6, k7 = K[rows[q + 4]], K[rows[q + 5]], K[rows[q + 6]], K[rows[q + 7]]
+            if first:
+                for m in range(nn):
+                    out[m] = y[m] + (
+                        (a0 * k0[m] + a1 * k1[m] + a2 * k2[m] + a3 * k3[m])
+                        + (a4 * k4[m] + a5 * k5[m] + a6 * k6[m] + a7 * k7[m])
+                    )
+            else:
+                for m in range(nn):
+                    out[m] += (a0 * k0[m] + a1 * k1[m] + a2 * k2[m] + a3 * k3[m]) + (
+                        a4 * k4[m] + a5 * k5[m] + a6 * k6[m] + a7 * k7[m]
+                    )
+            q += 8
+        else:
+            a0, a1, a2, a3 = cf[q], cf[q + 1], cf[q + 2], cf[q + 3]
+            k0, k1, k2, k3 = K[rows[q]], K[rows[q + 1]], K[rows[q + 2]], K[rows[q + 3]]
+            if first:
+                for m in range(nn):
+                    out[m] = y[m] + (a0 * k0[m] + a1 * k1[m] + a2 * k2[m] + a3 * k3[m])
+            else:
+                for m in range(nn):
+                    out[m] += a0 * k0[m] + a1 * k1[m] + a2 * k2[m] + a3 * k3[m]
+            q += 4
+
+
+@njit(cache=True, nogil=True, error_model="numpy")
+def _err_pass(y, ynew, K, rows, c5, c3, rtol, atol, t5, t3):
+    """Hairer's error sums Σ (e5/sc)², Σ (e3/sc)², Σ sc², with e5 = Σ_q c5[q] K[rows[q]] (exactly
+    eight rows; unused ones padded with zero weights) and sc = atol + rtol·max(|y|, |y_new|) > 0.
+
+    Two passes so that both vectorise: the element-wise ratios (error_model="numpy" drops the
+    zero-division branch that otherwise keeps the division scalar; sc > 0 always), then the sums
+    with four independent accumulators (no reassociation needed, hence no fastmath)."""
+    k0, k1, k2, k3 = K[rows[0]], K[rows[1]], K[rows[2]], K[rows[3]]
+    k4, k5, k6, k7 = K[rows[4]], K[rows[5]], K[rows[6]], K[rows[7]]
+    a0, a1, a2, a3, a4, a5, a6, a7 = c5[0], c5[1], c5[2], c5[3], c5[4], c5[5], c5[6], c5[7]
+    b0, b1, b2, b3, b4, b5, b6, b7 = c3[0], c3[1], c3[2], c3[3], c3[4], c3[5], c3[6], c3[7]
+    nn = y.size
+    for m in range(nn):
+        x5 = (a0 * k0[m] + a1 * k1[m] + a2 * k2[m] + a3 * k3[m]) + (
+            a4 * k4[m] + a5 * k5[m] + a6 * k6[m] + a7 * k7[m]
+        )
+        x3 = (b0 * k0[m] + b1 * k1[m] + b2 * k2[m] + b3 * k3[m]) + (
+            b4 * k4[m] + b5 * k5[m] + b6 * k6[m] + b7 * k7[m]
+        )
+        ya = abs(y[m])
+        yb = abs(ynew[m])
+        sc = atol + rtol * (ya if ya >= yb else yb)
+        t5[m] = x5 / sc
+        t3[m] = x3 / sc
+    s0 = s1 = s2 = s3 = 0.0
+    u0 = u1 = u2 = u3 = 0.0
+    n4 = nn - nn % 4
+    for m in range(0, n4, 4):
+        s0 += t5[m] * t5[m]
+        s1 += t5[m + 1] * t5[m + 1]
+        s2 += t5[m + 2] * t5[m + 2]
+        s3 += t5[m + 3] * t5[m + 3]
+        u0 += t3[m] * t3[m]
+        u1 += t3[m + 1] * t3[m + 1]
+        u2 += t3[m + 2] * t3[m + 2]
+        u3 += t3[m + 3] * t3[m + 3]
+    for m in range(n4, nn):
+        s0 += t5[m] * t5[m]
+        u0 += t3[m] * t3[m]
+    # Σ sc² only feeds the reported error estimate: the RMS scale of |y|
+    q = 0.0
+    for m in range(nn):
+        ya = abs(y[m])
+        yb = abs(ynew[m])
+        sc = atol + rtol * (ya if ya >= yb else yb)
+        q += sc * sc
+    return (s0 + s1) + (s2 + s3), (u0 + u1) + (u2 + u3), q
 
 
 @njit(cache=True, nogil=True)
@@ -299,27 +382,39 @@ def erk_chunk(
     """
     s = B.size
     nn = y.size
-    ynew = W[0]
-    x5 = W[1]
-    x3 = W[2]
-    # nonzero pattern of the (sparse) tableau: rows[i, :cnt[i]] stages used by stage i,
-    # row s: the solution weights B, row s+1: error weights E5/E3
-    rows = np.zeros((s + 2, s + 1), np.int64)
-    cnt = np.zeros(s + 2, np.int64)
+    # stage j lives in row perm[j] of K; the FSAL swap of rows 0 and s is a swap of perm entries
+    perm = np.arange(s + 1)
+    # nonzero pattern of the (sparse) tableau: stg[i, :cnt[i]] stages used by stage i,
+    # row s: the solution weights B; error weights E5/E3 (s+1 entries, FSAL last): estg
+    stg = np.zeros((s + 1, s + 1), np.int64)
+    cnt = np.zeros(s + 1, np.int64)
     for i in range(s):
         for j in range(i):
             if A[i, j] != 0.0:
-                rows[i, cnt[i]] = j
+                stg[i, cnt[i]] = j
                 cnt[i] += 1
         if B[i] != 0.0:
-            rows[s, cnt[s]] = i
+            stg[s, cnt[s]] = i
             cnt[s] += 1
+    estg = np.zeros(s + 1, np.int64)
+    ne = 0
     for i in range(s + 1):
         if E5[i] != 0.0 or E3[i] != 0.0:
-            rows[s + 1, cnt[s + 1]] = i
-            cnt[s + 1] += 1
-    cf = np.zeros(s + 1)
-    cf3 = np.zeros(s + 1)
+            estg[ne] = i
+            ne += 1
+    erow = np.zeros(8, np.int64)
+    c5 = np.zeros(8)
+    c3 = np.zeros(8)
+    for q in range(min(ne, 8)):
+        c5[q] = E5[estg[q]]
+        c3[q] = E3[estg[q]]
+    rws = np.zeros(s + 4, np.int64)  # room for padding to a multiple of 4 (see _combo)
+    cf = np.zeros(s + 4)
+    cur = y  # current state buffer; the other one receives the step
+    nxt = W[0]
+    in_y = True
+    x5 = W[1]
+    x3 = W[2]
     status = 0
     while t < t_stop:
         if stats[0] >= max_steps:
@@ -330,33 +425,27 @@ def erk_chunk(
         hh = rem if clamped else h
         for i in range(1, s):
             for q in range(cnt[i]):
-                cf[q] = hh * A[i, rows[i, q]]
-            _combo(y, K, rows[i], cf, cnt[i], ynew)
-            rhs(ynew, L, law_id, p, bc, fL, fR, g, K[i])
+                cf[q] = hh * A[i, stg[i, q]]
+                rws[q] = perm[stg[i, q]]
+            _combo(cur, K, rws, cf, cnt[i], nxt)
+            rhs(nxt, L, law_id, p, bc, fL, fR, g, K[perm[i]])
         for q in range(cnt[s]):
-            cf[q] = hh * B[rows[s, q]]
-        _combo(y, K, rows[s], cf, cnt[s], ynew)
-        rhs(ynew, L, law_id, p, bc, fL, fR, g, K[s])
+            cf[q] = hh * B[stg[s, q]]
+            rws[q] = perm[stg[s, q]]
+        _combo(cur, K, rws, cf, cnt[s], nxt)
+        ynew = nxt
+        rhs(ynew, L, law_id, p, bc, fL, fR, g, K[perm[s]])
         stats[2] += s
-        for q in range(cnt[s + 1]):
-            cf[q] = E5[rows[s + 1, q]]
-            cf3[q] = E3[rows[s + 1, q]]
-        _combo(None, K, rows[s + 1], cf, cnt[s + 1], x5)
-        _combo(None, K, rows[s + 1], cf3, cnt[s + 1], x3)
-        e5 = 0.0
-        e3 = 0.0
-        sc2 = 0.0
-        for m in range(nn):
-            sc = atol + rtol * max(abs(y[m]), abs(ynew[m]))
-            inv = 1.0 / sc
-            e5 += (x5[m] * inv) ** 2
-            e3 += (x3[m] * inv) ** 2
-            sc2 += sc * sc
+        for q in range(8):
+            erow[q] = perm[estg[q]] if q < ne else perm[0]
+        e5, e3, sc2 = _err_pass(cur, ynew, K, erow, c5, c3, rtol, atol, x5, x3)
+        e5 *= hh * hh
+        e3 *= hh * hh
         if dual:
             den = e5 + 0.01 * e3
-            err = 0.0 if den == 0.0 else hh * e5 / math.sqrt(den * nn)
+            err = 0.0 if den == 0.0 else e5 / math.sqrt(den * nn)
         else:
-            err = hh * math.sqrt(e5 / nn)
+            err = math.sqrt(e5 / nn)
         if not math.isfinite(err):
             h = 0.2 * hh
             stats[1] += 1
@@ -368,17 +457,21 @@ def erk_chunk(
             fac = 10.0 if err == 0.0 else min(10.0, 0.9 * err**err_exp)
             if not clamped:
                 h = hh * fac
-            _observe(t, hh, y, K[0], ynew, K[s], L, thr, level, zz, zt, zdir, ev_t, ev_w, ev_s,
-                     ev_n, cr_t, cr_s, cr_n, probe_idx, probe_t, probe_out, pcount, c)  # fmt: skip
-            for m in range(nn):
-                y[m] = ynew[m]
-                K[0, m] = K[s, m]
+            _observe(t, hh, cur, K[perm[0]], ynew, K[perm[s]], L, thr, level, zz, zt, zdir,
+                     ev_t, ev_w, ev_s, ev_n, cr_t, cr_s, cr_n, probe_idx, probe_t, probe_out,
+                     pcount, c)  # fmt: skip
+            nxt = cur
+            cur = ynew
+            in_y = not in_y
+            tmp = perm[0]
+            perm[0] = perm[s]
+            perm[s] = tmp
             t = t_stop if clamped else t + hh
             stats[0] += 1
             stats[3] += err * math.sqrt(sc2 / nn)
             if err > stats[4]:
                 stats[4] = err
-            bi = _check_convex(y, L, alpha, beta, bad)
+            bi = _check_convex(cur, L, alpha, beta, bad)
             if bi >= 0:
                 bad[1] = bi
                 status = ST_LEFT_CONVEX
@@ -389,6 +482,13 @@ def erk_chunk(
             if h < 1e-14 * max(1.0, abs(t)):
                 status = ST_STEP_UNDERFLOW
                 break
+    # hand back the state in y and f(y) in K[0]
+    if not in_y:
+        for m in range(nn):
+            y[m] = cur[m]
+    if perm[0] != 0:
+        for m in range(nn):
+            K[0, m] = K[perm[0], m]
     return t, h, status
 
 

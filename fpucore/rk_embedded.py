@@ -9,6 +9,9 @@ Nørsett & Wanner, *Solving ODEs I*, §II.10; the same as scipy's DOP853).  Coef
 ``DOPRI5``: Dormand–Prince 5(4) (the method of Matlab's ode45 used in the paper), 6 stages + FSAL;
 E is b − b̂ (7 entries), E3 is zero (single estimator).
 
+The stepper (fpucore.chain_kernels) fuses the error estimate into one pass over at most eight
+stage rows; both pairs qualify (tested).
+
 This file is separate from :mod:`fpucore.rk_tableaux` (owned by the discrete-waves code) so the two
 never edit the same lines; it only *adds* the error weights.
 """

@@ -615,9 +615,9 @@ def gaussian(
 ) -> SimulationResult:
     """Gaussian initial data (eq. GaussIC): w_n(0) = w_B + A exp(−(n − L/2)²/2), ẇ_n(0) = 0,
     n = 1…L.  w_B must lie in the convex interval (α, β); w_B + A in it too unless
-    ``guard="bounded"`` (the paper's w_B = 1, A = 6 starts at w = 7 > β, and w_B = 6, A = −6 reaches
-    w ≈ 6.74 > β at t ≈ 0.5: both need guard="bounded", see docs/simulation.md).  ``threshold`` default 2 %
-    of |A|."""
+    ``guard="bounded"`` (the paper's w_B = 1, A = 6 starts at w = 7 > β, and w_B = 6, A = −6
+    reaches w ≈ 6.94 > β: both need guard="bounded", see docs/simulation.md).  ``threshold``
+    (tracker detection threshold) default 2 % of |A|."""
     kw = _common_kwargs(kw)
     L = _require_L(L)
     wB = law.require_convex("w_B", w_B)

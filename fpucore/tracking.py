@@ -32,14 +32,19 @@ import numpy as np
 class TrackedWave:
     """A tracked wave at the end of a run.
 
-    kind : "superkink" | "front" | "solitary" | "dsw_edge"; velocity : sites per unit time
-    (signed, > 0 moving to larger n); velocity_error : standard error of the velocity fit;
-    amplitude : pulses — peak strain minus the state ahead (signed: > 0 tensile, < 0
-    compressive); fronts — state behind minus state ahead; left_state / right_state : strain on the
-    lower-n / higher-n side (median over a short window; behind a DSW edge it is the local mean of
-    the oscillations); background : the state ahead (into which the wave moves); peak : extreme
-    strain of a pulse (front: NaN); position : site number n at the end of the window (crest or
-    mid-level crossing); n_fit : number of passage times (or snapshots) in the velocity fit;
+    kind : "superkink" | "front" | "solitary" | "dsw_edge".
+    velocity : sites per unit time (signed, > 0 moving to larger n).
+    velocity_error : standard error of the velocity fit.
+    amplitude : pulses — crest strain minus the state ahead (signed: > 0 tensile, < 0
+        compressive; the crest is the median of the time extrema of w_n(t) at the sites passed,
+        which for a traveling wave all equal its true extremum); fronts — state behind minus
+        state ahead.
+    left_state / right_state : strain on the lower-n / higher-n side (median over a short window;
+        behind a DSW edge, the local mean of the oscillations).
+    background : the state ahead (into which the wave moves).
+    peak : crest strain of a pulse (front: NaN).
+    position : site number n at the end of the window (crest or mid-level crossing).
+    n_fit : number of passage times (or snapshots) in the velocity fit.
     method : "passage_times" or "snapshots".
     """
 
@@ -118,7 +123,23 @@ def scan_profile(
         while k + 1 < nx and sgn * (x[k + 1] - x[k]) > 0:
             k += 1
         seg = x[k : k + plateau]
-        if seg.size == plateau and np.ptp(seg) < threshold and abs(x[k] - ahead) > threshold:
+        flat = seg.size == plateau and np.ptp(seg) < threshold
+        if not flat and abs(x[k] - ahead) > threshold:
+            # a front closely followed by the next structure (e.g. a superkink with its DSW a few
+            # sites behind): the profile does not come back even half-way, and it rests at the
+            # extreme level for a few sites
+            m = k
+            while m + 1 < nx and sgn * (x[m + 1] - x[m]) <= 0:
+                m += 1
+            q = m
+            while q + 1 < nx and sgn * (x[q + 1] - x[q]) >= 0:
+                q += 1
+            shelf = np.abs(x[k : q + 1] - x[k]) < 0.5 * threshold
+            ret = abs(x[m] - x[k])
+            flat = ret < 0.5 * abs(x[k] - ahead) and shelf.sum() >= 3
+            if flat:
+                seg = x[k : q + 1][shelf]
+        if flat and abs(x[k] - ahead) > threshold:
             behind = float(np.median(seg))
             mid = 0.5 * (ahead + behind)
             pos = float(k)
@@ -204,7 +225,7 @@ def track(
     extrema (L, nE) from the integrator; crossings : (cr_t, cr_s) per-site crossings of ``level``
     (= w*).  Returns the waves of both halves, outermost first (left half, then right half).
     """
-    ev_t, _ev_w, ev_s = events
+    ev_t, ev_w, ev_s = events
     cr_t, cr_s = crossings
     good = np.all(np.isfinite(w_trk), axis=1)
     t_trk, w_trk = t_trk[good], w_trk[good]
@@ -230,16 +251,21 @@ def track(
             V0, x0 = np.polyfit(ts_a, xs_a, 1)
             if abs(V0) < 0.05 or np.sign(V0) != side:
                 continue  # not an outgoing wave
-            V, dV, nfit, method = _refine(f, V0, x0, ts_a[0], t_trk[-1], ev_t, ev_s, cr_t, cr_s, L)
+            V, dV, nfit, method, crest = _refine(
+                f, V0, x0, ts_a[0], t_trk[-1], ev_t, ev_w, ev_s, cr_t, cr_s, L
+            )
             if not np.isfinite(V):
                 res = xs_a - (V0 * ts_a + x0)
                 dof = max(ts_a.size - 2, 1)
                 dV = float(np.sqrt((res @ res) / dof / (((ts_a - ts_a.mean()) ** 2).sum())))
                 V, nfit, method = float(V0), int(ts_a.size), "snapshots"
+            peak = f.peak
             if f.kind in ("superkink", "front"):
                 amp = f.behind - f.ahead
             else:
-                amp = f.peak - f.ahead
+                if np.isfinite(crest):  # time extrema at the sites: the crest, not a site sample
+                    peak = crest
+                amp = peak - f.ahead
             # ahead is on the outer side: left half → ahead is left state
             left, right = (f.ahead, f.behind) if side < 0 else (f.behind, f.ahead)
             waves.append(
@@ -251,7 +277,7 @@ def track(
                     left_state=float(left),
                     right_state=float(right),
                     background=float(f.ahead),
-                    peak=float(f.peak),
+                    peak=float(peak),
                     position=float(f.pos) + 1.0,
                     n_fit=int(nfit),
                     method=method,
@@ -260,8 +286,10 @@ def track(
     return waves
 
 
-def _refine(f, V0, x0, t_a, t_b, ev_t, ev_s, cr_t, cr_s, L):
-    """Velocity from per-site passage times near the coarse ray x = x0 + V0 t, t ∈ [t_a, t_b]."""
+def _refine(f, V0, x0, t_a, t_b, ev_t, ev_w, ev_s, cr_t, cr_s, L):
+    """Velocity from per-site passage times near the coarse ray x = x0 + V0 t, t ∈ [t_a, t_b].
+    Returns (V, σ_V, count, method, crest) — crest: median strain at the matched time extrema
+    (pulses; NaN otherwise)."""
     xa, xb = x0 + V0 * t_a, x0 + V0 * t_b
     lo, hi = sorted((xa, xb))
     # skip the last few sites (events there may still be unconfirmed)
@@ -275,11 +303,11 @@ def _refine(f, V0, x0, t_a, t_b, ev_t, ev_s, cr_t, cr_s, L):
     if f.kind == "superkink":
         tt, ss, want = cr_t, cr_s, f.sign
     elif f.kind == "front":
-        return np.nan, np.nan, 0, ""
+        return np.nan, np.nan, 0, "", np.nan
     else:
         tt, ss, want = ev_t, ev_s, f.sign
     tol = 0.3 / abs(V0)
-    ns, ts = [], []
+    ns, ts, vals = [], [], []
     for n in n_sites:
         tp = (n - x0) / V0
         row = tt[n]
@@ -291,7 +319,10 @@ def _refine(f, V0, x0, t_a, t_b, ev_t, ev_s, cr_t, cr_s, L):
         if abs(cand[j] - tp) < tol:
             ns.append(n)
             ts.append(cand[j])
+            if f.kind != "superkink":
+                vals.append(ev_w[n][ok][j])
     if len(ns) < 8:
-        return np.nan, np.nan, len(ns), ""
+        return np.nan, np.nan, len(ns), "", np.nan
     V, dV, cnt = _fit_passage(ns, ts)
-    return V, dV, cnt, "passage_times"
+    crest = float(np.median(vals)) if vals else np.nan
+    return V, dV, cnt, "passage_times", crest

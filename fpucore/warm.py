@@ -26,7 +26,15 @@ def _floquet(law) -> None:
     floquet.spectrum(floquet.HomogeneousState(law, 1.0, 5.0, 16))
 
 
-ROUTES = [("law", _law_kernels), ("wave", _wave), ("floquet", _floquet)]
+def _simulate(law) -> None:
+    from . import simulate
+
+    simulate.riemann(law, 4.6, 0.0, L=40, t_end=0.5, n_snapshots=4)
+    simulate.riemann(law, 4.6, 0.0, L=40, t_end=0.5, n_snapshots=4, method="symplectic", dt=0.01)
+    simulate.riemann(law, 4.6, 0.0, L=40, t_end=0.5, n_snapshots=4, method="dopri5")
+
+
+ROUTES = [("law", _law_kernels), ("wave", _wave), ("floquet", _floquet), ("simulate", _simulate)]
 
 
 def warm_all() -> list[str]:
