@@ -450,6 +450,13 @@ def _run(
     else:
         msg = f"integration failed ({st}) at t = {t:.6g}; suggestion: loosen rtol / reduce dt"
 
+    # a run stopped early returns only the times it reached: no NaN rows for times never computed
+    keep = np.isfinite(energy) & np.all(np.isfinite(snaps), axis=1)
+    t_out, snaps, energy = t_out[keep], snaps[keep], energy[keep]
+    if probe_out.size:
+        pk = np.all(np.isfinite(probe_out), axis=0)
+        probe_t, probe_out = probe_t[pk], probe_out[:, pk]
+
     waves = []
     if track and st == "ok":
         waves = tracking.track(
