@@ -23,6 +23,7 @@ import numpy as np
 
 from . import period_map as pm
 from . import qc
+from . import wave_plateau as wp
 from . import wave_tails as wt
 from .errors import ParameterError, fmt_interval, require_finite
 from .wave_system import NewtonOutcome, WaveSystem, newton
@@ -76,6 +77,7 @@ class WaveResult:
     route: str
     v: np.ndarray
     branch: str | None = None
+    front_uncertainty: float = math.nan  # sites; flat-top waves near V_SK only (wave_plateau)
 
     @property
     def status(self) -> str:
@@ -288,6 +290,53 @@ def _solve(law, spec: _Spec, N, tol, jacobian, max_iter, time_budget_s, predicto
         return o
 
     left = lambda: time_budget_s - (time.perf_counter() - t0)  # noqa: E731
+    gx = _half_plateau(spec) if predictor is None else 0.0
+    if gx >= wp.GX_DIRECT:  # flat top near V_SK: the fixed-V system cannot fix the plateau length
+        out, note = _plateau_route(law, spec, N, m, K, tol, max_iter, left, run)
+        routes.append(note)
+    else:
+        out = _solve_ordinary(
+            law, spec, N, m, K, tol, jacobian, max_iter, predictor, x0, sysN, run, left, routes
+        )
+        if not out.converged and gx >= wp.GX_FALLBACK and left() > 0:
+            out2, note = _plateau_route(law, spec, N, m, K, tol, max_iter, left, run)
+            routes.append(note)
+            out = out2 if out2.converged else out
+    # integrator error at the solution; refine m if the guess-based choice was optimistic
+    x = out.x
+    ierr = _integrator_error(law, spec, x, m)
+    while out.converged and ierr > 10 * int_tol and m < M_STEPS[-1] and left() > 0:
+        m = next(mm for mm in M_STEPS if mm > m)
+        sysN = _system(law, spec, N, m, K)
+        out = run(sysN, x, left())
+        x = out.x
+        ierr = _integrator_error(law, spec, x, m)
+        routes.append(f"m->{m}")
+    extra, fu = "", math.nan
+    if gx >= wp.GX_FALLBACK:
+        extra, fu = _plateau_note(spec, sysN, out, res_tol, gx)
+        if fu > wp.FRONT_MAX:  # residual ≤ tol, but the plateau length is not determined
+            v_sk = qc.sound_speeds(law, spec.w_plus)[1]
+            d_ok = 2.0 * abs(spec.V - v_sk) * fu / wp.FRONT_MAX  # σ_min ∝ |V − V_SK|
+            v_ok = v_sk + math.copysign(d_ok, spec.V - v_sk)
+            out = _replace(
+                out,
+                converged=False,
+                message=f"plateau length undetermined: front position +-{fu:.2g} sites "
+                f"(> {wp.FRONT_MAX:g}) although the residual is {out.residual:.2g}. Near "
+                f"V_SK = {v_sk!r} the wave is a flat-top kink-antikink bundle whose plateau "
+                "length is only exponentially weakly tied to V (the Jacobian's smallest "
+                "singular value falls like |V - V_SK|); the nearest solvable V is about "
+                f"{v_ok!r}",
+            )
+    return _result(law, spec, N, m, K, out, hist, ierr, jacobian, "; ".join(routes), t0, extra, fu)
+
+
+def _solve_ordinary(
+    law, spec, N, m, K, tol, jacobian, max_iter, predictor, x0, sysN, run, left, routes
+):
+    """The default route: QC guess (or predictor), then rescues 1–3."""
+    scale = max(1.0, abs(spec.w_left), abs(spec.w_right))
     out = run(sysN, x0, left())
     routes.append("predictor" if predictor is not None else "qc-guess")
     # rescue 1: far-field directions are nearly null at large N: converge short, then grow N
@@ -314,17 +363,76 @@ def _solve(law, spec: _Spec, N, tol, jacobian, max_iter, time_budget_s, predicto
         routes.append(note)
         if x_c is not None:
             out = run(sysN, resize(x_c, N_c, N, spec.w_left, spec.w_right), left())
-    # integrator error at the solution; refine m if the guess-based choice was optimistic
-    x = out.x
-    ierr = _integrator_error(law, spec, x, m)
-    while out.converged and ierr > 10 * int_tol and m < M_STEPS[-1] and left() > 0:
-        m = next(mm for mm in M_STEPS if mm > m)
-        sysN = _system(law, spec, N, m, K)
-        out = run(sysN, x, left())
-        x = out.x
-        ierr = _integrator_error(law, spec, x, m)
-        routes.append(f"m->{m}")
-    return _result(law, spec, N, m, K, out, hist, ierr, jacobian, "; ".join(routes), t0)
+    return out
+
+
+# =============================================================================== flat tops
+def _half_plateau(spec: _Spec) -> float:
+    """QC γ·x_f for solitary waves (how long the flat top is), 0 for superkinks."""
+    if spec.kind == "superkink":
+        return 0.0
+    return wp.qc_half_plateau(spec.qcw)
+
+
+def _plateau_route(law, spec: _Spec, N, m, K, tol, max_iter, left, run):
+    """Continuation in plateau mass (:mod:`fpucore.wave_plateau`) from a short-plateau wave on
+    the same side of V_SK, then a polish at fixed V with the ordinary pinning.
+    Returns (NewtonOutcome, note)."""
+    v_sk = qc.sound_speeds(law, spec.w_plus)[1]
+    sgn = 1.0 if spec.V > v_sk else -1.0
+    scale = max(1.0, abs(spec.w_left), abs(spec.w_right))
+    t_end = time.perf_counter() + left()
+    r0 = None
+    for g in wp.GX_START:
+        if left() <= 0:
+            break
+        d0 = wp.start_delta(law, spec.w_plus, v_sk, sgn, g)
+        if d0 <= abs(spec.V - v_sk):
+            continue
+        sp0 = _solitary_spec(law, spec.w_plus, v_sk + sgn * d0)
+        r0 = _solve(law, sp0, N, tol, "exact", max_iter, max(1.0, left()), None)
+        if r0.converged:
+            break
+    x_best = qc_guess(spec, N)
+    if r0 is None or not r0.converged:
+        return run(_system(law, spec, N, m, K), x_best, min(left(), 1.0)), (
+            "plateau route: no converged short-plateau start wave"
+        )
+    x0 = np.empty(2 * N)
+    x0[0::2], x0[1::2] = r0.w, r0.wdot
+    path = wp.continue_in_mass(law, spec.w_plus, spec.V, x0, r0.V, N, m, K, tol * scale, t_end)
+    note = f"plateau route from |V-V_SK|={r0.V - v_sk:+.2g}: {path.note}"
+    x_p = path.x if path.x is not None else x_best
+    out = run(_system(law, spec, N, m, K), x_p, max(1.0, left()))
+    if not out.converged:
+        out = _replace(out, message=_plateau_refusal(out.message, path, v_sk))
+    return out, note
+
+
+def _plateau_refusal(msg: str, path, v_sk: float) -> str:
+    near = f"; the nearest solvable V is about {path.V!r}" if path.x is not None else ""
+    return (
+        f"{msg}. Near V_SK = {v_sk!r} the wave is a flat-top kink-antikink bundle whose plateau "
+        "length is only exponentially weakly tied to V (the Jacobian's smallest singular value "
+        "falls like |V - V_SK|, its singular vector moves the two fronts apart), so the "
+        f"residual cannot fix the plateau in double precision{near}"
+    )
+
+
+def _plateau_note(spec: _Spec, sys_: WaveSystem, out, res_tol, gx):
+    """Front-position error bar along the near-null direction (see wave_plateau)."""
+    if not out.converged:
+        return "", math.nan
+    u = wp.front_uncertainty(sys_, out.x, res_tol)
+    if u is None:
+        return "", math.nan
+    f = wp.half_plateau(out.x[0::2], spec.w_left)
+    return (
+        f"; flat top (QC gamma*x_f = {gx:.1f}): fronts at +-{f:.3f} sites, plateau-length "
+        f"uncertainty +-{u.sites:.2g} sites from round-off (residual {u.residual_2:.2g} / "
+        f"sigma_min {u.sigma_min:.2g}; +-{u.sites_at_tol:.2g} at the acceptance tolerance)",
+        u.sites,
+    )
 
 
 def _integrator_error(law, spec: _Spec, x: np.ndarray, m: int) -> float:
@@ -361,7 +469,9 @@ def renormalized_energy(law, w, wdot, V, w_left, w_right, w_B) -> float:
     return float(math.fsum(terms))
 
 
-def _result(law, spec, N, m, K, out: NewtonOutcome, hist, ierr, jacobian, route, t0):
+def _result(
+    law, spec, N, m, K, out: NewtonOutcome, hist, ierr, jacobian, route, t0, extra="", fu=math.nan
+):
     x = out.x
     w, wd = x[0::2].copy(), x[1::2].copy()
     n = np.arange(N, dtype=np.int64) - N // 2
@@ -376,6 +486,7 @@ def _result(law, spec, N, m, K, out: NewtonOutcome, hist, ierr, jacobian, route,
     msg = out.message
     if out.converged:
         msg = f"converged: residual {out.residual:.3g} in {len(hist) - 1} iterations ({route})"
+        msg += extra
     else:
         msg = f"NOT converged ({route}): {msg}"
     return WaveResult(
@@ -408,6 +519,7 @@ def _result(law, spec, N, m, K, out: NewtonOutcome, hist, ierr, jacobian, route,
         route=route,
         v=v,
         branch=spec.branch,
+        front_uncertainty=fu,
     )
 
 

@@ -10,7 +10,8 @@ or returned with converged=False and a message — never NaN, never a hang (the 
 iteration/time budgets bound every call; no wall-clock asserts here).
 
 The paper's flat-top waves at V = 5.21749194749 and 5.2174919476 (w₊ = 6, |V − V_SK| ≈ 1e-11,
-1e-10) are run in ``benchmarks/bench_extreme_wave.py``, not here: they take the whole time budget.
+1e-10) are solved by continuation in plateau mass (fpucore.wave_plateau, ~1–2 s each) and checked
+at the end of this file; timings are in ``benchmarks/bench_extreme_wave.py``.
 """
 
 import math
@@ -254,3 +255,74 @@ def test_budgets_report_non_convergence():
     r = wave.solve_solitary(LAW, 6.0, V_SK6 - 1e-5, max_iter=2, time_budget_s=0.5)
     assert not r.converged and "NOT converged" in r.message
     assert math.isfinite(r.residual) and np.all(np.isfinite(r.w))
+
+
+# ============================================================ flat tops at the paper's velocities
+# Paper Fig. stabSW: V = 5.21749194749 (compressive, δ = |V − V_SK| ≈ 9.5e-12) and 5.2174919476
+# (tensile, δ ≈ 1.0e-10).  Solved by continuation in plateau mass (fpucore.wave_plateau).
+PAPER_V = [5.21749194749, 5.2174919476]
+W_MINUS6 = 2 * LAW.w_star - 6.0
+
+
+def _flat_top_checks(r):
+    assert r.converged, r.message
+    s = _scale(r)
+    assert r.residual <= 1e-11 * s and r.dropped_residual <= 1e-11 * s
+    assert r.integrator_error <= 1e-10 * s
+    assert r.tail_error <= 1e-9 * s  # tails at the boundary state w_B
+    assert 0 < r.front_uncertainty < 1.0 and "plateau-length uncertainty" in r.message
+
+
+@pytest.mark.parametrize("V", PAPER_V)
+def test_paper_flat_top_waves_converge_with_front_error_bar(V):
+    r = wave.solve_solitary(LAW, 6.0, V)
+    _flat_top_checks(r)
+    assert "plateau route" in r.route
+    # amplitude → |w₋ − w₊| = 16/3 (paper §4); the plateau sits at the superkink's other state
+    jump = abs(W_MINUS6 - 6.0)
+    r8 = wave.solve_solitary(LAW, 6.0, V_SK6 + math.copysign(1e-8, V - V_SK6))
+    assert abs(r.amplitude - jump) < abs(r8.amplitude - jump) < 1e-2
+    assert abs(r.amplitude - jump) <= 1e-4
+    # mirror w₊ ↦ 2w* − w₊ (an independent solve): same plateau within both error bars
+    m = wave.solve_solitary(LAW, W_MINUS6, V, N=r.N)
+    _flat_top_checks(m)
+    from fpucore import wave_plateau as wp
+
+    hr, hm = wp.half_plateau(r.w, r.w_left), wp.half_plateau(m.w, m.w_left)
+    assert abs(hr - hm) <= 2 * (r.front_uncertainty + m.front_uncertainty) + 1e-6
+    assert abs(r.amplitude - m.amplitude) <= 1e-6
+
+
+@pytest.mark.parametrize("sgn", [-1.0, 1.0])
+def test_front_moves_ln10_over_2lambda_per_decade(sgn):
+    """Fronts interact like e^{−2λ d}: each moves ln(10)/(2λ) sites per decade of δ, λ the
+    discrete tail rate at the plateau state (closed form, wave_tails.decay_rate) — not QC's γ."""
+    from fpucore import wave_plateau as wp
+
+    plateau = W_MINUS6 if sgn < 0 else 6.0
+    h = []
+    for d in (1e-5, 1e-7, 1e-9, 1e-11):
+        r = wave.solve_solitary(LAW, 6.0, V_SK6 + sgn * d)
+        assert r.converged, r.message
+        h.append(wp.half_plateau(r.w, r.w_left))
+    lam = wt.decay_rate(LAW, plateau, V_SK6)
+    per_decade = np.diff(h) / 2.0
+    pred = math.log(10) / (2 * lam)
+    assert np.all(np.abs(per_decade - pred) <= 0.03 * pred), (per_decade, pred)
+    sw = qc.solitary(LAW, 6.0, V_SK6 + sgn * 1e-11)
+    assert abs(per_decade[-1] - math.log(10) / (2 * sw.gamma)) > 0.1 * pred  # QC rate differs
+
+
+@pytest.mark.parametrize("sgn", [-1.0, 1.0])
+def test_V_SK_pm_1e8_converges(sgn):
+    _flat_top_checks(wave.solve_solitary(LAW, 6.0, V_SK6 + sgn * 1e-8))
+
+
+def test_plateau_too_close_is_refused_with_nearest_V():
+    """δ = 1e-14: the residual cannot fix the plateau (error bar > 1 site): refused, with the
+    reason and a solvable V."""
+    r = wave.solve_solitary(LAW, 6.0, V_SK6 - 1e-14, time_budget_s=20.0)
+    assert not r.converged
+    assert "exponentially weakly tied to V" in r.message and "nearest solvable V" in r.message
+    v_ok = float(re.search(r"nearest solvable V is about ([0-9.e+-]+)", r.message).group(1))
+    assert V_SK6 - 1e-9 < v_ok < V_SK6 - 1e-14
