@@ -5,7 +5,6 @@ bounded, not grow), the closed-form superkink velocity (eqs. cubic_cond1/2: a Ri
 behind the front selects w_+ = 2w* − w^l), and an exact rescaling of the equations.
 """
 
-
 import numpy as np
 import pytest
 
