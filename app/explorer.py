@@ -159,6 +159,7 @@ class Explorer:
             self._put(self.a, _clip(st.a, self.a.start, self.a.end))
             self._put(self.b, _clip(st.b, self.b.start, self.b.end))
             self._put(self.N, int(_clip(st.N, self.N.start, self.N.end)))
+            self._put(self.tol, min(TOL_OPTIONS, key=lambda t: abs(math.log10(t / st.tol))))
             summ = st.summary()
             if "alpha" in summ:
                 lo, hi = summ["alpha"], summ["beta"]

@@ -1,8 +1,14 @@
 """Entry point: ``panel serve app/main.py`` (see the README for the full serve command)."""
 
-import panel as pn
+import os
 
-from app.explorer import Explorer, sync_url
+# Components created later in worker threads must link Panel's CSS from this server, not from
+# cdn.holoviz.org (the page must work offline and without console errors).
+os.environ.setdefault("BOKEH_RESOURCES", "server")
+
+import panel as pn  # noqa: E402
+
+from app.explorer import Explorer, sync_url  # noqa: E402
 
 pn.extension(loading_indicator=True, notifications=False, throttled=True)
 

@@ -17,6 +17,9 @@ import time
 log = logging.getLogger("fpu-explorer")
 
 
+os.environ.setdefault("BOKEH_RESOURCES", "server")  # see app/main.py
+
+
 def warm(verbose: bool = True, scenes: str | None = None) -> dict[str, float]:
     """Warm the JIT and the cache; returns seconds spent per step.
 

@@ -134,6 +134,7 @@ class Scene:
             color="light",
             css_classes=["scene-download"],
         )
+        self._extra = self.extra_panes()
         side = pn.Column(
             pn.pane.Markdown("#### Error and time", margin=(0, 5)),
             self.status,
@@ -143,7 +144,7 @@ class Scene:
             width=320,
         )
         self.panel = pn.Row(
-            pn.Column(self.alert, self.plot, sizing_mode="stretch_width"),
+            pn.Column(self.alert, self.plot, *self._extra, sizing_mode="stretch_width"),
             side,
             sizing_mode="stretch_width",
             name=self.title,
@@ -168,6 +169,10 @@ class Scene:
     def controls(self) -> list:
         return []
 
+    def extra_panes(self) -> list:
+        """Further panes under the main plot (e.g. a clickable diagram)."""
+        return []
+
     def _extra_watch(self) -> None:
         """Subclasses watch their own widgets here (call self.request() on change)."""
 
@@ -187,7 +192,6 @@ class Scene:
     def show_intermediate(self, obj, info: Info) -> None:
         """Publish a first (cheap) result while a costlier part is still computing."""
         self.publish(obj)
-        self.plot.visible = True
         self._write_status(info, time.perf_counter(), partial=True)
 
     def set_progress(self, done: int, total: int) -> None:
@@ -200,20 +204,35 @@ class Scene:
         panels, same element types and labels), only the data are sent: each panel is a
         DynamicMap fed by a Pipe, so Bokeh updates its data sources in place instead of
         rebuilding the figure (tens of ms instead of hundreds).  Otherwise rebuild."""
+        self.plot.visible = True
+        for pane in self._extra:
+            pane.visible = True
         panels = list(obj) if isinstance(obj, hv.Layout) else [obj]
         sig = tuple(_signature(p) for p in panels)
         if sig == self._sig and self._pipes:
-            for pipe, p in zip(self._pipes, panels):
-                pipe.send(p)
+            pipes = list(self._pipes)
+
+            def send():
+                for pipe, p in zip(pipes, panels):
+                    pipe.send(p)
+
+            doc = self._doc
+            if doc is not None and doc.session_context is not None:
+                # HoloViews plot updates belong on the session's event loop, after the
+                # (also scheduled) build of the plot they update
+                pn.state.execute(send, schedule=True)
+            else:
+                send()
             return
         self._pipes = [hv.streams.Pipe(data=p) for p in panels]
         dmaps = [hv.DynamicMap(_identity, streams=[pipe]) for pipe in self._pipes]
-        self._dmaps = dmaps
-        self.on_dmaps(dmaps)
         if isinstance(obj, hv.Layout):
             out = hv.Layout(dmaps).cols(obj._max_cols).opts(shared_axes=False)
+            dmaps = list(out)  # .opts() clones: streams must attach to what is displayed
         else:
             out = dmaps[0]
+        self._dmaps = dmaps
+        self.on_dmaps(dmaps)
         self._sig = sig
         self.plot.object = out
 
@@ -276,8 +295,13 @@ class Scene:
         finally:
             self.plot.loading = False
             self.progress.visible = False
-        self.publish(obj)
-        self.plot.visible = True
+        try:
+            self.publish(obj)
+        except Exception as exc:
+            log.exception("scene %s: plot update failed", self.key)
+            self._sig = None  # rebuild next time
+            self._show_message(f"plot update failed: {type(exc).__name__}: {exc}", "danger")
+            return None
         if info.warning:
             self.alert.alert_type = "warning"
             self.alert.object = info.warning
@@ -295,6 +319,8 @@ class Scene:
         self.alert.object = text
         self.alert.visible = True
         self.plot.visible = False
+        for pane in self._extra:
+            pane.visible = False
         self.status.object = "_no plot: see the message_"
 
     def _write_status(self, info: Info, t0: float, partial: bool = False) -> None:

@@ -12,9 +12,10 @@ from __future__ import annotations
 import holoviews as hv
 import numpy as np
 import panel as pn
+from panel.io.state import set_curdoc
 
 from .. import compute
-from .base import Info, Scene, SceneMessage, as_csv, fmt_num
+from .base import Info, Scene, SceneMessage, _identity, _signature, as_csv, fmt_num
 
 TSW, CSW = "#6a51a3", "#cbc9e2"
 
@@ -23,7 +24,7 @@ class DiagramScene(Scene):
     key = "diagram"
     title = "Diagrams"
     cheap = True
-    plot_height = 700
+    plot_height = 300
 
     def controls(self):
         self.n_discrete = pn.widgets.IntInput(
@@ -37,7 +38,6 @@ class DiagramScene(Scene):
 
     def _extra_watch(self):
         self._want_discrete = False
-        self._tap = None
 
         def go(_):
             self._want_discrete = True
@@ -45,18 +45,75 @@ class DiagramScene(Scene):
 
         self.discrete_btn.on_click(go)
 
-    def on_dmaps(self, dmaps):
-        """The existence diagram is the last panel: clicks on it pick (w₊, V)."""
-        if self._tap is not None:
-            self._tap.clear()
-        self._tap = hv.streams.Tap(source=dmaps[-1], x=None, y=None)
+    def extra_panes(self):
+        """The existence diagram has its own pane: one DynamicMap fed by a Pipe, with a Tap
+        stream on it (clicks pick (w₊, V)); it is built once and updated in place."""
+        # background (regions, limit curves) and current point: two DynamicMaps overlaid.  A
+        # Tap on a DynamicMap of overlays does not reach the plot (HoloViews re-wraps it), a
+        # Tap on the single-element point map does, and a tap anywhere in the frame fires it.
+        self._bg_pipe = hv.streams.Pipe(data=None)
+        self._pt_pipe = hv.streams.Pipe(data=hv.Scatter([], "w₊", "V", label="current"))
+        self._pt_dmap = hv.DynamicMap(_identity, streams=[self._pt_pipe])
+        self._tap = hv.streams.Tap(source=self._pt_dmap, x=None, y=None)
         self._tap.add_subscriber(self._on_tap)
+        self._exist_sig = None
+        self.exist_pane = pn.pane.HoloViews(
+            None, linked_axes=False, min_height=330, css_classes=["existence-diagram"]
+        )
+        return [self.exist_pane]
+
+    def publish(self, obj):
+        """(a), (b) go to the main pane; (c) to the clickable existence pane."""
+        panels = list(obj) if isinstance(obj, hv.Layout) else [obj]
+        exist, rest = panels[-1], panels[:-1]
+        point = self._exist_point
+        sig = _signature(exist)
+        if sig != self._exist_sig or self.exist_pane.object is None:
+            self._bg_pipe = hv.streams.Pipe(data=exist)
+            self._pt_pipe.event(data=point)
+            bg = hv.DynamicMap(_identity, streams=[self._bg_pipe])
+            self._exist_sig = sig
+            self.exist_pane.object = (bg * self._pt_dmap).opts(
+                hv.opts.Overlay(
+                    title="(c) existence diagram — click to pick (w₊, V)",
+                    legend_position="bottom_right",
+                    frame_width=460,
+                    frame_height=250,
+                    show_grid=True,
+                )
+            )
+        else:
+            bg_pipe, pt_pipe = self._bg_pipe, self._pt_pipe
+
+            def send():
+                bg_pipe.send(exist)
+                pt_pipe.send(point)
+
+            doc = self._doc
+            if doc is not None and doc.session_context is not None:
+                pn.state.execute(send, schedule=True)
+            else:
+                send()
+        self.exist_pane.visible = True
+        if rest:
+            super().publish(hv.Layout(rest).cols(2) if len(rest) > 1 else rest[0])
+        self.plot.visible = bool(rest)
 
     # ---------------------------------------------------------------- pieces
     def _on_tap(self, x=None, y=None):
         if x is None or y is None:
             return
-        self.state.pick(x, y)
+        doc = self._doc
+        if doc is not None and doc.session_context is not None:
+            # HoloViews delivers the click outside the session's context: apply it on the
+            # session's loop so that the URL and the widgets follow
+            def apply():
+                with set_curdoc(doc):
+                    self.state.pick(x, y)
+
+            doc.add_next_tick_callback(apply)
+        else:
+            self.state.pick(x, y)
 
     def _existence(self, info: Info):
         s = self.state
@@ -83,24 +140,16 @@ class DiagramScene(Scene):
             ),
             hv.Curve((d.w_plus, d.c_plus), "w₊", "V", label="c₊").opts(color="#1f77b4"),
             hv.Curve((d.w_plus, d.c_minus), "w₊", "V", label="c₋").opts(color="#2ca02c"),
-            hv.Scatter(([s.w_plus], [s.V]), "w₊", "V", label="current").opts(
-                color="black", size=11, marker="circle"
-            ),
             hv.Text(
                 0.5 * (d.alpha + d.w_star), float(np.min(d.c_plus)) * 1.02, "dark: TSW, light: CSW"
             ).opts(text_font_size="9pt"),
         ]
-        ov = hv.Overlay(items).opts(
-            title="(c) existence diagram — click to pick (w₊, V)",
-            show_legend=True,
-            legend_position="bottom_right",
-            frame_width=520,
-            frame_height=260,
-            show_grid=True,
-            tools=["tap"],
+        # the current point is its own DynamicMap (see publish): the click stream hangs on it
+        self._exist_point = hv.Scatter(([s.w_plus], [s.V]), "w₊", "V", label="current").opts(
+            color="black", size=11, marker="circle"
         )
         self._exist = d
-        return ov
+        return hv.Overlay(items)
 
     def _discrete_points(self, info: Info, fam):
         s = self.state
@@ -148,7 +197,7 @@ class DiagramScene(Scene):
         except compute.ParameterError as exc:
             info.warning = str(exc)
             info.shown = "existence diagram only (w₊ invalid)"
-            return exist.opts(frame_width=700, frame_height=420)
+            return exist
         fam = c.value
         info.time("QC family", c)
         amp = [
@@ -191,7 +240,8 @@ class DiagramScene(Scene):
             info.warning = f"current V not marked: {problem}"
         # the energy diverges at V_SK: clip the axis to the finite part of the family
         allE = np.concatenate([fam.energy_below, fam.energy_above])
-        elim = (float(np.min(allE)), float(np.quantile(allE, 0.9)) * 1.3)
+        lo, hi = (float(q) for q in np.quantile(allE, [0.08, 0.92]))
+        elim = (lo - 0.3 * (hi - lo), hi + 0.3 * (hi - lo))
         rows = self._discrete_points(info, fam)
         self._rows = rows or []
         if rows:
@@ -206,7 +256,7 @@ class DiagramScene(Scene):
                     color="black", size=6, marker="circle"
                 )
             )
-        size = dict(frame_width=300, frame_height=210, show_grid=True)
+        size = dict(frame_width=250, frame_height=200, show_grid=True)
         pa = hv.Overlay(amp + lines).opts(
             title=f"(a) amplitude, w₊ = {fmt_num(s.w_plus, 5)}", legend_position="top_left", **size
         )
@@ -219,7 +269,7 @@ class DiagramScene(Scene):
             f"V_SK = {fmt_num(fam.V_SK)}, c₋ = {fmt_num(fam.c_minus)}; "
             f"current V = {fmt_num(s.V)}"
         )
-        return (pa + pe + exist).cols(2).opts(shared_axes=False)
+        return hv.Layout([pa, pe, exist])
 
     def download_data(self):
         fam = getattr(self, "_fam", None)
