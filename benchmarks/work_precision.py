@@ -1,7 +1,7 @@
 """Work–precision report: ``make workprecision`` (or ``python -m benchmarks.work_precision``).
 
 Runs every route's study in one process (so all timings share the machine's state), then writes
-``docs/work_precision.md`` (tables, generated) and ``benchmarks/out/work_precision.html`` (plots).
+``docs/work_precision.md`` (tables, generated) and ``docs/work_precision.html`` (plots).
 ``--quick`` runs a reduced grid (used by the test suite to check the report is reproducible).
 """
 
@@ -23,7 +23,7 @@ def main(argv=None) -> int:
     ap.add_argument("--quick", action="store_true", help="reduced grids (seconds, not minutes)")
     ap.add_argument("--only", nargs="*", default=None, help="study module names to run")
     ap.add_argument("--md", default="docs/work_precision.md")
-    ap.add_argument("--html", default="benchmarks/out/work_precision.html")
+    ap.add_argument("--html", default="docs/work_precision.html")
     args = ap.parse_args(argv)
     rows, floors, t0 = [], [], time.perf_counter()
     for name in args.only or STUDIES:

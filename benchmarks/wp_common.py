@@ -2,7 +2,7 @@
 
 Every study returns a list of :class:`Row` measured in one run on this machine; the driver
 (:mod:`benchmarks.work_precision`) writes them to ``docs/work_precision.md`` (tables) and
-``benchmarks/out/work_precision.html`` (log–log plots).  Nothing here is typed in by hand.
+``docs/work_precision.html`` (log–log plots).  Nothing here is typed in by hand.
 """
 
 from __future__ import annotations
