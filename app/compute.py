@@ -190,6 +190,20 @@ def _accepts(fn: Callable, name: str) -> bool:
         return False
 
 
+def _discrete_call(a: float, b: float, mode: str, w_plus: float, V: float, N, tol: float):
+    """(cache key, solver, args, kwargs) of a discrete wave (raises ParameterError)."""
+    lw = law(a, b)
+    N = None if N is None else int(N)
+    if mode == "superkink":
+        from fpucore import qc
+
+        sk = qc.superkink_from_w_plus(lw, w_plus)  # validates w_plus, gives V_SK and branch
+        key = ("wave_sk", rnd(a), rnd(b), sk.branch, N, rnd(tol, 3), rnd(sk.V))
+        return key, ("solve_superkink",), (lw, sk.V), dict(branch=sk.branch, N=N, tol=tol)
+    key = ("wave_sw", rnd(a), rnd(b), rnd(w_plus), N, rnd(tol, 3), rnd(V))
+    return key, ("solve_solitary",), (lw, w_plus, V), dict(N=N, tol=tol)
+
+
 def discrete_wave(
     a: float, b: float, mode: str, w_plus: float, V: float, N: int | None, tol: float
 ) -> Computed:
@@ -199,23 +213,20 @@ def discrete_wave(
     ``wave.solve_solitary(law, w_plus, V)``.  Families (sweeps) use fpucore.continuation,
     which seeds each solve from its neighbour.
     """
-    lw = law(a, b)
-    N = None if N is None else int(N)
-    if mode == "superkink":
-        solve = core("wave", "solve_superkink")
-        from fpucore import qc
-
-        sk = qc.superkink_from_w_plus(lw, w_plus)  # validates w_plus, gives V_SK and branch
-        key = ("wave_sk", rnd(a), rnd(b), sk.branch, N, rnd(tol, 3), rnd(sk.V))
-        kwargs = dict(branch=sk.branch, N=N, tol=tol)
-        args = (lw, sk.V)
-    else:
-        solve = core("wave", "solve_solitary")
-        key = ("wave_sw", rnd(a), rnd(b), rnd(w_plus), N, rnd(tol, 3), rnd(V))
-        kwargs = dict(N=N, tol=tol)
-        args = (lw, w_plus, V)
-
+    key, names, args, kwargs = _discrete_call(a, b, mode, w_plus, V, N, tol)
+    solve = core("wave", *names)
     return CACHE.get(key, lambda: solve(*args, **kwargs))
+
+
+def discrete_wave_cached(
+    a: float, b: float, mode: str, w_plus: float, V: float, N: int | None, tol: float
+) -> bool:
+    """Whether :func:`discrete_wave` would answer from the cache (no solve)."""
+    try:
+        key = _discrete_call(a, b, mode, w_plus, V, N, tol)[0]
+    except ParameterError:
+        return False
+    return CACHE.peek(key) is not None
 
 
 def floquet_spectrum(

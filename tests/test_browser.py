@@ -265,7 +265,7 @@ def test_click_on_existence_diagram_picks_w_plus_and_V(page):
     canvas = page.locator(".scene-diagram .existence-diagram canvas").first
     canvas.wait_for()
     box = canvas.bounding_box()
-    # inside the frame, left of w* and below V_SK: a tensile-wave region (Fig. SWvelocities)
+    # inside the frame, left of w* (the pick may be outside the bands: then a message)
     page.mouse.click(box["x"] + 0.30 * box["width"], box["y"] + 0.45 * box["height"])
     after = wait_status_change(page, "diagram", before)
     w_plus = float(page.locator(".in-wplus input").input_value())
@@ -273,6 +273,14 @@ def test_click_on_existence_diagram_picks_w_plus_and_V(page):
     assert (w_plus, V) != (1.0, 5.0)
     assert f"current V = {V:.6g}" in after and f"w₊ = {w_plus:.6g}" in after
     assert float(page.locator(".in-wplus input").input_value()) == pytest.approx(w_plus, rel=1e-6)
+    # the pick is in the URL too, like a slider move (bounded wait: the URL follows the state)
+    t_end = time.monotonic() + TIMEOUT_MS / 1000
+    while time.monotonic() < t_end and float(query(page).get("w_plus", "nan")) != w_plus:
+        page.wait_for_timeout(100)
+    q = query(page)
+    assert float(q["w_plus"]) == pytest.approx(w_plus, rel=1e-9), q
+    assert float(q["V"]) == pytest.approx(V, rel=1e-9), q
+    assert q["tab"] == "diagram"
 
 
 def test_out_of_range_setting_shows_the_message(page):

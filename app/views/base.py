@@ -31,6 +31,9 @@ from ..state import ExplorerState
 
 log = logging.getLogger("fpu-explorer")
 
+#: renders faster than this show no loading spinner (s)
+SPINNER_DELAY_S = 0.25
+
 
 class SceneMessage(Exception):
     """Shown in the scene instead of a plot (an invalid combination, a missing module ...)."""
@@ -102,7 +105,8 @@ def as_json(obj) -> io.StringIO:
 
 class Scene:
     """Base class of the six scenes.  Subclasses set ``key``/``title`` and implement
-    :meth:`render` (returning a HoloViews object and filling ``info``), optionally
+    :meth:`render` (returning a HoloViews object — or, in ``BokehScene``, the in-place
+    updates of a Bokeh figure built once — and filling ``info``), optionally
     :meth:`controls` (extra widgets) and :meth:`download_data`."""
 
     key = "scene"
@@ -115,9 +119,7 @@ class Scene:
 
     def __init__(self, state: ExplorerState):
         self.state = state
-        self.plot = pn.pane.HoloViews(
-            None, sizing_mode="stretch_width", min_height=self.plot_height, linked_axes=False
-        )
+        self.plot = self.make_plot()
         self.alert = pn.pane.Alert(
             "", alert_type="warning", visible=False, css_classes=["scene-message"]
         )
@@ -166,6 +168,12 @@ class Scene:
         self._extra_watch()
 
     # ------------------------------------------------------------------ subclass API
+    def make_plot(self):
+        """The pane the plot is shown in (HoloViews here; raw Bokeh in BokehScene)."""
+        return pn.pane.HoloViews(
+            None, sizing_mode="stretch_width", min_height=self.plot_height, linked_axes=False
+        )
+
     def controls(self) -> list:
         return []
 
@@ -274,7 +282,7 @@ class Scene:
         t0 = time.perf_counter()
         info = Info()
         self.stale = False
-        self.plot.loading = True
+        stop_spinner = self._spinner()
         try:
             obj = self.render(info)
         except SceneMessage as exc:
@@ -293,7 +301,7 @@ class Scene:
             )
             return None
         finally:
-            self.plot.loading = False
+            stop_spinner()
             self.progress.visible = False
         try:
             self.publish(obj)
@@ -311,6 +319,33 @@ class Scene:
         self.last_info = info
         self._write_status(info, t0)
         return info
+
+    def _spinner(self):
+        """Show the plot's loading spinner only if the render takes longer than
+        SPINNER_DELAY_S: toggling it costs tens of ms of model updates, more than a fast
+        (QC, cached) render itself.  Returns the function that stops it."""
+        lock = threading.Lock()
+        flags = {"done": False, "on": False}
+        doc = self._doc
+
+        def on():
+            with lock, set_curdoc(doc):
+                if not flags["done"]:
+                    flags["on"] = True
+                    self.plot.loading = True
+
+        timer = threading.Timer(SPINNER_DELAY_S, on)
+        timer.daemon = True
+        timer.start()
+
+        def stop():
+            timer.cancel()
+            with lock:
+                flags["done"] = True
+                if flags["on"]:
+                    self.plot.loading = False
+
+        return stop
 
     def _show_message(self, text: str, kind: str) -> None:
         self.last_message = text

@@ -9,22 +9,41 @@ marked.  (c) the existence diagram V vs w₊ (Fig. SWvelocities_cubic) with TSW 
 
 from __future__ import annotations
 
-import holoviews as hv
+from contextlib import nullcontext
+
 import numpy as np
 import panel as pn
+from bokeh.events import Tap
+from bokeh.layouts import row
 from panel.io.state import set_curdoc
 
 from .. import compute
-from .base import Info, Scene, SceneMessage, _identity, _signature, as_csv, fmt_num
+from ..compute import rnd
+from .base import Info, SceneMessage, as_csv, fmt_num
+from .bokeh_scene import (
+    BokehScene,
+    FigurePane,
+    Updates,
+    add_band,
+    add_label,
+    add_legend,
+    add_line,
+    add_points,
+    add_vline,
+    finite_extent,
+    new_figure,
+)
 
 TSW, CSW = "#6a51a3", "#cbc9e2"
+CSW_LINE = "#9e9ac8"
 
 
-class DiagramScene(Scene):
+class DiagramScene(BokehScene):
     key = "diagram"
     title = "Diagrams"
     cheap = True
     plot_height = 300
+    pane_kw: dict = {}
 
     def controls(self):
         self.n_discrete = pn.widgets.IntInput(
@@ -46,110 +65,120 @@ class DiagramScene(Scene):
         self.discrete_btn.on_click(go)
 
     def extra_panes(self):
-        """The existence diagram has its own pane: one DynamicMap fed by a Pipe, with a Tap
-        stream on it (clicks pick (w₊, V)); it is built once and updated in place."""
-        # background (regions, limit curves) and current point: two DynamicMaps overlaid.  A
-        # Tap on a DynamicMap of overlays does not reach the plot (HoloViews re-wraps it), a
-        # Tap on the single-element point map does, and a tap anywhere in the frame fires it.
-        self._bg_pipe = hv.streams.Pipe(data=None)
-        self._pt_pipe = hv.streams.Pipe(data=hv.Scatter([], "w₊", "V", label="current"))
-        self._pt_dmap = hv.DynamicMap(_identity, streams=[self._pt_pipe])
-        self._tap = hv.streams.Tap(source=self._pt_dmap, x=None, y=None)
-        self._tap.add_subscriber(self._on_tap)
-        self._exist_sig = None
-        self.exist_pane = pn.pane.HoloViews(
-            None, linked_axes=False, min_height=330, css_classes=["existence-diagram"]
-        )
+        """The existence diagram has its own pane; a click on it picks (w₊, V)."""
+        self.exist_pane = FigurePane(None, css_classes=["existence-diagram"])
         return [self.exist_pane]
 
-    def publish(self, obj):
-        """(a), (b) go to the main pane; (c) to the clickable existence pane."""
-        panels = list(obj) if isinstance(obj, hv.Layout) else [obj]
-        exist, rest = panels[-1], panels[:-1]
-        point = self._exist_point
-        sig = _signature(exist)
-        if sig != self._exist_sig or self.exist_pane.object is None:
-            self._bg_pipe = hv.streams.Pipe(data=exist)
-            self._pt_pipe.event(data=point)
-            bg = hv.DynamicMap(_identity, streams=[self._bg_pipe])
-            self._exist_sig = sig
-            self.exist_pane.object = (bg * self._pt_dmap).opts(
-                hv.opts.Overlay(
-                    title="(c) existence diagram — click to pick (w₊, V)",
-                    legend_position="bottom_right",
-                    frame_width=460,
-                    frame_height=250,
-                    show_grid=True,
+    def build(self):
+        size = dict(frame_width=250, frame_height=200)
+        fa = new_figure("(a) amplitude", "V", "amplitude", **size)
+        fe = new_figure("(b) renormalized energy", "V", "E_ren", **size)
+        self.fig_a, self.fig_e = fa, fe
+        # per panel: QC below / above V_SK, current point, discrete dots, and the V lines
+        self.panels = {}
+        for name, fig in (("amp", fa), ("en", fe)):
+            self.panels[name] = {
+                "qc": [add_line(fig, TSW, 2.5) for _ in range(2)],
+                "cur": add_points(fig, "diamond", 10, color="black"),
+                "dots": add_points(fig, "circle", 6, color="black"),
+                "spans": [
+                    add_vline(fig, "#d62728", "dashed"),
+                    add_vline(fig, "#1f77b4", "dotted"),
+                    add_vline(fig, "#2ca02c", "dotted"),
+                ],
+                "V": add_vline(fig, "black"),
+            }
+        pa = self.panels["amp"]
+        self.amp_legend = add_legend(
+            fa,
+            "top_left",
+            [("QC below", [pa["qc"][0][0]]), ("QC above", [pa["qc"][1][0]])]
+            + [("discrete", [pa["dots"][0]])],
+        )
+
+        fc = new_figure(
+            "(c) existence diagram — click to pick (w₊, V)",
+            "w₊",
+            "V",
+            frame_width=460,
+            frame_height=250,
+        )
+        self.fig_c = fc
+        # bands (c₊, V_SK) and (V_SK, c₋) left and right of w*: TSW below V_SK on the left,
+        # above it on the right (Fig. SWvelocities_cubic)
+        self.bands = [add_band(fc, color, 0.8) for color in (TSW, CSW, CSW, TSW)]
+        self.exist_lines = [
+            add_line(fc, "#d62728", 2),
+            add_line(fc, "#1f77b4", 1),
+            add_line(fc, "#2ca02c", 1),
+        ]
+        self.exist_label = add_label(fc, color="black", size="9pt")
+        self.exist_point = add_points(fc, "circle", 11, color="black")
+        add_legend(
+            fc,
+            "bottom_right",
+            [
+                (lab, [r])
+                for lab, (r, _) in zip(
+                    ("V_SK", "c₊", "c₋", "current"), [*self.exist_lines, self.exist_point]
                 )
-            )
-        else:
-            bg_pipe, pt_pipe = self._bg_pipe, self._pt_pipe
+            ],
+        )
+        fc.on_event(Tap, self._on_tap)
+        return row(fa, fe)
 
-            def send():
-                bg_pipe.send(exist)
-                pt_pipe.send(point)
+    def attach(self):
+        self.exist_pane.object = self.fig_c
+        self.plot.object = self._root
 
-            doc = self._doc
-            if doc is not None and doc.session_context is not None:
-                pn.state.execute(send, schedule=True)
-            else:
-                send()
-        self.exist_pane.visible = True
-        if rest:
-            super().publish(hv.Layout(rest).cols(2) if len(rest) > 1 else rest[0])
-        self.plot.visible = bool(rest)
+    def publish(self, upd: Updates):
+        """(a), (b) in the main pane — hidden when only (c) is valid; (c) in its own pane."""
+        super().publish(upd)
+        self.plot.visible = self._family_shown
 
     # ---------------------------------------------------------------- pieces
-    def _on_tap(self, x=None, y=None):
+    def _on_tap(self, event: Tap) -> None:
+        """A click on (c) → state.pick(w₊, V).
+
+        Bokeh runs this callback on the session's event loop, holding the document lock, while
+        it handles the browser's event message; the pick runs right here with the session's
+        document current, so Panel pushes the widget, scene and URL (Location) changes with the
+        events Bokeh dispatches when the callback returns — as for a slider.  (Deferring it to
+        a next-tick callback let the worker's status updates overtake the sidebar's patch, which
+        carries new stylesheet models: "reference … isn't known" in the browser.)  With the
+        earlier HoloViews Tap stream the widgets followed a click but the URL did not.
+        """
+        x, y = event.x, event.y
         if x is None or y is None:
             return
         doc = self._doc
-        if doc is not None and doc.session_context is not None:
-            # HoloViews delivers the click outside the session's context: apply it on the
-            # session's loop so that the URL and the widgets follow
-            def apply():
-                with set_curdoc(doc):
-                    self.state.pick(x, y)
-
-            doc.add_next_tick_callback(apply)
-        else:
+        with set_curdoc(doc) if doc is not None else nullcontext():
             self.state.pick(x, y)
 
-    def _existence(self, info: Info):
+    def _existence(self, info: Info, up: Updates) -> None:
         s = self.state
         c = compute.existence_diagram(s.a, s.b)
         d = c.value
         info.time("existence diagram", c)
-        items = []
+        key = (rnd(s.a), rnd(s.b))
+        k = 0
         for side in (d.w_plus < d.w_star, d.w_plus > d.w_star):
             x = d.w_plus[side]
-            lower_tensile = bool(np.all(x < d.w_star))
-            items.append(
-                hv.Area((x, d.c_plus[side], d.V_SK[side]), "w₊", ["V", "V2"]).opts(
-                    color=TSW if lower_tensile else CSW, alpha=0.8, line_alpha=0
-                )
-            )
-            items.append(
-                hv.Area((x, d.V_SK[side], d.c_minus[side]), "w₊", ["V", "V2"]).opts(
-                    color=CSW if lower_tensile else TSW, alpha=0.8, line_alpha=0
-                )
-            )
-        items += [
-            hv.Curve((d.w_plus, d.V_SK), "w₊", "V", label="V_SK").opts(
-                color="#d62728", line_width=2
-            ),
-            hv.Curve((d.w_plus, d.c_plus), "w₊", "V", label="c₊").opts(color="#1f77b4"),
-            hv.Curve((d.w_plus, d.c_minus), "w₊", "V", label="c₋").opts(color="#2ca02c"),
-            hv.Text(
-                0.5 * (d.alpha + d.w_star), float(np.min(d.c_plus)) * 1.02, "dark: TSW, light: CSW"
-            ).opts(text_font_size="9pt"),
-        ]
-        # the current point is its own DynamicMap (see publish): the click stream hangs on it
-        self._exist_point = hv.Scatter(([s.w_plus], [s.V]), "w₊", "V", label="current").opts(
-            color="black", size=11, marker="circle"
+            for y1, y2 in ((d.c_plus, d.V_SK), (d.V_SK, d.c_minus)):
+                up.data(self.bands[k][1], key, x=x, y1=y1[side], y2=y2[side])
+                k += 1
+        for (_, src), y in zip(self.exist_lines, (d.V_SK, d.c_plus, d.c_minus)):
+            up.data(src, key, x=d.w_plus, y=y)
+        up.set(
+            self.exist_label,
+            x=0.5 * (d.alpha + d.w_star),
+            y=float(np.min(d.c_plus)) * 1.02,
+            text="dark: TSW, light: CSW",
         )
+        up.data(self.exist_point[1], x=[float(s.w_plus)], y=[float(s.V)])
+        up.range(self.fig_c.x_range, d.w_plus[0], d.w_plus[-1], pad=0.02)
+        up.range(self.fig_c.y_range, *finite_extent(d.c_plus, d.c_minus), pad=0.05)
         self._exist = d
-        return hv.Overlay(items)
 
     def _discrete_points(self, info: Info, fam):
         s = self.state
@@ -187,8 +216,10 @@ class DiagramScene(Scene):
 
     def render(self, info: Info):
         s = self.state
+        self.ensure_built()
+        up = Updates()
         try:
-            exist = self._existence(info)
+            self._existence(info, up)
         except compute.ParameterError as exc:
             raise SceneMessage(str(exc)) from None
         problem = s.problem() if s.mode == "solitary" else None
@@ -197,79 +228,64 @@ class DiagramScene(Scene):
         except compute.ParameterError as exc:
             info.warning = str(exc)
             info.shown = "existence diagram only (w₊ invalid)"
-            return exist
+            self._family_shown = False
+            return up
+        self._family_shown = True
         fam = c.value
         info.time("QC family", c)
-        amp = [
-            hv.Curve(
-                (fam.V_below, fam.amp_below), "V", "amplitude", label=f"QC {fam.kind_below}"
-            ).opts(color=TSW if fam.kind_below == "tensile" else "#9e9ac8", line_width=2.5),
-            hv.Curve(
-                (fam.V_above, fam.amp_above), "V", "amplitude", label=f"QC {fam.kind_above}"
-            ).opts(color=TSW if fam.kind_above == "tensile" else "#9e9ac8", line_width=2.5),
-        ]
-        en = [
-            hv.Curve((fam.V_below, fam.energy_below), "V", "E_ren").opts(
-                color=TSW if fam.kind_below == "tensile" else "#9e9ac8", line_width=2.5
-            ),
-            hv.Curve((fam.V_above, fam.energy_above), "V", "E_ren").opts(
-                color=TSW if fam.kind_above == "tensile" else "#9e9ac8", line_width=2.5
-            ),
-        ]
-        lines = [
-            hv.VLine(fam.V_SK).opts(color="#d62728", line_dash="dashed"),
-            hv.VLine(fam.c_plus).opts(color="#1f77b4", line_dash="dotted"),
-            hv.VLine(fam.c_minus).opts(color="#2ca02c", line_dash="dotted"),
-        ]
+        key = (rnd(s.a), rnd(s.b), rnd(s.w_plus))
+        kinds = (fam.kind_below, fam.kind_above)
+        colors = [TSW if kind == "tensile" else CSW_LINE for kind in kinds]
+        cur = None
         if s.mode == "solitary" and problem is None:
             q = compute.qc_wave(s.a, s.b, "solitary", s.w_plus, s.V)
             info.error("QC first-integral residual", q.value.first_integral_residual)
             info.error("QC energy round-off", q.value.energy_error)
-            amp.append(
-                hv.Scatter(([s.V], [q.value.amplitude]), "V", "amplitude").opts(
-                    color="black", size=10, marker="diamond"
-                )
-            )
-            en.append(
-                hv.Scatter(([s.V], [q.value.energy]), "V", "E_ren").opts(
-                    color="black", size=10, marker="diamond"
-                )
-            )
-            lines.append(hv.VLine(s.V).opts(color="black", line_width=1))
+            cur = q.value
         elif problem:
             info.warning = f"current V not marked: {problem}"
+        rows = self._discrete_points(info, fam)
+        self._rows = rows or []
+        Vd = np.array([r.V for r in self._rows], float)
         # the energy diverges at V_SK: clip the axis to the finite part of the family
         allE = np.concatenate([fam.energy_below, fam.energy_above])
         lo, hi = (float(q) for q in np.quantile(allE, [0.08, 0.92]))
         elim = (lo - 0.3 * (hi - lo), hi + 0.3 * (hi - lo))
-        rows = self._discrete_points(info, fam)
-        self._rows = rows or []
-        if rows:
-            Vd = [r.V for r in rows]
-            amp.append(
-                hv.Scatter(
-                    (Vd, [r.amplitude for r in rows]), "V", "amplitude", label="discrete"
-                ).opts(color="black", size=6, marker="circle")
-            )
-            en.append(
-                hv.Scatter((Vd, [r.energy for r in rows]), "V", "E_ren").opts(
-                    color="black", size=6, marker="circle"
-                )
-            )
-        size = dict(frame_width=250, frame_height=200, show_grid=True)
-        pa = hv.Overlay(amp + lines).opts(
-            title=f"(a) amplitude, w₊ = {fmt_num(s.w_plus, 5)}", legend_position="top_left", **size
-        )
-        pe = hv.Overlay(en + lines).opts(
-            title="(b) renormalized energy", ylim=elim, show_legend=False, **size
-        )
+        for name, below, above, attr in (
+            ("amp", fam.amp_below, fam.amp_above, "amplitude"),
+            ("en", fam.energy_below, fam.energy_above, "energy"),
+        ):
+            p = self.panels[name]
+            for (r, src), V, y, color in zip(
+                p["qc"], (fam.V_below, fam.V_above), (below, above), colors
+            ):
+                up.data(src, key, x=V, y=y)
+                up.set(r.glyph, line_color=color)
+            for span, x0 in zip(p["spans"], (fam.V_SK, fam.c_plus, fam.c_minus)):
+                up.set(span, location=float(x0))
+            up.set(p["V"], location=float(s.V), visible=cur is not None)
+            if cur is None:
+                up.data(p["cur"][1], x=[], y=[])
+            else:
+                up.data(p["cur"][1], x=[float(s.V)], y=[float(getattr(cur, attr))])
+            up.data(p["dots"][1], x=Vd, y=[getattr(r, attr) for r in self._rows])
+        for item, kind in zip(self.amp_legend, kinds):
+            up.set(item, label={"value": f"QC {kind}"})
+        up.show(self.panels["amp"]["dots"][0], self.amp_legend[2], len(Vd) > 0)
+        up.show(self.panels["en"]["dots"][0], None, len(Vd) > 0)
+        amps = [fam.amp_below, fam.amp_above, [r.amplitude for r in self._rows]]
+        for fig in (self.fig_a, self.fig_e):
+            up.range(fig.x_range, fam.c_plus, fam.c_minus, pad=0.03)
+        up.range(self.fig_a.y_range, *finite_extent(*amps), pad=0.05)
+        up.range(self.fig_e.y_range, *elim)
+        up.set(self.fig_a.title, text=f"(a) amplitude, w₊ = {fmt_num(s.w_plus, 5)}")
         self._fam = fam
         info.shown = (
             f"w₊ = {fmt_num(s.w_plus)}: c₊ = {fmt_num(fam.c_plus)}, "
             f"V_SK = {fmt_num(fam.V_SK)}, c₋ = {fmt_num(fam.c_minus)}; "
             f"current V = {fmt_num(s.V)}"
         )
-        return hv.Layout([pa, pe, exist])
+        return up
 
     def download_data(self):
         fam = getattr(self, "_fam", None)

@@ -8,19 +8,74 @@ In solitary mode also the current Rayleigh line of slope V², and the sonic line
 
 from __future__ import annotations
 
-import holoviews as hv
 import numpy as np
+from bokeh.models import HoverTool
 
 from fpucore import qc
 
 from .. import compute
-from .base import Info, Scene, SceneMessage, as_csv, fmt_num
+from ..compute import rnd
+from .base import Info, SceneMessage, as_csv, fmt_num
+from .bokeh_scene import (
+    BokehScene,
+    Updates,
+    add_band,
+    add_label,
+    add_legend,
+    add_line,
+    add_points,
+    add_vline,
+    new_figure,
+)
 
 
-class ForceLawScene(Scene):
+class ForceLawScene(BokehScene):
     key = "force"
     title = "Force law"
     cheap = True
+
+    def build(self):
+        fig = new_figure(
+            "Force law and Rayleigh line (Fig. superkink)",
+            "w",
+            "f(w)",
+            sizing_mode="stretch_width",
+            height=self.plot_height,
+        )
+        self.fig = fig
+        self.r_areas = [add_band(fig, c) for c in ("#9ecae1", "#fdae6b")]
+        self.r_f = add_line(fig, "#d62728", 2.5)
+        self.r_sk = add_line(fig, "black", 2)
+        self.r_cp = add_line(fig, "#1f77b4", 1.5)
+        self.r_cm = add_line(fig, "#2ca02c", 1.5)
+        self.r_V = add_line(fig, "#9467bd", 2, "dashed")
+        self.r_pts = add_points(fig, "circle", 8, color="black")
+        self.r_pts[1].data["label"] = np.empty(0, dtype=object)
+        fig.add_tools(
+            HoverTool(
+                renderers=[self.r_pts[0]],
+                tooltips=[("w", "@x{0.00000}"), ("f", "@y{0.00000}"), ("", "@label")],
+            )
+        )
+        self.spans = [add_vline(fig, "gray", "dotted") for _ in range(3)]
+        self.labels = [add_label(fig) for _ in range(3)]
+        self.legend = dict(
+            zip(
+                ("f", "sk", "cp", "cm", "V"),
+                add_legend(
+                    fig,
+                    "top_left",
+                    [
+                        ("f(w)", [self.r_f[0]]),
+                        ("Rayleigh line (V_SK)", [self.r_sk[0]]),
+                        ("sonic line c₊", [self.r_cp[0]]),
+                        ("sonic line c₋", [self.r_cm[0]]),
+                        ("Rayleigh line (current V)", [self.r_V[0]]),
+                    ],
+                ),
+            )
+        )
+        return fig
 
     def render(self, info: Info):
         s = self.state
@@ -34,61 +89,46 @@ class ForceLawScene(Scene):
         info.time("QC superkink", sk_c)
         info.error("Rayleigh residual", sk.rayleigh_residual)
         info.error("equal-area residual |G|", sk.driving_force)
+        self.ensure_built()
+        up = Updates()
+        law_key = (rnd(s.a), rnd(s.b))
+        wp_key = law_key + (rnd(sk.w_plus),)
 
         span = beta - alpha
         w = np.linspace(alpha - 0.06 * span, beta + 0.06 * span, 801)
         fw = lw.f(w)
+        up.data(self.r_f[1], law_key, x=w, y=fw)
         wp, wm = sk.w_plus, sk.w_minus
         fp = float(lw.f(wp))
-        items = [hv.Curve((w, fw), "w", "f(w)", label="f(w)").opts(color="#d62728", line_width=2.5)]
 
         # equal areas between f and the superkink Rayleigh line, on each side of w*
         R = lambda x, V: fp + V * V * (x - wp)  # noqa: E731
-        for lo, hi, color in (
-            (min(wp, ws), max(wp, ws), "#9ecae1"),
-            (min(wm, ws), max(wm, ws), "#fdae6b"),
+        for (_, src), lo, hi in zip(
+            self.r_areas, (min(wp, ws), min(wm, ws)), (max(wp, ws), max(wm, ws))
         ):
             x = np.linspace(lo, hi, 200)
-            items.append(
-                hv.Area((x, lw.f(x), R(x, sk.V)), "w", ["f(w)", "R"]).opts(
-                    color=color, alpha=0.6, line_alpha=0
-                )
-            )
+            up.data(src, wp_key, x=x, y1=lw.f(x), y2=R(x, sk.V))
         x = np.linspace(min(wp, wm), max(wp, wm), 2)
-        items.append(
-            hv.Curve((x, R(x, sk.V)), "w", "f(w)", label="Rayleigh line (V_SK)").opts(
-                color="black", line_width=2
-            )
-        )
+        up.data(self.r_sk[1], wp_key, x=x, y=R(x, sk.V))
         pts = {"w": [wp, wm], "f": [fp, float(lw.f(wm))], "label": ["w₊", "w₋"]}
         shown = (
             f"superkink construction for w₊ = {fmt_num(wp)}: w₋ = {fmt_num(wm)}, "
             f"V_SK = {fmt_num(sk.V)}"
         )
 
-        if s.mode == "solitary":
+        solitary = s.mode == "solitary"
+        problem = s.problem() if solitary else None
+        if solitary:
             cp, vsk, cm = qc.sound_speeds(lw, wp)
             wms = qc.w_minus_sonic(lw, wp)
-            xl = np.linspace(w[0], w[-1], 2)
-            for V, color, lab in (
-                (cp, "#1f77b4", "sonic line c₊"),
-                (cm, "#2ca02c", "sonic line c₋"),
-            ):
-                items.append(
-                    hv.Curve((xl, R(xl, V)), "w", "f(w)", label=lab).opts(
-                        color=color, line_width=1.5
-                    )
-                )
+            xl = np.array([w[0], w[-1]])
+            up.data(self.r_cp[1], wp_key, x=xl, y=R(xl, cp))
+            up.data(self.r_cm[1], wp_key, x=xl, y=R(xl, cm))
             pts["w"].append(wms)
             pts["f"].append(float(lw.f(wms)))
             pts["label"].append("w₋ˢ")
-            problem = s.problem()
             if problem is None:
-                items.append(
-                    hv.Curve((xl, R(xl, s.V)), "w", "f(w)", label="Rayleigh line (current V)").opts(
-                        color="#9467bd", line_dash="dashed", line_width=2
-                    )
-                )
+                up.data(self.r_V[1], x=xl, y=R(xl, s.V))
                 roots = qc.rayleigh_roots(lw, wp, s.V)
                 for r in roots:
                     if np.isfinite(r):
@@ -100,26 +140,29 @@ class ForceLawScene(Scene):
                 )
             else:
                 info.warning = f"current V not drawn: {problem}"
-
-        items.append(
-            hv.Scatter(pts, "w", ["f", "label"]).opts(color="black", size=8, tools=["hover"])
+        for name in ("cp", "cm"):
+            up.show(getattr(self, f"r_{name}")[0], self.legend[name], solitary)
+        up.show(self.r_V[0], self.legend["V"], solitary and problem is None)
+        up.set(
+            self.r_pts[1],
+            data={
+                "x": np.asarray(pts["w"], float),
+                "y": np.asarray(pts["f"], float),
+                "label": np.asarray(pts["label"], dtype=object),
+            },
         )
+
         ymin, ymax = float(np.min(fw)), float(np.max(fw))
         pad = 0.08 * (ymax - ymin)
-        for x0, lab in ((ws, "w*"), (alpha, "α"), (beta, "β")):
-            items.append(hv.VLine(x0).opts(color="gray", line_dash="dotted"))
-            items.append(hv.Text(x0, ymax + 0.5 * pad, lab).opts(text_color="gray"))
+        for sp, lab, x0, text in zip(self.spans, self.labels, (ws, alpha, beta), ("w*", "α", "β")):
+            up.set(sp, location=float(x0))
+            up.set(lab, x=float(x0), y=ymax + 0.5 * pad, text=text)
+        up.range(self.fig.x_range, w[0], w[-1])
+        up.range(self.fig.y_range, ymin - pad, ymax + pad)
         info.shown = shown
         self._data = {"w": w, "f": fw, "R_SK": R(w, sk.V)}
         self._header = shown
-        return hv.Overlay(items).opts(
-            responsive=True,
-            min_height=self.plot_height - 20,
-            legend_position="top_left",
-            ylim=(ymin - pad, ymax + pad),
-            title="Force law and Rayleigh line (Fig. superkink)",
-            show_grid=True,
-        )
+        return up
 
     def download_data(self):
         if not getattr(self, "_data", None):

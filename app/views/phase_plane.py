@@ -8,19 +8,64 @@ kink (red) and antikink (green) heteroclinic pair at V = V_SK.  QC only.
 
 from __future__ import annotations
 
-import holoviews as hv
+import contourpy
 import numpy as np
 
 from .. import compute
-from .base import Info, Scene, SceneMessage, as_csv, fmt_num
+from ..compute import rnd
+from .base import Info, SceneMessage, as_csv, fmt_num
+from .bokeh_scene import BokehScene, Updates, add_legend, add_line, add_points, new_figure
 
 ORBIT_COLORS = {"kink": "#d62728", "antikink": "#2ca02c"}
+POINT_STYLES = (  # kind, marker, color
+    ("saddle", "x", "black"),
+    ("center", "circle", "#1f77b4"),
+    ("degenerate", "diamond", "orange"),
+)
 
 
-class PhasePlaneScene(Scene):
+def contour_lines(pp, levels) -> tuple[np.ndarray, np.ndarray]:
+    """Level sets of the grid H(w, w′) as one NaN-separated polyline (x, y)."""
+    if len(levels) == 0:
+        return np.empty(0), np.empty(0)
+    gen = contourpy.contour_generator(pp.w, pp.wp, pp.H, line_type="ChunkCombinedNan")
+    parts = [pts for (chunk,) in gen.multi_lines(levels) for pts in chunk if pts is not None]
+    if not parts:
+        return np.empty(0), np.empty(0)
+    nan = np.full((1, 2), np.nan)
+    xy = np.concatenate([p for part in parts for p in (part, nan)][:-1])
+    return xy[:, 0], xy[:, 1]
+
+
+class PhasePlaneScene(BokehScene):
     key = "phase"
     title = "Phase plane"
     cheap = True
+
+    def build(self):
+        fig = new_figure(
+            "Phase plane of eq. TW_QC_gen2 (Fig. pplane)",
+            "w",
+            "w′",
+            sizing_mode="stretch_width",
+            height=self.plot_height,
+        )
+        self.fig = fig
+        self.r_thin = add_line(fig, "#aaaaaa", 0.8)
+        self.r_sep = add_line(fig, "#444444", 1.6)
+        self.r_orbits = [add_line(fig, "#e377c2", 3.5) for _ in range(2)]
+        self.r_points = [
+            add_points(fig, marker, 14, color=color, line_width=3)
+            for _, marker, color in POINT_STYLES
+        ]
+        items = add_legend(
+            fig,
+            "top_right",
+            [("orbit", [r]) for r, _ in self.r_orbits]
+            + [(kind, [r]) for (kind, _, _), (r, _) in zip(POINT_STYLES, self.r_points)],
+        )
+        self.orbit_items, self.point_items = items[:2], items[2:]
+        return fig
 
     def render(self, info: Info):
         s = self.state
@@ -31,47 +76,37 @@ class PhasePlaneScene(Scene):
         info.error("H on orbit / H range", pp.orbit_residual)
         if not np.all(np.isfinite(pp.H)):
             raise SceneMessage("the first integral is not finite on this grid")
+        self.ensure_built()
+        up = Updates()
+        key = (rnd(s.a), rnd(s.b), rnd(s.w_plus), rnd(s.V))
 
-        img = hv.Image((pp.w, pp.wp, pp.H), ["w", "w′"], "H")
         qs = np.quantile(pp.H, np.linspace(0.02, 0.6, 12))
         levels = sorted(set(np.round(np.concatenate([qs, pp.separatrix_levels]), 14)))
-        thin = hv.operation.contours(img, levels=levels, filled=False).opts(
-            color="#aaaaaa", line_width=0.8
-        )
-        items = [thin]
-        if pp.separatrix_levels:
-            sep = hv.operation.contours(img, levels=sorted(pp.separatrix_levels), filled=False)
-            items.append(sep.opts(color="#444444", line_width=1.6))
-        for o in pp.orbits:
-            color = ORBIT_COLORS.get(o.name, "#e377c2")
-            items.append(
-                hv.Curve((o.w, o.wp), "w", "w′", label=o.name).opts(color=color, line_width=3.5)
-            )
-        for kind, marker, color in (
-            ("saddle", "x", "black"),
-            ("center", "circle", "#1f77b4"),
-            ("degenerate", "diamond", "orange"),
-        ):
-            ws = [cp.w for cp in pp.critical_points if cp.kind == kind]
-            if ws:
-                items.append(
-                    hv.Scatter((ws, np.zeros(len(ws))), "w", "w′", label=kind).opts(
-                        marker=marker, size=14, color=color, line_width=3
-                    )
-                )
+        x, y = contour_lines(pp, levels)
+        up.data(self.r_thin[1], key, x=x, y=y)
+        x, y = contour_lines(pp, sorted(pp.separatrix_levels))
+        up.data(self.r_sep[1], key, x=x, y=y)
+        for k, ((r, src), item) in enumerate(zip(self.r_orbits, self.orbit_items)):
+            if k < len(pp.orbits):
+                o = pp.orbits[k]
+                up.data(src, key, x=o.w, y=o.wp)
+                up.set(r.glyph, line_color=ORBIT_COLORS.get(o.name, "#e377c2"))
+                up.set(item, label={"value": o.name})
+            up.show(r, item, k < len(pp.orbits))
+        for (kind, _, _), (r, src), item in zip(POINT_STYLES, self.r_points, self.point_items):
+            ws = np.array([cp.w for cp in pp.critical_points if cp.kind == kind], float)
+            up.data(src, key, x=ws, y=np.zeros(len(ws)))
+            up.show(r, item, len(ws) > 0)
+        up.range(self.fig.x_range, pp.w[0], pp.w[-1])
+        up.range(self.fig.y_range, pp.wp[0], pp.wp[-1])
+
         names = ", ".join(f"{cp.kind} at w = {fmt_num(cp.w, 5)}" for cp in pp.critical_points)
         orbit = {"superkink": "kink/antikink heteroclinic pair", "none": "no orbit"}.get(
             pp.regime, f"{pp.regime} solitary wave (homoclinic)"
         )
         info.shown = f"{orbit} at w₊ = {fmt_num(s.w_plus)}, V = {fmt_num(s.V)}; {names}"
         self._pp = pp
-        return hv.Overlay(items).opts(
-            responsive=True,
-            min_height=self.plot_height - 20,
-            legend_position="top_right",
-            title="Phase plane of eq. TW_QC_gen2 (Fig. pplane)",
-            show_grid=True,
-        )
+        return up
 
     def download_data(self):
         pp = getattr(self, "_pp", None)

@@ -8,15 +8,24 @@ overlaid.  Near V_SK a solitary wave is a kink–antikink bundle: the superkink 
 
 from __future__ import annotations
 
-import holoviews as hv
 import numpy as np
 import panel as pn
 
 from .. import compute
-from .base import Info, Scene, SceneMessage, as_csv, fmt_num
+from ..compute import rnd
+from .base import Info, SceneMessage, as_csv, fmt_num
+from .bokeh_scene import (
+    BokehScene,
+    Updates,
+    add_legend,
+    add_line,
+    add_points,
+    finite_extent,
+    new_figure,
+)
 
 
-class ProfilesScene(Scene):
+class ProfilesScene(BokehScene):
     key = "profiles"
     title = "Profiles"
 
@@ -29,7 +38,32 @@ class ProfilesScene(Scene):
         for w in (self.show_discrete, self.show_fronts):
             w.param.watch(lambda e: self.request(), "value")
 
-    def _qc_overlay(self, info: Info):
+    def build(self):
+        fig = new_figure(
+            "Strain profile: QC (line) and discrete (circles)",
+            "ξ",
+            "w",
+            sizing_mode="stretch_width",
+            height=self.plot_height,
+        )
+        self.fig = fig
+        self.r_qc = add_line(fig, "#1f77b4", 2.5)
+        self.r_fronts = [add_line(fig, "#d62728", 1.5, "dashed") for _ in range(2)]
+        self.r_dots = add_points(
+            fig, "circle", 6, fill_color="white", line_color="black", line_width=1
+        )
+        self.legend = add_legend(
+            fig,
+            "top_right",
+            [
+                ("QC", [self.r_qc[0]]),
+                ("kink / antikink fronts", [r for r, _ in self.r_fronts]),
+                ("discrete", [self.r_dots[0]]),
+            ],
+        )
+        return fig
+
+    def _qc_part(self, info: Info, up: Updates):
         s = self.state
         c = compute.qc_wave(s.a, s.b, s.mode, s.w_plus, s.V)
         qcw = c.value
@@ -51,28 +85,20 @@ class ProfilesScene(Scene):
         half = min(half, 0.5 * self.state.N) if self.show_discrete.value else half
         xi = np.linspace(-half, half, 1601)
         wq = qcw.profile(xi)
-        items = [hv.Curve((xi, wq), "ξ", "w", label="QC").opts(color="#1f77b4", line_width=2.5)]
+        key = (s.mode, rnd(s.a), rnd(s.b), rnd(s.w_plus), rnd(s.V), rnd(half))
+        up.data(self.r_qc[1], key, x=xi, y=wq)
         self._cols = {"xi": xi, "w_qc": wq}
         fronts = []
         if s.mode == "solitary" and self.show_fronts.value:
             fronts = self._fronts(qcw, xi, info)
-        # fixed structure (empty placeholders), so updates stay in place
-        items += fronts or [self._front_curve([], []), self._front_curve([], [])]
-        return items, what, half
+        for k, (_, src) in enumerate(self.r_fronts):
+            y = fronts[k] if fronts else np.empty(0)
+            up.data(src, key + (bool(fronts),), x=xi if fronts else np.empty(0), y=y)
+        up.show(self.r_fronts[0][0], self.legend[1], bool(fronts))
+        up.show(self.r_fronts[1][0], None, bool(fronts))
+        return what, half, xi, [wq, *fronts]
 
-    @staticmethod
-    def _front_curve(x, y):
-        return hv.Curve((x, y), "ξ", "w", label="kink / antikink fronts").opts(
-            color="#d62728", line_dash="dashed", line_width=1.5
-        )
-
-    @staticmethod
-    def _dots(x, y):
-        return hv.Scatter((x, y), "ξ", "w", label="discrete").opts(
-            marker="circle", size=6, fill_color="white", line_color="black", color="black"
-        )
-
-    def _fronts(self, sw, xi, info: Info):
+    def _fronts(self, sw, xi, info: Info) -> list[np.ndarray]:
         """Kink and antikink (QC superkinks of the same w₊) placed at the bundle's layers,
         shown when the solitary wave has a plateau (amplitude within 5% of |w₋ − w₊|)."""
         s = self.state
@@ -91,33 +117,38 @@ class ProfilesScene(Scene):
         kl = sk.profile(sigma * (-xi - x0))
         info.notes.append(f"kink–antikink bundle: fronts at ξ = ±{x0:.4g}")
         self._cols.update(front_right=kr, front_left=kl)
-        return [self._front_curve(xi, kr), self._front_curve(xi, kl)]
+        return [kr, kl]
 
-    def _finish(self, items, title):
-        return hv.Overlay(items).opts(
-            responsive=True,
-            min_height=self.plot_height - 20,
-            legend_position="top_right",
-            title=title,
-            show_grid=True,
-        )
+    def _frame(self, up: Updates, half: float, ys: list, n=None, w=None) -> Updates:
+        """Discrete dots (none if n is None) and the axis ranges."""
+        if n is None:
+            n = w = np.empty(0)
+        up.data(self.r_dots[1], x=n, y=w)
+        up.show(self.r_dots[0], self.legend[2], len(n) > 0)
+        up.range(self.fig.x_range, -half, half)
+        up.range(self.fig.y_range, *finite_extent(*ys, w), pad=0.06)
+        return up
 
     def render(self, info: Info):
         s = self.state
         self.require_valid()
-        items, what, half = self._qc_overlay(info)
+        self.ensure_built()
+        up = Updates()
+        what, half, xi, ys = self._qc_part(info, up)
         info.shown = what
-        title = "Strain profile: QC (line) and discrete (circles)"
         self._discrete = None
         if not self.show_discrete.value:
             info.notes.append("discrete wave off: QC only")
-            return self._finish(items + [self._dots([], [])], title)
-        self.show_intermediate(self._finish(items + [self._dots([], [])], title), info)
+            return self._frame(up, half, ys)
+        if not compute.discrete_wave_cached(s.a, s.b, s.mode, s.w_plus, s.V, s.N, s.tol):
+            # the QC curve now, the dots when the solve is done
+            self.show_intermediate(self._frame(up, half, ys), info)
+            up = Updates()
         try:
             c = compute.discrete_wave(s.a, s.b, s.mode, s.w_plus, s.V, s.N, s.tol)
         except compute.NotAvailable as exc:
             info.notes.append(f"discrete wave not available: {exc}")
-            return self._finish(items + [self._dots([], [])], title)
+            return self._frame(up, half, ys)
         r = c.value
         self._discrete = r
         info.time(f"discrete N={r.N}", c)
@@ -128,9 +159,8 @@ class ProfilesScene(Scene):
         if not r.converged:
             info.notes.append(f"discrete solve did not converge: {r.message}")
         sel = np.abs(r.n) <= half
-        items.append(self._dots(r.n[sel], r.w[sel]))
         info.shown = what + f"; discrete amplitude {fmt_num(r.amplitude)}"
-        return self._finish(items, title)
+        return self._frame(up, half, ys, r.n[sel].astype(float), r.w[sel])
 
     def download_data(self):
         r = getattr(self, "_discrete", None)

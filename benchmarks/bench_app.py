@@ -1,0 +1,185 @@
+"""Server time of the dashboard (issue: QC scenes ≤ 50 ms per slider move, discrete profile at
+N = 500 ≤ 1 s, page interactive ≤ 3 s with a warm cache).
+
+Run: ``.venv/bin/python -m benchmarks.bench_app`` (add ``--browser`` for the time to
+interactive of the served page, measured with Playwright on /usr/bin/chromium).
+
+* Per scene, the median over several slider moves of ``scene.refresh()`` — what the worker
+  thread does per move: fpucore QC call (new parameters, so not cached), figure update, status
+  line — with the scene attached to a Bokeh ``Document`` so model changes go through a
+  document as on the server (the websocket write is not included).  Moves of V and of w₊.
+* The sidebar's share of a move (``Explorer._sync_widgets``: slider ranges, inputs, ranges text),
+  which runs on the event loop before the scene's worker starts.
+* Profiles with the discrete wave at N = 500: cold (new V: the Newton solve runs; JIT warm) and
+  cached (same parameters again).
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import statistics
+import subprocess
+import sys
+import time
+import urllib.request
+from pathlib import Path
+
+from bokeh.document import Document
+
+from app import compute
+from app.explorer import Explorer
+from app.state import ExplorerState
+from app.views import SCENES
+
+ROOT = Path(__file__).resolve().parents[1]
+BY_KEY = {cls.key: cls for cls in SCENES}
+
+
+def ms(x: float) -> str:
+    return f"{1e3 * x:7.1f} ms"
+
+
+def attached(key: str, **params):
+    """A scene with its own state, attached to a Bokeh document, rendered once (warm)."""
+    st = ExplorerState(**params)
+    sc = BY_KEY[key](st)
+    sc.panel.get_root(Document())
+    sc.refresh()
+    return st, sc
+
+
+def moves(st, sc, name: str, values) -> list[float]:
+    """Server time of refresh() after each parameter change (each value new, not cached)."""
+    out = []
+    for v in values:
+        st.param.update(**{name: v})
+        t = time.perf_counter()
+        sc.refresh()
+        out.append(time.perf_counter() - t)
+        if sc.last_message is not None:
+            raise RuntimeError(f"{sc.key}: {sc.last_message}")
+    return out
+
+
+def bench_qc(n: int) -> None:
+    print(f"QC scenes: median server time per slider move ({n} moves each, warm)")
+    print(f"  {'scene':<22}{'V moves':>12}{'w₊ moves':>12}")
+    Vs = [4.6 + 0.7 * k / n for k in range(n)]
+    wps = [0.8 + 0.4 * k / n for k in range(n)]
+    cases = [("force", {}), ("phase", {}), ("profiles (QC only)", {}), ("diagram", {})]
+    for label, params in cases:
+        key = label.split()[0]
+        rows = []
+        for name, values in (("V", Vs), ("w_plus", wps)):
+            st, sc = attached(key, **params)
+            if key == "profiles":
+                sc.show_discrete.value = False
+                sc.refresh()
+            rows.append(statistics.median(moves(st, sc, name, values)))
+        print(f"  {label:<22}{ms(rows[0]):>12}{ms(rows[1]):>12}")
+    ex = Explorer()
+    ts = []
+    for v in Vs:
+        ex.state.param.update(V=v)  # starts the force scene's worker; timed: the sidebar only
+        ex.active_scene().wait_idle()
+        t = time.perf_counter()
+        ex._sync_widgets()
+        ts.append(time.perf_counter() - t)
+    print(f"  {'sidebar sync (loop)':<22}{ms(statistics.median(ts)):>12}")
+
+
+def bench_discrete(n: int) -> None:
+    print("Profiles with the discrete wave, N = 500, tol = 1e-10 (solitary, w₊ = 1)")
+    st, sc = attached("profiles", N=500, tol=1e-10, V=5.3)  # also warms the JIT
+    cold, cached, solve = [], [], []
+    for k in range(n):
+        st.V = 4.9 + 0.05 * k
+        t = time.perf_counter()
+        info = sc.refresh()
+        cold.append(time.perf_counter() - t)
+        solve += [c.elapsed_s for label, c in info.timings if label.startswith("discrete")]
+        t = time.perf_counter()
+        sc.refresh()
+        cached.append(time.perf_counter() - t)
+    print(f"  cold (Newton solve + plot): median {ms(statistics.median(cold))}")
+    print(f"     of which fpucore solve:  median {ms(statistics.median(solve))}")
+    print(f"  cached (plot only):         median {ms(statistics.median(cached))}")
+
+
+def bench_browser(loads: int) -> None:
+    """Time from navigation to the first scene's completed render, warm server cache."""
+    import socket
+
+    from playwright.sync_api import sync_playwright
+
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    env = dict(os.environ, NUMBA_CACHE_DIR=os.environ.get("NUMBA_CACHE_DIR", ".numba_cache"))
+    env.setdefault("FPU_WARM_SCENES", "force,phase")  # the page opens on the force law
+    panel = str(Path(sys.executable).with_name("panel"))
+    cmd = [panel, "serve", "app/main.py", "--port", str(port), "--address", "127.0.0.1"]
+    cmd += ["--allow-websocket-origin=*", "--liveness", "--num-threads", "2"]
+    cmd += ["--setup", "app/warm.py", "--warm"]
+    proc = subprocess.Popen(
+        cmd, cwd=ROOT, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL
+    )
+    url = f"http://127.0.0.1:{port}"
+    try:
+        t_end = time.monotonic() + 300
+        while True:
+            try:
+                with urllib.request.urlopen(url + "/liveness", timeout=2):
+                    break
+            except OSError:
+                if time.monotonic() > t_end or proc.poll() is not None:
+                    raise RuntimeError("panel serve did not start") from None
+                time.sleep(0.2)
+        print(f"Page interactive (navigation → force scene rendered), {loads} loads, warm cache")
+        with sync_playwright() as p:
+            b = p.chromium.launch(
+                executable_path="/usr/bin/chromium",
+                args=["--headless=new", "--no-sandbox", "--disable-gpu"],
+            )
+            ts = []
+            for _ in range(loads + 1):  # the first load also warms the browser
+                pg = b.new_page(viewport={"width": 1500, "height": 1000})
+                t = time.monotonic()
+                pg.goto(url + "/main")
+                pg.locator(".scene-force .scene-status p", has_text="Time:").first.wait_for(
+                    timeout=60_000
+                )
+                pg.locator(".scene-force canvas").first.wait_for(timeout=60_000)
+                ts.append(time.monotonic() - t)
+                pg.close()
+            b.close()
+        print(f"  first load {ts[0]:.2f} s; then median {statistics.median(ts[1:]):.2f} s")
+    finally:
+        proc.terminate()
+        proc.wait(15)
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--moves", type=int, default=9, help="slider moves per scene")
+    ap.add_argument("--browser", action="store_true", help="also time the served page")
+    ap.add_argument("--loads", type=int, default=3, help="page loads for --browser")
+    args = ap.parse_args(argv)
+    os.environ.setdefault("BOKEH_RESOURCES", "server")
+    try:
+        from fpucore.warm import warm_all
+
+        warm_all()
+    except Exception as exc:  # noqa: BLE001 - the QC part runs without the JIT
+        print(f"(fpucore warm-up skipped: {exc})")
+    compute.CACHE.clear()
+    bench_qc(args.moves)
+    bench_discrete(3)
+    if args.browser:
+        bench_browser(args.loads)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
