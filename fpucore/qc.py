@@ -92,27 +92,27 @@ def w_minus_sonic(law: HardeningSofteningLaw, w_plus: float) -> float:
     return 0.5 * (3.0 * law.w_star - w_plus)
 
 
-def rayleigh_roots(law: HardeningSofteningLaw, w_plus: float, V: float) -> tuple[float, float]:
+def rayleigh_roots(law: HardeningSofteningLaw, w_plus: float, V):
     """The two other intersections of f with the Rayleigh line R(w) = f(w₊) + V²(w − w₊).
 
-    Returns (w_near, w_far) = w₋ˢ ∓ √((c₋² − V²)/|a|) ordered by distance from w*
-    (w_near is closer to w*); NaN pair when V > c₋ (only w₊ is then a critical point).
-    For V < c₋ the one farther from w* has f′ < V² (a saddle of eq. TW_QC_gen2 when V > c₊ ...
-    see :func:`fpucore.qc_phase.critical_points` for the classification).
+    Returns (w_near, w_far) = w₋ˢ ∓ √((c₋² − V²)/|a|) ordered by distance from w* (w_near is
+    closer to w*); NaN where V > c₋ (only w₊ is then a critical point).  V may be an array.
+    See :func:`fpucore.qc_phase.critical_points` for the saddle/center classification.
     """
     law = _cubic(law)
     c2, A = _cmax2(law), law.abs_a
     cm2 = c2 - 0.75 * A * (w_plus - law.w_star) ** 2
+    V = np.asarray(V, dtype=float)
     disc = (cm2 - V * V) / A
-    if disc < 0:
-        return math.nan, math.nan
-    s, r = w_minus_sonic(law, w_plus), math.sqrt(disc)
+    r = np.sqrt(np.where(disc >= 0, disc, np.nan))
+    s = w_minus_sonic(law, w_plus)
     sgn = 1.0 if s >= law.w_star else -1.0
     return s - sgn * r, s + sgn * r
 
 
-def w_S(law: HardeningSofteningLaw, w_plus: float, V: float) -> float:
-    """Saddle w_S(V) ≠ w₊ of eq. wS: f(w_S) − f(w₊) = V²(w_S − w₊), V² > f′(w_S)."""
+def w_S(law: HardeningSofteningLaw, w_plus: float, V):
+    """Saddle w_S(V) ≠ w₊ of eq. wS: f(w_S) − f(w₊) = V²(w_S − w₊), V² > f′(w_S) (V may be an
+    array)."""
     return rayleigh_roots(law, w_plus, V)[1]
 
 
@@ -216,19 +216,47 @@ def superkink_from_w_plus(law: HardeningSofteningLaw, w_plus: float) -> QCSuperk
 
 
 # =============================================================================== solitary waves
-def _theta_ratio(theta: float) -> tuple[float, float]:
-    """(θ/sinh θ, (θ cosh θ − sinh θ)/sinh³ θ), with a series where the second cancels."""
-    if theta < 0.5:
-        num, term, k = 0.0, theta, 1
-        # θ cosh θ − sinh θ = Σ_{k≥1} 2k θ^{2k+1}/(2k+1)!
-        while k < 14:
-            term *= theta * theta / ((2 * k) * (2 * k + 1))
-            num += 2 * k * term
-            k += 1
-        sh = math.sinh(theta)
-        return (theta / sh if theta > 0 else 1.0), num / sh**3
-    sh, ch = math.sinh(theta), math.cosh(theta)
-    return theta / sh, (theta * ch - sh) / sh**3
+def _theta_ratios(theta):
+    """(θ/sinh θ, (θ cosh θ − sinh θ)/sinh³ θ) for θ > 0 (arrays or scalars), with the series
+    θ cosh θ − sinh θ = Σ_{k≥1} 2k θ^{2k+1}/(2k+1)! where the direct form cancels (θ < 0.5)."""
+    th = np.asarray(theta, dtype=float)
+    sh, ch = np.sinh(th), np.cosh(th)
+    num, term = np.zeros_like(th), th.copy()
+    for k in range(1, 14):
+        term = term * th * th / ((2 * k) * (2 * k + 1))
+        num = num + 2 * k * term
+    return th / sh, np.where(th < 0.5, num, th * ch - sh) / sh**3
+
+
+def solitary_closed_form(law: CubicLaw, w_B, V):
+    """The closed form of a QC solitary wave from its background w_B and velocity V (arrays or
+    scalars): returns (dM, dT, gamma, energy, energy_error, ok) with w_M = w_B + dM,
+    w_T = w_B + dT (eq. w_T_M), gamma of eq. SWsoln_cubic and E_ren^QC (eq. Eren_QC).
+
+    Turning points: G(w_B + d) = d² [a/4 d² + f″(w_B)/6 d + (f′(w_B) − V²)/2] (eq. TW_QC_gen3
+    with w₊ → w_B), solved as a stable quadratic.  Energy: with u = w − w_B the Φ and w′² terms
+    cancel through the first integral, E = (V² w_B + f(w_B)) ∫u + V² ∫u², and
+    u = (2 dM dT / B)/(s + cosh γξ), s = cosh θ, gives ∫u = (2 dM dT/B)(2/γ) θ/sinh θ and
+    ∫u² = (2 dM dT/B)² (2/γ)(θ cosh θ − sinh θ)/sinh³ θ.  ``ok`` is False where the quadratic has
+    no real pair of same-sign roots (round-off at an interval end)."""
+    w_B, V = np.asarray(w_B, dtype=float), np.asarray(V, dtype=float)
+    A, B, C = law.a / 4.0, law.ddf(w_B) / 6.0, 0.5 * (law.df(w_B) - V * V)
+    disc = B * B - 4.0 * A * C
+    ok = (disc > 0) & (C < 0)
+    disc = np.where(ok, disc, 1.0)
+    q = -0.5 * (B + np.copysign(np.sqrt(disc), B))
+    r1, r2 = q / A, C / q
+    near = np.abs(r1) < np.abs(r2)
+    dM, dT = np.where(near, r1, r2), np.where(near, r2, r1)
+    gamma = math.sqrt(6.0 * law.abs_a) / V * np.sqrt(np.abs(dM * dT))
+    Bc = dT - dM
+    s_m1 = 2.0 * dM / Bc  # s − 1 without cancellation
+    theta = np.log1p(s_m1 + np.sqrt(np.abs(s_m1 * (s_m1 + 2.0))))
+    r_th, k_th = _theta_ratios(np.where(ok, theta, 1.0))
+    amp = 2.0 * dM * dT / Bc
+    t1 = (V * V * w_B + law.f(w_B)) * amp / gamma * 2.0 * r_th
+    t2 = V * V * amp * amp / gamma * 2.0 * k_th
+    return dM, dT, gamma, t1 + t2, 64.0 * EPS * (np.abs(t1) + np.abs(t2)), ok
 
 
 @dataclass(frozen=True)
@@ -317,6 +345,19 @@ def first_integral(law: HardeningSofteningLaw, w, wp, w_ref: float, V: float):
     )
 
 
+_XI_CHECK = np.linspace(0.0, 12.0, 32)
+
+
+def _first_integral_residual(law, w, wp, w_ref: float, V: float) -> float:
+    """max |H| on (w, w′) scaled by the size of the terms that cancel in H (so the ratio is a
+    round-off-level number for an exact orbit); H as in :func:`first_integral`."""
+    d = w - w_ref
+    phi_w, phi_r, f_r = law.phi(w), float(law.phi(w_ref)), float(law.f(w_ref))
+    H = V * V / 24.0 * wp * wp + phi_w - phi_r - f_r * d - 0.5 * V * V * d * d
+    scale = np.abs(phi_w) + abs(phi_r) + np.abs(f_r * d) + V * V * (d * d + wp * wp / 24.0)
+    return float(np.max(np.abs(H) / (scale + 1e-300)))
+
+
 def solitary(law: HardeningSofteningLaw, w_plus: float, V: float) -> QCSolitary:
     """QC solitary wave associated with the superkink whose state ahead is w₊, velocity V.
 
@@ -333,47 +374,23 @@ def solitary(law: HardeningSofteningLaw, w_plus: float, V: float) -> QCSolitary:
     if cp < V < vsk:
         interval, w_B = "below", w_plus
     elif vsk < V < cm:
-        interval, w_B = "above", w_S(law, w_plus, V)
+        interval, w_B = "above", float(w_S(law, w_plus, V))
     else:
         raise ParameterError("V", V, valid, f"solitary-wave velocities for w_plus={w_plus:.10g}")
 
-    # G(w_B + d) = d² [a/4 d² + f″(w_B)/6 d + (f′(w_B) − V²)/2]: turning points are the roots.
-    A, B, C = law.a / 4.0, float(law.ddf(w_B)) / 6.0, 0.5 * (float(law.df(w_B)) - V * V)
-    disc = B * B - 4.0 * A * C
-    if not (disc > 0 and C < 0):  # cannot happen inside the intervals; guard round-off at edges
+    dM, dT, gamma, energy, energy_error, ok = (
+        float(x) for x in solitary_closed_form(law, w_B, V)
+    )  # fmt: skip
+    if not ok:  # cannot happen inside the intervals; guards round-off at their ends
         raise ParameterError("V", V, valid, "too close to an end of the interval to resolve")
-    q = -0.5 * (B + math.copysign(math.sqrt(disc), B))
-    r1, r2 = q / A, C / q
-    dM, dT = (r1, r2) if abs(r1) < abs(r2) else (r2, r1)
-    gamma = math.sqrt(6.0 * law.abs_a) / V * math.sqrt(dM * dT)
-
-    # E_ren = (V² w_B + f(w_B)) ∫u + V² ∫u², u = w − w_B = (2 dM dT / Bc)/(s + cosh γξ)
-    # (the Φ and w′² terms cancel through the first integral); s = cosh θ > 1.
-    Bc = dT - dM
-    s_m1 = 2.0 * dM / Bc  # s − 1 without cancellation
-    sh = math.sqrt(s_m1 * (s_m1 + 2.0))
-    theta = math.log1p(s_m1 + sh)
-    r_th, k_th = _theta_ratio(theta)
-    amp = 2.0 * dM * dT / Bc
-    I1 = amp / gamma * 2.0 * r_th
-    I2 = amp * amp / gamma * 2.0 * k_th
-    t1, t2 = (V * V * w_B + float(law.f(w_B))) * I1, V * V * I2
-    energy = t1 + t2
-    energy_error = 64.0 * EPS * (abs(t1) + abs(t2))
 
     kind = "tensile" if dM > 0 else "compressive"
     sw = QCSolitary(
         law, V, w_plus, w_B, w_B + dT, w_B + dM, gamma, kind, interval, vsk, cp, cm,
         energy, energy_error, math.nan, 0.0,
     )  # fmt: skip
-    xi = np.linspace(0.0, 12.0 / gamma, 64)
-    w, wp = sw.profile(xi), sw.dprofile(xi)
-    d = w - w_B  # scale = size of the terms that cancel in H (so the ratio is round-off)
-    scale = (
-        np.abs(law.phi(w)) + abs(float(law.phi(w_B))) + abs(float(law.f(w_B)) * d)
-        + V * V * (d * d + wp * wp / 24.0) + 1e-300
-    )  # fmt: skip
-    fi = float(np.max(np.abs(first_integral(law, w, wp, w_B, V)) / scale))
+    xi = _XI_CHECK / gamma  # one half of the (even) profile, out to 12 widths
+    fi = _first_integral_residual(law, sw.profile(xi), sw.dprofile(xi), w_B, V)
     object.__setattr__(sw, "first_integral_residual", fi)
     object.__setattr__(sw, "elapsed_s", time.perf_counter() - t0)
     return sw

@@ -81,3 +81,14 @@ def test_solitary_family_reaches_the_superkink_amplitude():
     assert fam.amp_above[0] == pytest.approx(fam.sk_amplitude, rel=2e-2)
     assert np.all(np.diff(fam.amp_below) > 0)  # amplitude grows toward V_SK (Fig. SWamp...)
     assert np.all(np.diff(fam.amp_above) < 0)
+
+
+def test_vectorised_family_matches_single_waves():
+    fam = solitary_family(LAW, 6.0, n=40)
+    for Vs, amps, ens in ((fam.V_below, fam.amp_below, fam.energy_below),
+                          (fam.V_above, fam.amp_above, fam.energy_above)):  # fmt: skip
+        for V, amp, en in zip(Vs[::7], amps[::7], ens[::7]):
+            sw = qc.solitary(LAW, 6.0, float(V))
+            assert amp == pytest.approx(sw.amplitude, rel=1e-13)
+            assert en == pytest.approx(sw.energy, rel=1e-12)
+    assert fam.max_energy_error < 1e-9 * np.max(np.abs(fam.energy_above))
