@@ -88,9 +88,12 @@ def plot_html(rows: list[Row], path: str) -> None:
                 title=route,
                 logx=True,
                 logy=True,
-                width=520,
-                height=380,
-                legend_position="bottom_left",
+                width=560,
+                height=400,
+                legend_position="top_right",
+                padding=0.15,
             )
         )
-    hv.save(hv.Layout(panels).cols(2), path, backend="bokeh")
+    # inline resources: the report opens offline (no CDN on the machines that generate it)
+    layout = hv.Layout(panels).cols(2).opts(shared_axes=False)
+    hv.save(layout, path, backend="bokeh", resources="inline")
