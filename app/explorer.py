@@ -232,7 +232,7 @@ class Explorer:
         so it arrives with the page; costlier scenes start once the page has loaded."""
         scene = self.active_scene()
         if scene.cheap:
-            scene.refresh()
+            scene.refresh(building=True)
 
     def start(self):
         """Called once the page has loaded: render the visible scene if still needed."""

@@ -302,6 +302,14 @@ def test_url_reproduces_the_view(page):
     assert page.locator(".in-V input").input_value() == "5.3"
     q = query(page)
     assert q["tab"] == "phase" and float(q["w_plus"]) == 6.0 and q["mode"] == "solitary"
+    # the plot itself is framed on the computed data: no axis still at a placeholder [0, 1]
+    # (a lazily built figure once kept its pre-render ranges on a page opened with ?tab=…)
+    ranges = page.evaluate(
+        """() => { const out = []; for (const d of Bokeh.documents) { for (const m of
+        d.all_models) { if (m.type === 'Range1d' && m.visible !== false) out.push([m.start,
+        m.end]); } } return out; }"""
+    )
+    assert ranges and all(r != [0, 1] for r in ranges), ranges
     open_app(page, "w_plus=6&mode=superkink&tab=profiles&N=200", scene="profiles")
     assert "superkink V = 5.21749" in status_text(page, "profiles")  # 7√5/3 (Fig. stabSW)
 

@@ -148,7 +148,15 @@ class FigurePane(pn.pane.Bokeh):
             # the pane owns visibility (Panel's version leaves a figure hidden when `visible`
             # returns to its default while the pane is not displayed)
             props = {o: getattr(self, o) for o in {*self._overrides, "visible"}}
-            self.object.update(**props)
+            fig = self.object
+            doc = fig.document
+            if doc is not None and doc.session_context is not None:
+                # a served figure may only change on the session's loop (this runs from scene
+                # worker threads too, e.g. when a message hides the plot): now if on it, else
+                # scheduled — a direct write from a thread kills that thread in Bokeh
+                pn.state.execute(lambda: fig.update(**props), schedule="auto")
+            else:
+                fig.update(**props)
         finally:
             self._syncing_props = False
 
@@ -160,6 +168,16 @@ class BokehScene(Scene):
 
     #: keyword arguments of the main plot pane (the figure itself carries its size)
     pane_kw: dict = {"sizing_mode": "stretch_width"}
+
+    def __init__(self, state):
+        super().__init__(state)
+        # Build the (empty) figures and put them in their pane now, while the page is being
+        # built: every render then only changes models the browser already has.  Building them
+        # lazily inside the first render raced with a tab switch coming from the URL (the
+        # browser kept the pre-render ranges).  Nothing is computed here.
+        self.ensure_built()
+        self.attach()
+        self._attached = True
 
     def make_plot(self):
         return FigurePane(None, **self.pane_kw)
