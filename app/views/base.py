@@ -281,13 +281,11 @@ class Scene:
         """Render now (synchronously) and update plot, status and message.
 
         ``building``: called while the page itself is being built (on the session's thread,
-        before the models reach the browser) — changes are then applied directly and no
-        spinner timer runs (a timer thread could switch the spinner on after this render has
-        finished and leave it on)."""
+        before the models reach the browser) — no spinner timer runs then (a timer thread could
+        switch the spinner on after this render has finished and leave it on)."""
         t0 = time.perf_counter()
         info = Info()
         self.stale = False
-        self._building = building
         stop_spinner = (lambda: None) if building else self._spinner()
         try:
             obj = self.render(info)

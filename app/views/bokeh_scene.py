@@ -162,22 +162,22 @@ class FigurePane(pn.pane.Bokeh):
 
 
 class BokehScene(Scene):
-    """A scene whose plot is a Bokeh model built once by :meth:`build` (lazily, on the first
-    render, so hidden tabs cost nothing) and updated in place by the :class:`Updates` that
-    :meth:`render` returns."""
+    """A scene whose plot is a Bokeh model built once, empty, at construction (:meth:`build`;
+    nothing is computed then) and updated in place by the :class:`Updates` that :meth:`render`
+    returns."""
 
     #: keyword arguments of the main plot pane (the figure itself carries its size)
     pane_kw: dict = {"sizing_mode": "stretch_width"}
 
     def __init__(self, state):
         super().__init__(state)
-        # Build the (empty) figures and put them in their pane now, while the page is being
-        # built: every render then only changes models the browser already has.  Building them
-        # lazily inside the first render raced with a tab switch coming from the URL (the
-        # browser kept the pre-render ranges).  Nothing is computed here.
-        self.ensure_built()
+        # Build the figures and put them in their pane while the page is being built: every
+        # render then only changes models the browser already has.  Building them lazily inside
+        # the first render raced with a tab switch coming from the URL (the browser kept the
+        # pre-render ranges).
+        self._keys: dict[str, Hashable] = {}
+        self._root = self.build()
         self.attach()
-        self._attached = True
 
     def make_plot(self):
         return FigurePane(None, **self.pane_kw)
@@ -187,18 +187,11 @@ class BokehScene(Scene):
         model of the main plot pane."""
         raise NotImplementedError
 
-    def ensure_built(self) -> None:
-        if getattr(self, "_root", None) is None:
-            self._keys: dict[str, Hashable] = {}
-            self._attached = False
-            self._root = self.build()
-
     def attach(self) -> None:
-        """Put the built models into the panes (first publish only)."""
+        """Put the built models into the panes (once, at construction)."""
         self.plot.object = self._root
 
     def publish(self, upd: Updates) -> None:
-        self.ensure_built()
         self.plot.visible = True
         for pane in self._extra:
             pane.visible = True
@@ -214,22 +207,10 @@ class BokehScene(Scene):
             for model, props in todo:
                 model.update(**props)
 
-        first = not self._attached
-        if first:
-            # the first data go in before the models join the document; the pane swap (spacer
-            # → figure) runs on the loop too: done from a worker thread, it races with other
-            # changes of the parent layout ("could not be replaced" and no plot)
-            self._attached = True
-
-            def apply_and_attach():
-                apply()
-                self.attach()
-
-        run = apply_and_attach if first else apply
         doc = self._doc
         if doc is not None and doc.session_context is not None:
             # served models may only change on the session's loop: now if we are on it (page
             # build, a click), else (worker thread) scheduled after the updates already queued
-            pn.state.execute(run, schedule="auto")
+            pn.state.execute(apply, schedule="auto")
         else:
-            run()
+            apply()

@@ -216,7 +216,6 @@ class DiagramScene(BokehScene):
 
     def render(self, info: Info):
         s = self.state
-        self.ensure_built()
         up = Updates()
         try:
             self._existence(info, up)

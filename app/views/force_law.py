@@ -89,7 +89,6 @@ class ForceLawScene(BokehScene):
         info.time("QC superkink", sk_c)
         info.error("Rayleigh residual", sk.rayleigh_residual)
         info.error("equal-area residual |G|", sk.driving_force)
-        self.ensure_built()
         up = Updates()
         law_key = (rnd(s.a), rnd(s.b))
         wp_key = law_key + (rnd(sk.w_plus),)

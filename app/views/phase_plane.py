@@ -76,7 +76,6 @@ class PhasePlaneScene(BokehScene):
         info.error("H on orbit / H range", pp.orbit_residual)
         if not np.all(np.isfinite(pp.H)):
             raise SceneMessage("the first integral is not finite on this grid")
-        self.ensure_built()
         up = Updates()
         key = (rnd(s.a), rnd(s.b), rnd(s.w_plus), rnd(s.V))
 

@@ -132,7 +132,6 @@ class ProfilesScene(BokehScene):
     def render(self, info: Info):
         s = self.state
         self.require_valid()
-        self.ensure_built()
         up = Updates()
         what, half, xi, ys = self._qc_part(info, up)
         info.shown = what
