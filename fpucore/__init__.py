@@ -10,9 +10,13 @@ f(w) = a w³ + b w² + w (Vainchtein & Truskinovsky).  Flow of the package:
 Every result object carries its error estimate and ``elapsed_s``.
 """
 
-from . import qc
-from .errors import ConvergenceError, ParameterError
-from .law import CubicLaw, HardeningSofteningLaw
+from ._jit_cache import key_cache_dir
+
+key_cache_dir()  # before any kernel is compiled: see fpucore/_jit_cache.py
+
+from . import qc  # noqa: E402
+from .errors import ConvergenceError, ParameterError  # noqa: E402
+from .law import CubicLaw, HardeningSofteningLaw  # noqa: E402
 
 __all__ = ["CubicLaw", "HardeningSofteningLaw", "ParameterError", "ConvergenceError", "qc"]
 __version__ = "0.1.0"

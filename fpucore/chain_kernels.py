@@ -22,8 +22,9 @@ calling the same observer after every accepted step:
     fixed step (kick-drift-kick in (w, v); the map is symplectic because w = D u is linear).
 
 Observer (:func:`_observe`): per site, the extrema in time of w_n(t) (hysteresis “zigzag” with
-prominence ``thr``) and the crossings of a level (w*), located inside the step with the quintic
-Hermite interpolant built from w, ẇ, ẅ at both step ends (ẅ is read off the RHS), plus probe time
+prominence ``thr``) and the crossings of a level (w*), located inside the step with the degree-7
+Hermite interpolant built from w, ẇ, ẅ, d³w/dt³ at both step ends (ẅ is read off the RHS, the
+third derivative Δ(f′(w) ẇ) is evaluated for the sites concerned only), plus probe time
 series at chosen sites on a fixed time grid (same interpolant).  After every step the strains are
 checked against the convex interval (α, β): leaving it stops the run (status ``ST_LEFT_CONVEX``).
 """
@@ -83,33 +84,70 @@ def rhs(y, L, law_id, p, bc, fL, fR, g, out):
 
 # --------------------------------------------------------------------------- Hermite helpers
 @njit(cache=True, nogil=True)
-def _h5coef(w0, w1, d0, d1, a0, a1, h, c):
-    """Coefficients c[0..5] (in s = (t−t0)/h) of the quintic Hermite interpolant."""
+def _jerk(y, k, n, L, law_id, p, bc):
+    """d³w_n/dt³ = Δ(f′(w) ẇ)_n at site n (0-based) from strains y[:L] and rates k[:L]: the time
+    derivative of ẅ_n = Δ f(w)_n, with the ghosts of the end condition (held end particles:
+    g_0 = f(w_1), g_{L+1} = f(w_L); load: constant ghosts, zero derivative)."""
+    gc = _law.dforce(law_id, p, y[n]) * k[n]
+    if n > 0:
+        gl = _law.dforce(law_id, p, y[n - 1]) * k[n - 1]
+    else:
+        gl = gc if bc == BC_FIXED_PARTICLES else 0.0
+    if n < L - 1:
+        gr = _law.dforce(law_id, p, y[n + 1]) * k[n + 1]
+    else:
+        gr = gc if bc == BC_FIXED_PARTICLES else 0.0
+    return (gr - gc) - (gc - gl)
+
+
+@njit(cache=True, nogil=True)
+def _h7coef(w0, w1, d0, d1, a0, a1, j0, j1, h, c):
+    """Coefficients c[0..7] (in s = (t−t0)/h) of the degree-7 Hermite interpolant matching w, ẇ,
+    ẅ and d³w/dt³ at both step ends (error O(h⁸): a quintic from w, ẇ, ẅ alone limited the event
+    times to ~1e-8 at the long steps of the order-12 RKN pair)."""
     m0 = h * d0
     m1 = h * d1
     q0 = h * h * a0
     q1 = h * h * a1
+    r0 = h * h * h * j0
+    r1 = h * h * h * j1
     c[0] = w0
     c[1] = m0
     c[2] = 0.5 * q0
-    c[3] = -10.0 * w0 - 6.0 * m0 - 1.5 * q0 + 0.5 * q1 - 4.0 * m1 + 10.0 * w1
-    c[4] = 15.0 * w0 + 8.0 * m0 + 1.5 * q0 - q1 + 7.0 * m1 - 15.0 * w1
-    c[5] = -6.0 * w0 - 3.0 * m0 - 0.5 * q0 + 0.5 * q1 - 3.0 * m1 + 6.0 * w1
+    c[3] = r0 / 6.0
+    # the remaining four from P, P′, P″, P‴ at s = 1 (inverse of the 4×4 Hermite block)
+    R0 = w1 - (c[0] + c[1] + c[2] + c[3])
+    R1 = m1 - (c[1] + 2.0 * c[2] + 3.0 * c[3])
+    R2 = q1 - (2.0 * c[2] + 6.0 * c[3])
+    R3 = r1 - 6.0 * c[3]
+    c[4] = 35.0 * R0 - 15.0 * R1 + 2.5 * R2 - R3 / 6.0
+    c[5] = -84.0 * R0 + 39.0 * R1 - 7.0 * R2 + 0.5 * R3
+    c[6] = 70.0 * R0 - 34.0 * R1 + 6.5 * R2 - 0.5 * R3
+    c[7] = -20.0 * R0 + 10.0 * R1 - 2.0 * R2 + R3 / 6.0
 
 
 @njit(cache=True, nogil=True)
 def _poly(c, s):
-    return c[0] + s * (c[1] + s * (c[2] + s * (c[3] + s * (c[4] + s * c[5]))))
+    r = c[7]
+    for k in range(6, -1, -1):
+        r = c[k] + s * r
+    return r
 
 
 @njit(cache=True, nogil=True)
 def _dpoly(c, s):
-    return c[1] + s * (2.0 * c[2] + s * (3.0 * c[3] + s * (4.0 * c[4] + s * 5.0 * c[5])))
+    r = 7.0 * c[7]
+    for k in range(6, 0, -1):
+        r = k * c[k] + s * r
+    return r
 
 
 @njit(cache=True, nogil=True)
 def _d2poly(c, s):
-    return 2.0 * c[2] + s * (6.0 * c[3] + s * (12.0 * c[4] + s * 20.0 * c[5]))
+    r = 42.0 * c[7]
+    for k in range(6, 1, -1):
+        r = k * (k - 1) * c[k] + s * r
+    return r
 
 
 @njit(cache=True, nogil=True)
@@ -159,81 +197,103 @@ def _record(n, sgn, t, w, ev_t, ev_w, ev_s, ev_n):
         ev_n[n] = k + 1
 
 
+_OBS_BLOCK = 64
+
+
 @njit(cache=True, nogil=True)
 def _observe(
-    t0, h, y0, k0, y1, k1, L, thr, level, zz, zt, zdir, ev_t, ev_w, ev_s, ev_n,
-    cr_t, cr_s, cr_n, probe_idx, probe_t, probe_out, pcount, c,
+    t0, h, y0, k0, a0, y1, k1, a1, L, law_id, p, bc, thr, level, zz, zt, zdir,
+    ev_t, ev_w, ev_s, ev_n, cr_t, cr_s, cr_n, probe_idx, probe_t, probe_out, pcount, c,
 ):  # fmt: skip
     """Record extrema / level crossings of every w_n inside [t0, t0+h] and probe samples.
 
-    zz : (L, 3) per-site [candidate extremum value, running min, running max]; zt : (L,)
-    candidate time; zdir : (L,) int8 zigzag direction (+1 looking for a max, −1 for a min, 0 not
-    started).  ev_* : (L, K) confirmed extrema (time, value, sign ±1), ev_n : (L,) counts.
-    cr_* : (L, KC) crossings of ``level`` (time, direction ±1), cr_n : counts.
-    probe_idx : (P,) sites; probe_t : (M,) sorted times; probe_out : (P, M); pcount : (1,) next.
-    c : (6,) work.
+    y0/y1 : strains w_n at both step ends, k0/k1 : ẇ_n, a0/a1 : ẅ_n (first L entries are read);
+    law_id, p, bc give d³w/dt³ (:func:`_jerk`) for the degree-7 Hermite interpolant.
+
+    zz : (3, L) per site: [candidate extremum value, running min, running max] of w_n at the step
+    ends (rows 1 and 2 are also the run's strain range); zt : (L,) candidate time; zdir : (L,)
+    int8 zigzag direction (+1 looking for a max, −1 for a min, 0 not started).  ev_* : (L, K)
+    confirmed extrema (time, value, sign ±1), ev_n : (L,) counts.  cr_* : (L, KC) crossings of
+    ``level`` (time, direction ±1), cr_n : counts.  probe_idx : (P,) sites; probe_t : (M,)
+    sorted times; probe_out : (P, M); pcount : (1,) next.  c : (8,) work.
+
+    Most sites see nothing in a step, so each block of sites is first screened by a branch-free
+    (vectorised) test for a sign change of ẇ or a crossing of ``level``; only blocks with a hit
+    are walked site by site.
     """
-    for n in range(L):
-        w0 = y0[n]
-        w1 = y1[n]
-        d0 = k0[n]
-        d1 = k1[n]
-        ext = 0
-        if ev_n[n] < ev_t.shape[1]:  # a full event list needs no more extrema
-            if d0 > 0.0 and d1 <= 0.0:
-                ext = 1
-            elif d0 < 0.0 and d1 >= 0.0:
-                ext = -1
-        crossed = (w0 - level) * (w1 - level) < 0.0 and cr_n[n] < cr_t.shape[1]
-        if ext != 0 or crossed:
-            a0 = k0[L + n + 1] - k0[L + n]
-            a1 = k1[L + n + 1] - k1[L + n]
-            _h5coef(w0, w1, d0, d1, a0, a1, h, c)
-            if crossed:
-                s = _root(c, False, level)
-                k = cr_n[n]
-                cr_t[n, k] = t0 + s * h
-                cr_s[n, k] = 1 if w1 > w0 else -1
-                cr_n[n] = k + 1
-            if ext != 0:
-                s = _root(c, True, 0.0)
-                te = t0 + s * h
-                we = _poly(c, s)
-                dirn = zdir[n]
-                if ext == 1:
-                    if dirn == 1:
-                        if we > zz[n, 0]:
-                            zz[n, 0] = we
-                            zt[n] = te
-                    elif dirn == -1:
-                        if we - zz[n, 0] > thr:
-                            _record(n, -1, zt[n], zz[n, 0], ev_t, ev_w, ev_s, ev_n)
-                            zdir[n] = 1
-                            zz[n, 0] = we
-                            zt[n] = te
-                    elif we - zz[n, 1] > thr:
-                        zdir[n] = 1
-                        zz[n, 0] = we
-                        zt[n] = te
-                else:
-                    if dirn == -1:
-                        if we < zz[n, 0]:
-                            zz[n, 0] = we
-                            zt[n] = te
-                    elif dirn == 1:
-                        if zz[n, 0] - we > thr:
-                            _record(n, 1, zt[n], zz[n, 0], ev_t, ev_w, ev_s, ev_n)
-                            zdir[n] = -1
-                            zz[n, 0] = we
-                            zt[n] = te
-                    elif zz[n, 2] - we > thr:
-                        zdir[n] = -1
-                        zz[n, 0] = we
-                        zt[n] = te
-        if w1 < zz[n, 1]:
-            zz[n, 1] = w1
-        if w1 > zz[n, 2]:
-            zz[n, 2] = w1
+    for n0 in range(0, L, _OBS_BLOCK):
+        n1 = min(n0 + _OBS_BLOCK, L)
+        hit = 0
+        for n in range(n0, n1):
+            d0 = k0[n]
+            d1 = k1[n]
+            x = (y0[n] - level) * (y1[n] - level)
+            hit |= ((d0 > 0.0) & (d1 <= 0.0)) | ((d0 < 0.0) & (d1 >= 0.0)) | (x < 0.0)
+        if hit:
+            # (written out here: as a separate per-site function, inlined or not, it ran 2x slower)
+            for n in range(n0, n1):
+                w0 = y0[n]
+                w1 = y1[n]
+                d0 = k0[n]
+                d1 = k1[n]
+                ext = 0
+                if ev_n[n] < ev_t.shape[1]:  # a full event list needs no more extrema
+                    if d0 > 0.0 and d1 <= 0.0:
+                        ext = 1
+                    elif d0 < 0.0 and d1 >= 0.0:
+                        ext = -1
+                crossed = (w0 - level) * (w1 - level) < 0.0 and cr_n[n] < cr_t.shape[1]
+                if ext != 0 or crossed:
+                    j0 = _jerk(y0, k0, n, L, law_id, p, bc)
+                    j1 = _jerk(y1, k1, n, L, law_id, p, bc)
+                    _h7coef(w0, w1, d0, d1, a0[n], a1[n], j0, j1, h, c)
+                    if crossed:
+                        s = _root(c, False, level)
+                        k = cr_n[n]
+                        cr_t[n, k] = t0 + s * h
+                        cr_s[n, k] = 1 if w1 > w0 else -1
+                        cr_n[n] = k + 1
+                    if ext != 0:
+                        s = _root(c, True, 0.0)
+                        te = t0 + s * h
+                        we = _poly(c, s)
+                        dirn = zdir[n]
+                        if ext == 1:
+                            if dirn == 1:
+                                if we > zz[0, n]:
+                                    zz[0, n] = we
+                                    zt[n] = te
+                            elif dirn == -1:
+                                if we - zz[0, n] > thr:
+                                    _record(n, -1, zt[n], zz[0, n], ev_t, ev_w, ev_s, ev_n)
+                                    zdir[n] = 1
+                                    zz[0, n] = we
+                                    zt[n] = te
+                            elif we - zz[1, n] > thr:
+                                zdir[n] = 1
+                                zz[0, n] = we
+                                zt[n] = te
+                        else:
+                            if dirn == -1:
+                                if we < zz[0, n]:
+                                    zz[0, n] = we
+                                    zt[n] = te
+                            elif dirn == 1:
+                                if zz[0, n] - we > thr:
+                                    _record(n, 1, zt[n], zz[0, n], ev_t, ev_w, ev_s, ev_n)
+                                    zdir[n] = -1
+                                    zz[0, n] = we
+                                    zt[n] = te
+                            elif zz[2, n] - we > thr:
+                                zdir[n] = -1
+                                zz[0, n] = we
+                                zt[n] = te
+        for n in range(n0, n1):  # running extremes, after the events (their start test reads them)
+            w1 = y1[n]
+            lo = zz[1, n]
+            hi = zz[2, n]
+            zz[1, n] = w1 if w1 < lo else lo
+            zz[2, n] = w1 if w1 > hi else hi
     # probes on the fixed time grid
     M = probe_t.size
     k = pcount[0]
@@ -242,33 +302,37 @@ def _observe(
         s = (probe_t[k] - t0) / h
         for i in range(probe_idx.size):
             n = probe_idx[i]
-            a0 = k0[L + n + 1] - k0[L + n]
-            a1 = k1[L + n + 1] - k1[L + n]
-            _h5coef(y0[n], y1[n], k0[n], k1[n], a0, a1, h, c)
+            j0 = _jerk(y0, k0, n, L, law_id, p, bc)
+            j1 = _jerk(y1, k1, n, L, law_id, p, bc)
+            _h7coef(y0[n], y1[n], k0[n], k1[n], a0[n], a1[n], j0, j1, h, c)
             probe_out[i, k] = _poly(c, s)
         k += 1
     pcount[0] = k
 
 
 @njit(cache=True, nogil=True)
+def strain_accel(k, L, out):
+    """ẅ_n = v̇_n − v̇_{n−1} read off a first-order derivative vector k = dy/dt; out: (≥ L,)."""
+    for n in range(L):
+        out[n] = k[L + n + 1] - k[L + n]
+
+
+@njit(cache=True, nogil=True)
 def _check_convex(y, L, alpha, beta, bad):
     """Index of the first strain outside (α, β) or non-finite, else −1; bad[0] = its value.
-    Also keeps the running extremes of all strains in bad[2] (min) and bad[3] (max)."""
-    lo = bad[2]
-    hi = bad[3]
-    first = -1
+    A branch-free count first (vectorised): a run stays inside almost always."""
+    nout = 0
     for n in range(L):
         x = y[n]
-        if x < lo:
-            lo = x
-        if x > hi:
-            hi = x
-        if first < 0 and not (alpha < x < beta):
+        nout += 0 if ((x > alpha) & (x < beta)) else 1  # NaN counts as outside
+    if nout == 0:
+        return -1
+    for n in range(L):
+        x = y[n]
+        if not (alpha < x < beta):
             bad[0] = x
-            first = n
-    bad[2] = lo
-    bad[3] = hi
-    return first
+            return n
+    return -1
 
 
 # --------------------------------------------------------------------------- adaptive RK
@@ -374,10 +438,11 @@ def erk_chunk(
     """Advance y from t to t_stop with an embedded explicit RK pair and error control.
 
     K : (s+1, 2L+2) stage work, K[0] must hold f(y) on entry and holds f(y) on exit (FSAL);
-    W : (3, 2L+2) work.
+    W : (5, 2L+2) work.
     h : proposed step on entry.  stats (float64, 6): [steps, rejected, rhs evaluations,
     Σ local error (RMS-norm × RMS scale), max error norm, unused], accumulated.
-    bad (float64, 4): [value, site] of a strain that left (α, β), [min, max] of all strains.
+    bad (float64, 2): [value, site] of a strain that left (α, β) (the strain range of the run is
+    kept by the observer, rows 1–2 of zz).
     Returns (t, h_next, status).
     """
     s = B.size
@@ -415,6 +480,9 @@ def erk_chunk(
     in_y = True
     x5 = W[1]
     x3 = W[2]
+    acc0 = W[3]  # ẅ at the step start / end for the observer's interpolant
+    acc1 = W[4]
+    strain_accel(K[perm[0]], L, acc0)
     status = 0
     while t < t_stop:
         if stats[0] >= max_steps:
@@ -457,9 +525,13 @@ def erk_chunk(
             fac = 10.0 if err == 0.0 else min(10.0, 0.9 * err**err_exp)
             if not clamped:
                 h = hh * fac
-            _observe(t, hh, cur, K[perm[0]], ynew, K[perm[s]], L, thr, level, zz, zt, zdir,
-                     ev_t, ev_w, ev_s, ev_n, cr_t, cr_s, cr_n, probe_idx, probe_t, probe_out,
-                     pcount, c)  # fmt: skip
+            strain_accel(K[perm[s]], L, acc1)
+            _observe(t, hh, cur, K[perm[0]], acc0, ynew, K[perm[s]], acc1, L, law_id, p, bc,
+                     thr, level, zz, zt, zdir, ev_t, ev_w, ev_s, ev_n, cr_t, cr_s, cr_n,
+                     probe_idx, probe_t, probe_out, pcount, c)  # fmt: skip
+            tmpa = acc0
+            acc0 = acc1
+            acc1 = tmpa
             nxt = cur
             cur = ynew
             in_y = not in_y
@@ -511,7 +583,8 @@ def _drift(y, L, dt):
 
 @njit(cache=True, nogil=True)
 def yoshida_chunk(
-    y, t, t_stop, h, max_steps, L, law_id, p, bc, fL, fR, alpha, beta, k0, k1, y0, g, stats, bad,
+    y, t, t_stop, h, max_steps, L, law_id, p, bc, fL, fR, alpha, beta, k0, k1, y0, acc, g, stats,
+    bad,
     thr, level, zz, zt, zdir, ev_t, ev_w, ev_s, ev_n, cr_t, cr_s, cr_n,
     probe_idx, probe_t, probe_out, pcount, c,
 ):  # fmt: skip
@@ -519,13 +592,16 @@ def yoshida_chunk(
     fixed step h (the last step of the chunk is shortened to land on t_stop).
 
     On entry g must hold the forces at y and k0 = f(y); both hold the values at y on exit.
-    Returns (t, h, status).
+    acc : (2, ≥ L) work (ẅ at both step ends).  Returns (t, h, status).
     """
     cbr = 2.0 ** (1.0 / 3.0)
     c1 = 1.0 / (2.0 - cbr)
     c0 = -cbr * c1
     nn = y.size
     status = 0
+    acc0 = acc[0]
+    acc1 = acc[1]
+    strain_accel(k0, L, acc0)
     while t < t_stop:
         if stats[0] >= max_steps:
             status = ST_BUDGET
@@ -548,10 +624,15 @@ def yoshida_chunk(
         _kick(y, L, bc, g, 0.5 * c1 * hh)
         assemble(y, L, bc, g, k1)
         stats[2] += 3
-        _observe(t, hh, y0, k0, y, k1, L, thr, level, zz, zt, zdir, ev_t, ev_w, ev_s, ev_n,
-                 cr_t, cr_s, cr_n, probe_idx, probe_t, probe_out, pcount, c)  # fmt: skip
+        strain_accel(k1, L, acc1)
+        _observe(t, hh, y0, k0, acc0, y, k1, acc1, L, law_id, p, bc, thr, level, zz, zt,
+                 zdir, ev_t, ev_w, ev_s, ev_n, cr_t, cr_s, cr_n, probe_idx, probe_t, probe_out,
+                 pcount, c)  # fmt: skip
         for m in range(nn):
             k0[m] = k1[m]
+        tmpa = acc0
+        acc0 = acc1
+        acc1 = tmpa
         t = t_stop if clamped else t + hh
         stats[0] += 1
         bi = _check_convex(y, L, alpha, beta, bad)

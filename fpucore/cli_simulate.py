@@ -52,7 +52,7 @@ def _progress(args, work: float):
 
 def _add_run_args(p, t_end_default=None) -> None:
     add_law_args(p)
-    p.add_argument("--method", choices=simulate.METHODS, default="dop853")
+    p.add_argument("--method", choices=simulate.METHODS, default="rkn12")
     p.add_argument("--rtol", type=float, default=None, help="adaptive tolerance (default 1e-10)")
     p.add_argument("--dt", type=float, default=None, help="symplectic step (default 0.02)")
     p.add_argument("--boundary", choices=simulate.BOUNDARIES, default=None)

@@ -13,14 +13,16 @@ from collections.abc import Callable, Sequence
 import numpy as np
 
 from . import chain_kernels as ck
-from . import tracking
+from . import chain_rkn as crk
+from . import rkn_tableaux, tracking
 from .errors import ParameterError, require_finite
 from .law import HardeningSofteningLaw
 from .rk_embedded import get as _get_tableau
 
 BOUNDARIES = ("fixed_particles", "fixed_strain", "free")
 GUARDS = ("convex", "bounded")
-METHODS = ("dop853", "dopri5", "symplectic")
+METHODS = ("rkn12", "dop853", "dopri5", "rkn8", "symplectic")
+RKN_METHODS = ("rkn12", "rkn8")
 MAX_L = 10_000_000
 _STATUS = {
     ck.ST_OK: "ok",
@@ -84,10 +86,19 @@ def _finalize_events(y, L, thr, zz, zt, zdir, ev_t, ev_w, ev_s, ev_n) -> None:
     before the end, with no later opposite extremum, would be missed)."""
     K = ev_t.shape[1]
     for n in np.nonzero(zdir)[0]:
-        if ev_n[n] < K and abs(zz[n, 0] - y[n]) > thr:
+        if ev_n[n] < K and abs(zz[0, n] - y[n]) > thr:
             k = ev_n[n]
-            ev_t[n, k], ev_w[n, k], ev_s[n, k] = zt[n], zz[n, 0], zdir[n]
+            ev_t[n, k], ev_w[n, k], ev_s[n, k] = zt[n], zz[0, n], zdir[n]
             ev_n[n] += 1
+
+
+def _initial_step(y: np.ndarray, dy: np.ndarray, rtol: float, atol: float, t_end: float) -> float:
+    """Hairer's starting step h = 0.01 ‖y‖/‖ẏ‖ in the scaled RMS norm, capped at 0.1 and t_end."""
+    sc = atol + rtol * np.abs(y)
+    d0 = np.sqrt(np.mean((y / sc) ** 2))
+    d1 = np.sqrt(np.mean((dy / sc) ** 2))
+    h = 1e-6 if (d0 < 1e-5 or d1 < 1e-5) else 0.01 * d0 / d1
+    return min(h, 0.1, t_end)
 
 
 # --------------------------------------------------------------------------- core runner
@@ -198,10 +209,8 @@ def run_chain(
     # observer storage
     thr_ev = 0.5 * threshold
     level = float(law.w_star) if level is None else float(level)
-    zz = np.empty((L, 3))
-    zz[:, 0] = w0
-    zz[:, 1] = w0
-    zz[:, 2] = w0
+    zz = np.empty((3, L))  # per site: extremum candidate, running min, running max
+    zz[:] = w0
     zt = np.zeros(L)
     zdir = np.zeros(L, np.int8)
     ev_t = np.full((L, n_events), np.nan)
@@ -215,9 +224,9 @@ def run_chain(
     probe_out = np.full((probe_idx.size, probe_t.size), np.nan)
     probe_out[:, 0] = w0[probe_idx]
     pcount = np.ones(1, np.int64)
-    cwork = np.zeros(6)
+    cwork = np.zeros(8)  # Hermite coefficients
     stats = np.zeros(6)
-    bad = np.array([0.0, 0.0, w0.min(), w0.max()])
+    bad = np.zeros(2)  # value and site of a strain that left the guard interval
     g = np.zeros(L + 2)
 
     snaps = np.full((t_out.size, site_idx.size), np.nan)
@@ -232,20 +241,28 @@ def run_chain(
         k0 = np.zeros(n)
         k1 = np.zeros(n)
         ybuf = np.zeros(n)
+        acc = np.zeros((2, L))
         ck.rhs(y, L, law.law_id, p, bc_code, fL, fR, g, k0)
         h = dt
+    elif method in RKN_METHODS:
+        rk = rkn_tableaux.get(method)
+        s = rk.stages
+        qv = np.zeros(L + 1)
+        K = np.zeros((s + 3, L + 1))  # K[0] = F(q), K[s+1] = q̇ (see chain_rkn.rkn_chunk)
+        W = np.zeros((8, L + 1))
+        crk.y_to_rkn(y, L, qv, K[s + 1])
+        crk.accel(qv, L, law.law_id, p, bc_code, fL, fR, g, K[0])
+        h = _initial_step(np.concatenate([qv, K[s + 1]]), np.concatenate([K[s + 1], K[0]]),
+                          rtol, atol, t_end)  # fmt: skip
+        err_exp = -1.0 / (rk.err_order + 1)
+        rk_args = (rk.c, rk.A, rk.b, rk.bp, rk.e, rk.ep, rk.fsal, err_exp)
     else:
         tab = _get_tableau(method)
         s = tab.stages
         K = np.zeros((s + 1, n))
-        W = np.zeros((3, n))
+        W = np.zeros((5, n))
         ck.rhs(y, L, law.law_id, p, bc_code, fL, fR, g, K[0])
-        # initial step (Hairer): h = 0.01 ‖y‖/‖f‖ in the scaled RMS norm, capped
-        sc = atol + rtol * np.abs(y)
-        d0 = np.sqrt(np.mean((y / sc) ** 2))
-        d1 = np.sqrt(np.mean((K[0] / sc) ** 2))
-        h = 1e-6 if (d0 < 1e-5 or d1 < 1e-5) else 0.01 * d0 / d1
-        h = min(h, 0.1, t_end)
+        h = _initial_step(y, K[0], rtol, atol, t_end)
         err_exp = -1.0 / (tab.err_order + 1)
 
     t = 0.0
@@ -254,10 +271,18 @@ def run_chain(
         if method == "symplectic":
             t, h, status = ck.yoshida_chunk(
                 y, t, float(stop), h, max_steps, L, law.law_id, p, bc_code, fL, fR,
-                alpha, beta, k0, k1, ybuf, g, stats, bad,
+                alpha, beta, k0, k1, ybuf, acc, g, stats, bad,
                 thr_ev, level, zz, zt, zdir, ev_t, ev_w, ev_s, ev_n, cr_t, cr_s, cr_n,
                 probe_idx, probe_t, probe_out, pcount, cwork,
             )  # fmt: skip
+        elif method in RKN_METHODS:
+            t, h, status = crk.rkn_chunk(
+                qv, t, float(stop), h, *rk_args, rtol, atol, max_steps,
+                L, law.law_id, p, bc_code, fL, fR, alpha, beta, K, W, g, stats, bad,
+                thr_ev, level, zz, zt, zdir, ev_t, ev_w, ev_s, ev_n, cr_t, cr_s, cr_n,
+                probe_idx, probe_t, probe_out, pcount, cwork,
+            )  # fmt: skip
+            crk.rkn_to_y(qv, K[s + 1], L, y)  # snapshots, energy and events read y
         else:
             t, h, status = ck.erk_chunk(
                 y, t, float(stop), h, tab.A, tab.B, tab.E5, tab.E3, tab.dual, err_exp,
@@ -295,7 +320,7 @@ def run_chain(
     else:
         err_est = float(stats[3])
 
-    w_min, w_max = float(bad[2]), float(bad[3])
+    w_min, w_max = float(zz[1].min()), float(zz[2].max())  # the strain range over all steps
     outside = w_min <= conv[0] or w_max >= conv[1]
     if st == "ok":
         msg = f"reached t = {t:.6g} in {int(stats[0])} steps ({int(stats[1])} rejected)"
@@ -407,13 +432,13 @@ def _step_doubling(law, w0, v0, t_out, boundary, bc_code, fL, fR, dt, snaps, sit
     p = law.params
     k0, k1, ybuf, g = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(L + 2)
     ck.rhs(y, L, law.law_id, p, bc_code, fL, fR, g, k0)
-    stats, bad = np.zeros(6), np.array([0.0, 0.0, np.inf, -np.inf])
+    stats, bad = np.zeros(6), np.zeros(2)
     e = np.zeros((L, 1))
     ei = np.zeros((L, 1), np.int8)
     en = np.zeros(L, np.int64)
-    zz = np.zeros((L, 3))
-    zz[:, 1] = -np.inf
-    zz[:, 2] = np.inf
+    zz = np.zeros((3, L))
+    zz[1] = -np.inf
+    zz[2] = np.inf
     zt, zdir = np.zeros(L), np.zeros(L, np.int8)
     pidx, pt, pout, pc = np.zeros(0, np.int64), np.zeros(0), np.zeros((0, 0)), np.zeros(1, np.int64)
     worst = 0.0
@@ -421,9 +446,9 @@ def _step_doubling(law, w0, v0, t_out, boundary, bc_code, fL, fR, dt, snaps, sit
     for k in range(1, t_out.size):
         t, _, status = ck.yoshida_chunk(
             y, t, float(t_out[k]), 2.0 * dt, max_steps, L, law.law_id, p, bc_code, fL, fR,
-            law.alpha, law.beta, k0, k1, ybuf, g, stats, bad,
+            law.alpha, law.beta, k0, k1, ybuf, np.zeros((2, L)), g, stats, bad,
             np.inf, np.nan, zz, zt, zdir, e, e, ei, en, e, ei, en,
-            pidx, pt, pout, pc, np.zeros(6),
+            pidx, pt, pout, pc, np.zeros(8),
         )  # fmt: skip
         if status != ck.ST_OK:
             return math.nan

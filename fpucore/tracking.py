@@ -15,7 +15,7 @@ Two stages:
 2. **Velocity** of each structure.  A coarse velocity comes from a linear fit of its positions
    (parabolic peak / interpolated mid-level crossing) over the snapshots of the window.  It is
    refined with the passage times recorded by the integrator at every site (time extrema of
-   w_n(t) for pulses, crossings of w* for superkinks, located with quintic Hermite interpolation
+   w_n(t) for pulses, crossings of w* for superkinks, located with degree-7 Hermite interpolation
    inside the step): for a wave moving with constant velocity V these times are exactly
    t_n = t_0 + n / V, so a least-squares line through (n, t_n) over the sites passed in the late
    window gives V with no lattice-phase error; ``velocity_error`` is the standard error of that fit.
