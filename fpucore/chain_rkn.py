@@ -10,13 +10,13 @@ State (length L + 1 each):
     q  = (w_1 … w_L, u_0)        strains and the displacement of particle 0
     q̇ = (ẇ_1 … ẇ_L, v_0)        ẇ_n = v_n − v_{n−1}; v_j = v_0 + Σ_{n ≤ j} ẇ_n
 
-with the ghost forces g_0, g_{L+1} of the end conditions (as in :mod:`fpucore.chain_kernels`):
+with the ghost forces g_0, g_{L+1} of the end conditions (:mod:`fpucore.chain_layout`):
 ``BC_LOAD`` g_0 = fL, g_{L+1} = fR and ü_0 = f(w_1) − fL; ``BC_FIXED_PARTICLES`` g_0 = f(w_1),
 g_{L+1} = f(w_L) (v_0 = v_L = 0) and ü_0 = 0.
 
 :func:`rkn_chunk` advances (q, q̇) from t to t_stop with error control in Hairer's RMS norm over
 all 2(L + 1) components (scale atol + rtol·max(|x|, |x₁|) per component), calls the shared
-observer of :mod:`fpucore.chain_kernels` (Hermite interpolation from w, ẇ, ẅ = F and d³w/dt³ at
+observer of :mod:`fpucore.chain_observer` (Hermite interpolation from w, ẇ, ẅ = F and d³w/dt³ at
 both step ends)
 after every accepted step, and checks the strains against the guard interval.
 """
@@ -29,16 +29,15 @@ import numpy as np
 from numba import njit
 
 from . import law as _law
-from .chain_kernels import (
+from .chain_kernels import _combo
+from .chain_layout import (
     BC_FIXED_PARTICLES,
     ST_BUDGET,
     ST_LEFT_CONVEX,
     ST_NONFINITE,
     ST_STEP_UNDERFLOW,
-    _check_convex,
-    _combo,
-    _observe,
 )
+from .chain_observer import _check_convex, _observe
 
 
 @njit(cache=True, nogil=True)

@@ -29,3 +29,12 @@ def test_quick_report_reproduces(tmp_path):
     ms = [int(re.sub(r"\D", "", s)) for s, _, _ in rows]
     errs = [e for _, e, _ in rows]
     assert ms == sorted(ms) and all(b < a for a, b in zip(errs, errs[1:]))
+    # the default simulation method: the seeded wave's shape error falls as rtol tightens, and at
+    # rtol 1e-9 it is already below scipy's DOP853 at the same tolerance
+    rows = _rows(md, "simulation: seeded superkink", "fpucore rkn12")
+    errs = [e for _, e, _ in rows]
+    assert len(errs) == 3 and all(b < a for a, b in zip(errs, errs[1:]))
+    sp = dict(
+        (s, e) for s, e, _ in _rows(md, "simulation: seeded superkink", "scipy solve_ivp DOP853")
+    )
+    assert errs[1] < sp["rtol=1e-09"]
