@@ -158,3 +158,33 @@ def test_scene_message_is_shown():
     sc.render = lambda info: (_ for _ in ()).throw(SceneMessage("hello"))
     sc.refresh()
     assert sc.alert.visible and sc.alert.object == "hello"
+
+
+def _run_simulation(sc, kind, **fields):
+    sc.kind.value = kind
+    for name, value in fields.items():
+        getattr(sc, name).value = value
+    sc._want_run = True  # what the "Run simulation" button sets
+    return sc.refresh()
+
+
+def test_simulation_scene_runs_the_papers_gaussian_data_and_reports_the_method():
+    """The paper's Gaussian w_B = 1, A = 6 starts at w = 7 > β: the scene's default guard
+    (bounded) runs it, notes the excursion, and finds the two solitary waves at ±5.2494 (the
+    paper's speed, also in test_simulate_paper.py at L = 2400)."""
+    _, sc = scene("simulation")
+    info = _run_simulation(sc, "gaussian", L=800, t_end=60.0, w_B=1.0, A=6.0)
+    assert sc.last_message is None, sc.last_message
+    notes = " ".join(info.notes)
+    assert "rkn12" in notes and "outside the convex interval" in notes
+    speeds = sorted(w.velocity for w in sc._sim[2].waves if w.kind == "solitary")
+    assert speeds and speeds[0] == pytest.approx(-5.2494, abs=2e-3)
+    assert speeds[-1] == pytest.approx(5.2494, abs=2e-3)
+
+
+def test_simulation_scene_convex_guard_refuses_with_the_reason():
+    _, sc = scene("simulation")
+    sc.guard.value = "convex"
+    _run_simulation(sc, "gaussian", L=400, t_end=5.0, w_B=1.0, A=6.0)
+    assert sc.last_message and "initial strain max" in sc.last_message
+    assert "bounded" in sc.last_message

@@ -34,6 +34,14 @@ class SimulationScene(Scene):
         self.w_r = pn.widgets.FloatInput(label="w^r (Riemann)", value=0.0, width=140)
         self.w_B = pn.widgets.FloatInput(label="w_B (Gaussian)", value=1.0, width=140)
         self.A = pn.widgets.FloatInput(label="A (Gaussian)", value=6.0, width=140)
+        # the paper's Gaussian data start above β (w_B = 1, A = 6 gives w = 7): with the convex
+        # guard they would be refused, so the scene stops only where the force stops restoring
+        self.guard = pn.widgets.Select(
+            label="stop the run when a strain leaves",
+            options={"the zeros of f (bounded)": "bounded", "the convex interval (α, β)": "convex"},
+            value="bounded",
+            width=290,
+        )
         self.run_btn = pn.widgets.Button(
             label="Run simulation", color="primary", css_classes=["simulation-run"]
         )
@@ -43,6 +51,7 @@ class SimulationScene(Scene):
             pn.Row(self.L, self.t_end),
             pn.Row(self.w_l, self.w_r),
             pn.Row(self.w_B, self.A),
+            self.guard,
             self.run_btn,
             self.table,
         ]
@@ -60,7 +69,7 @@ class SimulationScene(Scene):
     def _job(self):
         s = self.state
         kind = self.kind.value
-        p = {"L": int(self.L.value), "t_end": float(self.t_end.value)}
+        p = {"L": int(self.L.value), "t_end": float(self.t_end.value), "guard": self.guard.value}
         if kind == "riemann":
             p.update(w_left=float(self.w_l.value), w_right=float(self.w_r.value))
         elif kind == "gaussian":
@@ -93,8 +102,18 @@ class SimulationScene(Scene):
         info.time(f"simulation ({kind})", c)
         info.error("energy drift", sim.energy_drift)
         info.error("error estimate", sim.error_estimate)
+        info.notes.append(
+            f"{sim.method}, {sim.n_steps} steps ({sim.n_rejected} rejected), rtol {sim.rtol:g}"
+            if sim.method != "symplectic"
+            else f"symplectic, dt {sim.dt:g}"
+        )
         if getattr(sim, "status", 0) not in (0, "ok", "success", None):
             info.notes.append(f"status {sim.status}: {sim.message}")
+        elif sim.details.get("left_convex_interval"):
+            lo, hi = sim.details["strain_range"]
+            info.notes.append(
+                f"strains went outside the convex interval (α, β): [{lo:.4g}, {hi:.4g}]"
+            )
         snaps = np.asarray(sim.snapshots, dtype=float)
         if snaps.size == 0 or not np.all(np.isfinite(snaps)):
             raise SceneMessage(f"the simulation returned no finite snapshots: {sim.message}")
