@@ -66,6 +66,15 @@ def rhs(y, L, law_id, p, bc, fL, fR, g, out):
 
 # --------------------------------------------------------------------------- adaptive RK
 @njit(cache=True, nogil=True)
+def step_factor(err, err_exp):
+    """Hairer's step-size controller: h_new / h = 0.9 err^err_exp, err_exp = −1/(q + 1) for an
+    error estimator of order q, clipped to [0.2, 10] (err: the scaled RMS error norm)."""
+    if err == 0.0:
+        return 10.0
+    return min(10.0, max(0.2, 0.9 * err**err_exp))
+
+
+@njit(cache=True, nogil=True)
 def _combo(y, K, rows, cf, nc, out):
     """out = y + Σ_q cf[q] K[rows[q]], up to eight stages per memory pass, y folded into the
     first pass.  ``rows``/``cf`` must have room for nc rounded up to a multiple of 4: the padding
@@ -251,9 +260,8 @@ def erk_chunk(
                 break
             continue
         if err < 1.0:
-            fac = 10.0 if err == 0.0 else min(10.0, 0.9 * err**err_exp)
             if not clamped:
-                h = hh * fac
+                h = hh * step_factor(err, err_exp)
             strain_accel(K[perm[s]], L, acc1)
             _observe(t, hh, cur, K[perm[0]], acc0, ynew, K[perm[s]], acc1, L, law_id, p, bc,
                      thr, level, zz, zt, zdir, ev_t, ev_w, ev_s, ev_n, cr_t, cr_s, cr_n,
@@ -272,13 +280,11 @@ def erk_chunk(
             stats[3] += err * math.sqrt(sc2 / nn)
             if err > stats[4]:
                 stats[4] = err
-            bi = _check_convex(cur, L, alpha, beta, bad)
-            if bi >= 0:
-                bad[1] = bi
+            if _check_convex(cur, L, alpha, beta, bad):
                 status = ST_LEFT_CONVEX
                 break
         else:
-            h = hh * max(0.2, 0.9 * err**err_exp)
+            h = hh * step_factor(err, err_exp)
             stats[1] += 1
             if h < 1e-14 * max(1.0, abs(t)):
                 status = ST_STEP_UNDERFLOW
@@ -364,9 +370,7 @@ def yoshida_chunk(
         acc1 = tmpa
         t = t_stop if clamped else t + hh
         stats[0] += 1
-        bi = _check_convex(y, L, alpha, beta, bad)
-        if bi >= 0:
-            bad[1] = bi
+        if _check_convex(y, L, alpha, beta, bad):
             status = ST_LEFT_CONVEX
             break
     return t, h, status

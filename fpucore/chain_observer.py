@@ -254,17 +254,18 @@ def strain_accel(k, L, out):
 
 @njit(cache=True, nogil=True)
 def _check_convex(y, L, alpha, beta, bad):
-    """Index of the first strain outside (α, β) or non-finite, else −1; bad[0] = its value.
-    A branch-free count first (vectorised): a run stays inside almost always."""
+    """True if a strain is outside (α, β) or non-finite; bad[0], bad[1] = the first one's value
+    and site index.  A branch-free count first (vectorised): a run stays inside almost always."""
     nout = 0
     for n in range(L):
         x = y[n]
         nout += 0 if ((x > alpha) & (x < beta)) else 1  # NaN counts as outside
     if nout == 0:
-        return -1
+        return False
     for n in range(L):
         x = y[n]
         if not (alpha < x < beta):
             bad[0] = x
-            return n
-    return -1
+            bad[1] = n
+            break
+    return True

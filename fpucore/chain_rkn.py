@@ -29,7 +29,7 @@ import numpy as np
 from numba import njit
 
 from . import law as _law
-from .chain_kernels import _combo
+from .chain_kernels import _combo, step_factor
 from .chain_layout import (
     BC_FIXED_PARTICLES,
     ST_BUDGET,
@@ -230,9 +230,8 @@ def rkn_chunk(
                 break
             continue
         if err < 1.0:
-            fac = 10.0 if err == 0.0 else min(10.0, 0.9 * err**err_exp)
             if not clamped:
-                h = hh * fac
+                h = hh * step_factor(err, err_exp)
             if not fsal:
                 accel(nxt, L, law_id, p, bc, fL, fR, g, K[fn])
                 stats[2] += 1
@@ -254,13 +253,11 @@ def rkn_chunk(
             stats[3] += math.sqrt(_sumsq2(e, ed) / (2 * nn))  # RMS of the local error
             if err > stats[4]:
                 stats[4] = err
-            bi = _check_convex(cur, L, alpha, beta, bad)
-            if bi >= 0:
-                bad[1] = bi
+            if _check_convex(cur, L, alpha, beta, bad):
                 status = ST_LEFT_CONVEX
                 break
         else:
-            h = hh * max(0.2, 0.9 * err**err_exp)
+            h = hh * step_factor(err, err_exp)
             stats[1] += 1
             if h < 1e-14 * max(1.0, abs(t)):
                 status = ST_STEP_UNDERFLOW
