@@ -44,16 +44,8 @@ from .chain_observer import _check_convex, _observe
 def accel(q, L, law_id, p, bc, fL, fR, g, out):
     """out = F(q): out[n] = ẅ_{n+1} = (g_{n+2} − g_{n+1}) − (g_{n+1} − g_n), out[L] = ü_0.
     g : (L+2,) work, left holding the forces (ghosts included)."""
-    if law_id == _law.LAW_CUBIC:
-        # the cubic inlined (same formula as law.force) so that this loop vectorises
-        a = p[0]
-        b = p[1]
-        for n in range(L):
-            w = q[n]
-            g[n + 1] = ((a * w + b) * w + 1.0) * w
-    else:
-        for n in range(L):
-            g[n + 1] = _law.force(law_id, p, q[n])
+    for n in range(L):
+        g[n + 1] = _law.force(law_id, p, q[n])
     if bc == BC_FIXED_PARTICLES:
         g[0] = g[1]
         g[L + 1] = g[L]
@@ -132,7 +124,7 @@ def rkn_chunk(
     """Advance (q, q̇) from t to t_stop with an embedded RKN pair and error control.
 
     q : (L+1,) positions, updated in place.  K : (s+3, L+1): K[0] = F(q) and K[s+1] = q̇ on entry
-    and on exit; rows 1…s are stage work, K[s+2] the new q̇.  W : (8, L+1) work (W[5] must be 0).
+    and on exit; rows 1…s are stage work, K[s+2] the new q̇.  W : (7, L+1) work (W[4] must be 0).
     C, A, B (= b̄), BP (= b′), E = b − b̂, EP = b′ − b̂′ from an :class:`RKNTableau`; fsal: the last
     stage is F(q₁).  stats, bad, observer arguments and the return value (t, h_next, status) as
     for :func:`fpucore.chain_kernels.erk_chunk`, except that stats[3] accumulates the RMS of the
@@ -172,9 +164,9 @@ def rkn_chunk(
     cur = q
     nxt = W[1]
     in_q = True
-    e = W[3]
-    ed = W[4]
-    zero = W[5]
+    e = W[2]
+    ed = W[3]
+    zero = W[4]
     status = 0
     while t < t_stop:
         if stats[0] >= max_steps:
@@ -220,7 +212,7 @@ def rkn_chunk(
             cf[k] = hh * EP[j]
         _combo(zero, K, rws, cf, wcnt[3], ed)
         stats[2] += nst - 1 + (1 if fsal else 0)
-        e2 = _rkn_err(cur, nxt, K[iqd], K[iqd1], e, ed, W[6], W[7], rtol, atol)
+        e2 = _rkn_err(cur, nxt, K[iqd], K[iqd1], e, ed, W[5], W[6], rtol, atol)
         err = math.sqrt(e2 / (2 * nn))
         if not math.isfinite(err):
             h = 0.2 * hh

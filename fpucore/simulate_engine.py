@@ -249,7 +249,7 @@ def run_chain(
         s = rk.stages
         qv = np.zeros(L + 1)
         K = np.zeros((s + 3, L + 1))  # K[0] = F(q), K[s+1] = q̇ (see chain_rkn.rkn_chunk)
-        W = np.zeros((8, L + 1))
+        W = np.zeros((7, L + 1))
         crk.y_to_rkn(y, L, qv, K[s + 1])
         crk.accel(qv, L, law.law_id, p, bc_code, fL, fR, g, K[0])
         h = _initial_step(np.concatenate([qv, K[s + 1]]), np.concatenate([K[s + 1], K[0]]),

@@ -70,7 +70,7 @@ def _fixed_step(tab, w0, T, n_steps, L):
     q = np.zeros(L + 1)
     q[:L] = w0
     K = np.zeros((s + 3, L + 1))
-    W = np.zeros((8, L + 1))
+    W = np.zeros((7, L + 1))
     g = np.zeros(L + 2)
     p = LAW.params
     bc = ck.BC_FIXED_PARTICLES
