@@ -7,16 +7,12 @@ functions below.  They add three things the views need:
   scenes and all browser sessions, with in-flight de-duplication (two sessions asking for the
   same discrete wave wait for one solve instead of running two);
 * wall time of the underlying computation (``Computed.elapsed_s``) and whether it was cached;
-* ``NotAvailable`` when an optional fpucore module (wave, floquet, simulate) is missing or
-  broken, so a scene can say so instead of failing.
 
 Bad parameters surface as ``fpucore.errors.ParameterError`` exactly as fpucore raises them.
 """
 
 from __future__ import annotations
 
-import importlib
-import inspect
 import math
 import threading
 import time
@@ -27,39 +23,14 @@ from typing import Any
 
 import numpy as np
 
+from fpucore import floquet as fq
+from fpucore import qc, wave
+from fpucore import simulate as sim
 from fpucore.errors import ParameterError
 from fpucore.law import CubicLaw
+from fpucore.qc import diagram, phase
 
-__all__ = ["Computed", "NotAvailable", "ParameterError", "CACHE", "law"]
-
-
-class NotAvailable(RuntimeError):
-    """An fpucore module or function this scene needs is missing (not built yet) or broken."""
-
-
-def core(module: str, *names: str):
-    """Import ``fpucore.<module>`` and return the requested attributes (or the module)."""
-    try:
-        mod = importlib.import_module(f"fpucore.{module}")
-    except Exception as exc:  # a module still being written may fail in any way
-        msg = f"fpucore.{module} could not be imported ({type(exc).__name__}: {exc})"
-        raise NotAvailable(msg) from None
-    if not names:
-        return mod
-    missing = [n for n in names if not hasattr(mod, n)]
-    if missing:
-        raise NotAvailable(f"fpucore.{module} has no {', '.join(missing)} yet")
-    out = tuple(getattr(mod, n) for n in names)
-    return out[0] if len(out) == 1 else out
-
-
-def available(module: str, *names: str) -> str | None:
-    """None if the module (and names) can be used, else the reason it cannot."""
-    try:
-        core(module, *names)
-    except NotAvailable as exc:
-        return str(exc)
-    return None
+__all__ = ["Computed", "ParameterError", "CACHE", "law"]
 
 
 def rnd(x: float, digits: int = 12) -> float:
@@ -145,8 +116,6 @@ def law(a: float, b: float) -> CubicLaw:
 
 def qc_wave(a: float, b: float, mode: str, w_plus: float, V: float) -> Computed:
     """QC superkink (mode "superkink": from w_plus) or solitary wave (mode "solitary")."""
-    from fpucore import qc
-
     lw = law(a, b)
     if mode == "superkink":
         return CACHE.get(
@@ -158,16 +127,16 @@ def qc_wave(a: float, b: float, mode: str, w_plus: float, V: float) -> Computed:
 
 
 def qc_family(a: float, b: float, w_plus: float, n: int = 160) -> Computed:
-    """fpucore.qc_diagram.solitary_family: amplitude (eq. SWQC_amp) and E_ren (eq. Eren_QC)
+    """fpucore.qc.diagram.solitary_family: amplitude (eq. SWQC_amp) and E_ren (eq. Eren_QC)
     of the QC solitary waves along both velocity intervals for fixed w_plus."""
-    fn = core("qc_diagram", "solitary_family")
+    fn = diagram.solitary_family
     lw = law(a, b)
     return CACHE.get(("qc_family", rnd(a), rnd(b), rnd(w_plus), n), lambda: fn(lw, w_plus, n=n))
 
 
 def phase_plane(a: float, b: float, w_plus: float, V: float, n_grid: int = 241) -> Computed:
-    """fpucore.qc_phase.phase_plane for the current parameters."""
-    fn = core("qc_phase", "phase_plane")
+    """fpucore.qc.phase.phase_plane for the current parameters."""
+    fn = phase.phase_plane
     lw = law(a, b)
     return CACHE.get(
         ("phase", rnd(a), rnd(b), rnd(w_plus), rnd(V), n_grid),
@@ -176,32 +145,23 @@ def phase_plane(a: float, b: float, w_plus: float, V: float, n_grid: int = 241) 
 
 
 def existence_diagram(a: float, b: float, n: int = 400) -> Computed:
-    """fpucore.qc_diagram.existence_diagram: arrays w_plus, c_plus, V_SK, c_minus."""
-    fn = core("qc_diagram", "existence_diagram")
+    """fpucore.qc.diagram.existence_diagram: arrays w_plus, c_plus, V_SK, c_minus."""
+    fn = diagram.existence_diagram
     lw = law(a, b)
     return CACHE.get(("diagram", rnd(a), rnd(b), n), lambda: fn(lw, n=n))
 
 
 # --------------------------------------------------------------------------- discrete (costly)
-def _accepts(fn: Callable, name: str) -> bool:
-    try:
-        return name in inspect.signature(fn).parameters
-    except (TypeError, ValueError):
-        return False
-
-
 def _discrete_call(a: float, b: float, mode: str, w_plus: float, V: float, N, tol: float):
     """(cache key, solver, args, kwargs) of a discrete wave (raises ParameterError)."""
     lw = law(a, b)
     N = None if N is None else int(N)
     if mode == "superkink":
-        from fpucore import qc
-
         sk = qc.superkink_from_w_plus(lw, w_plus)  # validates w_plus, gives V_SK and branch
         key = ("wave_sk", rnd(a), rnd(b), sk.branch, N, rnd(tol, 3), rnd(sk.V))
-        return key, ("solve_superkink",), (lw, sk.V), dict(branch=sk.branch, N=N, tol=tol)
+        return key, wave.solve_superkink, (lw, sk.V), dict(branch=sk.branch, N=N, tol=tol)
     key = ("wave_sw", rnd(a), rnd(b), rnd(w_plus), N, rnd(tol, 3), rnd(V))
-    return key, ("solve_solitary",), (lw, w_plus, V), dict(N=N, tol=tol)
+    return key, wave.solve_solitary, (lw, w_plus, V), dict(N=N, tol=tol)
 
 
 def discrete_wave(
@@ -210,11 +170,10 @@ def discrete_wave(
     """Discrete traveling wave (fixed point of eq. nonlin_map) via fpucore.wave.
 
     Superkink: ``wave.solve_superkink(law, V, branch)`` with the branch of w_plus; solitary:
-    ``wave.solve_solitary(law, w_plus, V)``.  Families (sweeps) use fpucore.continuation,
+    ``wave.solve_solitary(law, w_plus, V)``.  Families (sweeps) use fpucore.wave.continuation,
     which seeds each solve from its neighbour.
     """
-    key, names, args, kwargs = _discrete_call(a, b, mode, w_plus, V, N, tol)
-    solve = core("wave", *names)
+    key, solve, args, kwargs = _discrete_call(a, b, mode, w_plus, V, N, tol)
     return CACHE.get(key, lambda: solve(*args, **kwargs))
 
 
@@ -233,10 +192,9 @@ def floquet_spectrum(
     a: float, b: float, mode: str, w_plus: float, V: float, N: int | None, tol: float
 ) -> tuple[Computed, Computed]:
     """(discrete wave, Floquet spectrum of it) — the wave comes from the shared cache."""
-    spectrum = core("floquet", "spectrum")
     r = discrete_wave(a, b, mode, w_plus, V, N, tol)
     key = ("floquet", rnd(a), rnd(b), mode, rnd(w_plus), rnd(V), N, rnd(tol, 3))
-    return r, CACHE.get(key, lambda: spectrum(r.value))
+    return r, CACHE.get(key, lambda: fq.spectrum(r.value))
 
 
 def floquet_sweep(
@@ -250,13 +208,12 @@ def floquet_sweep(
     progress=None,
 ) -> Computed:
     """max |μ| against V for the family (fpucore.floquet.sweep; progress(i, n, ...))."""
-    sweep = core("floquet", "sweep")
     lw = law(a, b)
     Vs = tuple(rnd(v) for v in V_values)
     wp = None if w_plus is None else rnd(w_plus)
     return CACHE.get(
         ("fsweep", rnd(a), rnd(b), kind, wp, Vs, int(N), branch),
-        lambda: sweep(
+        lambda: fq.sweep(
             lw,
             kind=kind,
             V_values=np.array(Vs),
@@ -272,48 +229,42 @@ def discrete_family(
     a: float, b: float, w_plus: float, V_values, N: int | None, tol: float, progress=None
 ) -> Computed:
     """Discrete solitary waves at the given velocities (amplitude/energy dots of Figs.
-    SWamp_cubic_DvsQC, SWenergy_cubic_DvsQC) via fpucore.continuation.solitary_family, which
+    SWamp_cubic_DvsQC, SWenergy_cubic_DvsQC) via fpucore.wave.family.solitary_family, which
     continues each solve from its neighbour.  Returns the list of wave results."""
-    family = core("continuation", "solitary_family")
     lw = law(a, b)
     Vs = tuple(rnd(v) for v in V_values)
 
     def run():
         cb = None if progress is None else (lambda i, n, *rest: progress(i, n))
-        fam = family(lw, w_plus, np.array(Vs), N=N, tol=tol, progress=cb)
+        fam = wave.solitary_family(lw, w_plus, np.array(Vs), N=N, tol=tol, progress=cb)
         return list(fam.results)
 
     return CACHE.get(("dfamily", rnd(a), rnd(b), rnd(w_plus), Vs, N, rnd(tol, 3)), run)
 
 
 # --------------------------------------------------------------------------- simulation
-def simulate(kind: str, a: float, b: float, params: dict, progress=None) -> Computed:
+def simulation(kind: str, a: float, b: float, params: dict, progress=None) -> Computed:
     """Direct simulation via fpucore.simulate: kind "riemann" | "gaussian" | "seeded".
 
     ``params`` holds the keyword arguments of the fpucore function (for "seeded" also
     mode/w_plus/V/N/tol of the seeding wave, which comes from the shared cache).
     """
-    sim = core("simulate")
     lw = law(a, b)
     p = dict(params)
     key = ("sim", kind, rnd(a), rnd(b), tuple(sorted((k, str(v)) for k, v in p.items())))
-    extra = {}
-    if progress is not None:
-        extra["progress"] = progress
+    extra = {} if progress is None else {"progress": progress}
 
     def call(fn, *args, **kw):
-        if "progress" in extra and not _accepts(fn, "progress"):
-            extra.pop("progress")
         return fn(*args, **kw, **extra)
 
     if kind == "riemann":
-        fn = core("simulate", "riemann")
+        fn = sim.riemann
         return CACHE.get(key, lambda: call(fn, lw, p.pop("w_left"), p.pop("w_right"), **p))
     if kind == "gaussian":
-        fn = core("simulate", "gaussian")
+        fn = sim.gaussian
         return CACHE.get(key, lambda: call(fn, lw, p.pop("w_B"), p.pop("A"), **p))
     if kind == "seeded":
-        fn = core("simulate", "seeded")
+        fn = sim.seeded
         wave_args = [p.pop(k) for k in ("mode", "w_plus", "V", "N", "tol")]
 
         def run():
@@ -328,5 +279,4 @@ def simulate(kind: str, a: float, b: float, params: dict, progress=None) -> Comp
             return call(fn, r, **p)
 
         return CACHE.get(key, run)
-    del sim
     raise ParameterError("kind", kind, "'riemann', 'gaussian' or 'seeded'")

@@ -5,7 +5,7 @@ connections, so no visitor waits for Numba compilation or for the default view.
    NUMBA_CACHE_DIR the compiled code is reused from disk across restarts);
 2. renders every scene once for the default parameters, which fills the process-wide result
    cache (QC scenes, the default discrete wave and its Floquet spectrum) and imports/initializes
-   HoloViews' Bokeh backend.  Modules that are not available are skipped.
+   HoloViews' Bokeh backend.
 """
 
 from __future__ import annotations
@@ -17,7 +17,10 @@ import time
 log = logging.getLogger("fpu-explorer")
 
 
-os.environ.setdefault("BOKEH_RESOURCES", "server")  # see app/main.py
+os.environ.setdefault("BOKEH_RESOURCES", "server")  # see app/main.py; before panel is imported
+
+from app.explorer import Explorer  # noqa: E402
+from fpucore.warm import warm_all  # noqa: E402
 
 
 def warm(verbose: bool = True, scenes: str | None = None) -> dict[str, float]:
@@ -30,14 +33,10 @@ def warm(verbose: bool = True, scenes: str | None = None) -> dict[str, float]:
     times: dict[str, float] = {}
     t0 = time.perf_counter()
     try:
-        from fpucore.warm import warm_all
-
         warm_all()
     except Exception as exc:  # warm-up must never keep the server from starting
         log.warning("fpucore warm-up skipped: %s", exc)
     times["jit"] = time.perf_counter() - t0
-
-    from app.explorer import Explorer
 
     explorer = Explorer()
     for scene in explorer.scenes:

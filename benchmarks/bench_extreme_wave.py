@@ -7,7 +7,7 @@ V = 5.2174919476 (≈ 1.0e-10 above, tensile), plus |V − V_SK| = 1e-6, 1e-8 fo
 Prints, per velocity: converged, N, m, residual, dropped residual, step-doubling error, tail
 error, amplitude, route and wall time — or the solver's reason for not converging.
 
-Expected (continuation in plateau mass, fpucore.wave_plateau): all five converge; the two paper
+Expected (continuation in plateau mass, fpucore.wave.plateau): all five converge; the two paper
 velocities in ~1–2 s each with the front-position error bar in the message (measured ±0.04 and
 ±0.02 sites); before that route the last three did not converge (≈ 48 s for the five).
 """

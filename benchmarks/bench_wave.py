@@ -23,9 +23,9 @@ import time
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from fpucore import period_map as pm
 from fpucore import qc, wave
 from fpucore.law import CubicLaw
+from fpucore.wave import period_map as pm
 
 LAW = CubicLaw(-1.0, 10.0)
 
@@ -124,10 +124,10 @@ def main(argv=None):
     x = np.empty(1000)
     for m in (4, 6, 8, 10, 12, 16, 24):
         err = pm.step_doubling_error(LAW, r.w, r.wdot, 1 / 5.2, m, r.w_left, r.w_right)
-        sp = wave._superkink_spec(LAW, 5.2, "lower")
-        S = wave._system(LAW, sp, 500, m, r.K)
+        sp = wave.superkink_spec(LAW, 5.2, "lower")
+        S = wave.build_system(LAW, sp, 500, m, r.K)
         x0 = wave.qc_guess(sp, 500)
-        from fpucore.wave_system import newton
+        from fpucore.wave.system import newton
 
         ts, o = timed(lambda S=S, x0=x0: newton(S, x0, 1e-11), 3)
         tp, _ = timed(
@@ -167,7 +167,7 @@ def main(argv=None):
 
     # 3d. full family sweep (the paper's figures' worth of waves)
     t0 = time.perf_counter()
-    from fpucore.continuation import solitary_family, superkink_family
+    from fpucore.wave import solitary_family, superkink_family
 
     (a, b), (c, d) = qc.solitary_intervals(LAW, 1.0)
     Vs = np.concatenate([np.linspace(a, b, 42)[1:-1], np.linspace(c, d, 42)[1:-1]])

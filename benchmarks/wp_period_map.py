@@ -13,8 +13,8 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from fpucore import CubicLaw, qc
-from fpucore import period_map as pm
-from fpucore.rk_tableaux import DOP853, RK4
+from fpucore.tableaux.rk import DOP853, RK4
+from fpucore.wave import period_map as pm
 
 from .wp_common import Floor, Row, best_time
 

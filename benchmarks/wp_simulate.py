@@ -21,7 +21,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from fpucore import CubicLaw, simulate, wave
-from fpucore import chain_kernels as ck
+from fpucore.simulate import kernels as ck
 
 from .wp_common import Floor, Row, best_time
 

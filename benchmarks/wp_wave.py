@@ -25,7 +25,7 @@ from scipy.linalg import lapack
 
 from fpucore import wave
 from fpucore.law import CubicLaw
-from fpucore.wave_system import newton
+from fpucore.wave.system import newton
 
 from .bench_wave import baseline_scipy
 from .wp_common import Floor, Row, best_time
@@ -43,8 +43,8 @@ REF_TOL = 1e-15  # references: Newton until it stagnates at round-off
 
 def _spec(kind: str, V: float):
     if kind == "superkink":
-        return wave._superkink_spec(LAW, V, "lower")
-    return wave._solitary_spec(LAW, W_PLUS_SW, V)
+        return wave.superkink_spec(LAW, V, "lower")
+    return wave.solitary_spec(LAW, W_PLUS_SW, V)
 
 
 def _fixed_m(kind, V, N, m, jacobian="exact", tol=1e-12):
@@ -53,8 +53,8 @@ def _fixed_m(kind, V, N, m, jacobian="exact", tol=1e-12):
     sp = _spec(kind, V)
     scale = max(1.0, abs(sp.w_left), abs(sp.w_right))
     x0 = wave.qc_guess(sp, N)
-    K = wave._choose_K(LAW, sp, x0, max(m, 8))
-    o = newton(wave._system(LAW, sp, N, m, K), x0, tol * scale, 40, jacobian, 120.0)
+    K = wave.choose_K(LAW, sp, x0, max(m, 8))
+    o = newton(wave.build_system(LAW, sp, N, m, K), x0, tol * scale, 40, jacobian, 120.0)
     return o.x[0::2], o.x[1::2], o.converged
 
 
@@ -152,7 +152,7 @@ def _floors(N: int, route: str) -> list[Floor]:
     """One period integration (m = 12) and one banded LU of the exact Jacobian, same N."""
     sp = _spec("superkink", V_SK_CASE)
     x = wave.qc_guess(sp, N)
-    S = wave._system(LAW, sp, N, 12, wave._choose_K(LAW, sp, x, 12))
+    S = wave.build_system(LAW, sp, N, 12, wave.choose_K(LAW, sp, x, 12))
     t_int = best_time(lambda: S.integrate(x), min_time=0.1)
     ab, kl, ku, *_ = S.jacobian_banded(x)
     t_lu = best_time(lambda: lapack.dgbtrf(ab, kl, ku), min_time=0.1)

@@ -1,22 +1,35 @@
 """fpucore — headless core of fpu-explorer.
 
 Superkinks and solitary waves of the FPU chain with hardening–softening springs
-f(w) = a w³ + b w² + w (Vainchtein & Truskinovsky).  Flow of the package:
+f(w) = a w³ + b w² + w (Vainchtein & Truskinovsky).  One subpackage per stage of the science:
 
-    law (force law) → qc (quasicontinuum closed forms, phase plane, existence diagram)
-    → period_map / wave / continuation (discrete traveling waves)
-    → floquet (stability) and simulate / tracking (direct simulation) → cli
+    law (force laws)  →  qc (quasicontinuum closed forms, phase plane, diagrams)
+    →  tableaux (RK / embedded / RKN coefficients as data)
+    →  wave (discrete traveling waves: period map, Newton system, continuation, families)
+    →  floquet (stability: monodromy, multipliers, sweeps)
+    |  simulate (direct simulation of the chain and wave tracking)
+    →  cli (the ``fpu`` command)
 
-Every result object carries its error estimate and ``elapsed_s``.
+``errors`` (ParameterError) and ``result`` (the result protocol) are imported by all and import
+nothing back.  Every result object carries its error estimate, ``status`` and ``elapsed_s``.
 """
 
-from ._jit_cache import key_cache_dir
+from fpucore.jit_cache import key_cache_dir
 
-key_cache_dir()  # before any kernel is compiled: see fpucore/_jit_cache.py
+key_cache_dir()  # before any kernel is compiled: see fpucore/jit_cache.py
 
-from . import qc  # noqa: E402
-from .errors import ConvergenceError, ParameterError  # noqa: E402
-from .law import CubicLaw, HardeningSofteningLaw  # noqa: E402
+from fpucore import floquet, qc, simulate, wave  # noqa: E402
+from fpucore.errors import ConvergenceError, ParameterError  # noqa: E402
+from fpucore.law import CubicLaw, HardeningSofteningLaw  # noqa: E402
 
-__all__ = ["CubicLaw", "HardeningSofteningLaw", "ParameterError", "ConvergenceError", "qc"]
+__all__ = [
+    "CubicLaw",
+    "HardeningSofteningLaw",
+    "ParameterError",
+    "ConvergenceError",
+    "qc",
+    "wave",
+    "floquet",
+    "simulate",
+]
 __version__ = "0.1.0"

@@ -6,7 +6,8 @@ its worker threads, the tests) load it from disk instead of compiling.
 
 from __future__ import annotations
 
-from .law import CubicLaw, ddforce, dforce, force
+from fpucore import floquet, simulate, wave
+from fpucore.law import CubicLaw, ddforce, dforce, force
 
 
 def _law_kernels(law) -> None:
@@ -15,20 +16,14 @@ def _law_kernels(law) -> None:
 
 
 def _wave(law) -> None:
-    from . import wave
-
     wave.warm(law)
 
 
 def _floquet(law) -> None:
-    from . import floquet
-
     floquet.spectrum(floquet.HomogeneousState(law, 1.0, 5.0, 16))
 
 
 def _simulate(law) -> None:
-    from . import simulate
-
     simulate.riemann(law, 4.6, 0.0, L=40, t_end=0.5, n_snapshots=4)
     simulate.riemann(law, 4.6, 0.0, L=40, t_end=0.5, n_snapshots=4, method="symplectic", dt=0.01)
     simulate.riemann(law, 4.6, 0.0, L=40, t_end=0.5, n_snapshots=4, method="dopri5")

@@ -6,7 +6,7 @@ requests (latest parameters win), so slider drags never queue up stale work and 
 loop stays free; Panel schedules the resulting model updates on the session's loop.
 
 Every outcome is shown in the scene: a plot with its error estimates and timings, or a message
-(``ParameterError`` text, "not available: <reason>", or a one-line failure) — never a traceback.
+(``ParameterError`` text or a one-line failure) — never a traceback.
 """
 
 from __future__ import annotations
@@ -24,9 +24,10 @@ import numpy as np
 import panel as pn
 from panel.io.state import set_curdoc
 
+from fpucore.cli.common import jsonable
 from fpucore.errors import ParameterError
 
-from ..compute import Computed, NotAvailable
+from ..compute import Computed
 from ..state import ExplorerState
 
 log = logging.getLogger("fpu-explorer")
@@ -96,9 +97,7 @@ def as_csv(columns: dict[str, np.ndarray], header: str = "") -> io.StringIO:
 
 
 def as_json(obj) -> io.StringIO:
-    from fpucore.cli import _jsonable
-
-    buf = io.StringIO(json.dumps(_jsonable(obj), indent=1))
+    buf = io.StringIO(json.dumps(jsonable(obj), indent=1))
     buf.seek(0)
     return buf
 
@@ -295,9 +294,6 @@ class Scene:
         except ParameterError as exc:
             self._show_message(str(exc), "warning")
             return None
-        except NotAvailable as exc:
-            self._show_message(f"not available: {exc}", "info")
-            return None
         except Exception as exc:  # the server keeps serving; the log keeps the traceback
             log.exception("scene %s failed", self.key)
             self._show_message(
@@ -387,7 +383,7 @@ class Scene:
     def _download(self):
         try:
             name, buf = self.download_data()
-        except (SceneMessage, ParameterError, NotAvailable) as exc:
+        except (SceneMessage, ParameterError) as exc:
             buf, name = io.StringIO(f"# {exc}\n"), f"{self.key}-unavailable.txt"
         self.download.filename = name
         return buf

@@ -12,6 +12,8 @@ import holoviews as hv
 import numpy as np
 import panel as pn
 
+from fpucore import qc
+
 from .. import compute
 from .base import Info, Scene, SceneMessage, as_csv, as_json, fmt_num
 
@@ -42,8 +44,6 @@ class FloquetScene(Scene):
     def _sweep_values(self):
         s = self.state
         lw = s.law()
-        from fpucore import qc
-
         k = int(self.n_sweep.value)
         if s.mode == "superkink":
             lo, hi = qc.superkink_velocity_bounds(lw)

@@ -143,11 +143,7 @@ class ProfilesScene(BokehScene):
             # the QC curve now, the dots when the solve is done
             self.show_intermediate(self._frame(up, half, ys), info)
             up = Updates()
-        try:
-            c = compute.discrete_wave(s.a, s.b, s.mode, s.w_plus, s.V, s.N, s.tol)
-        except compute.NotAvailable as exc:
-            info.notes.append(f"discrete wave not available: {exc}")
-            return self._frame(up, half, ys)
+        c = compute.discrete_wave(s.a, s.b, s.mode, s.w_plus, s.V, s.N, s.tol)
         r = c.value
         self._discrete = r
         info.time(f"discrete N={r.N}", c)

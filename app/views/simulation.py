@@ -82,7 +82,6 @@ class SimulationScene(Scene):
 
     def render(self, info: Info):
         s = self.state
-        compute.core("simulate", "riemann", "gaussian", "seeded")
         job = self._job()
         if self._want_run:
             self._params = job
@@ -97,7 +96,7 @@ class SimulationScene(Scene):
             elif len(args) == 1 and isinstance(args[0], float):
                 self.set_progress(int(100 * args[0]), 100)
 
-        c = compute.simulate(kind, s.a, s.b, p, progress=progress)
+        c = compute.simulation(kind, s.a, s.b, p, progress=progress)
         sim = c.value
         info.time(f"simulation ({kind})", c)
         info.error("energy drift", sim.energy_drift)

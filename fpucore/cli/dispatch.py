@@ -1,0 +1,37 @@
+"""The ``fpu`` command line (also ``python -m fpucore``): dispatch only.
+
+Each command lives in its own module here (a ``register(subparsers)`` function that sets ``func``
+on its parser).  This module builds the parser and turns ParameterError into exit code 2 with a
+one-line message on stderr.
+"""
+
+from __future__ import annotations
+
+import sys
+
+from fpucore.cli import floquet, qc, simulate, warm, wave
+from fpucore.cli.common import Parser
+from fpucore.errors import ParameterError
+
+COMMANDS = (qc, warm, wave, floquet, simulate)
+
+
+def build_parser() -> Parser:
+    parser = Parser(prog="fpu", description=__doc__.splitlines()[0])
+    sub = parser.add_subparsers(dest="command", required=True, parser_class=Parser)
+    for mod in COMMANDS:
+        mod.register(sub)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        return int(args.func(args) or 0)
+    except ParameterError as exc:
+        sys.stderr.write(f"fpu: error: {exc}\n")
+        return 2
+    except KeyboardInterrupt:
+        sys.stderr.write("fpu: interrupted\n")
+        return 130

@@ -1,0 +1,168 @@
+"""``fpu floquet``: Floquet multipliers of discrete superkinks / solitary waves (paper §6).
+
+fpu floquet superkink --V 5.2 [--N 500] [--branch lower] [--json]
+fpu floquet solitary --w-plus 1 --V 5.0 [--N 500] [--json]
+fpu floquet sweep superkink --V-min 4.8 --V-max 5.85 --n 22 [--N 300 500] [--out t.csv]
+fpu floquet sweep solitary --w-plus 6 --V 4.0 4.5 5.0 [--out t.json]
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+
+import numpy as np
+
+from fpucore import floquet, wave
+from fpucore.cli.common import add_law_args, jsonable, print_json
+from fpucore.errors import ParameterError
+from fpucore.law import CubicLaw
+
+
+def register(sub) -> None:
+    p = sub.add_parser("floquet", help="Floquet multipliers of discrete traveling waves (§6)")
+    fs = p.add_subparsers(dest="floquet_command", required=True, parser_class=type(p))
+
+    for name in ("superkink", "solitary"):
+        q = fs.add_parser(name, help=f"spectrum of one discrete {name} (max |mu|, quartets)")
+        add_law_args(q)
+        if name == "solitary":
+            q.add_argument("--w-plus", type=float, required=True, help="state ahead (w_+)")
+        else:
+            q.add_argument("--branch", choices=("lower", "upper"), default="lower")
+        q.add_argument("--V", type=float, required=True, help="velocity V > 0")
+        q.add_argument("--N", type=int, default=500, help="chain size (even; default 500)")
+        q.add_argument("--m", type=int, default=None, help="RK steps per period (default auto)")
+        q.add_argument("--json", action="store_true", help="print one JSON object")
+        q.set_defaults(func=run_one, kind=name)
+
+    s = fs.add_parser("sweep", help="max |mu| against V along a family (cached, progress bar)")
+    s.add_argument("kind", choices=("superkink", "solitary"))
+    add_law_args(s)
+    s.add_argument("--w-plus", type=float, default=None, help="state ahead (solitary waves)")
+    s.add_argument("--branch", choices=("lower", "upper"), default="lower")
+    s.add_argument("--V", type=float, nargs="+", default=None, help="explicit velocities")
+    s.add_argument("--V-min", type=float, default=None)
+    s.add_argument("--V-max", type=float, default=None)
+    s.add_argument("--n", type=int, default=12, help="number of velocities in [V-min, V-max]")
+    s.add_argument("--N", type=int, nargs="+", default=[500], help="chain size(s), one sweep each")
+    s.add_argument("--out", default=None, help="write the table to this .csv or .json file")
+    s.add_argument("--no-cache", action="store_true", help="ignore and do not write the cache")
+    s.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
+    s.add_argument("--json", action="store_true", help="print the table as one JSON object")
+    s.set_defaults(func=run_sweep)
+
+
+def _wave(args, law):
+    if args.kind == "superkink":
+        return wave.solve_superkink(law, args.V, branch=args.branch, N=args.N)
+    return wave.solve_solitary(law, args.w_plus, args.V, N=args.N)
+
+
+def _check_N(N: int) -> None:
+    if N < 8 or N % 2:
+        raise ParameterError("N", N, "an even integer >= 8")
+
+
+def run_one(args) -> int:
+    _check_N(args.N)
+    law = CubicLaw(args.a, args.b)
+    r = _wave(args, law)
+    if not r.converged:
+        raise ParameterError("V", args.V, "a velocity where the discrete wave converges",
+                             f"wave solver: {r.message}")  # fmt: skip
+    fr = floquet.spectrum(r, m=args.m)
+    d = fr.as_dict()
+    d["elapsed_s"] = fr.elapsed_s + r.elapsed_s
+    d["floquet_elapsed_s"] = fr.elapsed_s
+    if args.json:
+        print_json(d)
+        return 0
+    w = fr.wave
+    print(f"{w.get('kind', args.kind)} V={fr.V:.10g} N={fr.N} (wave residual "
+          f"{w.get('residual', float('nan')):.1e}, {r.elapsed_s:.2f} s)")  # fmt: skip
+    print(f"max |mu|                 = {fr.max_modulus:.12f}")
+    print(f"max |mu| away from mu=1  = {fr.max_modulus_away_from_1:.12f}   "
+          f"(|mu|-1 = {fr.excess:.3e})")  # fmt: skip
+    print(f"error bar                = {fr.error:.1e}  (quartet symmetry {fr.symmetry_error:.1e},"
+          f" integrator {fr.integrator_error:.1e})")  # fmt: skip
+    print(f"trivial cluster at 1     : {fr.n_trivial} multipliers, split {fr.trivial_split:.1e} "
+          f"(radius {fr.trivial_radius:.0e}, phonon gap {fr.phonon_gap:.1e})")  # fmt: skip
+    print(f"verdict                  : {fr.verdict} ({fr.n_unstable} multipliers beyond error)")
+    for g in fr.quartets()[:5]:
+        mu = g[0]
+        print(f"  {'quartet' if len(g) == 4 else 'real pair'}: |mu| = {abs(mu):.10f}, "
+              f"arg mu = {np.angle(mu):+.6f}, partners |mu| = "
+              + ", ".join(f"{abs(x):.10f}" for x in g[1:]))  # fmt: skip
+    print(f"time: monodromy {fr.monodromy_s:.3f} s, step-doubling check {fr.check_s:.3f} s, "
+          f"eig {fr.eig_s:.3f} s, total {fr.elapsed_s:.2f} s")  # fmt: skip
+    if not fr.converged:
+        print(f"warning: {fr.message}", file=sys.stderr)
+    return 0
+
+
+def _velocities(args) -> np.ndarray:
+    if args.V is not None:
+        return np.asarray(args.V, float)
+    if args.V_min is None or args.V_max is None:
+        raise ParameterError("V", None, "--V v1 v2 ... or both --V-min and --V-max")
+    if not (2 <= args.n <= 10000):
+        raise ParameterError("n", args.n, "[2, 10000]")
+    return np.linspace(args.V_min, args.V_max, args.n)
+
+
+def run_sweep(args) -> int:
+    law = CubicLaw(args.a, args.b)
+    Vs = _velocities(args)
+    for N in args.N:
+        _check_N(N)
+    tables = []
+    for N in args.N:
+        prog = None if (args.no_progress or args.json) else True
+        if prog and len(args.N) > 1:
+            sys.stderr.write(f"N = {N}\n")
+        sw = floquet.sweep(law, args.kind, Vs, w_plus=args.w_plus, N=N, progress=prog,
+                           branch=args.branch, use_cache=not args.no_cache)  # fmt: skip
+        tables.append(sw)
+    obj = {"kind": args.kind, "a": law.a, "b": law.b, "w_plus": args.w_plus,
+           "sweeps": [t.as_dict() for t in tables],
+           "elapsed_s": sum(t.elapsed_s for t in tables)}  # fmt: skip
+    if args.out:
+        if args.out.endswith(".json"):
+            with open(args.out, "w") as fh:
+                json.dump(jsonable(obj), fh)
+        else:
+            with open(args.out, "w") as fh:
+                for i, t in enumerate(tables):
+                    buf = _Buf()
+                    t.to_csv(buf)
+                    lines = buf.text.splitlines(keepends=True)
+                    fh.writelines(lines if i == 0 else lines[1:])
+    if args.json:
+        print_json(obj)
+        return 0
+    print(f"{'N':>5} {'V':>12} {'max|mu|-1':>11} {'away-1':>11} {'error':>9} {'unst':>4}  verdict")
+    for t in tables:
+        for row, c in zip(t.rows, t.cached, strict=True):
+            mm, ma = row["max_modulus"], row["max_modulus_away_from_1"]
+            f = lambda x: "nan" if x is None else f"{x - 1:.3e}"  # noqa: E731
+            e = "nan" if row["error"] is None else f"{row['error']:.1e}"
+            tag = " (cached)" if c else ""
+            print(f"{t.N:>5} {row['V']:>12.8g} {f(mm):>11} {f(ma):>11} {e:>9} "
+                  f"{row['n_unstable'] or 0:>4}  {row['verdict']}{tag}")  # fmt: skip
+    print(
+        f"total {obj['elapsed_s']:.1f} s" + (f"; table written to {args.out}" if args.out else "")
+    )
+    return 0
+
+
+class _Buf:
+    def __init__(self):
+        self.text = ""
+
+    def write(self, s):
+        self.text += s
+
+
+_ = argparse  # argparse types are used through the parent parser

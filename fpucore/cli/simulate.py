@@ -1,0 +1,190 @@
+"""``fpu simulate``: direct simulation of the chain (paper §6) with wave tracking.
+
+    fpu simulate riemann  --w-left 4.6 --w-right 0 --L 3600 --t-end 300 [--json]
+    fpu simulate gaussian --w-B 1 --A 6 --L 2400 --t-end 200 --guard bounded [--json]
+    fpu simulate wave superkink --V 5.2 [--branch lower] [--periods 50] [--json]
+    fpu simulate wave solitary --w-plus 1 --V 5 [--json]
+
+JSON: one object with ``waves`` ([{kind, velocity, velocity_error, amplitude, left_state,
+right_state, background, peak, position, n_fit, method}]), ``energy_drift``, ``error_estimate``,
+``elapsed_s``, ``status``, ``message`` and ``details``.  A progress bar goes to stderr on long runs
+(when stderr is a terminal, or always with ``--progress always``).
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+
+from fpucore import simulate, wave
+from fpucore.cli.common import add_law_args, print_json
+from fpucore.law import CubicLaw
+
+
+class _Bar:
+    """A minimal text progress bar on stderr (no dependency)."""
+
+    def __init__(self, label: str, width: int = 40):
+        self.label, self.width, self.last = label, width, -1
+        self.t0 = time.perf_counter()
+
+    def __call__(self, frac: float) -> None:
+        pct = int(100 * min(max(frac, 0.0), 1.0))
+        if pct == self.last:
+            return
+        self.last = pct
+        k = pct * self.width // 100
+        el = time.perf_counter() - self.t0
+        sys.stderr.write(f"\r{self.label} [{'#' * k}{'.' * (self.width - k)}] {pct:3d}% {el:6.1f}s")
+        if pct >= 100:
+            sys.stderr.write("\n")
+        sys.stderr.flush()
+
+
+def _progress(args, work: float):
+    mode = args.progress
+    if mode == "never":
+        return None
+    if mode == "always" or (sys.stderr.isatty() and work >= 1e5):
+        return _Bar("simulate")
+    return None
+
+
+def _add_run_args(p, t_end_default=None) -> None:
+    add_law_args(p)
+    p.add_argument("--method", choices=simulate.METHODS, default="rkn12")
+    p.add_argument("--rtol", type=float, default=None, help="adaptive tolerance (default 1e-10)")
+    p.add_argument("--dt", type=float, default=None, help="symplectic step (default 0.02)")
+    p.add_argument("--boundary", choices=simulate.BOUNDARIES, default=None)
+    p.add_argument(
+        "--guard",
+        choices=simulate.GUARDS,
+        default="convex",
+        help="stop when a strain leaves (alpha, beta) [convex] or the zeros of f [bounded]",
+    )
+    p.add_argument("--snapshots", type=int, default=200, help="number of output snapshots")
+    p.add_argument("--max-sites", type=int, default=1000, help="sites kept per snapshot")
+    p.add_argument("--probes", type=int, nargs="*", default=(), help="site numbers to record")
+    p.add_argument("--progress", choices=("auto", "always", "never"), default="auto")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+
+
+def register(sub) -> None:
+    p = sub.add_parser("simulate", help="direct simulation of the chain with wave tracking (§6)")
+    ss = p.add_subparsers(dest="scenario", required=True, parser_class=type(p))
+
+    r = ss.add_parser("riemann", help="Riemann data (eq. Riemann_data)")
+    r.add_argument("--w-left", type=float, required=True)
+    r.add_argument("--w-right", type=float, required=True)
+    r.add_argument("--L", type=int, required=True, help="number of sites (even)")
+    r.add_argument("--t-end", type=float, required=True)
+    _add_run_args(r)
+    r.set_defaults(func=run_riemann)
+
+    g = ss.add_parser("gaussian", help="Gaussian data (eq. GaussIC)")
+    g.add_argument("--w-B", type=float, required=True, help="background strain")
+    g.add_argument("--A", type=float, required=True, help="signed amplitude")
+    g.add_argument("--L", type=int, required=True)
+    g.add_argument("--t-end", type=float, required=True)
+    _add_run_args(g)
+    g.set_defaults(func=run_gaussian)
+
+    w = ss.add_parser("wave", help="seeded with a computed discrete traveling wave")
+    ws = w.add_subparsers(dest="wave_kind", required=True, parser_class=type(p))
+    sk = ws.add_parser("superkink", help="computed superkink (fpucore.wave.solve_superkink)")
+    sk.add_argument("--V", type=float, required=True)
+    sk.add_argument("--branch", choices=("lower", "upper"), default="lower")
+    sw = ws.add_parser("solitary", help="computed solitary wave (fpucore.wave.solve_solitary)")
+    sw.add_argument("--w-plus", type=float, required=True, help="background strain")
+    sw.add_argument("--V", type=float, required=True)
+    for q in (sk, sw):
+        q.add_argument("--N", type=int, default=None, help="sites of the computed wave")
+        q.add_argument("--L", type=int, default=None, help="chain length (default: fits)")
+        q.add_argument("--periods", type=float, default=50.0, help="run length in periods 1/V")
+        _add_run_args(q)
+        q.set_defaults(func=run_wave)
+
+
+def _common(args, default_boundary: str, default_rtol: float) -> dict:
+    return dict(
+        method=args.method,
+        rtol=default_rtol if args.rtol is None else args.rtol,
+        dt=args.dt,
+        boundary=args.boundary or default_boundary,
+        guard=args.guard,
+        n_snapshots=args.snapshots,
+        max_sites_out=args.max_sites,
+        probes=tuple(args.probes),
+    )
+
+
+def _emit(args, s, extra: dict | None = None) -> int:
+    out = s.summary()
+    if extra:
+        out.update(extra)
+    if args.json:
+        print_json(out)
+    else:
+        print(f"{s.scenario}: L = {s.L}, boundary = {s.boundary}, method = {s.method}")
+        print(f"status   {s.status}: {s.message}")
+        print(f"energy   drift {s.energy_drift:.3e} (relative), {s.energy_drift_abs:.3e} (abs)")
+        print(f"error    integrator estimate {s.error_estimate:.3e}")
+        print(f"time     {s.elapsed_s:.3f} s, {s.n_steps} steps, {s.n_rhs} RHS evaluations")
+        if s.waves:
+            print(f"{'kind':10s} {'velocity':>14s} {'amplitude':>11s} {'left':>10s} {'right':>10s}")
+            for w in s.waves:
+                print(
+                    f"{w.kind:10s} {w.velocity:14.8f} {w.amplitude:11.5f} "
+                    f"{w.left_state:10.5f} {w.right_state:10.5f}"
+                )
+        for k, v in (extra or {}).items():
+            print(f"{k}: {v}")
+        for k, v in s.details.items():
+            print(f"{k}: {v}")
+    return 0 if s.success else 1
+
+
+def run_riemann(args) -> int:
+    law = CubicLaw(args.a, args.b)
+    kw = _common(args, "fixed_particles", 1e-10)
+    prog = _progress(args, args.L * args.t_end)
+    s = simulate.riemann(law, args.w_left, args.w_right, args.L, args.t_end, progress=prog, **kw)
+    return _emit(args, s)
+
+
+def run_gaussian(args) -> int:
+    law = CubicLaw(args.a, args.b)
+    kw = _common(args, "fixed_particles", 1e-10)
+    prog = _progress(args, args.L * args.t_end)
+    s = simulate.gaussian(law, args.w_B, args.A, args.L, args.t_end, progress=prog, **kw)
+    return _emit(args, s)
+
+
+def run_wave(args) -> int:
+    law = CubicLaw(args.a, args.b)
+    if args.wave_kind == "superkink":
+        r = wave.solve_superkink(law, args.V, branch=args.branch, N=args.N)
+    else:
+        r = wave.solve_solitary(law, args.w_plus, args.V, N=args.N)
+    solve = {
+        "wave_solve": {
+            "kind": r.kind,
+            "V": r.V,
+            "N": r.N,
+            "converged": r.converged,
+            "residual": r.residual,
+            "message": r.message,
+            "elapsed_s": r.elapsed_s,
+        }
+    }
+    if not r.converged:
+        if args.json:
+            print_json({"status": "not_converged", "stop_reason": "wave_not_converged", **solve})
+        else:
+            print(f"traveling wave did not converge: {r.message}", file=sys.stderr)
+        return 1
+    kw = _common(args, "fixed_strain", 1e-12)
+    t_end = args.periods / r.V
+    prog = _progress(args, (args.L or r.N + r.V * t_end) * t_end)
+    s = simulate.seeded(r, L=args.L, t_end=t_end, progress=prog, **kw)
+    return _emit(args, s, solve)

@@ -1,0 +1,32 @@
+"""Floquet stability of discrete traveling waves (paper §6, eqs. linear, linear_map).
+
+kernels (Numba: shifted rows, exact deflation)  →  monodromy (𝓜 from the tangent flow,
+its multipliers)  →  multipliers (FloquetResult: spectrum, error bars, verdict)
+→  checks (quartet symmetry, homogeneous closed form, phonon gap)  →  sweep (max|μ| along V)
+"""
+
+from fpucore.floquet.checks import (
+    HomogeneousState,
+    homogeneous_multipliers,
+    phonon_gap,
+    quartet_symmetry_error,
+)
+from fpucore.floquet.monodromy import MAX_N, Monodromy, default_steps, monodromy, multipliers_of
+from fpucore.floquet.multipliers import FloquetResult, spectrum
+from fpucore.floquet.sweeps import SweepResult, sweep
+
+__all__ = [
+    "HomogeneousState",
+    "homogeneous_multipliers",
+    "phonon_gap",
+    "quartet_symmetry_error",
+    "MAX_N",
+    "Monodromy",
+    "default_steps",
+    "monodromy",
+    "multipliers_of",
+    "FloquetResult",
+    "spectrum",
+    "SweepResult",
+    "sweep",
+]

@@ -1,0 +1,106 @@
+"""Structure checks of Floquet spectra and the closed-form test case (used by
+:mod:`fpucore.floquet`, re-exported there).
+
+* :func:`quartet_symmetry_error` — the measured violation of the Hamiltonian quartet symmetry
+  (μ, μ̄, 1/μ, 1/μ̄): the error bar of |μ| − 1;
+* :func:`phonon_gap` — how far the continuous spectrum of a background state stays from μ = 1;
+* :class:`HomogeneousState` with :func:`homogeneous_multipliers` — the constant state as a
+  "traveling wave" of any V, whose spectrum is known in closed form (dispersion relation).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.spatial import cKDTree
+
+from fpucore.errors import ParameterError
+
+
+def quartet_symmetry_error(mu: np.ndarray) -> tuple[float, float]:
+    """Measured violation of the Hamiltonian quartet symmetry of a multiplier set.
+
+    For every μ_i the partner 1/μ̄_i must be in the set; the relative mismatch is
+    min_j |μ̄_i μ_j − 1| (= |μ_j − 1/μ̄_i| / |1/μ̄_i|).  For a multiplier on the unit circle the
+    partner is itself, so a multiplier pushed off the circle by δ with no partner contributes 2δ:
+    this is exactly the error bar of |μ| − 1 for elliptic multipliers.
+
+    Returns (reciprocal_error, conjugate_error): maxima over the set of the two mismatches.
+    """
+    mu = np.asarray(mu, dtype=complex)
+    pts = np.column_stack([mu.real, mu.imag])
+    tree = cKDTree(pts)
+    inv = 1.0 / np.conj(mu)
+    _, j = tree.query(np.column_stack([inv.real, inv.imag]))
+    rec = np.abs(np.conj(mu) * mu[j] - 1.0)
+    _, jc = tree.query(np.column_stack([mu.real, -mu.imag]))
+    conj = np.abs(mu[jc] - np.conj(mu))
+    return float(rec.max(initial=0.0)), float(conj.max(initial=0.0))
+
+
+def phonon_gap(law, w_bg: float, V: float, N: int) -> float:
+    """Smallest |μ − 1| of the continuous-spectrum multipliers of a background state w_bg.
+
+    Homogeneous state, periodic ring of N sites: μ = exp(i(k ± ω(k)T)), k = 2πj/N, j ≠ 0,
+    ω = 2√f′(w_bg)|sin(k/2)|, T = 1/V.  The trivial cluster at 1 must be well inside this.
+    """
+    c = math.sqrt(max(float(law.df(w_bg)), 0.0))
+    k = 2.0 * np.pi * np.arange(1, N) / N
+    om = 2.0 * c * np.abs(np.sin(0.5 * k)) / V
+    d = np.concatenate([np.abs(2.0 * np.sin(0.5 * (k + om))), np.abs(2.0 * np.sin(0.5 * (k - om)))])
+    return float(d.min())
+
+
+def homogeneous_multipliers(law, w0: float, V: float, N: int) -> np.ndarray:
+    """Exact multipliers of the shifted monodromy for the constant state w_n ≡ w0 (test case).
+
+    With F = f′(w0) = c² the linear chain on the ring is ÿ = c²Δy; Fourier mode y_n = e^{ikn},
+    k = 2πj/N (j = 0 … N−1, the periodic BC), solves it with e^{±iωt}, ω² = 4c² sin²(k/2).  The
+    shifted map sends y_n(0) to y_{n+1}(T) = e^{ik} e^{±iωT} y_n(0), so μ = e^{i(k ± ωT)},
+    T = 1/V.  For k = 0 (ω = 0) both are μ = 1 (the Jordan block of the conserved sums).
+    Returns the 2N multipliers (complex), all on |μ| = 1.
+    """
+    c2 = float(law.df(w0))
+    if not c2 > 0:
+        raise ParameterError("w0", w0, "f'(w0) > 0", "the constant state must be hyperbolic")
+    k = 2.0 * np.pi * np.arange(N) / N
+    om = 2.0 * math.sqrt(c2) * np.abs(np.sin(0.5 * k))
+    T = 1.0 / V
+    return np.concatenate([np.exp(1j * (k + om * T)), np.exp(1j * (k - om * T))])
+
+
+@dataclass(frozen=True)
+class HomogeneousState:
+    """The constant state w_n ≡ w0 seen as a "traveling wave" of any velocity V (test case with a
+    closed-form spectrum, :func:`homogeneous_multipliers`).  Same attributes as a wave result."""
+
+    law: object
+    w0: float
+    V: float
+    N: int
+    kind: str = "homogeneous"
+
+    def __post_init__(self):
+        self.law.require_convex("w0", self.w0)
+        if not (self.V > 0 and math.isfinite(self.V)):
+            raise ParameterError("V", self.V, "V > 0")
+        if not (isinstance(self.N, (int, np.integer)) and self.N >= 4 and self.N % 2 == 0):
+            raise ParameterError("N", self.N, "an even integer >= 4")
+
+    @property
+    def w(self) -> np.ndarray:
+        return np.full(self.N, float(self.w0))
+
+    @property
+    def wdot(self) -> np.ndarray:
+        return np.zeros(self.N)
+
+    @property
+    def w_left(self) -> float:
+        return float(self.w0)
+
+    @property
+    def w_right(self) -> float:
+        return float(self.w0)

@@ -1,0 +1,150 @@
+"""Floquet spectrum of discrete traveling waves (paper §6, eqs. linear, linear_map).
+
+A traveling wave ŵ_n(t) = w(n − Vt) is periodic modulo shift, ŵ_{n+1}(t + T) = ŵ_n(t) with
+T = 1/V (eq. period).  Perturbations y_n obey the linearized chain (eq. linear)
+
+    ÿ_n = f′(ŵ_{n+1}) y_{n+1} − 2 f′(ŵ_n) y_n + f′(ŵ_{n−1}) y_{n−1},   n = −N/2 … N/2−1,
+
+with the paper's periodic boundary conditions y_{N/2} = y_{−N/2}, y_{−N/2−1} = y_{N/2−1}.
+The monodromy matrix 𝓜 (eq. linear_map) is the fundamental matrix Ψ(T) of the first-order
+system in (y, ẏ) with the rows of each N-block shifted up by one (last row ← first), so that
+𝓜 maps {y_n(0), ẏ_n(0)} onto {y_{n+1}(T), ẏ_{n+1}(T)}.  Its 2N eigenvalues are the Floquet
+multipliers μ; |μ| > 1 is instability.
+
+Structure used here (all exact for the ring, whatever the base state):
+
+* Σ_n ẏ_n is conserved and Σ_n y_n grows linearly, so the two linear functionals "sum of y" and
+  "sum of ẏ" span a left-invariant subspace of 𝓜 with the action [[1, T], [0, 1]]: a Jordan
+  block at μ = 1.  Round-off splits such a block by √ε ≈ 1e-8, the paper's "O(1e-8)" excess.
+  We deflate it *exactly* with a Householder reflection that maps the constant vector onto the
+  last coordinate of each block; 𝓜 becomes block-triangular, the 2×2 quotient block carries
+  the two conservation multipliers and the (2N−2)-block carries the rest.  Any remaining
+  multipliers in a small disc around 1 are reported as the trivial cluster, and max |μ| is
+  reported with and without it.  For a superkink translation changes the total strain
+  (Σ ẇ_n ≠ 0), so the translation mode *is* the conservation block and nothing is left at 1
+  (measured split < 1e-15); a solitary wave keeps a translation/velocity pair in the rest
+  (measured split 1e-9 … 4e-7, √ of the wave's residual).
+* On the zero-sum subspace the flow is Hamiltonian (ẏ = v, v̇ = ΔF y = J∇H with
+  J = [[0, −Δ], [Δ, 0]], H = ½ yᵀFy + ½ vᵀ(−Δ)⁻¹v), and the shift commutes with Δ, so the
+  multipliers come in quartets (μ, μ̄, 1/μ, 1/μ̄).  The integrator is not symplectic; its
+  violation of the quartet symmetry is measured and is the error bar of |μ|.
+
+The fundamental matrix comes from the tangent kernel of :mod:`fpucore.wave.period_map` (fixed-step
+8th-order RK along the stored base trajectory, columns on local windows with periodic wrap).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.linalg
+
+from fpucore.errors import ParameterError
+from fpucore.floquet.kernels import deflate_sums, extract_deflated, scatter_shifted
+from fpucore.wave import period_map as pm
+
+_HW_DEFAULT = 0.12  # h·ω_max of the tangent integration (DOP853): quartets to ~1e-13, see bench
+_SPREAD_LEVEL = 1e-18  # window half-width: neglected part of every column below this
+MAX_N = 2500  # 5000² dense eig: minutes, 400 MB
+
+
+@dataclass(frozen=True)
+class Monodromy:
+    """Shifted monodromy matrix 𝓜 (eq. linear_map) of one base state.
+
+    matrix : (2N, 2N) float64, ordering [y_{−N/2} … y_{N/2−1}, ẏ_{−N/2} … ẏ_{N/2−1}].
+    T = 1/V, m : RK steps per period, K : window half-width (sites) of the tangent columns,
+    truncation : largest |δ| on a window edge (neglected part of a column), elapsed_s : wall time.
+    """
+
+    matrix: np.ndarray
+    N: int
+    T: float
+    m: int
+    K: int
+    truncation: float
+    elapsed_s: float
+
+
+def base_state(r):
+    """(law, w, wd, V, N, w_left, w_right) from a wave result (duck-typed, see module doc)."""
+    try:
+        law, V = r.law, float(r.V)
+        w = np.ascontiguousarray(r.w, dtype=np.float64)
+        wd = np.ascontiguousarray(r.wdot, dtype=np.float64)
+        wl, wr = float(r.w_left), float(r.w_right)
+    except AttributeError as exc:
+        raise ParameterError(
+            "r", type(r).__name__, "a wave result with law, V, w, wdot, w_left, w_right",
+            str(exc),
+        ) from None  # fmt: skip
+    N = w.size
+    if N > MAX_N:
+        raise ParameterError("N", N, f"N <= {MAX_N}",
+                             "the dense eigenvalue call costs O(N^3) time")  # fmt: skip
+    if not (V > 0 and math.isfinite(V)):
+        raise ParameterError("V", V, "V > 0")
+    if N < 4 or N % 2 or wd.shape != w.shape:
+        raise ParameterError("N", N, "an even number >= 4 with w, wdot of equal length")
+    if not (np.all(np.isfinite(w)) and np.all(np.isfinite(wd))):
+        raise ParameterError("r.w/r.wdot", "non-finite entries", "finite arrays")
+    return law, w, wd, V, N, wl, wr
+
+
+def default_steps(law, V: float) -> int:
+    """RK steps per period with h·ω_max ≤ 0.12 for ω_max = 2 c_max (the top linear frequency)."""
+    return pm.rk_steps_for(V, law.c_max, hw=_HW_DEFAULT)
+
+
+def monodromy(r, m: int | None = None) -> Monodromy:
+    """𝓜 of eq. linear_map for the base state r (wave result or :class:`HomogeneousState`).
+
+    The base trajectory is re-integrated from (r.w, r.wdot) with the fixed boundary strains of
+    eq. fixedBCs (DOP853, m steps, f′ stored at every stage); the perturbation columns use the
+    paper's periodic BCs (index wrap) on windows of ±K sites, K chosen so that the neglected part
+    of each column is below 1e-18; then rows are shifted.  Cost O(N·K·m), all in Numba.
+    """
+    t0 = time.perf_counter()
+    law, w, wd, V, N, wl, wr = base_state(r)
+    if m is None:
+        m = default_steps(law, V)
+    res = pm.integrate(law, w, wd, 1.0 / V, int(m), wl, wr, periodic=False, store_df=True)
+    K = pm.spread_radius(res, level=_SPREAD_LEVEL) + 1
+    K = min(K, N // 2)
+    cols = np.arange(2 * N, dtype=np.int64)
+    out, edge = pm.tangent_columns(res, cols, K, periodic=True)
+    k_eff = N // 2 if out.shape[2] == N else K
+    mat = np.zeros((2 * N, 2 * N))
+    scatter_shifted(out, cols, N, k_eff, mat)
+    return Monodromy(
+        mat, N, 1.0 / V, int(m), int(k_eff), float(edge.max(initial=0.0)),
+        time.perf_counter() - t0,
+    )  # fmt: skip
+
+
+def _householder(n: int) -> tuple[np.ndarray, float]:
+    """u, β of H = I − β u uᵀ with H 1/√N = e_{N−1}."""
+    u = np.full(n, 1.0 / math.sqrt(n))
+    u[-1] -= 1.0
+    return u, 2.0 / float(u @ u)
+
+
+def multipliers_of(mat: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray, float]:
+    """All 2N eigenvalues of 𝓜 with the conservation block deflated exactly.
+
+    Returns (mu_rest (2N−2,), mu_sums (2,), conservation_defect).  mu_sums are the diagonal of
+    the 2×2 quotient block [[1, T], [0, 1]] (Σy, Σẏ); mu_rest come from one dense LAPACK dgeev
+    call on the (2N−2)-block.  conservation_defect is the largest coupling of the sum rows to the
+    rest (exactly 0 for an exact ring integration; round-off level here).
+    """
+    a = np.array(mat, dtype=np.float64, order="C", copy=True)
+    u, beta = _householder(n)
+    deflate_sums(a, n, u, beta)
+    b = np.empty((2 * n - 2, 2 * n - 2), order="F")
+    defect = extract_deflated(a, n, b)
+    mu_rest = scipy.linalg.eigvals(b, overwrite_a=True, check_finite=False)
+    mu_sums = np.array([a[n - 1, n - 1], a[2 * n - 1, 2 * n - 1]], dtype=complex)
+    return mu_rest, mu_sums, float(defect)

@@ -1,0 +1,54 @@
+"""The class of hardening–softening laws (paper §2–3): what every law object provides."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import ParameterError, require_finite
+
+
+@dataclass(frozen=True)
+class HardeningSofteningLaw:
+    """Base class: a smooth f with f(0)=0, f′>0 on (α, β) ∋ 0, f″>0 on (α, w*), f″<0 on (w*, β).
+
+    Subclasses provide f, df, ddf, phi (vectorised), the constants w_star/alpha/beta and the
+    kernel handle ``(law_id, params)``.  Everything in §3 of the paper is written against this.
+    """
+
+    law_id: int = field(init=False, repr=False, default=-1)
+
+    @property
+    def params(self) -> np.ndarray:  # pragma: no cover - abstract
+        raise NotImplementedError
+
+    def f(self, w):  # pragma: no cover - abstract
+        raise NotImplementedError
+
+    def df(self, w):  # pragma: no cover - abstract
+        raise NotImplementedError
+
+    def ddf(self, w):  # pragma: no cover - abstract
+        raise NotImplementedError
+
+    def phi(self, w):  # pragma: no cover - abstract
+        raise NotImplementedError
+
+    @property
+    def c_max(self) -> float:
+        """Largest sound speed, √f′(w*), on the convex interval."""
+        return math.sqrt(float(self.df(self.w_star)))
+
+    def require_convex(self, name: str, w: float) -> float:
+        """Check α < w < β (f′(w) > 0, Φ convex) for a strain argument."""
+        w = require_finite(name, w)
+        if not (self.alpha < w < self.beta):
+            raise ParameterError(
+                name,
+                w,
+                f"(alpha, beta) = ({self.alpha:.10g}, {self.beta:.10g})",
+                "strain must lie in the convex interval where f'(w) > 0",
+            )
+        return w

@@ -1,0 +1,93 @@
+"""The cubic law f(w) = a w³ + b w² + w (paper eq. cubic, constants eq. cubic_more)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import ParameterError, require_finite
+from .base import HardeningSofteningLaw
+from .kernels import LAW_CUBIC
+
+
+@dataclass(frozen=True)
+class CubicLaw(HardeningSofteningLaw):
+    """f(w) = a w³ + b w² + w with a < 0 < b (paper eq. cubic).
+
+    Parameters
+    ----------
+    a : cubic coefficient, must be negative (softening at large strain).
+    b : quadratic coefficient, must be positive (hardening at small strain).
+    """
+
+    a: float = -1.0
+    b: float = 10.0
+
+    def __post_init__(self):
+        a = require_finite("a", self.a)
+        b = require_finite("b", self.b)
+        if not a < 0:
+            raise ParameterError("a", a, "a < 0", "the law must soften at large strain")
+        if not b > 0:
+            raise ParameterError("b", b, "b > 0", "the law must harden at small strain")
+        object.__setattr__(self, "a", a)
+        object.__setattr__(self, "b", b)
+        object.__setattr__(self, "law_id", LAW_CUBIC)
+
+    # ----- kernel handle
+    @property
+    def params(self) -> np.ndarray:
+        return np.array([self.a, self.b], dtype=np.float64)
+
+    # ----- vectorised evaluation
+    def f(self, w):
+        w = np.asarray(w, dtype=float)
+        return ((self.a * w + self.b) * w + 1.0) * w
+
+    def df(self, w):
+        w = np.asarray(w, dtype=float)
+        return (3.0 * self.a * w + 2.0 * self.b) * w + 1.0
+
+    def ddf(self, w):
+        w = np.asarray(w, dtype=float)
+        return 6.0 * self.a * w + 2.0 * self.b
+
+    def phi(self, w):
+        """Potential Φ(w) = ∫₀ʷ f = a w⁴/4 + b w³/3 + w²/2."""
+        w = np.asarray(w, dtype=float)
+        return ((0.25 * self.a * w + self.b / 3.0) * w + 0.5) * w * w
+
+    # ----- constants (eq. cubic_more)
+    @property
+    def abs_a(self) -> float:
+        return -self.a
+
+    @property
+    def w_star(self) -> float:
+        """Inflection point w* = b / (3|a|): f″(w*) = 0, f′ maximal."""
+        return self.b / (3.0 * self.abs_a)
+
+    @property
+    def alpha(self) -> float:
+        """Lower end of the convex interval, −(√(b²+3|a|) − b)/(3|a|) (written stably)."""
+        # (√(b²+3|a|) − b) = 3|a| / (√(b²+3|a|) + b): no cancellation for large b.
+        return -1.0 / (math.sqrt(self.b**2 + 3.0 * self.abs_a) + self.b)
+
+    @property
+    def beta(self) -> float:
+        """Upper end of the convex interval, (b + √(b²+3|a|))/(3|a|)."""
+        return (self.b + math.sqrt(self.b**2 + 3.0 * self.abs_a)) / (3.0 * self.abs_a)
+
+    def mirror(self, w):
+        """The symmetry w ↦ 2w* − w, under which f(w) = 4b/3 w*² + 2w* − f(2w* − w)."""
+        return 2.0 * self.w_star - np.asarray(w, dtype=float)
+
+    @property
+    def symmetry_constant(self) -> float:
+        """f(w) + f(2w* − w) = 4b/3 w*² + 2w* for every w (= 2 f(w*))."""
+        return 4.0 * self.b / 3.0 * self.w_star**2 + 2.0 * self.w_star
+
+    def describe(self) -> str:
+        return f"f(w) = {self.a:g} w^3 + {self.b:g} w^2 + w"

@@ -1,0 +1,102 @@
+"""QC diagrams: the existence diagram V vs w₊ (Fig. SWvelocities_cubic) and the solitary-wave
+family curves amplitude/energy vs V for one w₊ (Fig. SWamp_energy_QCcubic)."""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from fpucore.errors import ParameterError, require_finite
+from fpucore.law import HardeningSofteningLaw
+from fpucore.qc import closed_forms as qc
+
+
+@dataclass(frozen=True)
+class ExistenceDiagram:
+    """Arrays over the admissible w₊ ∈ (α, β) (n,): c₊, V_SK, c₋.  For w₊ < w* the band
+    (c₊, V_SK) holds tensile waves (TSW) and (V_SK, c₋) compressive ones (CSW); for w₊ > w* the
+    other way round.  Mirror V → −V for the full (symmetric) figure."""
+
+    w_plus: np.ndarray
+    c_plus: np.ndarray
+    V_SK: np.ndarray
+    c_minus: np.ndarray
+    w_star: float
+    alpha: float
+    beta: float
+    elapsed_s: float
+
+
+def existence_diagram(law: HardeningSofteningLaw, n: int = 400) -> ExistenceDiagram:
+    t0 = time.perf_counter()
+    if not (isinstance(n, int) and 3 <= n <= 100_000):
+        raise ParameterError("n", n, "an integer in [3, 100000]")
+    a, b, ws = law.alpha, law.beta, law.w_star
+    wp = a + (b - a) * (np.arange(n) + 0.5) / n  # open interval
+    c2, A = float(law.df(ws)), law.abs_a
+    e = (wp - ws) ** 2
+    return ExistenceDiagram(
+        wp, np.sqrt(c2 - 3 * A * e), np.sqrt(c2 - A * e), np.sqrt(c2 - 0.75 * A * e),
+        ws, a, b, time.perf_counter() - t0,
+    )  # fmt: skip
+
+
+def classify(law: HardeningSofteningLaw, w_plus: float, V: float) -> str:
+    """What lives at (w₊, V): "tensile", "compressive", "superkink" (|V| = V_SK to 1e-9) or
+    raises ParameterError naming the valid intervals.  Used e.g. for clicks on the diagram."""
+    w_plus, V = require_finite("w_plus", w_plus), abs(require_finite("V", V))
+    cp, vsk, cm = qc.sound_speeds(law, w_plus)
+    if abs(V - vsk) <= 1e-9 * vsk:
+        return "superkink"
+    return qc.solitary(law, w_plus, V).kind
+
+
+@dataclass(frozen=True)
+class SolitaryFamily:
+    """QC solitary waves along V for one w₊: arrays for the interval below V_SK and above it."""
+
+    w_plus: float
+    V_below: np.ndarray
+    amp_below: np.ndarray
+    energy_below: np.ndarray
+    kind_below: str
+    V_above: np.ndarray
+    amp_above: np.ndarray
+    energy_above: np.ndarray
+    kind_above: str
+    c_plus: float
+    V_SK: float
+    c_minus: float
+    sk_amplitude: float
+    max_energy_error: float
+    elapsed_s: float
+
+
+def solitary_family(law: HardeningSofteningLaw, w_plus: float, n: int = 160) -> SolitaryFamily:
+    """Amplitude (eq. SWQC_amp) and E_ren^QC (eq. Eren_QC) along both velocity intervals, with
+    points clustered toward both ends (the energy diverges at V_SK).  All velocities are
+    evaluated at once by :func:`fpucore.qc.solitary_closed_form` (the formulas of
+    :func:`fpucore.qc.solitary`); ``max_energy_error`` is the largest round-off bound."""
+    t0 = time.perf_counter()
+    if not (isinstance(n, int) and 3 <= n <= 100_000):
+        raise ParameterError("n", n, "an integer in [3, 100000]")
+    (cp, vsk), (_, cm) = qc.solitary_intervals(law, w_plus)
+    t = 0.5 * (1.0 - np.cos(np.pi * (np.arange(n) + 0.5) / n))
+
+    def run(lo, hi, background):
+        Vs = lo + (hi - lo) * t
+        w_B = background(Vs)
+        dM, _, _, energy, err, ok = qc.solitary_closed_form(law, w_B, Vs)
+        ok &= (lo < Vs) & (Vs < hi) & np.isfinite(energy)  # drop points rounding onto an end
+        kind = "tensile" if dM[ok][0] > 0 else "compressive"
+        return Vs[ok], np.abs(dM[ok]), energy[ok], kind, float(np.max(err[ok]))
+
+    Vb, ab, eb, kb, errb = run(cp, vsk, lambda Vs: np.full_like(Vs, w_plus))
+    Va, aa, ea, ka, erra = run(vsk, cm, lambda Vs: qc.w_S(law, w_plus, Vs))
+    sk = qc.superkink_from_w_plus(law, w_plus)
+    return SolitaryFamily(
+        w_plus, Vb, ab, eb, kb, Va, aa, ea, ka, cp, vsk, cm, sk.amplitude, max(errb, erra),
+        time.perf_counter() - t0,
+    )  # fmt: skip

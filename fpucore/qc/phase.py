@@ -1,0 +1,138 @@
+"""Phase plane of the QC traveling-wave equation (eq. TW_QC_gen2, Fig. pplane).
+
+For given (w₊, V) the critical points are the intersections of f with the Rayleigh line
+R(w) = f(w₊) + V²(w − w₊); a point is a saddle where V² > f′(w_c) and a center where V² < f′(w_c)
+(linearize −V²/12 w″ = f(w) − R(w)).  The first integral H of eq. TW_QC_gen3 is evaluated on a
+grid: its level sets are the exact phase portrait, and the separatrix levels are H at the saddles.
+The highlighted orbit comes from the closed-form profile (homoclinic for solitary waves,
+heteroclinic pair at V = V_SK).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from fpucore.errors import require_finite
+from fpucore.law import HardeningSofteningLaw
+from fpucore.qc import closed_forms as qc
+
+
+@dataclass(frozen=True)
+class CriticalPoint:
+    w: float
+    kind: str  # "saddle" | "center" | "degenerate"
+    eigenvalue: float  # λ² of the linearization w″ = λ² δw: 12 (V² − f′(w_c)) / V²
+
+
+@dataclass(frozen=True)
+class Orbit:
+    name: str  # "tensile solitary wave", "compressive solitary wave", "kink", "antikink"
+    kind: str  # "homoclinic" | "heteroclinic"
+    w: np.ndarray
+    wp: np.ndarray
+
+
+@dataclass(frozen=True)
+class PhasePlane:
+    """Grid ``H[j, i] = H(w[i], wp[j])`` with ``w`` (n,) and ``wp`` (m,), critical points,
+    separatrix levels (H at each saddle) and the highlighted orbits.  ``orbit_residual`` is
+    max |H| on the orbits relative to the grid's H range (round-off for closed forms)."""
+
+    w_plus: float
+    V: float
+    w: np.ndarray
+    wp: np.ndarray
+    H: np.ndarray
+    critical_points: list[CriticalPoint]
+    separatrix_levels: list[float]
+    orbits: list[Orbit] = field(default_factory=list)
+    regime: str = ""
+    orbit_residual: float = 0.0
+    elapsed_s: float = 0.0
+
+
+def critical_points(law: HardeningSofteningLaw, w_plus: float, V: float) -> list[CriticalPoint]:
+    """Critical points (w_c, 0) of eq. TW_QC_gen2 for (w₊, V), sorted by w."""
+    ws = [w_plus] + [w for w in qc.rayleigh_roots(law, w_plus, V) if math.isfinite(w)]
+    out = []
+    for w in sorted(set(ws)):
+        lam2 = 12.0 * (V * V - float(law.df(w))) / (V * V)
+        tol = 1e-12 * 12.0
+        kind = "saddle" if lam2 > tol else ("center" if lam2 < -tol else "degenerate")
+        out.append(CriticalPoint(w, kind, lam2))
+    return out
+
+
+def _orbit_points(wave, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Sample (w, w′) along a closed-form profile, clustered where the curve turns."""
+    width = wave.width
+    xi = np.sinh(np.linspace(-6.0, 6.0, n)) / math.sinh(6.0) * 40.0 * width
+    return wave.profile(xi), wave.dprofile(xi)
+
+
+def phase_plane(
+    law: HardeningSofteningLaw,
+    w_plus: float,
+    V: float,
+    n_grid: int = 241,
+    n_orbit: int = 401,
+    sk_tol: float = 1e-9,
+) -> PhasePlane:
+    """Exact phase portrait of eq. TW_QC_gen2 for (w₊, V).
+
+    ``regime`` says what the highlighted orbit is: "tensile"/"compressive" solitary wave,
+    "superkink" (|V − V_SK| ≤ sk_tol·V_SK), or "none" when V is outside (c₊, c₋) (then only the
+    level sets and critical points are returned).
+    """
+    t0 = time.perf_counter()
+    w_plus = law.require_convex("w_plus", w_plus)
+    V = require_finite("V", V)
+    if V <= 0:
+        V = qc.require_V(V)
+    cps = critical_points(law, w_plus, V)
+    orbits: list[Orbit] = []
+    regime = "none"
+    ref = w_plus  # H is measured relative to the saddle the highlighted orbit leaves
+    if abs(w_plus - law.w_star) > 1e-12 * max(1.0, law.w_star):
+        cp, vsk, cm = qc.sound_speeds(law, w_plus)
+        if abs(V - vsk) <= sk_tol * vsk:
+            sk = qc.superkink_from_w_plus(law, w_plus)
+            w, wp = _orbit_points(sk, n_orbit)
+            orbits = [
+                Orbit("kink", "heteroclinic", w, wp),
+                Orbit("antikink", "heteroclinic", w, -wp),
+            ]
+            regime = "superkink"
+        elif cp < V < cm:
+            sw = qc.solitary(law, w_plus, V)
+            w, wp = _orbit_points(sw, n_orbit)
+            orbits = [Orbit(f"{sw.kind} solitary wave", "homoclinic", w, wp)]
+            regime, ref = sw.kind, sw.w_B
+
+    ws = (
+        [c.w for c in cps]
+        + [float(np.min(o.w)) for o in orbits]
+        + [float(np.max(o.w)) for o in orbits]
+    )
+    lo, hi = min(ws), max(ws)
+    pad = 0.25 * max(hi - lo, 0.5)
+    w_grid = np.linspace(max(lo - pad, law.alpha), min(hi + pad, law.beta), n_grid)
+    wp_max = max([float(np.max(np.abs(o.wp))) for o in orbits] + [0.0])
+    if wp_max == 0.0:
+        wp_max = math.sqrt(24.0 / (V * V) * float(np.ptp(law.phi(w_grid)))) + 1e-3
+    wp_grid = np.linspace(-1.4 * wp_max, 1.4 * wp_max, n_grid)
+    W, WP = np.meshgrid(w_grid, wp_grid)
+    H = first = qc.first_integral(law, W, WP, ref, V)
+    levels = [float(qc.first_integral(law, c.w, 0.0, ref, V)) for c in cps if c.kind == "saddle"]
+    span = float(np.ptp(first)) or 1.0
+    res = max(
+        [float(np.max(np.abs(qc.first_integral(law, o.w, o.wp, ref, V)))) for o in orbits] + [0.0]
+    )
+    return PhasePlane(
+        w_plus, V, w_grid, wp_grid, H, cps, levels, orbits, regime, res / span,
+        time.perf_counter() - t0,
+    )  # fmt: skip

@@ -1,0 +1,79 @@
+"""The result protocol shared by every result object of fpucore (waves, spectra, simulations, QC).
+
+Every result is a frozen dataclass that mixes in :class:`Result` and has
+
+* ``converged`` (bool): the result passed its own accuracy / success check;
+* ``status`` (str): one of :data:`STATUSES` — ``"ok"`` (converged), ``"not_converged"`` (the
+  solver finished without meeting its check; the numbers are reported, not hidden) or
+  ``"stopped"`` (a budget or guard ended the computation early: a partial result);
+* ``message`` (str): what happened, in words (why it failed, what to change);
+* ``elapsed_s`` (float): wall time of the computation in seconds;
+* its error fields, named in the class attribute ``ERROR_FIELDS`` (absolute unless the field's
+  docstring says otherwise).
+
+``as_dict()`` is generated from the dataclass fields (plus the names in ``DERIVED``), so a field
+added to a result appears in the CLI's JSON without a hand-kept list.  This module imports
+nothing from fpucore (it is imported by all).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from typing import Any, ClassVar
+
+import numpy as np
+
+STATUSES = ("ok", "not_converged", "stopped")
+
+
+def status_of(converged: bool, stopped: bool = False) -> str:
+    """The status word for a result (see :data:`STATUSES`)."""
+    if converged:
+        return "ok"
+    return "stopped" if stopped else "not_converged"
+
+
+def _plain(value: Any, arrays: bool) -> tuple[bool, Any]:
+    """(keep, value) for one field: nested results become dicts, law objects their description,
+    complex arrays are split by the caller; arrays are dropped when ``arrays`` is False."""
+    if isinstance(value, Result):
+        return True, value.as_dict(arrays=arrays)
+    if isinstance(value, np.ndarray):
+        return arrays, value
+    if isinstance(value, (list, tuple)) and value and hasattr(value[0], "as_dict"):
+        return True, [v.as_dict() for v in value]
+    if hasattr(value, "law_id") and hasattr(value, "params"):  # a force law
+        return True, {"law": value.describe(), "params": np.asarray(value.params).tolist()}
+    if callable(value):
+        return False, None
+    return True, value
+
+
+class Result:
+    """Mixin for result dataclasses: the common vocabulary and a generated :meth:`as_dict`."""
+
+    ERROR_FIELDS: ClassVar[tuple[str, ...]] = ()
+    DERIVED: ClassVar[tuple[str, ...]] = ("status",)  # properties included in as_dict
+    EXCLUDE: ClassVar[tuple[str, ...]] = ()  # fields never serialised (internal objects)
+
+    def as_dict(self, arrays: bool = True) -> dict:
+        """Every field (and ``DERIVED`` property) as a JSON-ready value; complex arrays become
+        ``<name>_re`` / ``<name>_im``; ``arrays=False`` leaves the arrays out (a summary)."""
+        out: dict[str, Any] = {}
+        for f in dataclasses.fields(self):  # type: ignore[arg-type]
+            if f.name in self.EXCLUDE:
+                continue
+            keep, v = _plain(getattr(self, f.name), arrays)
+            if not keep:
+                continue
+            if isinstance(v, np.ndarray) and np.iscomplexobj(v):
+                out[f"{f.name}_re"], out[f"{f.name}_im"] = v.real, v.imag
+            else:
+                out[f.name] = v
+        for name in self.DERIVED:
+            out[name] = getattr(self, name)
+        return out
+
+    def errors(self) -> dict[str, float]:
+        """The error fields of this result by name."""
+        return {k: float(getattr(self, k)) for k in self.ERROR_FIELDS}

@@ -1,0 +1,58 @@
+"""Discrete traveling waves (paper §5): fixed points of the one-period-and-shift map.
+
+Flow of this subpackage:
+
+    period_map (RK integration over one period, tangent columns)  →  system (Newton system,
+    banded Jacobian)  →  tails (N from the decay)  →  setup (spec, N, m, K)  →  plateau
+    (flat tops near V_SK)  →  continuation  →  driver (solve_superkink / solve_solitary)
+    →  family (families over V)
+
+    r = wave.solve_superkink(law, V, branch="lower", N=None, tol=1e-12)
+    r = wave.solve_solitary(law, w_plus, V, N=None, tol=1e-12)
+"""
+
+from fpucore.wave.driver import (
+    WaveResult,
+    particle_velocities,
+    renormalized_energy,
+    solve_solitary,
+    solve_superkink,
+    warm,
+)
+from fpucore.wave.family import Family, solitary_family, superkink_family
+from fpucore.wave.setup import (
+    M_STEPS,
+    Spec,
+    build_system,
+    choose_K,
+    choose_m,
+    choose_N,
+    qc_guess,
+    required_N,
+    resize,
+    solitary_spec,
+    superkink_spec,
+)
+
+__all__ = [
+    "WaveResult",
+    "solve_superkink",
+    "solve_solitary",
+    "warm",
+    "particle_velocities",
+    "renormalized_energy",
+    "Family",
+    "superkink_family",
+    "solitary_family",
+    "M_STEPS",
+    "Spec",
+    "build_system",
+    "choose_K",
+    "choose_m",
+    "choose_N",
+    "qc_guess",
+    "required_N",
+    "resize",
+    "solitary_spec",
+    "superkink_spec",
+]

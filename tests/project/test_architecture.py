@@ -1,0 +1,171 @@
+"""The package layout is the flow of the paper, and stays clean (checked with the standard
+library's ``ast``, nothing imported):
+
+* the import graph of fpucore's modules has no cycles (an edge goes to the module named, not to
+  its parent package's ``__init__``, which is how Python resolves a submodule import);
+* no import inside a function, except the allow-listed optional dependencies;
+* no private name (``_x``) of one module is used by another, in fpucore, app or the tests;
+* fpucore never imports a UI package.
+"""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+PKG = ROOT / "fpucore"
+STAGES = ("law", "qc", "tableaux", "wave", "floquet", "simulate", "cli")
+# imports inside functions allowed only to keep a real optional dependency optional
+LATE_OK: set[tuple[str, str]] = set()
+
+
+def _modname(path: Path) -> str:
+    rel = path.relative_to(ROOT).with_suffix("")
+    parts = list(rel.parts)
+    if parts[-1] == "__init__":
+        parts = parts[:-1]
+    return ".".join(parts)
+
+
+def _modules(root: Path) -> dict[str, Path]:
+    return {_modname(p): p for p in sorted(root.rglob("*.py")) if "__pycache__" not in p.parts}
+
+
+MODULES = _modules(PKG)
+
+
+def _resolve(mod: str, node: ast.ImportFrom) -> str:
+    if node.level == 0:
+        return node.module or ""
+    pkg = mod.split(".")
+    is_pkg = MODULES.get(mod, Path()).name == "__init__.py"
+    base = pkg if is_pkg else pkg[:-1]
+    base = base[: len(base) - (node.level - 1)]
+    return ".".join(base + ([node.module] if node.module else []))
+
+
+def _imports(mod: str, tree: ast.AST):
+    """(target module, imported name or None, node) for every import in the tree."""
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            for a in node.names:
+                yield a.name, None, node
+        elif isinstance(node, ast.ImportFrom):
+            base = _resolve(mod, node)
+            for a in node.names:
+                yield base, a.name, node
+
+
+def _edges() -> dict[str, set[str]]:
+    g: dict[str, set[str]] = {m: set() for m in MODULES}
+    for mod, path in MODULES.items():
+        for base, name, _ in _imports(mod, ast.parse(path.read_text())):
+            if name and f"{base}.{name}" in MODULES:
+                g[mod].add(f"{base}.{name}")  # from pkg import submodule
+            elif base in MODULES:
+                g[mod].add(base)
+    return g
+
+
+def test_the_folder_reads_as_the_flow_of_the_paper():
+    subpackages = {p.parent.name for p in PKG.glob("*/__init__.py")}
+    assert set(STAGES) <= subpackages
+    for stage in STAGES:
+        doc = ast.get_docstring(ast.parse((PKG / stage / "__init__.py").read_text()))
+        assert doc and "→" in doc, f"{stage}/__init__ should state its flow"
+    flat = sorted(p.name for p in PKG.glob("*.py"))
+    assert flat == [
+        "__init__.py",
+        "__main__.py",
+        "errors.py",
+        "jit_cache.py",
+        "result.py",
+        "warm.py",
+    ]
+
+
+def test_import_graph_has_no_cycles():
+    g = _edges()
+    state: dict[str, int] = {}
+    stack: list[str] = []
+
+    def visit(m: str) -> None:
+        state[m] = 1
+        stack.append(m)
+        for n in sorted(g[m]):
+            if state.get(n) == 1:
+                cycle = stack[stack.index(n) :] + [n]
+                pytest.fail("import cycle: " + " -> ".join(cycle))
+            if n not in state:
+                visit(n)
+        stack.pop()
+        state[m] = 2
+
+    for m in sorted(g):
+        if m not in state:
+            visit(m)
+
+
+def test_common_modules_import_nothing_back():
+    g = _edges()
+    for common in ("fpucore.errors", "fpucore.result", "fpucore.jit_cache"):
+        assert not g[common], f"{common} imports {g[common]}"
+
+
+def _files(*roots: str) -> list[Path]:
+    out: list[Path] = []
+    for r in roots:
+        out += [p for p in sorted((ROOT / r).rglob("*.py")) if "__pycache__" not in p.parts]
+    return out
+
+
+def test_no_imports_inside_functions():
+    bad = []
+    for path in _files("fpucore", "app"):
+        tree = ast.parse(path.read_text())
+        for fn in ast.walk(tree):
+            if not isinstance(fn, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                continue
+            for node in ast.walk(fn):
+                if isinstance(node, (ast.Import, ast.ImportFrom)):
+                    key = (path.relative_to(ROOT).as_posix(), ast.unparse(node))
+                    if key not in LATE_OK:
+                        bad.append(f"{key[0]}:{node.lineno}: {key[1]}")
+    assert not bad, "imports inside functions:\n" + "\n".join(bad)
+
+
+def test_no_private_name_crosses_a_module():
+    bad = []
+    for path in _files("fpucore", "app", "tests", "benchmarks"):
+        mod = _modname(path)
+        tree = ast.parse(path.read_text())
+        aliases: set[str] = set()
+        for base, name, node in _imports(mod, tree):
+            target = base if name is None else f"{base}.{name}"
+            if not (target.startswith(("fpucore", "app")) or base.startswith(("fpucore", "app"))):
+                continue
+            if name and name.startswith("_") and not name.startswith("__"):
+                bad.append(f"{path.relative_to(ROOT)}:{node.lineno}: imports {base}.{name}")
+            if name is None or target in MODULES or (ROOT / target.replace(".", "/")).exists():
+                for a in node.names:
+                    aliases.add(a.asname or a.name.split(".")[0])
+        for node in ast.walk(tree):
+            if (
+                isinstance(node, ast.Attribute)
+                and isinstance(node.value, ast.Name)
+                and node.value.id in aliases
+                and node.attr.startswith("_")
+                and not node.attr.startswith("__")
+            ):
+                bad.append(f"{path.relative_to(ROOT)}:{node.lineno}: {node.value.id}.{node.attr}")
+    assert not bad, "private names used across modules:\n" + "\n".join(bad)
+
+
+def test_fpucore_is_headless():
+    ui = ("panel", "holoviews", "bokeh", "hvplot")
+    for path in _files("fpucore"):
+        for base, _, node in _imports(_modname(path), ast.parse(path.read_text())):
+            assert base.split(".")[0] not in ui, f"{path}:{node.lineno} imports {base}"
