@@ -9,12 +9,12 @@ from __future__ import annotations
 
 import sys
 
-from fpucore.cli import floquet, qc, simulate, warm, wave
+from fpucore.cli import atlas, floquet, qc, simulate, warm, wave
 from fpucore.cli.common import Parser
 from fpucore.errors import ParameterError
 from fpucore.parallel.threads import apply_thread_policy
 
-COMMANDS = (qc, warm, wave, floquet, simulate)
+COMMANDS = (qc, warm, wave, floquet, simulate, atlas)
 
 
 def build_parser() -> Parser:
