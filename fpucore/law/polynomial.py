@@ -24,6 +24,7 @@ The Numba kernels of :mod:`fpucore.law` evaluate the law through ``(LAW_POLY, pa
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
@@ -213,31 +214,37 @@ class PolynomialLaw(HardeningSofteningLaw):
         """The cubic a w³ + b w² + w (eq. cubic) as coeffs (1, b, a)."""
         return cls((1.0, law.b, law.a))
 
-    # ----- vectorised evaluation (Horner)
-    def _horner(self, c: np.ndarray, w) -> np.ndarray:
-        w = np.asarray(w, dtype=float)
-        acc = np.zeros_like(w)
-        for ck in c[::-1]:
+    # ----- vectorised evaluation (Horner; derivative/integral coefficients computed once)
+    @functools.cached_property
+    def _tables(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        c = self._c
+        k = np.arange(2, c.size + 1)
+        return np.arange(1, c.size + 1) * c, k * (k - 1) * c[1:], c / np.arange(2, c.size + 2)
+
+    @staticmethod
+    def _horner(c: np.ndarray, w: np.ndarray) -> np.ndarray:
+        acc = np.full_like(w, c[-1])
+        for ck in c[-2::-1]:
             acc = acc * w + ck
         return acc
 
     def f(self, w):
         """f(w) = w Σ c_k w^(k−1)."""
-        return self._horner(self._c, w) * np.asarray(w, dtype=float)
+        w = np.asarray(w, dtype=float)
+        return self._horner(self._c, w) * w
 
     def df(self, w):
         """f′(w) = Σ k c_k w^(k−1)."""
-        return self._horner(np.arange(1, self._c.size + 1) * self._c, w)
+        return self._horner(self._tables[0], np.asarray(w, dtype=float))
 
     def ddf(self, w):
         """f″(w) = Σ k (k−1) c_k w^(k−2)."""
-        k = np.arange(2, self._c.size + 1)
-        return self._horner(k * (k - 1) * self._c[1:], w)
+        return self._horner(self._tables[1], np.asarray(w, dtype=float))
 
     def phi(self, w):
         """Potential Φ(w) = ∫₀ʷ f = Σ c_k w^(k+1)/(k+1)."""
         w = np.asarray(w, dtype=float)
-        return self._horner(self._c / np.arange(2, self._c.size + 2), w) * w * w
+        return self._horner(self._tables[2], w) * w * w
 
     @property
     def expression(self) -> str:

@@ -37,6 +37,7 @@ w* only for the cubic (eq. cubic_cond1); in general w₊ + w₋ ≠ 2w*.
 
 from __future__ import annotations
 
+import functools
 import math
 import time
 from collections.abc import Callable
@@ -72,9 +73,14 @@ _U_MAX = 22.0  # sech²(22) ≈ 3e-19: beyond it the substituted integrands are 
 _SQ = math.asinh(1.0)  # sech²u = 1/2 here: switch between the two expansions of R̃
 
 
+@functools.cache
 def _gl01(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Gauss–Legendre nodes and weights on [0, 1] (cached, read-only: computing them dominated
+    the cost of a solitary wave)."""
     x, w = np.polynomial.legendre.leggauss(n)
-    return 0.5 * (x + 1.0), 0.5 * w
+    x, w = 0.5 * (x + 1.0), 0.5 * w
+    x.flags.writeable = w.flags.writeable = False
+    return x, w
 
 
 def _inner(law: HardeningSofteningLaw) -> tuple[np.ndarray, np.ndarray]:
@@ -622,9 +628,13 @@ def _sw_g(law, wB: float, wM: float, V2: float):
     return g
 
 
-def solitary(law: HardeningSofteningLaw, w_plus: float, V: float) -> QCSolitaryGeneral:
+def solitary(
+    law: HardeningSofteningLaw, w_plus: float, V: float, check: bool = True
+) -> QCSolitaryGeneral:
     """QC solitary wave for the state w₊ ahead of the associated superkink, velocity V (eq. wB):
-    V ∈ (c₊, V_SK) → w_B = w₊; V ∈ (V_SK, c₋) → w_B = w_S(V)."""
+    V ∈ (c₊, V_SK) → w_B = w₊; V ∈ (V_SK, c₋) → w_B = w_S(V).  ``check=False`` skips the
+    first-integral check on the profile (a third of the cost; families need only E and w_M):
+    ``first_integral_residual`` is then NaN."""
     t0 = time.perf_counter()
     V = require_V(V)
     sp = speeds(law, w_plus)
@@ -701,5 +711,5 @@ def solitary(law: HardeningSofteningLaw, w_plus: float, V: float) -> QCSolitaryG
         math.nan, 0.0, wB_err, wM_err, sp.V_SK_error, m.err, m,
     )  # fmt: skip
     xi = np.linspace(0.0, 12.0, 32) / gamma
-    fi = first_integral_residual(law, sw.profile(xi), sw.dprofile(xi), wB, V)
+    fi = first_integral_residual(law, sw.profile(xi), sw.dprofile(xi), wB, V) if check else math.nan
     return replace(sw, first_integral_residual=fi, elapsed_s=time.perf_counter() - t0)
