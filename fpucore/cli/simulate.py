@@ -17,8 +17,7 @@ import sys
 import time
 
 from fpucore import simulate, wave
-from fpucore.cli.common import add_law_args, print_json
-from fpucore.law import CubicLaw
+from fpucore.cli.common import add_law_args, law_from_args, print_json
 
 
 class _Bar:
@@ -145,7 +144,7 @@ def _emit(args, s, extra: dict | None = None) -> int:
 
 
 def run_riemann(args) -> int:
-    law = CubicLaw(args.a, args.b)
+    law = law_from_args(args)
     kw = _common(args, "fixed_particles", 1e-10)
     prog = _progress(args, args.L * args.t_end)
     s = simulate.riemann(law, args.w_left, args.w_right, args.L, args.t_end, progress=prog, **kw)
@@ -153,7 +152,7 @@ def run_riemann(args) -> int:
 
 
 def run_gaussian(args) -> int:
-    law = CubicLaw(args.a, args.b)
+    law = law_from_args(args)
     kw = _common(args, "fixed_particles", 1e-10)
     prog = _progress(args, args.L * args.t_end)
     s = simulate.gaussian(law, args.w_B, args.A, args.L, args.t_end, progress=prog, **kw)
@@ -161,7 +160,7 @@ def run_gaussian(args) -> int:
 
 
 def run_wave(args) -> int:
-    law = CubicLaw(args.a, args.b)
+    law = law_from_args(args)
     if args.wave_kind == "superkink":
         r = wave.solve_superkink(law, args.V, branch=args.branch, N=args.N)
     else:
