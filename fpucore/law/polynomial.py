@@ -228,6 +228,26 @@ class PolynomialLaw(HardeningSofteningLaw):
             acc = acc * w + ck
         return acc
 
+    @functools.cached_property
+    def scalar_tables(self) -> tuple[tuple[float, ...], ...]:
+        """Coefficients of f/w, f′, f″ as tuples of Python floats, highest power first (for
+        :meth:`df_scalar` / :meth:`ddf_scalar`: root finders call them thousands of times)."""
+        return tuple(tuple(float(x) for x in c[::-1]) for c in (self._c,) + self._tables[:2])
+
+    def df_scalar(self, w: float) -> float:
+        """f′(w) for one float, without NumPy overhead (same Horner order as :meth:`df`)."""
+        acc = 0.0
+        for c in self.scalar_tables[1]:
+            acc = acc * w + c
+        return acc
+
+    def ddf_scalar(self, w: float) -> float:
+        """f″(w) for one float, without NumPy overhead."""
+        acc = 0.0
+        for c in self.scalar_tables[2]:
+            acc = acc * w + c
+        return acc
+
     def f(self, w):
         """f(w) = w Σ c_k w^(k−1)."""
         w = np.asarray(w, dtype=float)

@@ -37,6 +37,7 @@ w* only for the cubic (eq. cubic_cond1); in general w₊ + w₋ ≠ 2w*.
 
 from __future__ import annotations
 
+import bisect
 import functools
 import math
 import time
@@ -70,6 +71,7 @@ __all__ = [
 EPS = float(np.finfo(float).eps)
 _GL_HI, _GL_LO = 24, 16  # outer quadrature (ξ tables, energy): value and error-bar orders
 _U_MAX = 22.0  # sech²(22) ≈ 3e-19: beyond it the substituted integrands are at their limit
+_K_INV = 17  # Chebyshev–Lobatto points per panel for the inverse map s(ξ)
 _SQ = math.asinh(1.0)  # sech²u = 1/2 here: switch between the two expansions of R̃
 
 
@@ -107,14 +109,44 @@ def _J(law, a, d, V2):
     return np.sum((1.0 - t) * (law.df(a[..., None] + t * d[..., None]) - V2) * wt, axis=-1)
 
 
+@functools.cache
+def _inner_py(law: HardeningSofteningLaw) -> tuple[tuple[float, float], ...]:
+    """:func:`_inner` as (node, weight) pairs of Python floats (scalar integrands)."""
+    t, wt = _inner(law)
+    return tuple(zip(t.tolist(), wt.tolist()))
+
+
+def _scalar_slope(law, a: float, d: float) -> float:
+    """:func:`_slope` for one (a, d): pure Python for a polynomial law (root finding)."""
+    if not isinstance(law, PolynomialLaw):
+        return float(_slope(law, a, d))
+    return sum(wk * law.df_scalar(a + tk * d) for tk, wk in _inner_py(law))
+
+
+def _df1(law, w: float) -> float:
+    """f′(w) for one float (pure Python for a polynomial law)."""
+    return law.df_scalar(w) if isinstance(law, PolynomialLaw) else float(law.df(w))
+
+
+def _scalar_J(law, a: float, d: float, V2: float) -> float:
+    """:func:`_J` for one (a, d)."""
+    if not isinstance(law, PolynomialLaw):
+        return float(_J(law, a, d, V2))
+    return sum(wk * (1.0 - tk) * (law.df_scalar(a + tk * d) - V2) for tk, wk in _inner_py(law))
+
+
 def _area(law, a, d):
     """∫₀¹ t(1−t) f″(a + t d) dt: the driving force of eq. zero_G is G = ½ d³ × this."""
+    if isinstance(law, PolynomialLaw):  # scalar path: called thousands of times by the roots
+        return sum(wk * tk * (1.0 - tk) * law.ddf_scalar(a + tk * d) for tk, wk in _inner_py(law))
     t, wt = _inner(law)
     return float(np.sum(t * (1.0 - t) * law.ddf(a + t * d) * wt))
 
 
 def _tangency(law, a, d):
     """∫₀¹ t f″(a + t d) dt = (f′(a+d) − S)/d: zero where the line from (a, f(a)) touches f."""
+    if isinstance(law, PolynomialLaw):
+        return sum(wk * tk * law.ddf_scalar(a + tk * d) for tk, wk in _inner_py(law))
     t, wt = _inner(law)
     return float(np.sum(t * law.ddf(a + t * d) * wt))
 
@@ -287,6 +319,7 @@ def solitary_intervals(law: HardeningSofteningLaw, w_plus: float):
 
 
 # =============================================================================== superkink range
+@functools.lru_cache(maxsize=256)  # a property of the law (laws are frozen, hashable)
 def superkink_w_plus_range(law: HardeningSofteningLaw, branch: str = "lower"):
     """Open w₊-interval of superkinks on a branch: (w₊_min, w*) ("lower") or (w*, w₊_max)
     ("upper"); its outer end is α (β) or the w₊ whose partner w₋ reaches β (α)."""
@@ -311,9 +344,10 @@ def _V_SK(law, w_plus: float) -> float:
         return law.c_max
     r = _partner(law, w_plus)
     wm = r[0] if r is not None else _far_end(law, _dir(law, w_plus))
-    return math.sqrt(float(_slope(law, w_plus, wm - w_plus)))
+    return math.sqrt(_scalar_slope(law, w_plus, wm - w_plus))
 
 
+@functools.lru_cache(maxsize=256)
 def superkink_velocity_bounds(law: HardeningSofteningLaw, branch: str = "lower"):
     """(V_lo, V_hi = c_max) of superkinks on a branch (eq. V_bounds_cubic for the cubic, where
     both branches agree; for a general law they differ).  V_lo is V_SK at the outer end of
@@ -324,9 +358,36 @@ def superkink_velocity_bounds(law: HardeningSofteningLaw, branch: str = "lower")
 
 
 # =============================================================================== ξ(s) tables
+@functools.cache
+def _cheb_tables(K: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Chebyshev–Lobatto points t on [0, 1], their barycentric weights, and the matrix S with
+    ∫₀^{t_k} p = Σ_m S[k, m] p(t_m) for the interpolant p of degree K − 1 (spectral integration)."""
+    k = np.arange(K)
+    t = 0.5 * (1.0 - np.cos(np.pi * k / (K - 1)))
+    bw = (-1.0) ** k
+    bw[0] *= 0.5
+    bw[-1] *= 0.5
+    S = np.empty((K, K))
+    for m in range(K):  # integrate the m-th Lagrange basis polynomial
+        c = np.polynomial.chebyshev.chebfit(2 * t - 1, np.eye(K)[m], K - 1)
+        ci = np.polynomial.chebyshev.chebint(c, lbnd=-1)
+        S[:, m] = 0.5 * np.polynomial.chebyshev.chebval(2 * t - 1, ci)
+    for a in (t, bw, S):
+        a.flags.writeable = False
+    return t, bw, S
+
+
 class _Map:
     """ξ(s) = scale ∫₀ˢ g for s on the panel edges ``e`` (0 first, increasing |s|), for a smooth
-    g > 0 that is constant beyond the last edge; vectorised inversion s(ξ)."""
+    g > 0 that is constant beyond the last edge; vectorised inversion s(ξ).
+
+    Edges: composite Gauss–Legendre (``_GL_HI`` nodes; ``_GL_LO`` for the error bar).  Inversion:
+    on each panel, g at ``_K_INV`` Chebyshev–Lobatto points is integrated spectrally to ξ at those
+    points (the end value checked against the Gauss–Legendre edge: the difference enters ``err``),
+    and s(ξ) is interpolated through them (barycentric, in ξ).  The inverse-interpolation error is
+    measured halfway between the nodes and also enters ``err``; where either exceeds round-off,
+    s_of polishes by Newton on the quadrature.  Built on first use (families need only the edges).
+    """
 
     def __init__(self, g: Callable[[np.ndarray], np.ndarray], scale: float, edges: np.ndarray):
         self.g, self.scale, self.e = g, scale, edges
@@ -337,31 +398,124 @@ class _Map:
         hi = np.sum(g(a[:, None] + h * xh) * wh * h, axis=1)
         lo = np.sum(g(a[:, None] + h * xl) * wl * h, axis=1)
         self.C = np.concatenate([[0.0], np.cumsum(hi)]) * scale
-        self.err = float(np.sum(np.abs(hi - lo)) * scale + 8 * EPS * abs(self.C[-1]))
+        self.quad_err = float(np.sum(np.abs(hi - lo)) * scale + 8 * EPS * abs(self.C[-1]))
         self.slope_end = scale * float(g(np.array([edges[-1]]))[0])
         self._xh, self._wh = xh, wh
+        self._inv = None
+
+    @property
+    def err(self) -> float:
+        """Error bar of ξ(s) (quadrature, plus the inverse tables' error once they are built)."""
+        return self.quad_err + (self._inv[4] if self._inv is not None else 0.0)
+
+    def table_err(self) -> float:
+        """:attr:`err` with the inverse tables built (profiles are about to be evaluated)."""
+        self._tables()
+        return self.err
+
+    def _tables(self):
+        """(s nodes (P, K), ξ nodes, barycentric weights in ξ, polish?, table error)."""
+        if self._inv is not None:
+            return self._inv
+        t, bw_s, S = _cheb_tables(_K_INV)
+        a, b = self.e[:-1], self.e[1:]
+        h = (b - a)[:, None]
+        sn = a[:, None] + h * t
+        sn[:, -1] = b
+        xn = self.C[:-1, None] + self.scale * h * (self.g(sn) @ S.T)
+        end_err = float(np.max(np.abs(xn[:, -1] - self.C[1:])))
+        xn[:, 0], xn[:, -1] = self.C[:-1], self.C[1:]
+        span = xn[:, -1:] - xn[:, :1]
+        u = (xn - xn[:, :1]) / span
+        d = u[:, :, None] - u[:, None, :]
+        k = np.arange(_K_INV)
+        d[:, k, k] = 1.0
+        bw = 1.0 / np.prod(d, axis=2)
+        # halfway points: ξ there from the forward interpolant (Chebyshev in s), s back from the
+        # inverse interpolant; |Δs| · slope is the table's error in ξ
+        sm = 0.5 * (sn[:, 1:] + sn[:, :-1])
+        tm = (sm - a[:, None]) / h
+        q = bw_s / (tm[:, :, None] - t)
+        xim = np.sum(q * xn[:, None, :], axis=2) / np.sum(q, axis=2)
+        self._inv = (sn, xn, bw, False, 0.0)
+        jm = np.repeat(np.arange(a.size), _K_INV - 1)
+        ds = np.abs(self._interp(jm, xim.ravel()) - sm.ravel())
+        slope = (np.diff(xn, axis=1) / np.diff(sn, axis=1)).ravel()
+        tab_err = float(np.max(ds * slope)) + end_err
+        polish = bool(tab_err > 64 * EPS * max(1.0, abs(self.C[-1])))
+        self._inv = (sn, xn, bw, polish, tab_err)
+        return self._inv
+
+    @functools.cached_property
+    def _py(self):
+        """The inverse tables as Python lists, for :meth:`s_of_scalar`."""
+        sn, xn, bw, _, _ = self._tables()
+        u = (xn - xn[:, :1]) / (xn[:, -1:] - xn[:, :1])
+        return self.C.tolist(), sn.tolist(), xn.tolist(), u.tolist(), bw.tolist()
+
+    def s_of_scalar(self, x: float) -> float:
+        """:meth:`s_of` for one ξ ≥ 0 in pure Python (tails and bisections call it thousands
+        of times; NumPy's per-call overhead was 0.1 ms)."""
+        if x >= self.C[-1] or self._tables()[3]:  # tail, or tables needing the Newton polish
+            return float(self.s_of(np.array([x]))[0])
+        Cl, sn, xn, un, bw = self._py
+        j = min(max(bisect.bisect_right(Cl, x) - 1, 0), len(Cl) - 2)
+        xj, sj, uj, bj = xn[j], sn[j], un[j], bw[j]
+        u = (x - xj[0]) / (xj[-1] - xj[0])
+        num = den = 0.0
+        for uk, sk, bk in zip(uj, sj, bj):
+            d = u - uk
+            if d == 0.0:
+                return sk
+            q = bk / d
+            num += q * sk
+            den += q
+        return min(max(num / den, sj[0]), sj[-1])
+
+    def _xi(self, j: np.ndarray, s: np.ndarray) -> np.ndarray:
+        """ξ(s) for s in panel j: C[j] + scale ∫_{e[j]}^{s} g (Gauss–Legendre, ``_GL_HI`` nodes)."""
+        a = self.e[j]
+        h = (s - a)[:, None]
+        return self.C[j] + self.scale * np.sum(self.g(a[:, None] + h * self._xh) * self._wh * h, 1)
+
+    def _interp(self, j: np.ndarray, x: np.ndarray) -> np.ndarray:
+        """Barycentric interpolation of s(ξ) on panel j (second form; exact at the nodes)."""
+        sn, xn, bw = self._inv[0][j], self._inv[1][j], self._inv[2][j]
+        span = xn[:, -1] - xn[:, 0]
+        d = ((x - xn[:, 0]) / span)[:, None] - (xn - xn[:, :1]) / span[:, None]
+        hit = d == 0.0
+        q = bw / np.where(hit, 1.0, d)
+        s = np.sum(q * sn, axis=1) / np.sum(q, axis=1)
+        exact = hit.any(axis=1)
+        if exact.any():
+            s[exact] = sn[exact][hit[exact]]
+        return s
 
     def s_of(self, xi: np.ndarray) -> np.ndarray:
         """Invert ξ(s) for ξ ≥ 0 (tail beyond the table: linear, g constant there)."""
         C, e = self.C, self.e
         xi = np.asarray(xi, float)
+        shape = xi.shape
+        xi = xi.ravel()
         out = np.empty_like(xi)
         tail = xi >= C[-1]
         out[tail] = e[-1] + (xi[tail] - C[-1]) / self.slope_end
+        if tail.all():
+            return out.reshape(shape)
+        polish = self._tables()[3]
         x = xi[~tail]
         j = np.clip(np.searchsorted(C, x, side="right") - 1, 0, len(e) - 2)
         a, b = e[j], e[j + 1]
-        s = a + (b - a) * (x - C[j]) / (C[j + 1] - C[j])
-        for _ in range(40):  # Newton on ξ(s) − x inside the panel (safeguarded by the panel ends)
-            h = (s - a)[:, None]
-            F = C[j] + self.scale * np.sum(self.g(a[:, None] + h * self._xh) * self._wh * h, 1) - x
+        s = np.clip(self._interp(j, x), a, b)
+        for _ in range(40 if polish else 0):  # Newton on ξ(s) − x inside the panel
+            F = self._xi(j, s) - x
             s_new = np.clip(s - F / (self.scale * self.g(s)), a, b)
             done = np.abs(s_new - s) <= 4 * EPS * (1.0 + np.abs(s))
             s = s_new
             if np.all(done):
                 break
         out[~tail] = s
-        return out
+        return out.reshape(shape)
 
 
 def _sech2(x):
@@ -411,6 +565,12 @@ class QCSuperkinkGeneral(QCSuperkink):
     def _w_of_s(self, s):
         """w = w_mid − (Δ/2) tanh s written from the nearer end (no loss in the tails)."""
         D = self.w_minus - self.w_plus
+        if np.ndim(s) == 0:
+            E = math.exp(-2.0 * abs(s))
+            tail = 2.0 * E / (1.0 + E)
+            return np.float64(
+                self.w_plus + 0.5 * D * tail if s >= 0 else self.w_minus - 0.5 * D * tail
+            )
         E = np.exp(-2.0 * np.abs(s))
         tail = 2.0 * E / (1.0 + E)  # 1 − tanh|s|
         return np.where(s >= 0, self.w_plus + 0.5 * D * tail, self.w_minus - 0.5 * D * tail)
@@ -418,7 +578,16 @@ class QCSuperkinkGeneral(QCSuperkink):
     def _s_of_xi(self, xi):
         xi = np.asarray(xi, float)
         pos, neg = self.tables  # neg tabulates g(−s): s = −s_neg for ξ < 0
-        return np.where(xi >= 0, pos.s_of(np.abs(xi)), -neg.s_of(np.abs(xi)))
+        if xi.ndim == 0:
+            x = float(xi)
+            return np.float64(pos.s_of_scalar(x) if x >= 0 else -neg.s_of_scalar(-x))
+        out = np.empty_like(xi)
+        right = xi >= 0
+        if right.all() or not right.any():  # one side only (scalar calls): one table
+            return pos.s_of(xi) if xi.size == 0 or right.flat[0] else -neg.s_of(-xi)
+        out[right] = pos.s_of(xi[right])
+        out[~right] = -neg.s_of(-xi[~right])
+        return out
 
     def profile(self, xi):
         """w(ξ), w(0) = (w₊ + w₋)/2 (= w* only for the cubic)."""
@@ -449,7 +618,8 @@ def _sk_g(law, wp: float, wm: float, V2: float):
         far = D - near
         dp = np.where(s >= 0, near, far)  # w − w₊
         dm = np.where(s >= 0, -far, -near)  # w − w₋
-        Q = np.where(s >= 0, -_J(law, wp, dp, V2) / (dm * dm), -_J(law, wm, dm, V2) / (dp * dp))
+        with np.errstate(divide="ignore", invalid="ignore"):  # the branch not taken may be 0/0
+            Q = np.where(s >= 0, -_J(law, wp, dp, V2) / (dm * dm), -_J(law, wm, dm, V2) / (dp * dp))
         return 1.0 / np.sqrt(Q)
 
     return g
@@ -470,7 +640,7 @@ def _build_superkink(law, V, wp, wm, branch, t0, wp_err, wm_err, V_err):
     lam = lambda w: math.sqrt(max(12.0 * (V2 - float(law.df(w))), 0.0)) / V  # noqa: E731
     return QCSuperkinkGeneral(
         law, V, wp, wm, 0.5 * lam(wp), branch, ray, abs(G) / G_scale, time.perf_counter() - t0,
-        0.5 * lam(wm), V_err, wp_err, wm_err, max(pos.err, neg.err), (pos, neg),
+        0.5 * lam(wm), V_err, wp_err, wm_err, max(pos.table_err(), neg.table_err()), (pos, neg),
     )  # fmt: skip
 
 
@@ -520,8 +690,8 @@ def _rayleigh_roots_one(law, w_plus: float, V: float):
     if not V2 < law.c_max**2:
         return nan, nan, nan, nan
     ws = law.w_star
-    fdv = lambda w: float(law.df(w)) - V2  # noqa: E731
-    h = lambda w: (w - w_plus) * (float(_slope(law, w_plus, w - w_plus)) - V2)  # noqa: E731
+    fdv = lambda w: _df1(law, w) - V2  # noqa: E731
+    h = lambda w: (w - w_plus) * (_scalar_slope(law, w_plus, w - w_plus) - V2)  # noqa: E731
     step = max(abs(ws - w_plus), abs(ws) * 1e-3, 1e-3)
     p1 = _root(fdv, *_bracket_to_end(fdv, ws, law.alpha, -1.0, step))[0]  # f′ = V², left of w*
     p2 = _root(fdv, *_bracket_to_end(fdv, ws, law.beta, 1.0, step))[0]  # … and right of w*
@@ -593,7 +763,8 @@ class QCSolitaryGeneral(QCSolitary):
         return self.w_B_error + self.w_M_error
 
     def profile(self, xi):
-        u = self.table.s_of(np.abs(np.asarray(xi, float)))
+        xi = np.asarray(xi, float)
+        u = self.table.s_of_scalar(abs(float(xi))) if xi.ndim == 0 else self.table.s_of(np.abs(xi))
         return self.w_B + (self.w_M - self.w_B) * _sech2(u)
 
     def dprofile(self, xi):
@@ -652,7 +823,7 @@ def solitary(
         raise ParameterError("V", V, valid, f"solitary-wave velocities for w_plus={w_plus:.10g}")
     if not (math.isfinite(w_near) and math.isfinite(other)):
         raise ParameterError("V", V, valid, "too close to an end of the interval to resolve")
-    Jw = lambda w: float(_J(law, wB, w - wB, V2))  # noqa: E731
+    Jw = lambda w: _scalar_J(law, wB, w - wB, V2)  # noqa: E731
     if not (Jw(w_near) < 0 < Jw(other)):
         raise ParameterError("V", V, valid, "too close to an end of the interval to resolve")
     wM, wM_err = _root(Jw, w_near, other)
@@ -712,4 +883,7 @@ def solitary(
     )  # fmt: skip
     xi = np.linspace(0.0, 12.0, 32) / gamma
     fi = first_integral_residual(law, sw.profile(xi), sw.dprofile(xi), wB, V) if check else math.nan
-    return replace(sw, first_integral_residual=fi, elapsed_s=time.perf_counter() - t0)
+    # xi_error includes the inverse tables' error once a profile has been evaluated (check=True)
+    return replace(
+        sw, first_integral_residual=fi, xi_error=m.err, elapsed_s=time.perf_counter() - t0
+    )
