@@ -12,6 +12,8 @@ from __future__ import annotations
 
 import logging
 import os
+import subprocess
+import sys
 import time
 
 log = logging.getLogger("fpu-explorer")
@@ -33,7 +35,9 @@ def warm(verbose: bool = True, scenes: str | None = None) -> dict[str, float]:
     times: dict[str, float] = {}
     t0 = time.perf_counter()
     try:
-        warm_all()
+        warm_all(lazy=False)  # in parallel processes; loads what `fpu warm` already cached
+        # the rarely used integrators compile in a separate process while the server serves
+        subprocess.Popen([sys.executable, "-m", "fpucore", "warm"], stdout=subprocess.DEVNULL)
     except Exception as exc:  # warm-up must never keep the server from starting
         log.warning("fpucore warm-up skipped: %s", exc)
     times["jit"] = time.perf_counter() - t0
