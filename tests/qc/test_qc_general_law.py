@@ -3,11 +3,15 @@ forms, any other law goes through fpucore.qc.general.  References: the closed fo
 written as a polynomial must reproduce them), the first integral (eq. TW_QC_gen3) on the
 highlighted phase-plane orbits, and the ordering c₊ < V_SK < c₋ of paper §3."""
 
+import json
+
 import numpy as np
 import pytest
 
 from fpucore import CubicLaw, ParameterError, law_from_expression, qc
+from fpucore.cli.common import jsonable
 from fpucore.qc import closed_forms, general
+from fpucore.result import STATUSES, Result
 
 QUARTIC = law_from_expression("w + 10*w**2 - w**3 - 0.01*w**4")
 CUBIC = CubicLaw(-1.0, 10.0)
@@ -87,3 +91,16 @@ def test_general_route_refusals_name_the_argument():
     with pytest.raises(ParameterError) as e:
         qc.solitary(QUARTIC, QUARTIC.w_star, 5.0)
     assert e.value.name == "w_plus"
+
+
+def test_general_results_speak_the_result_protocol():
+    for res in (
+        general.speeds(QUARTIC, 1.0),
+        qc.superkink_from_w_plus(QUARTIC, 1.0),
+        qc.solitary(QUARTIC, 1.0, 5.35),
+    ):
+        assert isinstance(res, Result) and res.status in STATUSES and res.converged
+        assert res.ERROR_FIELDS and all(np.isfinite(v) for v in res.errors().values())
+        d = res.as_dict()
+        assert all(k in d for k in ("status", "elapsed_s", *res.ERROR_FIELDS))
+        json.dumps(jsonable(d))
