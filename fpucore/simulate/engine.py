@@ -276,16 +276,19 @@ def memory_estimate(
     """Bytes of one run by the argument that sets them: {name: (bytes, what)}.
 
     "L": the state, the stepper's work arrays, the per-site observer (events n_events per site,
-    4 crossings), the tracking window (n_track full profiles), extra full profiles and the
-    initial data; "n_snapshots": the output field (n_snapshots × sites kept, and its copy when a
-    stopped run is trimmed); "n_probe_t": the probe series ((probes + 1) × n_probe_t, twice)."""
+    4 crossings), the tracking window (n_track full profiles, twice), extra full profiles, the
+    initial data and temporaries (checked against tracemalloc in tests/simulate/test_budgets.py);
+    "n_snapshots": the output field (n_snapshots × sites kept, and its copy when a stopped run
+    is trimmed); "n_probe_t": the probe series ((probes + 1) × n_probe_t, twice)."""
     st = STEPPERS[method]
     per_site = st.floats_per_site()
     if method == "symplectic" and estimate_error:
         per_site *= 2
     per_site += 1 + 3 + 1 + 1  # g, zz, zt, final_w
     per_site += 2 * n_events + n_events / 8 + 1 + 4 + 0.5 + 1  # events, crossings, counts
-    per_site += n_track + 2 + n_extra + 2  # tracking window (+ its temporaries), extra, w0, v0
+    # the tracking window and the tracker's temporaries (2 × n_track profiles, measured), extra
+    # profiles, w0 and v0, temporaries of the energy (Φ(w), v², …; measured with tracemalloc)
+    per_site += 2 * n_track + n_extra + 2 + 10
     return {
         "L": (8.0 * per_site * L, f"{per_site:.0f} floats per site × L={L}"),
         "n_snapshots": (
@@ -296,14 +299,24 @@ def memory_estimate(
     }
 
 
-def work_estimate(law, L: int, t_end: float, method: str, rtol: float, dt, estimate_error: bool):
+def work_estimate(
+    law,
+    L: int,
+    t_end: float,
+    method: str,
+    rtol: float,
+    dt,
+    estimate_error: bool = True,
+    n_stops: int = 240,
+) -> dict:
     """Rough work of a run before it starts: {"steps", "site_evals", "seconds"}.  Fixed step:
-    t_end/dt (+ half as many for the step-doubling companion); adaptive: t_end·ω_max/(h·ω) with
-    the measured h·ω of :data:`H_OMEGA_AT_1E10` scaled as rtol^(1/(q+1)) (a factor ~3 either way:
-    the data, not only the law, set the step)."""
+    t_end/dt plus one shortened step per output stop (``n_stops``; + half as many for the
+    step-doubling companion); adaptive: t_end·ω_max/(h·ω) with the measured h·ω of
+    :data:`H_OMEGA_AT_1E10` scaled as rtol^(1/(q+1)) (a factor ~3 either way: the data, not only
+    the law, set the step)."""
     st = STEPPERS[method]
     if method == "symplectic":
-        steps = t_end / dt * (1.5 if estimate_error else 1.0)
+        steps = (t_end / dt + n_stops) * (1.5 if estimate_error else 1.0)
     else:
         omega = 2.0 * law.c_max
         h_omega = H_OMEGA_AT_1E10[method] * (rtol / 1e-10) ** (1.0 / (st.order + 1))
@@ -380,7 +393,8 @@ def configure(
     values = {"L": L, "n_snapshots": n_snapshots, "n_probe_t": n_probe_t}
     detail = "estimate: " + "; ".join(f"{what}: {fmt_bytes(b)}" for b, what in sizes.values())
     require_memory(name, total, detail, value=values[name], budget=memory_budget)
-    work = work_estimate(law, L, t_end, method, rtol, dt, estimate_error)
+    n_stops = n_snapshots + (n_track if track else 0) + n_extra
+    work = work_estimate(law, L, t_end, method, rtol, dt, estimate_error, n_stops)
     return RunConfig(
         L, t_end, boundary, method, rtol, atol, dt if method == "symplectic" else None,
         n_snapshots, max_sites_out, probe_idx, n_probe_t, late_fraction, n_track, max_steps,
