@@ -151,56 +151,64 @@ def _solve(law, wp, V, **kw):
     return wave.solve_solitary(law, wp, V, **kw), wave.solitary_spec(law, wp, V)
 
 
-def _energy_spread(law, spec, r, E_ref):
-    """Largest |E − E_ref| over the solution and two equally accurate re-solves (m + 1, m + 2 RK
-    steps, same N).  E_ren^D is a sum over all sites: its error is dominated by round-off along
-    one direction (through Σẇ and the tails), whose realisation varies from solve to solve by
-    ~100× (measured near c₋: 1e-10 … 1e-8); the bound is judged against that spread."""
+def _variants(law, spec, r):
+    """The solution and two equally accurate re-solves (m + 1, m + 2 RK steps, same N, Newton
+    stepped to round-off) as (w, ẇ) pairs.  Near-singular directions (near-sonic tails, Σẇ in
+    E_ren) make the realised error vary from solve to solve by up to ~100× (measured near c₋:
+    E error 1e-10 … 1e-8); the bounds hold for every realisation and are judged for sharpness
+    against the largest."""
     x = np.empty(2 * r.N)
     x[0::2], x[1::2] = r.w, r.wdot
-    errs = [abs(r.energy - E_ref)]
+    out = [(r.w, r.wdot)]
     scale = max(1.0, abs(spec.w_left), abs(spec.w_right))
     for m in (r.m + 1, r.m + 2):
         S = wave.build_system(law, spec, r.N, m, r.K)
-        o = newton(S, x, max(1e-12 * scale, r.residual_floor), 40, "exact", 60.0,
-                   step_tol=1e-12 * scale)  # fmt: skip
-        E = wave.renormalized_energy(law, o.x[0::2], o.x[1::2], spec.V, spec.w_left,
-                                     spec.w_right, spec.w_left)  # fmt: skip
-        errs.append(abs(E - E_ref))
-    return max(errs)
+        o = newton(
+            S, x, max(1e-12 * scale, r.residual_floor), 40, "exact", 60.0, step_tol=1e-16 * scale
+        )  # fmt: skip  (steps until round-off)
+        out.append((o.x[0::2], o.x[1::2]))
+    return out
 
 
 def _true_errors(law, wp, V):
+    """(result, {field: (bound, true error of the result, largest over the variants)},
+    reference accuracy, strain scale)."""
     r, spec = _solve(law, wp, V)
     assert r.converged, r.message
     xl, off, acc = reference(law, spec, r, 2 * r.N, 4 * r.m)
-    wr = xl[0::2][off : off + r.N]
-    out = {"profile": (r.profile_error, float(np.max(np.abs(r.w - wr.astype(float)))))}
+    wr = xl[0::2][off : off + r.N].astype(float)
+    var = _variants(law, spec, r)
+    prof = [float(np.max(np.abs(w - wr))) for w, _ in var]
+    out = {"profile": (r.profile_error, prof[0], max(prof))}
     if wp is not None:
         w_ref = np.asarray(xl[0::2], float)
         wd_ref = np.asarray(xl[1::2], float)
         E_ref = wave.renormalized_energy(law, w_ref, wd_ref, V, spec.w_left, spec.w_right,
                                          spec.w_left)  # fmt: skip
-        amp_ref = float(abs(wr[r.N // 2] - LD(spec.w_left)))
-        out["amplitude"] = (r.amplitude_error, abs(r.amplitude - amp_ref))
-        out["energy"] = (r.energy_error, abs(r.energy - E_ref))
-        out["energy_spread"] = (r.energy_error, _energy_spread(law, spec, r, E_ref))
+        amp_ref = float(abs(xl[0::2][off + r.N // 2] - LD(spec.w_left)))
+        amp = [abs(abs(w[r.N // 2] - spec.w_left) - amp_ref) for w, _ in var]
+        E = [
+            abs(wave.renormalized_energy(law, w, wd, V, spec.w_left, spec.w_right, spec.w_left)
+                - E_ref)
+            for w, wd in var
+        ]  # fmt: skip
+        out["amplitude"] = (r.amplitude_error, amp[0], max(amp))
+        out["energy"] = (r.energy_error, E[0], max(E))
     scale = max(1.0, abs(spec.w_left), abs(spec.w_right))
     return r, out, acc, scale
 
 
 def _check(name, out, acc, scale, sharp=True):
-    """Each bound covers its true error (less the reference's own accuracy acc, in the profile
-    and amplitude) and is at most SHARP × the true error, or sits at round-off (1e-12 × scale);
-    the energy bound is judged for sharpness against the spread of E (:func:`_energy_spread`)."""
-    for field, (bound, true) in out.items():
+    """Each bound covers the true error of the result (less the reference's own accuracy acc in
+    the profile and amplitude) and is at most SHARP × the largest true error over equally
+    accurate solves (:func:`_variants`), or sits at round-off (1e-12 × scale)."""
+    for field, (bound, true, largest) in out.items():
         assert math.isfinite(bound) and bound > 0, (name, field, bound)
-        slack = acc if field in ("profile", "amplitude") else 0.0
+        slack = acc if field != "energy" else 0.0
         assert bound >= true - slack, (name, field, bound, true, acc)
-        if not sharp or field == "energy":
-            continue
-        floor = max(acc, 1e-12 * scale) if field in ("profile", "amplitude") else 0.0
-        assert bound <= SHARP * max(true, floor), (name, field, bound, true)
+        if sharp:
+            floor = max(acc, 1e-12 * scale) if field != "energy" else 0.0
+            assert bound <= SHARP * max(largest, floor), (name, field, bound, largest)
 
 
 @pytest.mark.parametrize("name,law,wp,V", FAST, ids=[c[0] for c in FAST])
@@ -217,11 +225,12 @@ def test_bounds_slow_cases(name, law, wp, V):
     Jacobian's smallest singular value ∝ 1e-9): the bound covers the true error."""
     r, out, acc, scale = _true_errors(law, wp, V)
     if name == "V_SK+1e-9":
-        # measured: bound 3e-4, true error 6e-8 with the reference only good to ~2e-8 — the
-        # plateau-length mode's sampled round-off (σ_min ≈ 1e-9) overstates this realisation
+        # measured: bound 4.2e-4 (≈ the plateau-front round-off uncertainty, 6.6e-4 sites,
+        # times the front's slope), true error 6.2e-8 and at most 6.5e-7 over re-solves: the
+        # sampled round-off along the plateau mode (σ_min ∝ 1e-9) overstates these realisations
         _check(name, out, acc, scale, sharp=False)
-        pytest.xfail("flat top above V_SK at 1e-9: bound covers but is ~5000x the error")
-    _check(name, out, max(acc, 0.0), scale)
+        pytest.xfail("flat top 1e-9 above V_SK: the bound covers but is ~640x the error")
+    _check(name, out, acc, scale)
 
 
 @pytest.mark.slow
