@@ -8,6 +8,8 @@ f(w) = a w³ + b w² + w (Vainchtein & Truskinovsky).  One subpackage per stage 
     →  wave (discrete traveling waves: period map, Newton system, continuation, families)
     →  floquet (stability: monodromy, multipliers, sweeps)
     |  simulate (direct simulation of the chain and wave tracking)
+    →  parallel (the execution layer: process pool / Dask, the thread budget)
+    →  atlas (sweeps over the existence region, stored in Zarr)
     →  cli (the ``fpu`` command)
 
 ``errors`` (ParameterError) and ``result`` (the result protocol) are imported by all and import
@@ -17,6 +19,10 @@ nothing back.  Every result object carries its error estimate, ``status`` and ``
 from fpucore.jit_cache import key_cache_dir
 
 key_cache_dir()  # before any kernel is compiled: see fpucore/jit_cache.py
+
+from fpucore.parallel.threads import configure_threading_layer  # noqa: E402
+
+configure_threading_layer()  # Numba's "omp" layer, chosen before any kernel runs
 
 from fpucore import floquet, qc, simulate, wave  # noqa: E402
 from fpucore.errors import ConvergenceError, ParameterError  # noqa: E402
