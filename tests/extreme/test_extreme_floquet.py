@@ -9,7 +9,8 @@ import pytest
 from fpucore import CubicLaw, ParameterError, floquet, qc, wave
 
 STIFF = CubicLaw(-1.0, 100.0)  # f'(w*) = 3334: periods ~ 0.017, frequencies ~ 115
-TINY_A = CubicLaw(-0.01, 10.0)  # w* = 333: strains in the hundreds
+TINY_A = CubicLaw(-0.01, 10.0)
+fq_classes = floquet.CLASSES  # w* = 333: strains in the hundreds
 
 
 def _exact_constant_state(law, w0, V, N):
@@ -43,7 +44,7 @@ def test_constant_state_spectrum_matches_dispersion_relation(law, w0, V):
     assert _set_distance(fr.multipliers, exact) < 1e-9
     assert abs(fr.max_modulus - 1.0) < 1e-9
     assert fr.symmetry_error < 1e-9
-    assert fr.verdict == "stable within error"
+    assert fr.classification == "stable" and fr.verdict.startswith("stable:")
 
 
 @pytest.mark.parametrize("law,frac", [(STIFF, 0.5), (TINY_A, 0.5), (CubicLaw(-1, 10), 0.02)])
@@ -60,6 +61,10 @@ def test_superkink_spectrum_on_extreme_laws(law, frac):
     assert fr.error < 1e-6
     # the |μ| excess is either real (beyond the error bar, listed as unstable) or noise
     assert fr.excess_significant == (fr.n_unstable > 0)
+    # and classified with its evidence: stable, or points at three chain lengths
+    assert fr.classification in fq_classes
+    if fr.classification != "stable":
+        assert fr.finite_size_N.size == 3 and fr.finite_size_N[-1] == r.N
     assert fr.max_modulus_away_from_1 < 1.05
 
 
