@@ -1,7 +1,8 @@
 """Floquet stability of discrete traveling waves (paper §6, eqs. linear, linear_map).
 
 kernels (Numba: shifted rows, exact deflation)  →  monodromy (𝓜 from the tangent flow,
-its multipliers)  →  multipliers (FloquetResult: spectrum, error bars, verdict)
+its multipliers)  →  structured_kernels → structured (the half-size symplectic route)
+→  multipliers (FloquetResult: spectrum, error bars, verdict)
 →  checks (quartet symmetry, homogeneous closed form, phonon gap)  →  finite_size (is an
 excess |μ| − 1 an artefact of the finite ring? the three-way classification)  →  energy (extrema
 of E_ren(V) along solitary families, where stability may change)  →  sweep (max|μ| along V)
@@ -16,7 +17,8 @@ from fpucore.floquet.checks import (
 from fpucore.floquet.energy import EnergyCriterion, energy_criterion
 from fpucore.floquet.finite_size import CLASSES, chain_lengths
 from fpucore.floquet.monodromy import MAX_N, Monodromy, default_steps, monodromy, multipliers_of
-from fpucore.floquet.multipliers import FloquetResult, spectrum
+from fpucore.floquet.multipliers import METHODS, FloquetResult, spectrum
+from fpucore.floquet.structured import structured_multipliers
 from fpucore.floquet.sweeps import SweepResult, sweep
 
 __all__ = [
@@ -33,6 +35,8 @@ __all__ = [
     "energy_criterion",
     "CLASSES",
     "chain_lengths",
+    "METHODS",
+    "structured_multipliers",
     "FloquetResult",
     "spectrum",
     "SweepResult",

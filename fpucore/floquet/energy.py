@@ -52,6 +52,7 @@ class EnergyCriterion(Result):
     qc_extrema_V, qc_extrema_V_error, qc_extrema_energy, qc_extrema_kind : the same for E_ren^QC.
     stability_may_change : True where any extremum was found (in the discrete family, or in the
     QC family inside the sampled V range); the criterion is necessary, not sufficient.
+    location_error : the largest error bar on V of all extrema found (0 when none).
     """
 
     w_plus: float
@@ -70,12 +71,13 @@ class EnergyCriterion(Result):
     qc_extrema_energy: np.ndarray
     qc_extrema_kind: tuple
     stability_may_change: bool
+    location_error: float
     elapsed_s: float
     converged: bool
     message: str
     family: Family | None = field(default=None, repr=False)
 
-    ERROR_FIELDS: ClassVar = ("extrema_V_error", "qc_extrema_V_error")
+    ERROR_FIELDS: ClassVar = ("location_error",)
     DERIVED: ClassVar = ("status",)
     EXCLUDE: ClassVar = ("family",)
 
@@ -215,6 +217,7 @@ def energy_criterion(
         qc_extrema_energy=col(qext, 2),
         qc_extrema_kind=tuple(x[3] for x in qext),
         stability_may_change=may,
+        location_error=float(max([x[1] for x in ext + qext], default=0.0)),
         elapsed_s=time.perf_counter() - t0,
         converged=n_bad == 0,
         message=msg,

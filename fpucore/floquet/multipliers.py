@@ -22,7 +22,10 @@ from fpucore.floquet.finite_size import (
     verdict_text,
 )
 from fpucore.floquet.monodromy import base_state, default_steps, monodromy, multipliers_of
+from fpucore.floquet.structured import structured_multipliers
 from fpucore.result import Result, status_of
+
+METHODS = ("dense", "structured")
 
 
 @dataclass(frozen=True)
@@ -36,7 +39,10 @@ class FloquetResult(Result):
     symmetry_error : max relative mismatch of the quartet symmetry μ ↔ 1/μ̄ (see
     :func:`quartet_symmetry_error`); conjugate_error : the same for μ ↔ μ̄ (0 for real 𝓜).
     integrator_error : ‖𝓜_m − 𝓜_2m‖₂ bound (step doubling of the tangent integration).
-    error : max(symmetry_error, integrator_error, round-off floor) — the error bar of |μ|.
+    error : max(symmetry_error, integrator_error, round-off floor) — the error bar of |μ|
+    (method "structured": also structure_error, and the largest multiplier's own bound).
+    method : "dense" | "structured"; structure_error : the structured route's bound δλ on
+    λ = μ + 1/μ (NaN for dense), see :mod:`fpucore.floquet.structured`.
     excess : max_modulus_away_from_1 − 1; excess_significant : excess > error.
     unstable : multipliers (away from 1) with |μ| − 1 > error.
     growth_rate : V·ln(max_modulus_away_from_1), the growth rate Re λ per unit time (μ = e^{λ/V}).
@@ -67,6 +73,8 @@ class FloquetResult(Result):
     excess_significant: bool
     unstable: np.ndarray
     verdict: str
+    method: str
+    structure_error: float
     classification: str
     growth_rate: float
     finite_size_N: np.ndarray
@@ -91,10 +99,9 @@ class FloquetResult(Result):
     message: str
     wave: dict = field(default_factory=dict)
 
-    ERROR_FIELDS: ClassVar = (
-        "error", "symmetry_error", "integrator_error", "conservation_defect",
-        "finite_size_exponent_error", "extrapolated_excess_error",
-    )  # fmt: skip
+    # finite_size_exponent_error, extrapolated_excess_error, structure_error are NaN where not
+    # applicable, so they are not protocol error fields (those are always finite)
+    ERROR_FIELDS: ClassVar = ("error", "symmetry_error", "integrator_error", "conservation_defect")
     DERIVED: ClassVar = ("status", "n_unstable")
 
     @property
@@ -142,6 +149,7 @@ def spectrum(
     trivial_radius: float | None = None,
     check: bool = True,
     finite_size: bool = True,
+    method: str = "dense",
 ) -> FloquetResult:
     """Floquet multipliers of the traveling wave r (from ``wave.solve_superkink/solve_solitary``,
     or a :class:`HomogeneousState`), with their error bars and the trivial cluster at 1.
@@ -156,8 +164,15 @@ def spectrum(
     wave on 0.4N and 0.6N sites and classify the excess (:mod:`fpucore.floquet.finite_size`;
     adds ~30–60 % to the run time).  False: no extra spectra; an excess beyond the error bar is
     then classified "unstable" with finite_size_checked = False and the verdict says so.
+    method : "dense" (LAPACK dgeev on the deflated (2N−2)² block, the reference) or
+    "structured" (half-size structure-preserving route, :mod:`fpucore.floquet.structured`:
+    elliptic multipliers exactly on the circle; its error bar comes from the measured
+    non-symplecticity and the dropped isotropy defect, ``structure_error``, instead of the
+    quartet symmetry).  The finite-size spectra use the same method.
     """
     t0 = time.perf_counter()
+    if method not in METHODS:
+        raise ParameterError("method", method, " | ".join(repr(x) for x in METHODS))
     law, w, wd, V, N, wl, wr = base_state(r)
     if m is None:
         m = max(int(getattr(r, "m", 0) or 0), default_steps(law, V))
@@ -172,7 +187,12 @@ def spectrum(
         integ = float(math.sqrt(d.sum(axis=0).max() * d.sum(axis=1).max()))  # ≥ ‖δ𝓜‖₂
         check_s = time.perf_counter() - tc
     te = time.perf_counter()
-    mu_rest, mu_sums, defect = multipliers_of(mono.matrix, N)
+    if method == "dense":
+        mu_rest, mu_sums, defect = multipliers_of(mono.matrix, N)
+        mu_err, struct = np.zeros(2 * N - 2), math.nan
+    else:
+        mu_rest, mu_sums, defect, info = structured_multipliers(mono.matrix, N, mono.K)
+        mu_err, struct = info["mu_error"], float(info["lam_error"])
     eig_s = time.perf_counter() - te
     if not np.all(np.isfinite(mu_rest)):
         raise ParameterError("r", "non-finite monodromy", "a bounded base trajectory")
@@ -181,6 +201,8 @@ def spectrum(
     norm = float(np.abs(mono.matrix).sum(axis=0).max())
     floor = 64.0 * np.finfo(float).eps * norm
     error = max(sym, integ if math.isfinite(integ) else 0.0, floor)
+    if method == "structured":  # λ-level bound; per-multiplier bounds mu_err below
+        error = max(error, struct)
 
     gap = min(phonon_gap(law, wb, V, N) for wb in _background_states(r, law))
     # a Jordan block at 1 perturbed by ε splits by ~√ε: ε = the error bar or the wave's residual
@@ -193,10 +215,13 @@ def spectrum(
     near = np.abs(mu_rest - 1.0) < trivial_radius
     trivial = np.concatenate([mu_sums, mu_rest[near]])
     away = mu_rest[~near]
+    err_away = np.maximum(mu_err[~near], error)
     max_mod = float(np.abs(mu).max())
     max_away = float(np.abs(away).max(initial=0.0))
     excess = max_away - 1.0
-    unstable = away[np.abs(away) - 1.0 > error]
+    if away.size:  # the error bar of the largest multiplier (structured: its own bound)
+        error = float(err_away[int(np.argmax(np.abs(away)))])
+    unstable = away[np.abs(away) - 1.0 > err_away]
     unstable = unstable[np.argsort(-np.abs(unstable))]
     msgs = []
     converged = True
@@ -233,7 +258,7 @@ def spectrum(
             if r_k is None:
                 why = reason
                 continue
-            f_k = spectrum(r_k, m=mono.m, check=False, finite_size=False)
+            f_k = spectrum(r_k, m=mono.m, check=False, finite_size=False, method=method)
             pts.append((n_k, f_k.excess, max(f_k.error, integ if math.isfinite(integ) else 0.0)))
     pts.sort()
     fs_N = np.array([p[0] for p in pts], dtype=np.int64)
@@ -263,6 +288,8 @@ def spectrum(
         excess_significant=bool(excess > error),
         unstable=unstable,
         verdict=verdict,
+        method=method,
+        structure_error=struct,
         classification=cls,
         growth_rate=growth,
         finite_size_N=fs_N,
