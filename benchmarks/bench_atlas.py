@@ -32,7 +32,7 @@ LAW = CubicLaw(-1.0, 10.0)
 
 def warm(ex: Executor, N: int) -> None:
     """Load the JIT cache in every worker (one small point each), so timings are steady."""
-    task = {"a": -1.0, "b": 10.0, "kind": "superkink", "row": "lower", "V": [5.5], "N": N,
+    task = {"law": LAW, "kind": "superkink", "row": "lower", "V": [5.5], "N": N,
             "tol": 1e-12, "floquet": True, "m": None, "continuation": True}  # fmt: skip
     jobs = [ex.submit(solve_chunk, task) for _ in range(max(1, ex.workers))]
     for j in jobs:

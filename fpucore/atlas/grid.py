@@ -80,9 +80,12 @@ def parse_values(name: str, spec, allow_count: bool = False) -> np.ndarray | int
 
 def velocity_span(law, kind: str, rows) -> tuple[float, float]:
     """Union of the existence intervals of V over the rows (see module doc)."""
-    if kind == "superkink":
-        return qc.superkink_velocity_bounds(law)
     lo, hi = math.inf, -math.inf
+    if kind == "superkink":  # the branches share eq. V_bounds_cubic; a general law's may differ
+        for branch in rows:
+            a, b = qc.superkink_velocity_bounds(law, branch)
+            lo, hi = min(lo, a), max(hi, b)
+        return lo, hi
     for w in rows:
         try:
             cp, _, cm = qc.sound_speeds(law, float(w))

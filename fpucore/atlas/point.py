@@ -9,7 +9,8 @@ spectrum's ``error`` is stored as ``max_modulus_error`` and its ``integrator_err
 * ``"ok"``            — wave converged (and its spectrum, with ``floquet``);
 * ``"not_converged"`` — the solver finished without meeting its check (``message`` says why);
 * ``"no_wave"``       — (w₊, V) outside the existence region: the ParameterError's text;
-* ``"failed"``        — an exception while computing (its class and message), or the worker died.
+* ``"failed"``        — the solver refused the settings (e.g. N too small for the wave's width:
+  its ParameterError), an exception while computing (its class and message), or the worker died.
 
 Continuation never makes a point depend on worker timing: a chunk is solved start to end in a
 fixed order, its first point from the QC guess; a continued solve that does not converge is
@@ -27,7 +28,6 @@ import numpy as np
 
 from fpucore.errors import ParameterError
 from fpucore.floquet.multipliers import spectrum
-from fpucore.law import CubicLaw
 from fpucore.wave import solve_solitary, solve_superkink
 from fpucore.wave.continuation import family_interval, qc_shift_predictor
 from fpucore.wave.setup import solitary_spec, superkink_spec
@@ -120,7 +120,7 @@ def solve_point(law, kind: str, row, V: float, N: int, tol: float, prev):
     """The wave at (row, V) — from prev = (wave, spec) by the QC-shift predictor when both lie
     on the same velocity interval, else (or if that fails) from the QC guess.  Raises
     ParameterError outside the existence region."""
-    sp = spec_of(law, kind, row, V)
+    sp = spec_of(law, kind, row, V)  # ParameterError here: no wave at (row, V)
 
     def solve(pred):
         if kind == "superkink":
@@ -140,23 +140,33 @@ def solve_point(law, kind: str, row, V: float, N: int, tol: float, prev):
 
 
 def solve_chunk(task: dict, progress=None) -> list[dict]:
-    """Records of the points ``task["V"]`` along one row, in order.  task: a, b, kind, row, V
-    (list), N (int or None: automatic), tol, floquet (bool), m (RK steps or None),
+    """Records of the points ``task["V"]`` along one row, in order.  task: law (a force-law
+    object), kind, row, V (list), N (int or None: automatic), tol, floquet (bool), m (RK steps or
+    None), finite_size (bool: the spectrum's finite-size test, which gives the classification),
     continuation (bool).  ``progress(frac)`` after each point."""
-    law = CubicLaw(task["a"], task["b"])
+    law = task["law"]
     kind, row, N, tol = task["kind"], task["row"], task["N"], task["tol"]
     out, prev = [], None
     Vs = list(task["V"])
     for k, V in enumerate(Vs):
         t0 = time.perf_counter()
         try:
+            spec_of(law, kind, row, float(V))
+        except ParameterError as exc:  # outside the existence region
+            out.append(empty_record("no_wave", str(exc)) | {"elapsed_s": time.perf_counter() - t0})
+            prev = None
+            if progress is not None:
+                progress((k + 1) / len(Vs))
+            continue
+        try:
             r, sp = solve_point(law, kind, row, float(V), N, tol, prev)
             rec = wave_record(r)
             prev = (r, sp) if (r.converged and task.get("continuation", True)) else None
             if r.converged and task["floquet"]:
-                add_floquet(rec, spectrum(r, m=task.get("m")))
-        except ParameterError as exc:
-            rec, prev = empty_record("no_wave", str(exc)), None
+                fs = task.get("finite_size", True)
+                add_floquet(rec, spectrum(r, m=task.get("m"), finite_size=fs))
+        except ParameterError as exc:  # the wave exists, the settings do not suit it (N, ...)
+            rec, prev = empty_record("failed", str(exc)), None
         except Exception as exc:  # noqa: BLE001  (recorded with its reason; the sweep goes on)
             rec, prev = empty_record("failed", failure_text(exc)), None
         if not math.isfinite(rec["elapsed_s"]):

@@ -38,7 +38,7 @@ from fpucore.atlas.store import (
 )
 from fpucore.errors import ParameterError, require_finite
 from fpucore.floquet.monodromy import MAX_N
-from fpucore.law import CubicLaw
+from fpucore.law import HardeningSofteningLaw
 from fpucore.parallel import Cancelled, Executor, WorkerDied, cores
 from fpucore.result import Result, status_of
 
@@ -123,6 +123,7 @@ def run(
     N: int | None = None,
     tol: float = 1e-12,
     floquet: bool = False,
+    finite_size: bool = True,
     m: int | None = None,
     chunk: int | None = None,
     continuation: bool = True,
@@ -138,9 +139,12 @@ def run(
 ) -> AtlasResult:
     """Compute (or resume) an atlas over the grid (rows × V) — see :mod:`fpucore.atlas`.
 
-    law : a CubicLaw.  kind : "solitary" (rows = w₊ values) | "superkink" (rows = branches).
+    law : a force law (CubicLaw or any HardeningSofteningLaw).  kind : "solitary" (rows = w₊
+    values) | "superkink" (rows = branches).
     V : ``"LO:HI:K"``, a list, or a count K spanning the existence intervals.  N : chain size
-    (None: automatic per point).  floquet : also compute spectra.  chunk : points per chunk.
+    (None: automatic per point).  floquet : also compute spectra; finite_size : with the
+    spectrum's finite-size test (spectra at 0.4N, 0.6N), which gives the classification.
+    chunk : points per chunk.
     out : Zarr store path (None: in memory only).  resume : continue an existing store.
     executor : an Executor to use (else one is made from backend / workers / address and shut
     down at the end).  progress(done, total, failed) after each chunk; on_points([(i, j,
@@ -148,11 +152,11 @@ def run(
     what runs once exceeded (points left pending, status "stopped").
     """
     t0 = time.perf_counter()
-    if not isinstance(law, CubicLaw):
-        raise ParameterError("law", law, "a CubicLaw")
+    if not isinstance(law, HardeningSofteningLaw):
+        raise ParameterError("law", law, "a force law (CubicLaw, PolynomialLaw, ...)")
     check_args(N, tol, time_budget_s)
     grid = make_grid(law, kind, rows, V, chunk)
-    attrs = identity_attrs(grid, law.a, law.b, N, tol, floquet, m, continuation)
+    attrs = identity_attrs(grid, law, N, tol, floquet, finite_size, m, continuation)
     table = Table(grid, attrs)
     lock = writer = None
     path = None
@@ -175,7 +179,7 @@ def run(
                 create(path, grid, attrs)
             writer = Writer(path)
         res = _execute(
-            grid, table, law, N, tol, floquet, m, continuation, writer, executor,
+            grid, table, law, N, tol, (floquet, finite_size), m, continuation, writer, executor,
             backend, workers, address, progress, on_points, time_budget_s, t0,
         )  # fmt: skip
         n_computed, used_backend, n_workers, stopped, msg = res
@@ -213,10 +217,10 @@ def _execute(grid, table, law, N, tol, floquet, m, continuation, writer, executo
     todo = [(i, j0, j1) for i, j0, j1 in grid.chunks() if not done[i, j0:j1].all()]
 
     def task(i, j0, j1):
-        return {"a": law.a, "b": law.b, "kind": grid.kind, "row": grid.rows[i],
+        return {"law": law, "kind": grid.kind, "row": grid.rows[i],
                 "V": [float(v) for v in grid.V[j0:j1]], "N": None if N is None else int(N),
-                "tol": float(tol), "floquet": bool(floquet), "m": m,
-                "continuation": bool(continuation)}  # fmt: skip
+                "tol": float(tol), "floquet": bool(floquet[0]), "finite_size": bool(floquet[1]),
+                "m": m, "continuation": bool(continuation)}  # fmt: skip
 
     own = executor is None and bool(todo)
     if own:

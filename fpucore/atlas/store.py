@@ -3,8 +3,9 @@
 Layout: dims (row_dim, "V") with row_dim "w_plus" (solitary) or "branch" (superkink); one
 variable per field of :data:`fpucore.atlas.point.FIELDS` plus ``done`` (int8: 1 = the point's
 final record is stored); Zarr chunks = the atlas chunks (1 × chunk), so every write of a chunk
-touches its own files only.  Attributes: a, b, kind, N, tol, floquet, m, chunk, continuation,
-the fpucore version and source hash, created/updated times.
+touches its own files only.  Attributes: kind, law and params (a, b for the cubic), N, tol,
+floquet, finite_size, m, chunk, continuation, the fpucore version and source hash,
+created/updated times.
 
 Crash safety.  Zarr's local store writes each file atomically (temporary file + rename).  A chunk
 is written data first, ``done`` last: a client killed in between leaves ``done = 0`` and the
@@ -34,9 +35,11 @@ from fpucore.atlas.grid import Grid
 from fpucore.atlas.point import FIELDS
 from fpucore.errors import ParameterError
 from fpucore.jit_cache import source_hash
+from fpucore.law import CubicLaw
 
 # attributes that must match for a store to be resumed
-IDENTITY = ("kind", "a", "b", "N", "tol", "floquet", "m", "chunk", "continuation", "fpucore_source")
+IDENTITY = ("kind", "law", "params", "N", "tol", "floquet", "finite_size", "m", "chunk",
+            "continuation", "fpucore_source")  # fmt: skip
 
 
 def fpucore_version() -> str:
@@ -99,14 +102,20 @@ def skeleton(grid: Grid, attrs: dict) -> xr.Dataset:
     return xr.Dataset(data, coords={grid.row_dim: rows, "V": grid.V}, attrs=attrs)
 
 
-def identity_attrs(grid: Grid, a: float, b: float, N, tol: float, floquet: bool, m,
+def identity_attrs(grid: Grid, law, N, tol: float, floquet: bool, finite_size: bool, m,
                    continuation: bool) -> dict:  # fmt: skip
-    return {
-        "kind": grid.kind, "a": float(a), "b": float(b), "N": -1 if N is None else int(N),
-        "tol": float(tol), "floquet": int(bool(floquet)), "m": -1 if m is None else int(m),
+    """The store's attributes: everything that determines its records (see IDENTITY), plus a
+    and b for the cubic law."""
+    attrs = {
+        "kind": grid.kind, "law": law.describe(), "params": [float(x) for x in law.params],
+        "N": -1 if N is None else int(N), "tol": float(tol), "floquet": int(bool(floquet)),
+        "finite_size": int(bool(finite_size)), "m": -1 if m is None else int(m),
         "chunk": int(grid.chunk), "continuation": int(bool(continuation)),
         "fpucore_source": source_hash(), "fpucore_version": fpucore_version(),
     }  # fmt: skip
+    if isinstance(law, CubicLaw):
+        attrs["a"], attrs["b"] = float(law.a), float(law.b)
+    return attrs
 
 
 def create(path: Path, grid: Grid, attrs: dict) -> None:
@@ -127,7 +136,7 @@ def open_existing(path: Path, grid: Grid, attrs: dict) -> xr.Dataset:
         ds = xr.open_zarr(path, consolidated=False)
     except Exception as exc:  # noqa: BLE001
         raise ParameterError("out", str(path), "an atlas store", f"cannot open: {exc}") from None
-    diff = [k for k in IDENTITY if ds.attrs.get(k) != attrs[k]]
+    diff = [k for k in IDENTITY if _plain(ds.attrs.get(k)) != _plain(attrs[k])]
     same_grid = (
         grid.row_dim in ds.dims and ds.sizes.get(grid.row_dim) == len(grid.rows)
         and ds.sizes.get("V") == grid.V.size and np.array_equal(ds["V"].values, grid.V)
@@ -138,6 +147,10 @@ def open_existing(path: Path, grid: Grid, attrs: dict) -> xr.Dataset:
         raise ParameterError("out", str(path), "a store of the same grid and parameters to "
                              "resume", what or "the grid differs")  # fmt: skip
     return ds
+
+
+def _plain(v):
+    return list(v) if isinstance(v, (list, tuple)) else v
 
 
 def skeleton_rows(grid: Grid) -> np.ndarray:

@@ -17,9 +17,8 @@ from tqdm import tqdm
 
 from fpucore import atlas
 from fpucore.atlas.store import check_out
-from fpucore.cli.common import add_law_args, print_json
+from fpucore.cli.common import add_law_args, law_from_args, print_json
 from fpucore.errors import ParameterError
-from fpucore.law import CubicLaw
 from fpucore.parallel import apply_thread_policy
 
 
@@ -40,6 +39,11 @@ def register(sub) -> None:
         q.add_argument("--tol", type=float, default=1e-12, help="Newton residual tolerance")
         q.add_argument("--floquet", action="store_true", help="also the Floquet spectra")
         q.add_argument("--m", type=int, default=None, help="RK steps per period (Floquet)")
+        q.add_argument(
+            "--no-finite-size",
+            action="store_true",
+            help="skip the spectra's finite-size test (no classification; faster)",
+        )
         q.add_argument("--chunk", type=int, default=None, help="points per chunk along V")
         q.add_argument("--no-continuation", action="store_true", help="every point cold")
         q.add_argument("--out", required=True, help="Zarr store (a directory)")
@@ -59,7 +63,7 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
-    law = CubicLaw(args.a, args.b)
+    law = law_from_args(args)
     check_out(args.out)  # before anything is computed
     if args.scheduler is not None and args.backend not in (None, "dask"):
         raise ParameterError("backend", args.backend, "dask (or none) with --scheduler")
@@ -82,7 +86,8 @@ def run(args) -> int:
     try:
         res = atlas.run(
             law, args.kind, rows=rows, V=args.V, N=args.N, tol=args.tol, floquet=args.floquet,
-            m=args.m, chunk=args.chunk, continuation=not args.no_continuation, out=args.out,
+            finite_size=not args.no_finite_size, m=args.m, chunk=args.chunk,
+            continuation=not args.no_continuation, out=args.out,
             resume=args.resume, backend=backend, workers=args.workers, address=args.scheduler,
             progress=progress, time_budget_s=args.time_budget,
         )  # fmt: skip

@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from fpucore import atlas, floquet, wave
+from fpucore import atlas, floquet, qc, wave
 from fpucore.atlas.point import FIELDS
 from fpucore.atlas.store import StoreLock, Writer, read_done
 from fpucore.errors import ParameterError
@@ -78,7 +78,7 @@ def test_inline_equals_single_calls_within_error_bars(inline):
             # against a bar of 5.2e-13 -- so the wave agreement bar is added
             mu_bar = ds.max_modulus_error.values[i, j] + fr.error + bar(1.0)
             assert abs(ds.max_modulus.values[i, j] - fr.max_modulus) <= mu_bar
-            assert ds.verdict.values[i, j] == fr.verdict
+            assert ds.classification.values[i, j] == fr.classification != ""
 
 
 def test_local_pool_and_dask_cluster_equal_inline(inline, tmp_path):
@@ -93,15 +93,22 @@ def test_local_pool_and_dask_cluster_equal_inline(inline, tmp_path):
     assert stored.attrs["fpucore_source"] and stored.attrs["fpucore_version"]
 
 
-def test_no_wave_and_not_converged_points_carry_reasons():
-    res = atlas.run(LAW, "solitary", rows=[7.0, 6.0], V=[3.0, 5.3], N=N, tol=1e-15,
-                    backend="inline")  # fmt: skip
+def test_no_wave_not_converged_and_failed_points_carry_reasons():
+    res = atlas.run(LAW, "solitary", rows=[7.0, 6.0], V=[3.0, 5.3], N=N, backend="inline")
     st, msg = res.dataset.status.values, res.dataset.message.values
     assert list(st[0]) == ["no_wave", "no_wave"]  # w+ = 7 > beta
     assert "w_plus=7 is out of range" in msg[0, 0] and "convex interval" in msg[0, 0]
     assert st[1, 0] == "no_wave" and "V=3 is out of range" in msg[1, 0]  # V < c+(6) = 3.6
-    assert st[1, 1] == "not_converged" and "round-off floor" in msg[1, 1]  # tol below the floor
-    assert res.n_failed == 0 and res.n_pending == 0
+    assert st[1, 1] == "ok" and res.n_failed == 0 and res.n_pending == 0
+    # 1e-15 below V_SK: a flat-top wave whose plateau length the solver cannot fix
+    v_sk = qc.sound_speeds(LAW, 1.0)[1]
+    res = atlas.run(LAW, "solitary", rows=[1.0], V=[v_sk * (1 - 1e-15)], backend="inline")
+    assert res.dataset.status.values[0, 0] == "not_converged"
+    assert "plateau length undetermined" in res.dataset.message.values[0, 0]
+    # a wave too wide for the chain asked for: refused by the solver, recorded with its reason
+    res = atlas.run(LAW, "solitary", rows=[1.0], V=[4.2427], N=N, backend="inline")
+    assert res.dataset.status.values[0, 0] == "failed" and res.n_failed == 1
+    assert "N too small for the wave width" in res.dataset.message.values[0, 0]
 
 
 def test_bad_arguments_are_refused(tmp_path):

@@ -30,7 +30,7 @@ def test_pool_sweep_equals_single_calls(tmp_path, monkeypatch):
         fr = fq.spectrum(wave.solve_superkink(LAW, v, N=64))
         # the wave's own error (residual <= 1e-12, conditioned ~1e3) on top of the two bars
         assert abs(s.max_modulus[j] - fr.max_modulus) <= s.error[j] + fr.error + 1e-9
-        assert s.rows[j]["verdict"] == fr.verdict
+        assert s.rows[j]["verdict"].split(":")[0] == fr.verdict.split(":")[0]
 
 
 @pytest.mark.parametrize(
