@@ -8,7 +8,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fpucore.errors import ParameterError, require_finite
+from fpucore.errors import ParameterError, require_finite, require_int
 from fpucore.law import HardeningSofteningLaw
 from fpucore.qc import closed_forms as qc
 
@@ -31,14 +31,14 @@ class ExistenceDiagram:
 
 def existence_diagram(law: HardeningSofteningLaw, n: int = 400) -> ExistenceDiagram:
     t0 = time.perf_counter()
-    if not (isinstance(n, int) and 3 <= n <= 100_000):
-        raise ParameterError("n", n, "an integer in [3, 100000]")
+    law = qc.cubic_law(law)
+    n = require_int("n", n, 3, 100_000)
     a, b, ws = law.alpha, law.beta, law.w_star
     wp = a + (b - a) * (np.arange(n) + 0.5) / n  # open interval
     c2, A = float(law.df(ws)), law.abs_a
     e = (wp - ws) ** 2
     return ExistenceDiagram(
-        wp, np.sqrt(c2 - 3 * A * e), np.sqrt(c2 - A * e), np.sqrt(c2 - 0.75 * A * e),
+        wp, qc.sound_speed_plus(law, wp), np.sqrt(c2 - A * e), np.sqrt(c2 - 0.75 * A * e),
         ws, a, b, time.perf_counter() - t0,
     )  # fmt: skip
 
@@ -46,6 +46,7 @@ def existence_diagram(law: HardeningSofteningLaw, n: int = 400) -> ExistenceDiag
 def classify(law: HardeningSofteningLaw, w_plus: float, V: float) -> str:
     """What lives at (w₊, V): "tensile", "compressive", "superkink" (|V| = V_SK to 1e-9) or
     raises ParameterError naming the valid intervals.  Used e.g. for clicks on the diagram."""
+    law = qc.cubic_law(law)
     w_plus, V = require_finite("w_plus", w_plus), abs(require_finite("V", V))
     cp, vsk, cm = qc.sound_speeds(law, w_plus)
     if abs(V - vsk) <= 1e-9 * vsk:
@@ -80,8 +81,8 @@ def solitary_family(law: HardeningSofteningLaw, w_plus: float, n: int = 160) -> 
     evaluated at once by :func:`fpucore.qc.solitary_closed_form` (the formulas of
     :func:`fpucore.qc.solitary`); ``max_energy_error`` is the largest round-off bound."""
     t0 = time.perf_counter()
-    if not (isinstance(n, int) and 3 <= n <= 100_000):
-        raise ParameterError("n", n, "an integer in [3, 100000]")
+    law = qc.cubic_law(law)
+    n = require_int("n", n, 3, 100_000)
     (cp, vsk), (_, cm) = qc.solitary_intervals(law, w_plus)
     t = 0.5 * (1.0 - np.cos(np.pi * (np.arange(n) + 0.5) / n))
 
@@ -90,6 +91,11 @@ def solitary_family(law: HardeningSofteningLaw, w_plus: float, n: int = 160) -> 
         w_B = background(Vs)
         dM, _, _, energy, err, ok = qc.solitary_closed_form(law, w_B, Vs)
         ok &= (lo < Vs) & (Vs < hi) & np.isfinite(energy)  # drop points rounding onto an end
+        if not np.any(ok):  # the interval (width ∝ (w₊ − w*)²) is below the rounding of V
+            raise ParameterError(
+                "w_plus", w_plus, f"|w_plus - w*| resolvable around w* = {law.w_star:.10g}",
+                f"the velocity interval ({lo!r}, {hi!r}) holds no resolvable velocity",
+            )  # fmt: skip
         kind = "tensile" if dM[ok][0] > 0 else "compressive"
         return Vs[ok], np.abs(dM[ok]), energy[ok], kind, float(np.max(err[ok]))
 

@@ -16,9 +16,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from fpucore.errors import require_finite
+from fpucore.errors import ParameterError, fmt_interval, require_finite, require_int
 from fpucore.law import HardeningSofteningLaw
 from fpucore.qc import closed_forms as qc
+
+N_GRID_MAX = 2001  # n_grid² values of H: 32 MB at the limit
+N_ORBIT_MAX = 100_001
 
 
 @dataclass(frozen=True)
@@ -55,9 +58,31 @@ class PhasePlane:
     elapsed_s: float = 0.0
 
 
+V_SPAN = 1e3  # phase portraits for c_max / V_SPAN <= V <= V_SPAN c_max
+
+
+def require_phase_V(law: HardeningSofteningLaw, V: float) -> float:
+    """V > 0 within a factor V_SPAN of c_max: far outside, V² swamps f (or the reverse) and the
+    portrait is the trivial one of a linear equation, computed with overflow (V = 1e300) or a
+    division by V² = 0 (V = 1e-300)."""
+    V = qc.require_V(V)
+    c = law.c_max
+    if not c / V_SPAN <= V <= c * V_SPAN:
+        raise ParameterError(
+            "V", V, fmt_interval(c / V_SPAN, c * V_SPAN, open_=False),
+            f"phase portraits within a factor {V_SPAN:g} of c_max = {c:.10g}",
+        )  # fmt: skip
+    return V
+
+
 def critical_points(law: HardeningSofteningLaw, w_plus: float, V: float) -> list[CriticalPoint]:
     """Critical points (w_c, 0) of eq. TW_QC_gen2 for (w₊, V), sorted by w."""
-    ws = [w_plus] + [w for w in qc.rayleigh_roots(law, w_plus, V) if math.isfinite(w)]
+    law = qc.cubic_law(law)
+    w_plus = law.require_convex("w_plus", w_plus)
+    V = require_phase_V(law, V)
+    ws = [w_plus]
+    if V <= qc.sound_speeds(law, w_plus)[2]:  # beyond c₋ the Rayleigh line meets f only at w₊
+        ws += list(qc.rayleigh_roots(law, w_plus, V))
     out = []
     for w in sorted(set(ws)):
         lam2 = 12.0 * (V * V - float(law.df(w))) / (V * V)
@@ -89,10 +114,14 @@ def phase_plane(
     level sets and critical points are returned).
     """
     t0 = time.perf_counter()
+    law = qc.cubic_law(law)
     w_plus = law.require_convex("w_plus", w_plus)
-    V = require_finite("V", V)
-    if V <= 0:
-        V = qc.require_V(V)
+    V = require_phase_V(law, V)
+    n_grid = require_int("n_grid", n_grid, 3, N_GRID_MAX)
+    n_orbit = require_int("n_orbit", n_orbit, 3, N_ORBIT_MAX)
+    sk_tol = require_finite("sk_tol", sk_tol)
+    if not 0.0 <= sk_tol <= 1e-3:
+        raise ParameterError("sk_tol", sk_tol, "[0, 0.001]", "relative distance from V_SK")
     cps = critical_points(law, w_plus, V)
     orbits: list[Orbit] = []
     regime = "none"
