@@ -10,7 +10,7 @@ from __future__ import annotations
 import sys
 
 from fpucore.cli import floquet, qc, simulate, warm, wave
-from fpucore.cli.common import Parser
+from fpucore.cli.common import Parser, check_out_path
 from fpucore.errors import ParameterError
 
 COMMANDS = (qc, warm, wave, floquet, simulate)
@@ -25,9 +25,10 @@ def build_parser() -> Parser:
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = build_parser()
-    args = parser.parse_args(argv)
     try:
+        args = build_parser().parse_args(argv)
+        if getattr(args, "out", None) is not None:  # an unwritable output fails before the work
+            check_out_path(args.out)
         return int(args.func(args) or 0)
     except ParameterError as exc:
         sys.stderr.write(f"fpu: error: {exc}\n")

@@ -44,6 +44,7 @@ import scipy.linalg
 
 from fpucore.errors import ParameterError
 from fpucore.floquet.kernels import deflate_sums, extract_deflated, scatter_shifted
+from fpucore.law import require_law
 from fpucore.wave import period_map as pm
 
 _HW_DEFAULT = 0.12  # h·ω_max of the tangent integration (DOP853): quartets to ~1e-13, see bench
@@ -91,6 +92,22 @@ def base_state(r):
         raise ParameterError("N", N, "an even number >= 4 with w, wdot of equal length")
     if not (np.all(np.isfinite(w)) and np.all(np.isfinite(wd))):
         raise ParameterError("r.w/r.wdot", "non-finite entries", "finite arrays")
+    require_law(law, "r.law")
+    # strains where the spring restores (w f(w) >= 0, between the zeros of f adjacent to 0):
+    # beyond them the cubic potential is unbounded and the monodromy overflows, which reached
+    # LAPACK as "illegal value" (issue 14: w = 1e6)
+    ends = np.array([wl, wr])
+    for name, x in (("r.w", w), ("r.w_left/r.w_right", ends)):
+        with np.errstate(over="ignore", invalid="ignore"):
+            bad = ~np.isfinite(x) | (x * law.f(x) < 0.0)
+        if np.any(bad):
+            raise ParameterError(
+                name, float(x[bad][0]), "strains where the spring restores, w f(w) >= 0",
+                "beyond the zeros of f the potential is unbounded",
+            )  # fmt: skip
+    vmax = 1e3 * law.c_max
+    if V > vmax or not np.all(np.abs(wd) <= vmax * max(1.0, float(np.max(np.abs(w))))):
+        raise ParameterError("V", V, f"(0, {vmax:.6g}]", "velocities within 1000 c_max")
     return law, w, wd, V, N, wl, wr
 
 

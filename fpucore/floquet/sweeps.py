@@ -26,13 +26,16 @@ from pathlib import Path
 
 import numpy as np
 
-from fpucore.errors import ParameterError, require_finite
+from fpucore.errors import ParameterError, require_finite, require_int
+from fpucore.floquet.monodromy import MAX_N
 from fpucore.floquet.multipliers import spectrum
+from fpucore.law import require_law
 from fpucore.wave import solve_solitary, solve_superkink
 from fpucore.wave.continuation import family_interval, qc_shift_predictor
 from fpucore.wave.setup import solitary_spec, superkink_spec
 
 CACHE_VERSION = 1
+SWEEP_MAX_V = 10_000  # velocities per sweep
 _ROW_KEYS = (
     "V", "max_modulus", "max_modulus_away_from_1", "error", "symmetry_error", "integrator_error",
     "n_unstable", "n_trivial", "trivial_split", "verdict", "wave_converged", "wave_residual",
@@ -196,6 +199,41 @@ def _solve(kind, law, V, w_plus, N, branch, tol, prev):
     return r, sp
 
 
+def check_sweep_args(law, kind, V_values, w_plus, N, branch, m, tol, time_budget_s):
+    """Validate a sweep's arguments before anything is computed (issue 14: tol=0, N=10**6 and
+    time_budget_s=-1 used to return NaN rows).  Returns (w_plus, Vs, N, m, tol, time_budget_s)."""
+    require_law(law)
+    if not isinstance(kind, str) or kind not in ("superkink", "solitary"):
+        raise ParameterError("kind", kind, "'superkink' | 'solitary'")
+    if kind == "solitary":
+        if w_plus is None:
+            raise ParameterError("w_plus", w_plus, "a strain", "required for solitary waves")
+        w_plus = require_finite("w_plus", w_plus)
+    else:
+        w_plus = None
+    if not isinstance(branch, str) or branch not in ("lower", "upper"):
+        raise ParameterError("branch", branch, "'lower' | 'upper'")
+    if isinstance(V_values, (str, bytes)):
+        raise ParameterError("V_values", V_values, "a non-empty list of velocities V > 0")
+    Vs = np.array([require_finite("V", v) for v in np.atleast_1d(V_values)], dtype=float)
+    if Vs.size == 0 or Vs.size > SWEEP_MAX_V or np.any(Vs <= 0):
+        raise ParameterError(
+            "V_values", list(Vs)[:5], f"a list of 1 to {SWEEP_MAX_V} velocities V > 0"
+        )
+    N = require_int("N", N, 8, MAX_N)
+    if N % 2:
+        raise ParameterError("N", N, f"an even integer in [8, {MAX_N}]")
+    if m is not None:
+        m = require_int("m", m, 2, 20000)
+    tol = require_finite("tol", tol)
+    if not 1e-15 <= tol <= 1e-3:
+        raise ParameterError("tol", tol, "[1e-15, 1e-3]", "wave residual tolerance")
+    time_budget_s = require_finite("time_budget_s", time_budget_s)
+    if time_budget_s <= 0:
+        raise ParameterError("time_budget_s", time_budget_s, "> 0 seconds")
+    return w_plus, Vs, N, m, tol, time_budget_s
+
+
 def sweep(
     law,
     kind: str,
@@ -218,19 +256,9 @@ def sweep(
     rows NaN, message says so) once exceeded.
     """
     t0 = time.perf_counter()
-    if kind not in ("superkink", "solitary"):
-        raise ParameterError("kind", kind, "'superkink' | 'solitary'")
-    if kind == "solitary":
-        if w_plus is None:
-            raise ParameterError("w_plus", w_plus, "a strain", "required for solitary waves")
-        w_plus = require_finite("w_plus", w_plus)
-    else:
-        w_plus = None
-    Vs = np.array([require_finite("V", v) for v in np.atleast_1d(V_values)], dtype=float)
-    if Vs.size == 0 or np.any(Vs <= 0):
-        raise ParameterError("V_values", list(Vs), "a non-empty list of velocities V > 0")
-    if not (isinstance(N, (int, np.integer)) and N >= 8 and N % 2 == 0):
-        raise ParameterError("N", N, "an even integer >= 8")
+    w_plus, Vs, N, m, tol, time_budget_s = check_sweep_args(
+        law, kind, V_values, w_plus, N, branch, m, tol, time_budget_s
+    )
     for v in Vs:  # every velocity must lie on the family before anything is computed
         _spec(kind, law, float(v), w_plus, branch)
     if progress is True:

@@ -21,6 +21,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, replace
+from fractions import Fraction
 from typing import ClassVar
 
 import numpy as np
@@ -88,16 +89,21 @@ def sound_speed_plus(law: CubicLaw, w_plus):
 
     c₊² = c_max² − 3|a|e, e = (w₊ − w*)², cancels near α and β (a relative 7.5e-5 lost near α,
     issue 14) and entirely when b²/|a| is large (b = 1e80, w₊ = 1 gave c₊ = 0).  Where it would
-    lose more than one bit (3|a|e > c_max²/2) the factored f′(w) = 3|a| (w − α)(β − w) is used:
-    its factors carry only the rounding of α, β and w₊.  Elsewhere the e-form keeps
-    c₊ ≤ V_SK ≤ c₋ exact (and equal at w*); V_SK² = c_max² − |a|e and c₋² = c_max² − ¾|a|e never
-    cancel, since |a|e ≤ c_max²/3 on (α, β)."""
+    lose more than one bit (3|a|e > c_max²/2) a scalar w₊ gets f′(w₊) = 1 + 2bw₊ + 3aw₊² in exact
+    rational arithmetic, rounded once (c₊ to an ulp: near α the sum cancels in any fixed
+    precision), an array the factored 3|a| (w − α)(β − w) (error ~ε|α|/(w − α), for plots).
+    Elsewhere the e-form keeps c₊ ≤ V_SK ≤ c₋ exact (and equal at w*); V_SK² = c_max² − |a|e and
+    c₋² = c_max² − ¾|a|e never cancel, since |a|e ≤ c_max²/3 on (α, β)."""
     w = np.asarray(w_plus, dtype=float)
     c2, A = _cmax2(law), law.abs_a
     d = 3.0 * A * (w - law.w_star) ** 2
+    if w.ndim == 0:
+        if d <= 0.5 * c2:
+            return math.sqrt(c2 - float(d))
+        x, a, b = Fraction(float(w)), Fraction(law.a), Fraction(law.b)
+        return math.sqrt(max(float(1 + x * (2 * b + 3 * a * x)), 0.0))
     factored = 3.0 * A * np.maximum(w - law.alpha, 0.0) * np.maximum(law.beta - w, 0.0)
-    out = np.sqrt(np.where(d > 0.5 * c2, factored, np.maximum(c2 - d, 0.0)))
-    return float(out) if out.ndim == 0 else out
+    return np.sqrt(np.where(d > 0.5 * c2, factored, np.maximum(c2 - d, 0.0)))
 
 
 def solitary_intervals(law: HardeningSofteningLaw, w_plus: float):
@@ -261,7 +267,7 @@ def superkink_from_V(law: HardeningSofteningLaw, V: float, branch: str = "lower"
         raise ParameterError(
             "V", V, fmt_interval(lo, hi), "superkink velocities, eq. V_bounds_cubic"
         )
-    if branch not in ("lower", "upper"):
+    if not isinstance(branch, str) or branch not in ("lower", "upper"):
         raise ParameterError("branch", branch, "'lower' (w_plus < w*) or 'upper' (w_plus > w*)")
     delta = math.sqrt((hi - V) * (hi + V) / law.abs_a)  # no cancellation near V_hi
     s = -1.0 if branch == "lower" else 1.0

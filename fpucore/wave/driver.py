@@ -22,7 +22,8 @@ from typing import ClassVar
 import numpy as np
 
 from fpucore import qc
-from fpucore.errors import ParameterError, require_finite
+from fpucore.errors import ParameterError, require_finite, require_int
+from fpucore.law import require_law
 from fpucore.result import Result, status_of
 from fpucore.wave import period_map as pm
 from fpucore.wave import plateau as wp
@@ -382,14 +383,16 @@ def _result(
     )
 
 
-def _check_common(tol, jacobian, max_iter, time_budget_s):
+def _check_common(law, tol, jacobian, max_iter, time_budget_s, predictor):
+    require_law(law)
+    if predictor is not None and not callable(predictor):
+        raise ParameterError("predictor", type(predictor).__name__, "None or a callable N -> x0")
     tol = require_finite("tol", tol)
     if not (1e-15 <= tol <= 1e-3):
         raise ParameterError("tol", tol, "[1e-15, 1e-3]")
-    if jacobian not in ("exact", "fd"):
+    if not isinstance(jacobian, str) or jacobian not in ("exact", "fd"):
         raise ParameterError("jacobian", jacobian, "'exact' or 'fd'")
-    if not (isinstance(max_iter, int) and 1 <= max_iter <= 1000):
-        raise ParameterError("max_iter", max_iter, "an integer in [1, 1000]")
+    require_int("max_iter", max_iter, 1, 1000)
     time_budget_s = require_finite("time_budget_s", time_budget_s)
     if time_budget_s <= 0:
         raise ParameterError("time_budget_s", time_budget_s, "> 0")
@@ -418,7 +421,7 @@ def solve_superkink(
     scale); the step count m keeps the step-doubling error below the same bound.
     Non-convergence returns converged=False with the reason in ``message``.
     """
-    tol, time_budget_s = _check_common(tol, jacobian, max_iter, time_budget_s)
+    tol, time_budget_s = _check_common(law, tol, jacobian, max_iter, time_budget_s, predictor)
     spec = superkink_spec(law, require_finite("V", V), branch)
     return _solve(law, spec, N, tol, jacobian, max_iter, time_budget_s, predictor)
 
@@ -440,7 +443,7 @@ def solve_solitary(
     ẇ_1(T) = 0 puts the extremum at n = 0; boundary strains w_left = w_right = w_B.
     tol is relative to the strain scale, as in :func:`solve_superkink`.
     """
-    tol, time_budget_s = _check_common(tol, jacobian, max_iter, time_budget_s)
+    tol, time_budget_s = _check_common(law, tol, jacobian, max_iter, time_budget_s, predictor)
     spec = solitary_spec(law, require_finite("w_plus", w_plus), require_finite("V", V))
     return _solve(law, spec, N, tol, jacobian, max_iter, time_budget_s, predictor)
 
