@@ -31,8 +31,9 @@ class ParameterError(ValueError):
 
 
 class ConvergenceError(RuntimeError):
-    """A solver that could not reach its tolerance within its budget (raised only on request;
-    solvers normally return a result with ``converged=False`` and a ``message``)."""
+    """A result that did not converge, raised only on request by
+    :meth:`fpucore.result.Result.require_converged` (solvers return a result with
+    ``converged=False``, ``status`` and ``message`` instead of raising)."""
 
 
 def require_finite(name: str, value: float) -> float:
