@@ -50,7 +50,7 @@ def test_negative_infinity_is_a_value_and_refused_by_name(capsys):
 
 
 def test_interrupt_exit_130_one_line(capsys, monkeypatch):
-    def interrupted():
+    def interrupted(*args, **kwargs):
         raise KeyboardInterrupt
 
     monkeypatch.setattr(cli_warm, "warm_all", interrupted)
