@@ -19,6 +19,7 @@ from .kernels import LAW_CUBIC
 W_RANGE = (1e-30, 1e30)  # strain scale W = max(|α|, β)
 CMAX2_MAX = 1e60  # speed scale c_max² = 1 + b²/(3|a|)
 ENERGY_W_MAX = 1e120  # c_max² W³: the largest product of an energy density and a strain
+W_STAR_MIN = 1e-100  # w* / W: the inflection point stays a representable strain
 
 
 def _require_computable(a: float, b: float) -> None:
@@ -33,12 +34,14 @@ def _require_computable(a: float, b: float) -> None:
         or not W_RANGE[0] <= W <= W_RANGE[1]
         or c2 > CMAX2_MAX
         or prod > ENERGY_W_MAX
+        or b / (3.0 * A) < W_STAR_MIN * W  # w* = b/(3|a|) would underflow (b = 1e-300)
     ):
         raise ParameterError(
             "(a, b)",
             (a, b),
             f"laws with strain scale W = max(|alpha|, beta) in [{W_RANGE[0]:g}, {W_RANGE[1]:g}], "
-            f"c_max^2 = 1 + b^2/(3|a|) <= {CMAX2_MAX:g} and c_max^2 W^3 <= {ENERGY_W_MAX:g} "
+            f"c_max^2 = 1 + b^2/(3|a|) <= {CMAX2_MAX:g}, c_max^2 W^3 <= {ENERGY_W_MAX:g} and "
+            f"w* = b/(3|a|) >= {W_STAR_MIN:g} W "
             f"(here W = {W:.3g}, c_max^2 = {c2:.3g})",
             "outside this range the closed forms overflow or underflow in double precision",
         )

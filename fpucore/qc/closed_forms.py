@@ -31,6 +31,9 @@ from fpucore.law import CubicLaw, HardeningSofteningLaw, require_law
 from fpucore.result import Result, status_of
 
 EPS = np.finfo(float).eps
+V_SPAN = 1e3  # velocities of phase portraits / first integrals: V <= V_SPAN c_max
+W_SPAN = 10.0  # strains of a first integral within W_SPAN (β − α) of (α, β)
+WP_MAX = 1e100  # |w′| of a first integral (V²w′² stays finite: c_max² <= 1e60, law/cubic.py)
 QC_CHECK = 1e-9  # scaled residual of a closed form above which it is reported as not converged
 
 
@@ -312,6 +315,10 @@ def solitary_closed_form(law: CubicLaw, w_B, V):
     w_B, V = _finite_array("w_B", w_B), _finite_array("V", V)
     if np.any(V <= 0):
         raise ParameterError("V", float(V[V <= 0].flat[0]), "V > 0")
+    out = (w_B <= law.alpha) | (w_B >= law.beta)
+    if np.any(out):
+        raise ParameterError("w_B", float(w_B[out].flat[0]), fmt_interval(law.alpha, law.beta),
+                             "backgrounds lie in the convex interval (alpha, beta)")  # fmt: skip
     A, B, C = law.a / 4.0, law.ddf(w_B) / 6.0, 0.5 * (law.df(w_B) - V * V)
     disc = B * B - 4.0 * A * C
     ok = (disc > 0) & (C < 0)
@@ -410,6 +417,20 @@ def first_integral(law: HardeningSofteningLaw, w, wp, w_ref: float, V: float):
     law = require_law(law)
     w_ref, V = require_finite("w_ref", w_ref), require_V(V)
     w, wp = _finite_array("w", w), _finite_array("wp", wp)
+    span = law.beta - law.alpha
+    lo, hi = law.alpha - W_SPAN * span, law.beta + W_SPAN * span
+    for name, x in (("w", w), ("w_ref", np.asarray(w_ref))):
+        out = (x < lo) | (x > hi)
+        if np.any(out):
+            raise ParameterError(
+                name, float(x[out].flat[0]), fmt_interval(lo, hi, open_=False),
+                f"strains within {W_SPAN:g} (beta - alpha) of the convex interval",
+            )  # fmt: skip
+    vmax = V_SPAN * law.c_max
+    if V > vmax:
+        raise ParameterError("V", V, f"(0, {vmax:.10g}]", f"V <= {V_SPAN:g} c_max")
+    if np.any(np.abs(wp) > WP_MAX):
+        raise ParameterError("wp", "entries beyond 1e100", f"|wp| <= {WP_MAX:g}")
     d = w - w_ref
     return (
         V * V / 24.0 * wp * wp

@@ -58,7 +58,7 @@ class PhasePlane:
     elapsed_s: float = 0.0
 
 
-V_SPAN = 1e3  # phase portraits for c_max / V_SPAN <= V <= V_SPAN c_max
+V_SPAN = qc.V_SPAN  # phase portraits for c_max / V_SPAN <= V <= V_SPAN c_max
 
 
 def require_phase_V(law: HardeningSofteningLaw, V: float) -> float:
