@@ -188,6 +188,23 @@ def test_qc_speeds_and_superkink(ab, t):
         assert sk.converged
     outcome({"w_plus"}, qc.solitary_intervals, law, w_plus)
     outcome({"w_plus"}, qc.w_minus_sonic, law, w_plus)
+    lo, hi = outcome(set(), qc.superkink_velocity_bounds, law)
+    assert lo * lo == pytest.approx(2 / 3 * hi * hi, rel=1e-14)  # eq. V_bounds_cubic
+    outcome({"V"}, qc.require_V, t)
+    # the array form of c₊ (existence diagram) against √f′ in exact arithmetic, relative to the
+    # rounding of α and β (the factored form's conditioning) — cheap: a few points per law
+    ws = law.alpha + (law.beta - law.alpha) * np.array([1e-9, 0.01, 0.5, 0.99, 1 - 1e-9])
+    cps = qc.sound_speed_plus(law, ws)
+    for w, c in zip(ws, cps, strict=True):
+        ref = df_exact(law, w)
+        tol = (
+            1e-14
+            * 3
+            * abs(_F(law.a))
+            * (abs(_F(w)) + abs(_F(law.alpha)))
+            * (abs(_F(w)) + _F(law.beta))
+        )
+        assert abs(_F(c) ** 2 - ref) <= tol + Fraction(1, 10**15) * ref
 
 
 @FAST
