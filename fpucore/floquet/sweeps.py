@@ -215,7 +215,8 @@ def check_sweep_args(law, kind, V_values, w_plus, N, branch, m, tol, time_budget
         raise ParameterError("branch", branch, "'lower' | 'upper'")
     if isinstance(V_values, (str, bytes)):
         raise ParameterError("V_values", V_values, "a non-empty list of velocities V > 0")
-    Vs = np.array([require_finite("V", v) for v in np.atleast_1d(V_values)], dtype=float)
+    items = list(V_values) if isinstance(V_values, (list, tuple, np.ndarray)) else [V_values]
+    Vs = np.array([require_finite("V", v) for v in items], dtype=float)
     if Vs.size == 0 or Vs.size > SWEEP_MAX_V or np.any(Vs <= 0):
         raise ParameterError(
             "V_values", list(Vs)[:5], f"a list of 1 to {SWEEP_MAX_V} velocities V > 0"
