@@ -49,7 +49,7 @@ def _cmax2(law: CubicLaw) -> float:
     return 1.0 + law.b**2 / (3.0 * law.abs_a)
 
 
-def _require_w_plus(law: CubicLaw, w_plus: float) -> float:
+def require_w_plus(law: CubicLaw, w_plus: float) -> float:
     """w₊ must lie in the convex interval and away from w*, where the family degenerates."""
     w_plus = law.require_convex("w_plus", w_plus)
     if abs(w_plus - law.w_star) <= 1e-12 * max(1.0, law.w_star):
@@ -112,7 +112,7 @@ def sound_speed_plus(law: CubicLaw, w_plus):
 def solitary_intervals(law: HardeningSofteningLaw, w_plus: float):
     """((c₊, V_SK), (V_SK, c₋)): the two velocity intervals of solitary waves for w₊."""
     law = cubic_law(law)
-    w_plus = _require_w_plus(law, w_plus)
+    w_plus = require_w_plus(law, w_plus)
     cp, vsk, cm = sound_speeds(law, w_plus)
     return (cp, vsk), (vsk, cm)
 
@@ -174,12 +174,9 @@ def rayleigh_roots(law: HardeningSofteningLaw, w_plus: float, V):
 
 
 def w_S(law: HardeningSofteningLaw, w_plus: float, V):
-    """Saddle w_S(V) ≠ w₊ of eq. wS: f(w_S) − f(w₊) = V²(w_S − w₊), V² > f′(w_S), for
-    V in [V_SK, c₋] (V may be an array; other V: ParameterError)."""
-    law = cubic_law(law)
-    w_plus = law.require_convex("w_plus", w_plus)
-    vsk = sound_speeds(law, w_plus)[1]
-    _require_V_upto(law, w_plus, V, vsk * (1.0 - 8.0 * EPS), "V_SK")
+    """Saddle w_S(V) ≠ w₊ of eq. wS: f(w_S) − f(w₊) = V²(w_S − w₊), V² > f′(w_S) — the far
+    Rayleigh root, a saddle for c₊ < V < c₋ (V may be an array; V outside (0, c₋]:
+    ParameterError, as for :func:`rayleigh_roots`)."""
     return rayleigh_roots(law, w_plus, V)[1]
 
 
@@ -205,6 +202,11 @@ class QCSuperkink(Result):
 
     @property
     def w_star(self) -> float:
+        return self.law.w_star
+
+    @property
+    def w_center(self) -> float:
+        """w(0), the value a discrete superkink is pinned at: w* (eq. cubic_cond1)."""
         return self.law.w_star
 
     @property
@@ -281,7 +283,7 @@ def superkink_from_w_plus(law: HardeningSofteningLaw, w_plus: float) -> QCSuperk
     """Superkink with state w₊ ahead: w₋ = 2w* − w₊ (eq. cubic_cond1), V_SK by eq. cubic_cond2."""
     t0 = time.perf_counter()
     law = cubic_law(law)
-    w_plus = _require_w_plus(law, w_plus)
+    w_plus = require_w_plus(law, w_plus)
     V = math.sqrt(_cmax2(law) - law.abs_a * (w_plus - law.w_star) ** 2)
     branch = "lower" if w_plus < law.w_star else "upper"
     return _superkink(law, V, w_plus, 2.0 * law.w_star - w_plus, branch, t0)
@@ -312,7 +314,7 @@ def solitary_closed_form(law: CubicLaw, w_B, V):
     ∫u² = (2 dM dT/B)² (2/γ)(θ cosh θ − sinh θ)/sinh³ θ.  ``ok`` is False where the quadratic has
     no real pair of same-sign roots (round-off at an interval end)."""
     law = cubic_law(law)
-    w_B, V = _finite_array("w_B", w_B), _finite_array("V", V)
+    w_B, V = finite_array("w_B", w_B), finite_array("V", V)
     if np.any(V <= 0):
         raise ParameterError("V", float(V[V <= 0].flat[0]), "V > 0")
     out = (w_B <= law.alpha) | (w_B >= law.beta)
@@ -416,7 +418,7 @@ def first_integral(law: HardeningSofteningLaw, w, wp, w_ref: float, V: float):
     """
     law = require_law(law)
     w_ref, V = require_finite("w_ref", w_ref), require_V(V)
-    w, wp = _finite_array("w", w), _finite_array("wp", wp)
+    w, wp = finite_array("w", w), finite_array("wp", wp)
     span = law.beta - law.alpha
     lo, hi = law.alpha - W_SPAN * span, law.beta + W_SPAN * span
     for name, x in (("w", w), ("w_ref", np.asarray(w_ref))):
@@ -441,7 +443,7 @@ def first_integral(law: HardeningSofteningLaw, w, wp, w_ref: float, V: float):
     )
 
 
-def _finite_array(name: str, x) -> np.ndarray:
+def finite_array(name: str, x) -> np.ndarray:
     """x as a float array of finite numbers, or ParameterError naming the argument."""
     if isinstance(x, (str, bytes)):
         raise ParameterError(name, x, "finite real numbers")
@@ -457,7 +459,7 @@ def _finite_array(name: str, x) -> np.ndarray:
 _XI_CHECK = np.linspace(0.0, 12.0, 32)
 
 
-def _first_integral_residual(law, w, wp, w_ref: float, V: float) -> float:
+def first_integral_residual(law, w, wp, w_ref: float, V: float) -> float:
     """max |H| on (w, w′) scaled by the size of the terms that cancel in H (so the ratio is a
     round-off-level number for an exact orbit); H as in :func:`first_integral`."""
     d = w - w_ref
@@ -474,7 +476,7 @@ def solitary(law: HardeningSofteningLaw, w_plus: float, V: float) -> QCSolitary:
     """
     t0 = time.perf_counter()
     law = cubic_law(law)
-    w_plus = _require_w_plus(law, w_plus)
+    w_plus = require_w_plus(law, w_plus)
     V = require_V(V)
     cp, vsk, cm = sound_speeds(law, w_plus)
     valid = f"{fmt_interval(cp, vsk)} or {fmt_interval(vsk, cm)}"
@@ -499,5 +501,5 @@ def solitary(law: HardeningSofteningLaw, w_plus: float, V: float) -> QCSolitary:
         energy, energy_error, math.nan, 0.0,
     )  # fmt: skip
     xi = _XI_CHECK / gamma  # one half of the (even) profile, out to 12 widths
-    fi = _first_integral_residual(law, sw.profile(xi), sw.dprofile(xi), w_B, V)
+    fi = first_integral_residual(law, sw.profile(xi), sw.dprofile(xi), w_B, V)
     return replace(sw, first_integral_residual=fi, elapsed_s=time.perf_counter() - t0)

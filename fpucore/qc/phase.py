@@ -16,12 +16,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from fpucore.budget import require_memory
 from fpucore.errors import ParameterError, fmt_interval, require_finite, require_int
-from fpucore.law import HardeningSofteningLaw
-from fpucore.qc import closed_forms as qc
-
-N_GRID_MAX = 2001  # n_grid² values of H: 32 MB at the limit
-N_ORBIT_MAX = 100_001
+from fpucore.law import HardeningSofteningLaw, require_law
+from fpucore.qc import dispatch as qc
+from fpucore.qc.closed_forms import V_SPAN as V_SPAN_QC
+from fpucore.qc.closed_forms import first_integral, require_V
 
 
 @dataclass(frozen=True)
@@ -58,14 +58,16 @@ class PhasePlane:
     elapsed_s: float = 0.0
 
 
-V_SPAN = qc.V_SPAN  # phase portraits for c_max / V_SPAN <= V <= V_SPAN c_max
+V_SPAN = V_SPAN_QC  # phase portraits for c_max / V_SPAN <= V <= V_SPAN c_max
+N_GRID_MAX = 10**9  # an integer; the memory budget below decides how large
+N_ORBIT_MAX = 100_001
 
 
 def require_phase_V(law: HardeningSofteningLaw, V: float) -> float:
     """V > 0 within a factor V_SPAN of c_max: far outside, V² swamps f (or the reverse) and the
-    portrait is the trivial one of a linear equation, computed with overflow (V = 1e300) or a
-    division by V² = 0 (V = 1e-300)."""
-    V = qc.require_V(V)
+    portrait is the trivial one of a linear equation, computed with overflow (V = 1e300: all
+    NaN) or a division by V² = 0 (V = 1e-300: ZeroDivisionError) — issue 14."""
+    V = require_V(V)
     c = law.c_max
     if not c / V_SPAN <= V <= c * V_SPAN:
         raise ParameterError(
@@ -77,12 +79,12 @@ def require_phase_V(law: HardeningSofteningLaw, V: float) -> float:
 
 def critical_points(law: HardeningSofteningLaw, w_plus: float, V: float) -> list[CriticalPoint]:
     """Critical points (w_c, 0) of eq. TW_QC_gen2 for (w₊, V), sorted by w."""
-    law = qc.cubic_law(law)
+    law = require_law(law)
     w_plus = law.require_convex("w_plus", w_plus)
     V = require_phase_V(law, V)
     ws = [w_plus]
     if V <= qc.sound_speeds(law, w_plus)[2]:  # beyond c₋ the Rayleigh line meets f only at w₊
-        ws += list(qc.rayleigh_roots(law, w_plus, V))
+        ws += [w for w in qc.rayleigh_roots(law, w_plus, V) if math.isfinite(w)]
     out = []
     for w in sorted(set(ws)):
         lam2 = 12.0 * (V * V - float(law.df(w))) / (V * V)
@@ -114,11 +116,14 @@ def phase_plane(
     level sets and critical points are returned).
     """
     t0 = time.perf_counter()
-    law = qc.cubic_law(law)
-    w_plus = law.require_convex("w_plus", w_plus)
-    V = require_phase_V(law, V)
+    law = require_law(law)
     n_grid = require_int("n_grid", n_grid, 3, N_GRID_MAX)
     n_orbit = require_int("n_orbit", n_orbit, 3, N_ORBIT_MAX)
+    # the grid (W, W′, H and the temporaries of H: ~8 arrays of n_grid² floats), before allocating
+    n_floats = 8.0 * n_grid * n_grid
+    require_memory("n_grid", 8 * n_floats, f"~8 arrays of n_grid² = {n_grid}² floats", n_grid)
+    w_plus = law.require_convex("w_plus", w_plus)
+    V = require_phase_V(law, V)
     sk_tol = require_finite("sk_tol", sk_tol)
     if not 0.0 <= sk_tol <= 1e-3:
         raise ParameterError("sk_tol", sk_tol, "[0, 0.001]", "relative distance from V_SK")
@@ -155,11 +160,11 @@ def phase_plane(
         wp_max = math.sqrt(24.0 / (V * V) * float(np.ptp(law.phi(w_grid)))) + 1e-3
     wp_grid = np.linspace(-1.4 * wp_max, 1.4 * wp_max, n_grid)
     W, WP = np.meshgrid(w_grid, wp_grid)
-    H = first = qc.first_integral(law, W, WP, ref, V)
-    levels = [float(qc.first_integral(law, c.w, 0.0, ref, V)) for c in cps if c.kind == "saddle"]
+    H = first = first_integral(law, W, WP, ref, V)
+    levels = [float(first_integral(law, c.w, 0.0, ref, V)) for c in cps if c.kind == "saddle"]
     span = float(np.ptp(first)) or 1.0
     res = max(
-        [float(np.max(np.abs(qc.first_integral(law, o.w, o.wp, ref, V)))) for o in orbits] + [0.0]
+        [float(np.max(np.abs(first_integral(law, o.w, o.wp, ref, V)))) for o in orbits] + [0.0]
     )
     return PhasePlane(
         w_plus, V, w_grid, wp_grid, H, cps, levels, orbits, regime, res / span,
