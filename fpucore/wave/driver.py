@@ -112,6 +112,14 @@ class WaveResult(Result):
     def T(self) -> float:
         return 1.0 / self.V
 
+    def errors(self) -> dict[str, float]:
+        """The error fields that apply to this wave: a superkink has no E_ren^D (two different
+        backgrounds), so its energy_error (NaN, like its energy) is left out."""
+        out = Result.errors(self)
+        if self.kind == "superkink":
+            del out["energy_error"]
+        return out
+
     def as_dict(self, profile: bool = True, arrays: bool | None = None) -> dict:
         """Every field (see :meth:`fpucore.result.Result.as_dict`); ``profile=False`` leaves out the
         arrays n, w, wdot, v."""
