@@ -1,7 +1,8 @@
 """fpucore — headless core of fpu-explorer.
 
 Superkinks and solitary waves of the FPU chain with hardening–softening springs
-f(w) = a w³ + b w² + w (Vainchtein & Truskinovsky).  One subpackage per stage of the science:
+f(w) = a w³ + b w² + w (Vainchtein & Truskinovsky), or any hardening–softening polynomial
+(``law_from_expression``).  One subpackage per stage of the science:
 
     law (force laws)  →  qc (quasicontinuum closed forms, phase plane, diagrams)
     →  tableaux (RK / embedded / RKN coefficients as data)
@@ -26,11 +27,18 @@ configure_threading_layer()  # Numba's "omp" layer, chosen before any kernel run
 
 from fpucore import floquet, qc, simulate, wave  # noqa: E402
 from fpucore.errors import ConvergenceError, ParameterError  # noqa: E402
-from fpucore.law import CubicLaw, HardeningSofteningLaw  # noqa: E402
+from fpucore.law import (  # noqa: E402
+    CubicLaw,
+    HardeningSofteningLaw,
+    PolynomialLaw,
+    law_from_expression,
+)
 
 __all__ = [
     "CubicLaw",
     "HardeningSofteningLaw",
+    "PolynomialLaw",
+    "law_from_expression",
     "ParameterError",
     "ConvergenceError",
     "qc",
