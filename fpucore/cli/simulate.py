@@ -24,9 +24,8 @@ import time
 
 from fpucore import simulate, wave
 from fpucore.budget import parse_size, require_time_budget
-from fpucore.cli.common import add_law_args, print_json
+from fpucore.cli.common import add_law_args, law_from_args, print_json
 from fpucore.errors import ParameterError, require_finite
-from fpucore.law import CubicLaw
 
 TIME_BUDGET_S = 60.0  # default --time-budget: the CLI never runs unbounded
 
@@ -177,7 +176,7 @@ def _emit(args, s, extra: dict | None = None) -> int:
 
 
 def run_riemann(args) -> int:
-    law = CubicLaw(args.a, args.b)
+    law = law_from_args(args)
     kw = _common(args, "fixed_particles", 1e-10)
     prog = _progress(args, law, args.L, args.t_end, kw["method"], kw["rtol"])
     s = simulate.riemann(law, args.w_left, args.w_right, args.L, args.t_end, progress=prog, **kw)
@@ -185,7 +184,7 @@ def run_riemann(args) -> int:
 
 
 def run_gaussian(args) -> int:
-    law = CubicLaw(args.a, args.b)
+    law = law_from_args(args)
     kw = _common(args, "fixed_particles", 1e-10)
     prog = _progress(args, law, args.L, args.t_end, kw["method"], kw["rtol"])
     s = simulate.gaussian(law, args.w_B, args.A, args.L, args.t_end, progress=prog, **kw)
@@ -193,7 +192,7 @@ def run_gaussian(args) -> int:
 
 
 def run_wave(args) -> int:
-    law = CubicLaw(args.a, args.b)
+    law = law_from_args(args)
     # checked before the wave is solved, and named as typed (not as the t_end it implies)
     periods = require_finite("periods", args.periods)
     if not (0.0 < periods <= 1e6):

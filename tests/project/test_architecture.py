@@ -17,9 +17,12 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
 PKG = ROOT / "fpucore"
-STAGES = ("law", "qc", "tableaux", "wave", "floquet", "simulate", "cli")
+STAGES = ("law", "qc", "tableaux", "wave", "floquet", "simulate", "parallel", "cli")
 # imports inside functions allowed only to keep a real optional dependency optional
-LATE_OK: set[tuple[str, str]] = set()
+LATE_OK: set[tuple[str, str]] = {
+    # distributed's ~1 s import kept out of every `import fpucore` (only the dask backend needs it)
+    ("fpucore/parallel/executor.py", "from fpucore.parallel.dask_backend import DaskBackend"),
+}
 
 
 def _modname(path: Path) -> str:
@@ -112,8 +115,9 @@ def test_import_graph_has_no_cycles():
 
 def test_common_modules_import_nothing_back():
     g = _edges()
-    for common in ("fpucore.errors", "fpucore.result", "fpucore.jit_cache"):
-        assert not g[common], f"{common} imports {g[common]}"
+    assert not g["fpucore.errors"], g["fpucore.errors"]
+    assert not g["fpucore.jit_cache"], g["fpucore.jit_cache"]
+    assert g["fpucore.result"] <= {"fpucore.errors"}, g["fpucore.result"]
 
 
 def test_budget_imports_only_errors():
