@@ -261,14 +261,19 @@ def test_quartic_solitary_vs_mpmath(quartic_ref, tag):
     assert sw.first_integral_residual < 1e-12 and sw.elapsed_s > 0
 
 
-def test_quartic_branches_differ():
-    """Without the mirror symmetry the two superkink branches have different velocity ranges."""
+def test_quartic_branch_ranges_are_not_mirror_images():
+    """The two superkink branches cover the same velocities (the equal-area and Rayleigh
+    conditions are symmetric in w₊ ↔ w₋, so the upper branch is the lower one with its states
+    swapped), but their w₊-ranges are not mirror images about w* as for the cubic: the lower
+    branch ends where w₋ reaches β (not at α), the upper one at w₊ = β."""
     law = law_from_expression(QUARTIC)
     lo_l, hi_l = G.superkink_velocity_bounds(law, "lower")
     lo_u, hi_u = G.superkink_velocity_bounds(law, "upper")
-    assert hi_l == hi_u == law.c_max and abs(lo_l - lo_u) < 1e-9  # both end with f′(α or β)=0 …
+    assert hi_l == hi_u == law.c_max and abs(lo_l - lo_u) < 1e-9
     wl, _ = G.superkink_w_plus_range(law, "lower")
-    assert law.alpha < wl < 0  # … but the lower branch stops where w₋ reaches β, not at α
+    _, wu = G.superkink_w_plus_range(law, "upper")
+    assert law.alpha < wl < 0 and wu == law.beta
+    assert abs((law.w_star - wl) - (wu - law.w_star)) > 0.05  # 3.139 vs 3.070; cubic: equal
 
 
 # =============================================================================== (c) refusals
