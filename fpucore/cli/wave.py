@@ -59,6 +59,8 @@ def run(args) -> int:
         f"iterations {r.iterations}",
         f"errors      tail {r.tail_error:.3g}   integrator {r.integrator_error:.3g} (m={r.m})   "
         f"Jacobian truncation {r.jacobian_truncation:.3g}",
+        f"bounds      profile {r.profile_error:.3g}   amplitude {r.amplitude_error:.3g}   "
+        f"energy {r.energy_error:.3g}   (vs the infinite chain's exact wave)",
         f"amplitude   {r.amplitude:.10g}   energy E_ren^D {r.energy:.10g}",
         f"QC max dev  {r.qc_max_deviation:.3g}   w(0) = {r.w[r.N // 2]:.10g}",
         f"elapsed     {r.elapsed_s:.3f} s   ({r.route})",

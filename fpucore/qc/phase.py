@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from fpucore.budget import require_memory
 from fpucore.errors import require_finite
 from fpucore.law import HardeningSofteningLaw
 from fpucore.qc import dispatch as qc
@@ -90,6 +91,10 @@ def phase_plane(
     level sets and critical points are returned).
     """
     t0 = time.perf_counter()
+    # the grid (W, W′, H and the temporaries of H: ~8 arrays of n_grid² floats), before allocating
+    n = require_finite("n_grid", n_grid)
+    n_floats = 8.0 * n * n  # (n * n: inf, not OverflowError, for a huge n)
+    require_memory("n_grid", 8 * n_floats, f"~8 arrays of n_grid² = {n_grid}² floats", n_grid)
     w_plus = law.require_convex("w_plus", w_plus)
     V = require_finite("V", V)
     if V <= 0:
