@@ -37,7 +37,7 @@ def register(sub) -> None:
         q.add_argument(
             "--no-finite-size",
             action="store_true",
-            help="skip the finite-size test (spectra at 0.4N, 0.6N; about +30-60%% time)",
+            help="skip the finite-size test (spectra at 0.4N, 0.6N; about +20-40%% time)",
         )
         q.add_argument("--json", action="store_true", help="print one JSON object")
         q.set_defaults(func=run_one, kind=name)
