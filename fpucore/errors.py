@@ -27,6 +27,11 @@ class ParameterError(ValueError):
             msg += f" ({reason})"
         super().__init__(msg)
 
+    def __reduce__(self):
+        # rebuilt from its four fields (the default pickles only the message, and __init__ needs
+        # all four): a ParameterError raised in a worker process arrives as itself
+        return (type(self), (self.name, self.value, self.valid, self.reason), self.__dict__)
+
 
 class ConvergenceError(RuntimeError):
     """A result that did not converge, raised only on request by

@@ -15,9 +15,8 @@ import sys
 import numpy as np
 
 from fpucore import floquet, wave
-from fpucore.cli.common import add_law_args, jsonable, print_json
+from fpucore.cli.common import add_law_args, jsonable, law_fields, law_from_args, print_json
 from fpucore.errors import ParameterError
-from fpucore.law import CubicLaw
 
 
 def register(sub) -> None:
@@ -75,7 +74,7 @@ def _check_N(N: int) -> None:
 
 def run_one(args) -> int:
     _check_N(args.N)
-    law = CubicLaw(args.a, args.b)
+    law = law_from_args(args)
     r = _wave(args, law)
     if not r.converged:
         raise ParameterError("V", args.V, "a velocity where the discrete wave converges",
@@ -130,7 +129,7 @@ def _velocities(args) -> np.ndarray:
 
 
 def run_sweep(args) -> int:
-    law = CubicLaw(args.a, args.b)
+    law = law_from_args(args)
     Vs = _velocities(args)
     for N in args.N:
         _check_N(N)
@@ -142,7 +141,7 @@ def run_sweep(args) -> int:
         sw = floquet.sweep(law, args.kind, Vs, w_plus=args.w_plus, N=N, progress=prog,
                            branch=args.branch, use_cache=not args.no_cache)  # fmt: skip
         tables.append(sw)
-    obj = {"kind": args.kind, "a": law.a, "b": law.b, "w_plus": args.w_plus,
+    obj = {"kind": args.kind, **law_fields(law), "w_plus": args.w_plus,
            "sweeps": [t.as_dict() for t in tables],
            "elapsed_s": sum(t.elapsed_s for t in tables)}  # fmt: skip
     if args.out:

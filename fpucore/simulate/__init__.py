@@ -2,10 +2,12 @@
 
 layout (state vector, end conditions, status codes)  →  observer (events, probes, guard)
 →  kernels (first-order RHS, DOP853/DOPRI5, Yoshida)  and  rkn (RKN12/RKN8 steppers)
-→  engine (run_chain: the integration driver)  →  scenarios (riemann, gaussian, seeded)
+→  engine (configure: validation and memory/work estimates; output_schedule; the STEPPERS
+table; run_chain; status messages)  →  scenarios (riemann, gaussian, seeded)
 →  tracking (fronts and pulses in space–time)
 """
 
+from fpucore.simulate.engine import memory_estimate, work_estimate
 from fpucore.simulate.scenarios import (
     BOUNDARIES,
     GUARDS,
@@ -17,6 +19,7 @@ from fpucore.simulate.scenarios import (
     restoring_interval,
     riemann,
     seeded,
+    whole_periods,
 )
 
 __all__ = [
@@ -26,6 +29,9 @@ __all__ = [
     "gaussian",
     "seeded",
     "restoring_interval",
+    "whole_periods",
+    "work_estimate",
+    "memory_estimate",
     "BOUNDARIES",
     "GUARDS",
     "METHODS",
