@@ -10,7 +10,7 @@ handle ``(law_id, params)`` that the Numba kernels in :mod:`.kernels` take.
 from .base import HardeningSofteningLaw
 from .cubic import CubicLaw
 from .expression import law_from_expression
-from .kernels import LAW_CUBIC, LAW_POLY, ddforce, dforce, force
+from .kernels import LAW_CUBIC, LAW_POLY, POLY_IDS, ddforce, dforce, force
 from .polynomial import PolynomialLaw, real_roots
 
 __all__ = [
@@ -21,6 +21,7 @@ __all__ = [
     "real_roots",
     "LAW_CUBIC",
     "LAW_POLY",
+    "POLY_IDS",
     "force",
     "dforce",
     "ddforce",

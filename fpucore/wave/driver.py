@@ -112,6 +112,14 @@ class WaveResult(Result):
     def T(self) -> float:
         return 1.0 / self.V
 
+    def errors(self) -> dict[str, float]:
+        """The error fields that apply to this wave: a superkink has no E_ren^D (two different
+        backgrounds), so its energy_error (NaN, like its energy) is left out."""
+        out = Result.errors(self)
+        if self.kind == "superkink":
+            del out["energy_error"]
+        return out
+
     def as_dict(self, profile: bool = True, arrays: bool | None = None) -> dict:
         """Every field (see :meth:`fpucore.result.Result.as_dict`); ``profile=False`` leaves out the
         arrays n, w, wdot, v."""
@@ -263,8 +271,12 @@ def solve_superkink(
     a front with w′ < 0) or "upper" (mirror image).  Boundary strains: w_left = w₋, w_right = w₊
     (eq. fixedBCs, w± from eq. wpm_cubic).  N=None: automatic from the wave's width.
     jacobian="fd" uses the paper's finite-difference Jacobian (dense; slow, for comparison).
-    tol: Newton stops at residual <= tol x max(1, |w_left|, |w_right|) (relative to the strain
-    scale); the step count m keeps the step-doubling error below the same bound.
+    tol: relative to the strain scale s = max(1, |w_left|, |w_right|) — Newton accepts residual
+    <= tol·s and then steps on until its next correction is <= tol·s or stops shrinking
+    (round-off); the step count m keeps the step-doubling error below the same bound
+    (:class:`fpucore.wave.attempt.Tolerances`).  Where round-off exceeds tol·s (stiff laws) the
+    achievable level is used and reported (``residual_floor``, ``message``).  The result carries
+    bounds against the infinite chain's exact wave (``profile_error`` …, :mod:`.bounds`).
     Non-convergence returns converged=False with the reason in ``message``.
     """
     tol, time_budget_s = _check_common(tol, jacobian, max_iter, time_budget_s)

@@ -150,3 +150,7 @@ def test_cli_json_has_classification(capsys):
                      "--no-finite-size"]) == 0  # fmt: skip
     d = json.loads(capsys.readouterr().out)
     assert d["finite_size_N"] == [128] and not d["finite_size_checked"]
+    assert cli_main(["floquet", "superkink", "--V", "5.2", "--N", "128", "--json",
+                     "--method", "structured"]) == 0  # fmt: skip
+    d = json.loads(capsys.readouterr().out)
+    assert d["method"] == "structured" and d["classification"] == "finite_size"
