@@ -32,12 +32,18 @@ TIME_BUDGET_S = 60.0  # default --time-budget: the CLI never runs unbounded
 
 
 class _Bar:
-    """Progress of a simulation on stderr: a tqdm bar (percent done, elapsed, ETA)."""
+    """Progress of a simulation on stderr: a tqdm bar (percent done, elapsed, ETA), drawn from
+    the first progress report on — a run refused by validation prints only its one-line error."""
 
     def __init__(self, label: str):
-        self.bar = tqdm(total=100, desc=label, unit="%", file=sys.stderr, dynamic_ncols=True)
+        self.label = label
+        self.bar = None
 
     def __call__(self, frac: float) -> None:
+        if self.bar is None:
+            self.bar = tqdm(
+                total=100, desc=self.label, unit="%", file=sys.stderr, dynamic_ncols=True
+            )
         pct = int(100 * min(max(frac, 0.0), 1.0))
         if pct > self.bar.n:
             self.bar.update(pct - self.bar.n)
