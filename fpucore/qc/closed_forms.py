@@ -166,8 +166,17 @@ def rayleigh_roots(law: HardeningSofteningLaw, w_plus: float, V):
     disc = np.maximum((cm - Va) * (cm + Va) / A, 0.0)  # c₋² − V² without cancellation
     r = np.sqrt(disc)
     s = w_minus_sonic(law, w_plus)
-    sgn = 1.0 if s >= law.w_star else -1.0
-    near, far = s - sgn * r, s + sgn * r
+    # The two roots solve a w² + (a w₊ + b) w + C = 0, C = a w₊² + b w₊ + 1 − V² (f − R divided
+    # by w − w₊).  s ± r cancels for the root of small magnitude when |w| << w* (b²/|a| large:
+    # a relative error ~ε w*/|w|, issue 14); it comes from Vieta instead, w_small = C/(a w_big).
+    big = s + math.copysign(1.0, s) * r
+    C = (1.0 - Va * Va) + w_plus * (law.b + law.a * w_plus)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        small = np.where(big != 0.0, C / (law.a * big), s - r)
+    if (s >= law.w_star) == (s >= 0.0):  # the far root (from w*) is the big one
+        far, near = big, small
+    else:
+        near, far = big, small
     if np.ndim(V) == 0:
         return float(near), float(far)
     return near, far
