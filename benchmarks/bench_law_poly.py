@@ -20,7 +20,8 @@ E. the whole discrete-wave solve (QC guess, N, m, K, Newton): cubic closed-form 
    only part that differs (the quartic solves another wave: informational);
 F. the QC route itself (closed forms vs roots + quadrature; no ratio target: informational).
 
-Timings are the best of ``reps`` interleaved repetitions (the machine is shared).
+Timings are the best process CPU time of ``reps`` interleaved repetitions (the machine is
+shared; run with OPENBLAS_NUM_THREADS=1 so the process is single-threaded).
 """
 
 from __future__ import annotations
@@ -54,15 +55,17 @@ def _loop(law_id, p, w):
 
 
 def best_interleaved(calls: dict, reps: int) -> dict:
-    """Best-of-reps wall time of each callable, interleaved so load spikes hit all alike."""
+    """Best-of-reps process CPU time of each callable (single-threaded: OPENBLAS_NUM_THREADS=1),
+    interleaved so load spikes hit all alike; CPU time, because wall time on the shared machine
+    measured the other engineers' jobs (ratios 0.6–1.3 for identical work)."""
     for fn in calls.values():
         fn()  # warm (compile / cache load)
     best = dict.fromkeys(calls, np.inf)
     for _ in range(reps):
         for k, fn in calls.items():
-            t0 = time.perf_counter()
+            t0 = time.process_time()
             fn()
-            best[k] = min(best[k], time.perf_counter() - t0)
+            best[k] = min(best[k], time.process_time() - t0)
     return best
 
 

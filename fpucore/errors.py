@@ -8,6 +8,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 
 class ParameterError(ValueError):
     """An input outside the range where the requested object exists.
@@ -40,7 +42,12 @@ class ConvergenceError(RuntimeError):
 
 
 def require_finite(name: str, value: float) -> float:
-    """Return ``float(value)`` or raise ParameterError if it is not a finite real number."""
+    """Return ``float(value)`` or raise ParameterError if it is not a finite real number.
+
+    Strings and bools are refused even though ``float()`` would take them: ``CubicLaw(a="-1")`` or
+    ``b=True`` is a caller's mistake, not a number."""
+    if isinstance(value, (str, bytes, bool, np.bool_)):
+        raise ParameterError(name, value, "a finite real number", "not a number")
     try:
         x = float(value)
     except (TypeError, ValueError):
@@ -48,6 +55,15 @@ def require_finite(name: str, value: float) -> float:
     if not math.isfinite(x):
         raise ParameterError(name, x, "a finite real number")
     return x
+
+
+def require_int(name: str, value, lo: int, hi: int) -> int:
+    """Return ``int(value)`` for an integer (Python or NumPy, not bool) in [lo, hi], else raise."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
+        raise ParameterError(name, value, f"an integer in [{lo}, {hi}]")
+    if not lo <= int(value) <= hi:
+        raise ParameterError(name, int(value), f"an integer in [{lo}, {hi}]")
+    return int(value)
 
 
 def fmt_interval(lo: float, hi: float, open_: bool = True) -> str:

@@ -47,6 +47,7 @@ def register(sub) -> None:
         q.add_argument("--chunk", type=int, default=None, help="points per chunk along V")
         q.add_argument("--no-continuation", action="store_true", help="every point cold")
         q.add_argument("--out", required=True, help="Zarr store (a directory)")
+        q.set_defaults(out_is_store=True)
         q.add_argument("--resume", action="store_true", help="continue an interrupted store")
         q.add_argument("--scheduler", default=None, help="Dask scheduler tcp://HOST:PORT")
         q.add_argument(

@@ -5,10 +5,13 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import os
+import re
 import sys
 
 import numpy as np
 
+from fpucore.errors import ParameterError
 from fpucore.law import CubicLaw, HardeningSofteningLaw, law_from_expression
 
 
@@ -35,9 +38,40 @@ def print_json(obj) -> None:
     sys.stdout.write(json.dumps(jsonable(obj)) + "\n")
 
 
+# argparse takes "-1" and "-0.5" as values but "-1e-2" or "-inf" as an unknown option ("expected
+# one argument"): every negative number, in any notation float() reads, is a value here.
+NEGATIVE_NUMBER = re.compile(
+    r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-(inf|infinity|nan)$", re.IGNORECASE
+)
+
+
 class Parser(argparse.ArgumentParser):
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = NEGATIVE_NUMBER  # argparse's hook for this decision
+
     def error(self, message):  # one line on stderr, exit 2 (argparse default prints usage too)
         self.exit(2, f"fpu: error: {message}\n")
+
+
+def check_out_path(path: str, name: str = "--out", store: bool = False) -> None:
+    """Refuse an output file that cannot be written, before any computation: its directory must
+    exist and be writable, and the path must not be a directory (issue 14: both failed only after
+    the whole sweep, with a traceback).  ``store``: the output is a directory store (the atlas's
+    Zarr), which may exist already (resume)."""
+    if not path:
+        raise ParameterError(name, path, "a file name")
+    target = os.path.abspath(os.path.expanduser(path))
+    parent = os.path.dirname(target)
+    if os.path.isdir(target) and not store:
+        raise ParameterError(name, path, "a file path", "it is a directory")
+    if not os.path.isdir(parent):
+        raise ParameterError(name, path, "a file in an existing directory",
+                             f"directory {parent} does not exist")  # fmt: skip
+    if not os.access(parent, os.W_OK) or (
+        os.path.exists(target) and not os.access(target, os.W_OK)
+    ):
+        raise ParameterError(name, path, "a writable file", "permission denied")
 
 
 LAW_HELP = (

@@ -10,7 +10,7 @@ from __future__ import annotations
 import sys
 
 from fpucore.cli import atlas, floquet, qc, simulate, warm, wave
-from fpucore.cli.common import Parser
+from fpucore.cli.common import Parser, check_out_path
 from fpucore.errors import ParameterError
 from fpucore.parallel.threads import apply_thread_policy
 
@@ -26,12 +26,13 @@ def build_parser() -> Parser:
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = build_parser()
-    args = parser.parse_args(argv)
-    # the thread budget (fpucore/parallel/threads.py): a command computing one job uses every
-    # core for it; commands that fan out (sweeps, atlas) run their jobs in 1-thread workers
-    apply_thread_policy(getattr(args, "threads", None))
     try:
+        args = build_parser().parse_args(argv)
+        # the thread budget (fpucore/parallel/threads.py): a command computing one job uses every
+        # core for it; commands that fan out (sweeps, atlas) run their jobs in 1-thread workers
+        apply_thread_policy(getattr(args, "threads", None))
+        if getattr(args, "out", None) is not None:  # an unwritable output fails before the work
+            check_out_path(args.out, store=getattr(args, "out_is_store", False))
         return int(args.func(args) or 0)
     except ParameterError as exc:
         sys.stderr.write(f"fpu: error: {exc}\n")

@@ -24,6 +24,7 @@ import sys
 from tqdm import tqdm
 
 from fpucore import simulate, wave
+from fpucore.budget import parse_size, require_time_budget
 from fpucore.cli.common import add_law_args, law_from_args, print_json
 from fpucore.errors import ParameterError, require_finite
 
@@ -31,12 +32,18 @@ TIME_BUDGET_S = 60.0  # default --time-budget: the CLI never runs unbounded
 
 
 class _Bar:
-    """Progress of a simulation on stderr: a tqdm bar (percent done, elapsed, ETA)."""
+    """Progress of a simulation on stderr: a tqdm bar (percent done, elapsed, ETA), drawn from
+    the first progress report on — a run refused by validation prints only its one-line error."""
 
     def __init__(self, label: str):
-        self.bar = tqdm(total=100, desc=label, unit="%", file=sys.stderr, dynamic_ncols=True)
+        self.label = label
+        self.bar = None
 
     def __call__(self, frac: float) -> None:
+        if self.bar is None:
+            self.bar = tqdm(
+                total=100, desc=self.label, unit="%", file=sys.stderr, dynamic_ncols=True
+            )
         pct = int(100 * min(max(frac, 0.0), 1.0))
         if pct > self.bar.n:
             self.bar.update(pct - self.bar.n)
@@ -138,8 +145,8 @@ def _common(args, default_boundary: str, default_rtol: float) -> dict:
         n_snapshots=args.snapshots,
         max_sites_out=args.max_sites,
         probes=tuple(args.probes),
-        time_budget_s=args.time_budget,
-        memory_budget=args.memory_budget,
+        time_budget_s=require_time_budget(args.time_budget, "time_budget"),
+        memory_budget=None if args.memory_budget is None else parse_size(args.memory_budget),
     )
 
 
@@ -191,6 +198,7 @@ def run_wave(args) -> int:
     periods = require_finite("periods", args.periods)
     if not (0.0 < periods <= 1e6):
         raise ParameterError("periods", periods, "(0, 1e+06]", "the run length in periods 1/V")
+    kw = _common(args, "fixed_strain", 1e-12)  # budgets checked before the wave is solved too
     if args.wave_kind == "superkink":
         r = wave.solve_superkink(law, args.V, branch=args.branch, N=args.N)
     else:
@@ -212,7 +220,6 @@ def run_wave(args) -> int:
         else:
             print(f"traveling wave did not converge: {r.message}", file=sys.stderr)
         return 1
-    kw = _common(args, "fixed_strain", 1e-12)
     t_end = periods / r.V
     L_est = args.L or r.N + r.V * t_end + 200
     prog = _progress(args, law, L_est, t_end, kw["method"], kw["rtol"])

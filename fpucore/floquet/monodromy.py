@@ -44,11 +44,13 @@ import scipy.linalg
 
 from fpucore.errors import ParameterError
 from fpucore.floquet.kernels import deflate_sums, extract_deflated, scatter_shifted
+from fpucore.law import require_law
 from fpucore.wave import period_map as pm
 
 _HW_DEFAULT = 0.12  # h·ω_max of the tangent integration (DOP853): quartets to ~1e-13, see bench
 _SPREAD_LEVEL = 1e-18  # window half-width: neglected part of every column below this
 MAX_N = 2500  # 5000² dense eig: minutes, 400 MB
+V_SPAN = 1e3  # base states with c_max / V_SPAN <= V <= V_SPAN c_max
 
 
 @dataclass(frozen=True)
@@ -69,28 +71,70 @@ class Monodromy:
     elapsed_s: float
 
 
-def base_state(r):
-    """(law, w, wd, V, N, w_left, w_right) from a wave result (duck-typed, see module doc)."""
+def _attr(r, name: str, convert):
+    """convert(r.<name>), or ParameterError naming ``r.<name>`` (missing, or not numbers)."""
     try:
-        law, V = r.law, float(r.V)
-        w = np.ascontiguousarray(r.w, dtype=np.float64)
-        wd = np.ascontiguousarray(r.wdot, dtype=np.float64)
-        wl, wr = float(r.w_left), float(r.w_right)
-    except AttributeError as exc:
+        x = getattr(r, name)
+    except AttributeError:
         raise ParameterError(
             "r", type(r).__name__, "a wave result with law, V, w, wdot, w_left, w_right",
-            str(exc),
+            f"no attribute {name!r}",
         ) from None  # fmt: skip
+    if isinstance(x, (str, bytes, bool, np.bool_)):
+        raise ParameterError(f"r.{name}", x, "real numbers")
+    try:
+        return convert(x)
+    except (TypeError, ValueError, OverflowError):
+        raise ParameterError(f"r.{name}", type(x).__name__, "real numbers") from None
+
+
+def _strain_array(x) -> np.ndarray:
+    a = np.ascontiguousarray(x, dtype=np.float64)
+    if a.ndim != 1:
+        raise ValueError("not a 1-d array")
+    return a
+
+
+def base_state(r):
+    """(law, w, wd, V, N, w_left, w_right) from a wave result (duck-typed, see module doc).
+
+    Refused (ParameterError naming the attribute): missing attributes or non-numbers; N odd,
+    < 4 or > MAX_N; V outside [c_max/1000, 1000 c_max] (a period 1/V of ~1e16 steps, or an
+    overflowing one); non-finite entries; strains beyond the zeros of f (issue 14: w = 1e6
+    overflowed the monodromy, which reached LAPACK as "illegal value")."""
+    law = require_law(_attr(r, "law", lambda x: x), "r.law")
+    V = _attr(r, "V", float)
+    w = _attr(r, "w", _strain_array)
+    wd = _attr(r, "wdot", _strain_array)
+    wl, wr = _attr(r, "w_left", float), _attr(r, "w_right", float)
     N = w.size
     if N > MAX_N:
         raise ParameterError("N", N, f"N <= {MAX_N}",
                              "the dense eigenvalue call costs O(N^3) time")  # fmt: skip
-    if not (V > 0 and math.isfinite(V)):
-        raise ParameterError("V", V, "V > 0")
     if N < 4 or N % 2 or wd.shape != w.shape:
         raise ParameterError("N", N, "an even number >= 4 with w, wdot of equal length")
-    if not (np.all(np.isfinite(w)) and np.all(np.isfinite(wd))):
-        raise ParameterError("r.w/r.wdot", "non-finite entries", "finite arrays")
+    c = law.c_max
+    if not (math.isfinite(V) and c / V_SPAN <= V <= c * V_SPAN):
+        raise ParameterError("V", V, f"[{c / V_SPAN:.6g}, {c * V_SPAN:.6g}]",
+                             f"velocities within a factor {V_SPAN:g} of c_max")  # fmt: skip
+    for name, x in (("r.w", w), ("r.wdot", wd), ("r.w_left/r.w_right", np.array([wl, wr]))):
+        if not np.all(np.isfinite(x)):
+            raise ParameterError(name, "non-finite entries", "finite real numbers")
+    # strains where the spring restores (w f(w) >= 0, between the zeros of f adjacent to 0):
+    # beyond them the cubic potential is unbounded and the base trajectory runs away
+    for name, x in (("r.w", w), ("r.w_left/r.w_right", np.array([wl, wr]))):
+        with np.errstate(over="ignore", invalid="ignore"):
+            bad = ~np.isfinite(x * law.f(x)) | (x * law.f(x) < 0.0)
+        if np.any(bad):
+            raise ParameterError(
+                name, float(x[bad][0]), "strains where the spring restores, w f(w) >= 0",
+                "beyond the zeros of f the potential is unbounded",
+            )  # fmt: skip
+    # |ẇ| of a traveling wave is V |w′| <= V x (strain range): far beyond it is no wave
+    wd_max = V_SPAN * V * (float(np.ptp(np.concatenate([w, [wl, wr]]))) + law.beta - law.alpha)
+    if np.any(np.abs(wd) > wd_max):
+        raise ParameterError("r.wdot", float(np.max(np.abs(wd))), f"|wdot| <= {wd_max:.6g}",
+                             "strain rates of a traveling wave are V |w'|")  # fmt: skip
     return law, w, wd, V, N, wl, wr
 
 

@@ -15,7 +15,8 @@ The dense route (:func:`fpucore.floquet.multipliers_of`) calls LAPACK ``dgeev`` 
    λ = μ + 1/μ are double, and every Krylov space of one vector is isotropic.  A full-length
    isotropic Arnoldi process (SHIRA-type: Gram–Schmidt against V and J V, two passes) gives an
    n×n Hessenberg H with W V = V H + J V G; G = 0 in exact arithmetic, ‖G‖ is measured
-   (the backward error of W).  One LAPACK eig of H (n×n instead of 2n×2n).
+   (the backward error of W).  One LAPACK ``dhseqr`` on H (n×n instead of 2n×2n; called
+   directly, :mod:`fpucore.floquet.hessenberg`, since H is Hessenberg already).
    𝓜 is periodic-banded (tangent windows of ±K sites), so a product with W costs O(N·K).
 3. μ solves μ² − λμ + 1 = 0.  Real λ ∈ [−2, 2] gives μ = e^{±iθ} exactly on the unit circle
    (no round-off quartet splitting), complex λ the quartet.
@@ -35,8 +36,8 @@ import math
 import time
 
 import numpy as np
-import scipy.linalg
 
+from fpucore.floquet.hessenberg import hessenberg_eigvals
 from fpucore.floquet.structured_kernels import (
     extract_bands,
     j_apply,
@@ -182,7 +183,7 @@ def structured_multipliers(
     V, H, g_norm, restarts = isotropic_arnoldi(bands, d0, N, rng)
     t2 = time.perf_counter()
     hnorm = float(np.abs(H).max()) * math.sqrt(m)
-    lam = scipy.linalg.eigvals(H, overwrite_a=True, check_finite=False)
+    lam = hessenberg_eigvals(H)  # LAPACK dhseqr: H is Hessenberg already
     t3 = time.perf_counter()
     mu_sums = np.array([mat[:N, :N].sum() / N, mat[N:, N:].sum() / N], dtype=complex)
     # coupling of the sums to the rest: column sums of each block must be constant

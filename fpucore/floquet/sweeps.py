@@ -32,10 +32,13 @@ from tqdm import tqdm
 from fpucore.atlas.point import spec_of
 from fpucore.atlas.run import run as run_atlas
 from fpucore.atlas.store import fpucore_version
-from fpucore.errors import ParameterError, require_finite
+from fpucore.errors import ParameterError, require_finite, require_int
+from fpucore.floquet.monodromy import MAX_N
 from fpucore.jit_cache import source_hash
+from fpucore.law import require_law
 from fpucore.parallel import Executor
 
+SWEEP_MAX_V = 10_000  # velocities per sweep
 CHUNK = 3  # velocities per chunk: fixed (results must not depend on the number of workers)
 _ROW_KEYS = (
     "V", "max_modulus", "max_modulus_away_from_1", "error", "symmetry_error", "integrator_error",
@@ -175,6 +178,42 @@ def _row(V: float, rec: dict) -> dict:
     return row
 
 
+def check_sweep_args(law, kind, V_values, w_plus, N, branch, m, tol, time_budget_s):
+    """Validate a sweep's arguments before anything is computed (issue 14: tol=0, N=10**6 and
+    time_budget_s=-1 used to return NaN rows).  Returns (w_plus, Vs, N, m, tol, time_budget_s)."""
+    require_law(law)
+    if not isinstance(kind, str) or kind not in ("superkink", "solitary"):
+        raise ParameterError("kind", kind, "'superkink' | 'solitary'")
+    if kind == "solitary":
+        if w_plus is None:
+            raise ParameterError("w_plus", w_plus, "a strain", "required for solitary waves")
+        w_plus = require_finite("w_plus", w_plus)
+    else:
+        w_plus = None
+    if not isinstance(branch, str) or branch not in ("lower", "upper"):
+        raise ParameterError("branch", branch, "'lower' | 'upper'")
+    if isinstance(V_values, (str, bytes)):
+        raise ParameterError("V_values", V_values, "a non-empty list of velocities V > 0")
+    items = list(V_values) if isinstance(V_values, (list, tuple, np.ndarray)) else [V_values]
+    Vs = np.array([require_finite("V", v) for v in items], dtype=float)
+    if Vs.size == 0 or Vs.size > SWEEP_MAX_V or np.any(Vs <= 0):
+        raise ParameterError(
+            "V_values", list(Vs)[:5], f"a list of 1 to {SWEEP_MAX_V} velocities V > 0"
+        )
+    N = require_int("N", N, 8, MAX_N)
+    if N % 2:
+        raise ParameterError("N", N, f"an even integer in [8, {MAX_N}]")
+    if m is not None:
+        m = require_int("m", m, 2, 20000)
+    tol = require_finite("tol", tol)
+    if not 1e-15 <= tol <= 1e-3:
+        raise ParameterError("tol", tol, "[1e-15, 1e-3]", "wave residual tolerance")
+    time_budget_s = require_finite("time_budget_s", time_budget_s)
+    if time_budget_s <= 0:
+        raise ParameterError("time_budget_s", time_budget_s, "> 0 seconds")
+    return w_plus, Vs, N, m, tol, time_budget_s
+
+
 def sweep(
     law,
     kind: str,
@@ -200,19 +239,9 @@ def sweep(
     :class:`fpucore.parallel.Executor` to run on (default: a process pool of ``workers``
     processes, all cores, started for this sweep).
     """
-    if kind not in ("superkink", "solitary"):
-        raise ParameterError("kind", kind, "'superkink' | 'solitary'")
-    if kind == "solitary":
-        if w_plus is None:
-            raise ParameterError("w_plus", w_plus, "a strain", "required for solitary waves")
-        w_plus = require_finite("w_plus", w_plus)
-    else:
-        w_plus = None
-    Vs = np.array([require_finite("V", v) for v in np.atleast_1d(V_values)], dtype=float)
-    if Vs.size == 0 or np.any(Vs <= 0):
-        raise ParameterError("V_values", list(Vs), "a non-empty list of velocities V > 0")
-    if not (isinstance(N, (int, np.integer)) and N >= 8 and N % 2 == 0):
-        raise ParameterError("N", N, "an even integer >= 8")
+    w_plus, Vs, N, m, tol, time_budget_s = check_sweep_args(
+        law, kind, V_values, w_plus, N, branch, m, tol, time_budget_s
+    )
     row = w_plus if kind == "solitary" else branch
     for v in Vs:  # every velocity must lie on the family before anything is computed
         spec_of(law, kind, row, float(v))

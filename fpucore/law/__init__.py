@@ -7,20 +7,22 @@ handle ``(law_id, params)`` that the Numba kernels in :mod:`.kernels` take.
     →  polynomial (Σ c_k w^k, hypotheses of §2 checked)  →  cubic  ·  expression (text → law)
 """
 
-from .base import HardeningSofteningLaw
+from .base import HardeningSofteningLaw, require_law
 from .cubic import CubicLaw
 from .expression import law_from_expression
-from .kernels import LAW_CUBIC, LAW_POLY, ddforce, dforce, force
+from .kernels import LAW_CUBIC, LAW_POLY, POLY_IDS, ddforce, dforce, force
 from .polynomial import PolynomialLaw, real_roots
 
 __all__ = [
     "HardeningSofteningLaw",
+    "require_law",
     "CubicLaw",
     "PolynomialLaw",
     "law_from_expression",
     "real_roots",
     "LAW_CUBIC",
     "LAW_POLY",
+    "POLY_IDS",
     "force",
     "dforce",
     "ddforce",

@@ -52,3 +52,12 @@ class HardeningSofteningLaw:
                 "strain must lie in the convex interval where f'(w) > 0",
             )
         return w
+
+
+def require_law(law, name: str = "law") -> HardeningSofteningLaw:
+    """The law itself, or ParameterError if it is not a force-law object (None, a string ...)."""
+    if not isinstance(law, HardeningSofteningLaw):
+        raise ParameterError(
+            name, type(law).__name__, "a force law such as fpucore.CubicLaw(a=-1, b=10)"
+        )
+    return law

@@ -16,7 +16,7 @@ Roots of f′ and f″ come from ``numpy.roots`` (companion-matrix eigenvalues) 
 float64; each carries an error bound (last Newton step, or the round-off bound
 eps·Σ|k c_k w^(k−1)|/|f″| at the root, whichever is larger).
 
-The Numba kernels of :mod:`fpucore.law` evaluate the law through ``(LAW_POLY, params)`` with
+The Numba kernels of :mod:`fpucore.law` evaluate the law through ``(law_id, params)`` with
 ``params[k−1] = c_k`` (Horner; one compiled kernel for every degree).
 
 :func:`fpucore.law.law_from_expression` (module :mod:`.expression`) builds one from text.
@@ -33,9 +33,10 @@ import numpy as np
 
 from fpucore.errors import ParameterError, require_finite
 from fpucore.law.base import HardeningSofteningLaw
-from fpucore.law.kernels import LAW_POLY
+from fpucore.law.kernels import LAW_POLY, LAW_POLY3, LAW_POLY4, LAW_POLY5
 
 EPS = float(np.finfo(float).eps)
+_FAST_IDS = {3: LAW_POLY3, 4: LAW_POLY4, 5: LAW_POLY5}  # unrolled kernels by degree
 
 
 # =============================================================================== real roots
@@ -132,7 +133,7 @@ class PolynomialLaw(HardeningSofteningLaw):
         set_ = object.__setattr__
         set_(self, "coeffs", tuple(c))
         set_(self, "_c", arr)
-        set_(self, "law_id", LAW_POLY)
+        set_(self, "law_id", _FAST_IDS.get(arr.size, LAW_POLY))
         if not c[0] > 0:
             raise ParameterError(
                 "c_1", c[0], "c_1 = f'(0) > 0", "f'(0) must be positive: the unstrained chain "

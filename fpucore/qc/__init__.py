@@ -13,9 +13,11 @@ from fpucore.qc.closed_forms import (
     EPS,
     QCSolitary,
     QCSuperkink,
+    cubic_law,
     first_integral,
     require_V,
     solitary_closed_form,
+    sound_speed_plus,
 )
 from fpucore.qc.dispatch import (
     is_closed_form,
@@ -38,6 +40,7 @@ __all__ = [
     "superkink_w_plus_range",
     "phase",
     "EPS",
+    "cubic_law",
     "QCSolitary",
     "QCSuperkink",
     "first_integral",
@@ -46,6 +49,7 @@ __all__ = [
     "solitary",
     "solitary_closed_form",
     "solitary_intervals",
+    "sound_speed_plus",
     "sound_speeds",
     "superkink_from_V",
     "superkink_from_w_plus",

@@ -21,19 +21,25 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, replace
+from fractions import Fraction
 from typing import ClassVar
 
 import numpy as np
 
 from fpucore.errors import ParameterError, fmt_interval, require_finite
-from fpucore.law import CubicLaw, HardeningSofteningLaw
+from fpucore.law import CubicLaw, HardeningSofteningLaw, require_law
 from fpucore.result import Result, status_of
 
 EPS = np.finfo(float).eps
+V_SPAN = 1e3  # velocities of phase portraits / first integrals: V <= V_SPAN c_max
+W_SPAN = 10.0  # strains of a first integral within W_SPAN (β − α) of (α, β)
+WP_MAX = 1e100  # |w′| of a first integral (V²w′² stays finite: c_max² <= 1e60, law/cubic.py)
 QC_CHECK = 1e-9  # scaled residual of a closed form above which it is reported as not converged
 
 
-def _cubic(law: HardeningSofteningLaw) -> CubicLaw:
+def cubic_law(law: HardeningSofteningLaw) -> CubicLaw:
+    """The law as a CubicLaw, or ParameterError (not a law) / NotImplementedError (another law)."""
+    require_law(law)
     if not isinstance(law, CubicLaw):
         raise NotImplementedError("QC closed forms (paper §4) exist for the cubic law only")
     return law
@@ -67,23 +73,45 @@ def require_V(V: float) -> float:
 # =============================================================================== speeds
 def superkink_velocity_bounds(law: HardeningSofteningLaw) -> tuple[float, float]:
     """(V_lo, V_hi) of eq. V_bounds_cubic: 2/3 c_max² < V_SK² < c_max²."""
-    law = _cubic(law)
+    law = cubic_law(law)
     c2 = _cmax2(law)
     return math.sqrt(2.0 * c2 / 3.0), math.sqrt(c2)
 
 
 def sound_speeds(law: HardeningSofteningLaw, w_plus: float) -> tuple[float, float, float]:
     """(c₊, V_SK, c₋) for the state w₊ ahead (eqs. cplus, cubic_cond2, cminus_cubic)."""
-    law = _cubic(law)
+    law = cubic_law(law)
     w_plus = law.require_convex("w_plus", w_plus)
     c2, e = _cmax2(law), (w_plus - law.w_star) ** 2
     A = law.abs_a
-    return math.sqrt(c2 - 3 * A * e), math.sqrt(c2 - A * e), math.sqrt(c2 - 0.75 * A * e)
+    return sound_speed_plus(law, w_plus), math.sqrt(c2 - A * e), math.sqrt(c2 - 0.75 * A * e)
+
+
+def sound_speed_plus(law: CubicLaw, w_plus):
+    """c₊ = √f′(w₊) (eq. cplus; w₊ may be an array), written without cancellation.
+
+    c₊² = c_max² − 3|a|e, e = (w₊ − w*)², cancels near α and β (a relative 7.5e-5 lost near α,
+    issue 14) and entirely when b²/|a| is large (b = 1e80, w₊ = 1 gave c₊ = 0).  Where it would
+    lose more than one bit (3|a|e > c_max²/2) a scalar w₊ gets f′(w₊) = 1 + 2bw₊ + 3aw₊² in exact
+    rational arithmetic, rounded once (c₊ to an ulp: near α the sum cancels in any fixed
+    precision), an array the factored 3|a| (w − α)(β − w) (error ~ε|α|/(w − α), for plots).
+    Elsewhere the e-form keeps c₊ ≤ V_SK ≤ c₋ exact (and equal at w*); V_SK² = c_max² − |a|e and
+    c₋² = c_max² − ¾|a|e never cancel, since |a|e ≤ c_max²/3 on (α, β)."""
+    w = np.asarray(w_plus, dtype=float)
+    c2, A = _cmax2(law), law.abs_a
+    d = 3.0 * A * (w - law.w_star) ** 2
+    if w.ndim == 0:
+        if d <= 0.5 * c2:
+            return math.sqrt(c2 - float(d))
+        x, a, b = Fraction(float(w)), Fraction(law.a), Fraction(law.b)
+        return math.sqrt(max(float(1 + x * (2 * b + 3 * a * x)), 0.0))
+    factored = 3.0 * A * np.maximum(w - law.alpha, 0.0) * np.maximum(law.beta - w, 0.0)
+    return np.sqrt(np.where(d > 0.5 * c2, factored, np.maximum(c2 - d, 0.0)))
 
 
 def solitary_intervals(law: HardeningSofteningLaw, w_plus: float):
     """((c₊, V_SK), (V_SK, c₋)): the two velocity intervals of solitary waves for w₊."""
-    law = _cubic(law)
+    law = cubic_law(law)
     w_plus = require_w_plus(law, w_plus)
     cp, vsk, cm = sound_speeds(law, w_plus)
     return (cp, vsk), (vsk, cm)
@@ -91,31 +119,73 @@ def solitary_intervals(law: HardeningSofteningLaw, w_plus: float):
 
 def w_minus_sonic(law: HardeningSofteningLaw, w_plus: float) -> float:
     """w₋ˢ = (b − |a| w₊)/(2|a|) = (3w* − w₊)/2, tangency point of the c₋ Rayleigh line."""
-    law = _cubic(law)
+    law = cubic_law(law)
+    w_plus = law.require_convex("w_plus", w_plus)
     return 0.5 * (3.0 * law.w_star - w_plus)
+
+
+def _require_V_upto(law: CubicLaw, w_plus: float, V, lo: float, lo_name: str):
+    """V (scalar or array) finite with lo <= V <= c₋ (c₋ rounded up by a few ulps)."""
+    cm = sound_speeds(law, w_plus)[2]
+    valid = f"[{lo:.10g}, {cm:.10g}] ({lo_name} <= V <= c-)"
+    if np.ndim(V) == 0:
+        Va = np.asarray(require_finite("V", V))
+    else:
+        try:
+            Va = np.asarray(V, dtype=float)
+        except (TypeError, ValueError):
+            raise ParameterError("V", V, valid, "not an array of numbers") from None
+        if Va.size == 0:
+            raise ParameterError("V", V, valid, "empty")
+    if not np.all(np.isfinite(Va)):
+        bad = Va[~np.isfinite(Va)].flat[0]
+        raise ParameterError("V", float(bad), valid, "not a finite number")
+    hi = cm * (1.0 + 8.0 * EPS)
+    out = (Va < lo) | (Va > hi)
+    if np.any(out):
+        raise ParameterError(
+            "V", float(Va[out].flat[0]), valid, "no intersection with the Rayleigh line beyond c-"
+        )
+    return Va, cm
 
 
 def rayleigh_roots(law: HardeningSofteningLaw, w_plus: float, V):
     """The two other intersections of f with the Rayleigh line R(w) = f(w₊) + V²(w − w₊).
 
     Returns (w_near, w_far) = w₋ˢ ∓ √((c₋² − V²)/|a|) ordered by distance from w* (w_near is
-    closer to w*); NaN where V > c₋ (only w₊ is then a critical point).  V may be an array.
-    See :func:`fpucore.qc.phase.critical_points` for the saddle/center classification.
+    closer to w*).  V may be an array; every V must lie in (0, c₋] (beyond c₋ only w₊ is a
+    critical point: ParameterError).  See :func:`fpucore.qc.phase.critical_points` for the
+    saddle/center classification.
     """
-    law = _cubic(law)
-    c2, A = _cmax2(law), law.abs_a
-    cm2 = c2 - 0.75 * A * (w_plus - law.w_star) ** 2
-    V = np.asarray(V, dtype=float)
-    disc = (cm2 - V * V) / A
-    r = np.sqrt(np.where(disc >= 0, disc, np.nan))
+    law = cubic_law(law)
+    w_plus = law.require_convex("w_plus", w_plus)
+    Va, cm = _require_V_upto(law, w_plus, V, 0.0, "0")
+    if np.any(Va <= 0):
+        raise ParameterError("V", float(Va[Va <= 0].flat[0]), f"(0, {cm:.10g}]", "V > 0")
+    A = law.abs_a
+    disc = np.maximum((cm - Va) * (cm + Va) / A, 0.0)  # c₋² − V² without cancellation
+    r = np.sqrt(disc)
     s = w_minus_sonic(law, w_plus)
-    sgn = 1.0 if s >= law.w_star else -1.0
-    return s - sgn * r, s + sgn * r
+    # The two roots solve a w² + (a w₊ + b) w + C = 0, C = a w₊² + b w₊ + 1 − V² (f − R divided
+    # by w − w₊).  s ± r cancels for the root of small magnitude when |w| << w* (b²/|a| large:
+    # a relative error ~ε w*/|w|, issue 14); it comes from Vieta instead, w_small = C/(a w_big).
+    big = s + math.copysign(1.0, s) * r
+    C = (1.0 - Va * Va) + w_plus * (law.b + law.a * w_plus)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        small = np.where(big != 0.0, C / (law.a * big), s - r)
+    if (s >= law.w_star) == (s >= 0.0):  # the far root (from w*) is the big one
+        far, near = big, small
+    else:
+        near, far = big, small
+    if np.ndim(V) == 0:
+        return float(near), float(far)
+    return near, far
 
 
 def w_S(law: HardeningSofteningLaw, w_plus: float, V):
-    """Saddle w_S(V) ≠ w₊ of eq. wS: f(w_S) − f(w₊) = V²(w_S − w₊), V² > f′(w_S) (V may be an
-    array)."""
+    """Saddle w_S(V) ≠ w₊ of eq. wS: f(w_S) − f(w₊) = V²(w_S − w₊), V² > f′(w_S) — the far
+    Rayleigh root, a saddle for c₊ < V < c₋ (V may be an array; V outside (0, c₋]:
+    ParameterError, as for :func:`rayleigh_roots`)."""
     return rayleigh_roots(law, w_plus, V)[1]
 
 
@@ -204,14 +274,14 @@ def superkink_from_V(law: HardeningSofteningLaw, V: float, branch: str = "lower"
     branch="lower" gives w₊ < w* < w₋; "upper" the mirror image w₊ > w* > w₋.
     """
     t0 = time.perf_counter()
-    law = _cubic(law)
+    law = cubic_law(law)
     V = require_V(V)
     lo, hi = superkink_velocity_bounds(law)
     if not lo < V < hi:
         raise ParameterError(
             "V", V, fmt_interval(lo, hi), "superkink velocities, eq. V_bounds_cubic"
         )
-    if branch not in ("lower", "upper"):
+    if not isinstance(branch, str) or branch not in ("lower", "upper"):
         raise ParameterError("branch", branch, "'lower' (w_plus < w*) or 'upper' (w_plus > w*)")
     delta = math.sqrt((hi - V) * (hi + V) / law.abs_a)  # no cancellation near V_hi
     s = -1.0 if branch == "lower" else 1.0
@@ -221,7 +291,7 @@ def superkink_from_V(law: HardeningSofteningLaw, V: float, branch: str = "lower"
 def superkink_from_w_plus(law: HardeningSofteningLaw, w_plus: float) -> QCSuperkink:
     """Superkink with state w₊ ahead: w₋ = 2w* − w₊ (eq. cubic_cond1), V_SK by eq. cubic_cond2."""
     t0 = time.perf_counter()
-    law = _cubic(law)
+    law = cubic_law(law)
     w_plus = require_w_plus(law, w_plus)
     V = math.sqrt(_cmax2(law) - law.abs_a * (w_plus - law.w_star) ** 2)
     branch = "lower" if w_plus < law.w_star else "upper"
@@ -252,7 +322,14 @@ def solitary_closed_form(law: CubicLaw, w_B, V):
     u = (2 dM dT / B)/(s + cosh γξ), s = cosh θ, gives ∫u = (2 dM dT/B)(2/γ) θ/sinh θ and
     ∫u² = (2 dM dT/B)² (2/γ)(θ cosh θ − sinh θ)/sinh³ θ.  ``ok`` is False where the quadratic has
     no real pair of same-sign roots (round-off at an interval end)."""
-    w_B, V = np.asarray(w_B, dtype=float), np.asarray(V, dtype=float)
+    law = cubic_law(law)
+    w_B, V = finite_array("w_B", w_B), finite_array("V", V)
+    if np.any(V <= 0):
+        raise ParameterError("V", float(V[V <= 0].flat[0]), "V > 0")
+    out = (w_B <= law.alpha) | (w_B >= law.beta)
+    if np.any(out):
+        raise ParameterError("w_B", float(w_B[out].flat[0]), fmt_interval(law.alpha, law.beta),
+                             "backgrounds lie in the convex interval (alpha, beta)")  # fmt: skip
     A, B, C = law.a / 4.0, law.ddf(w_B) / 6.0, 0.5 * (law.df(w_B) - V * V)
     disc = B * B - 4.0 * A * C
     ok = (disc > 0) & (C < 0)
@@ -348,7 +425,23 @@ def first_integral(law: HardeningSofteningLaw, w, wp, w_ref: float, V: float):
     Zero on every orbit through the saddle (w_ref, 0) (eq. TW_QC_gen3); its level sets are the
     exact phase portrait of eq. TW_QC_gen2 (with w₊ → w_ref on the right-hand side).
     """
-    w, wp = np.asarray(w, dtype=float), np.asarray(wp, dtype=float)
+    law = require_law(law)
+    w_ref, V = require_finite("w_ref", w_ref), require_V(V)
+    w, wp = finite_array("w", w), finite_array("wp", wp)
+    span = law.beta - law.alpha
+    lo, hi = law.alpha - W_SPAN * span, law.beta + W_SPAN * span
+    for name, x in (("w", w), ("w_ref", np.asarray(w_ref))):
+        out = (x < lo) | (x > hi)
+        if np.any(out):
+            raise ParameterError(
+                name, float(x[out].flat[0]), fmt_interval(lo, hi, open_=False),
+                f"strains within {W_SPAN:g} (beta - alpha) of the convex interval",
+            )  # fmt: skip
+    vmax = V_SPAN * law.c_max
+    if V > vmax:
+        raise ParameterError("V", V, f"(0, {vmax:.10g}]", f"V <= {V_SPAN:g} c_max")
+    if np.any(np.abs(wp) > WP_MAX):
+        raise ParameterError("wp", "entries beyond 1e100", f"|wp| <= {WP_MAX:g}")
     d = w - w_ref
     return (
         V * V / 24.0 * wp * wp
@@ -357,6 +450,19 @@ def first_integral(law: HardeningSofteningLaw, w, wp, w_ref: float, V: float):
         - law.f(w_ref) * d
         - 0.5 * V * V * d * d
     )
+
+
+def finite_array(name: str, x) -> np.ndarray:
+    """x as a float array of finite numbers, or ParameterError naming the argument."""
+    if isinstance(x, (str, bytes)):
+        raise ParameterError(name, x, "finite real numbers")
+    try:
+        a = np.asarray(x, dtype=float)
+    except (TypeError, ValueError):
+        raise ParameterError(name, type(x).__name__, "finite real numbers") from None
+    if not np.all(np.isfinite(a)):
+        raise ParameterError(name, "non-finite entries", "finite real numbers")
+    return a
 
 
 _XI_CHECK = np.linspace(0.0, 12.0, 32)
@@ -378,7 +484,7 @@ def solitary(law: HardeningSofteningLaw, w_plus: float, V: float) -> QCSolitary:
     V must lie in (c₊, V_SK) (background w_B = w₊) or (V_SK, c₋) (w_B = w_S(V)).
     """
     t0 = time.perf_counter()
-    law = _cubic(law)
+    law = cubic_law(law)
     w_plus = require_w_plus(law, w_plus)
     V = require_V(V)
     cp, vsk, cm = sound_speeds(law, w_plus)

@@ -12,8 +12,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fpucore.errors import ParameterError, require_finite
-from fpucore.law import HardeningSofteningLaw
+from fpucore.errors import ParameterError, require_finite, require_int
+from fpucore.law import HardeningSofteningLaw, require_law
 from fpucore.qc import closed_forms as cf
 from fpucore.qc import dispatch as qc
 from fpucore.qc import general as gen
@@ -43,14 +43,14 @@ def existence_diagram(law: HardeningSofteningLaw, n: int = 400) -> ExistenceDiag
     both branches (outside it V_SK and c₋ do not exist: the partner w₋ leaves (α, β)), each point
     by :func:`fpucore.qc.general.speeds`; the point at w* itself is skipped."""
     t0 = time.perf_counter()
-    if not (isinstance(n, int) and 3 <= n <= 100_000):
-        raise ParameterError("n", n, "an integer in [3, 100000]")
+    law = require_law(law)
+    n = require_int("n", n, 3, 100_000)
     a, b, ws = law.alpha, law.beta, law.w_star
     if qc.is_closed_form(law):
         wp = a + (b - a) * (np.arange(n) + 0.5) / n  # open interval
         c2, A = float(law.df(ws)), law.abs_a
         e = (wp - ws) ** 2
-        cp, vsk, cm = np.sqrt(c2 - 3 * A * e), np.sqrt(c2 - A * e), np.sqrt(c2 - 0.75 * A * e)
+        cp, vsk, cm = cf.sound_speed_plus(law, wp), np.sqrt(c2 - A * e), np.sqrt(c2 - 0.75 * A * e)
     else:
         lo = qc.superkink_w_plus_range(law, "lower")[0]
         hi = qc.superkink_w_plus_range(law, "upper")[1]
@@ -66,6 +66,7 @@ def existence_diagram(law: HardeningSofteningLaw, n: int = 400) -> ExistenceDiag
 def classify(law: HardeningSofteningLaw, w_plus: float, V: float) -> str:
     """What lives at (w₊, V): "tensile", "compressive", "superkink" (|V| = V_SK to 1e-9) or
     raises ParameterError naming the valid intervals.  Used e.g. for clicks on the diagram."""
+    law = require_law(law)
     w_plus, V = require_finite("w_plus", w_plus), abs(require_finite("V", V))
     cp, vsk, cm = qc.sound_speeds(law, w_plus)
     if abs(V - vsk) <= 1e-9 * vsk:
@@ -101,8 +102,8 @@ def solitary_family(law: HardeningSofteningLaw, w_plus: float, n: int = 160) -> 
     :func:`fpucore.qc.solitary`) for the cubic, one by one by :func:`fpucore.qc.general.solitary`
     otherwise; ``max_energy_error`` is the largest error bound."""
     t0 = time.perf_counter()
-    if not (isinstance(n, int) and 3 <= n <= 100_000):
-        raise ParameterError("n", n, "an integer in [3, 100000]")
+    law = require_law(law)
+    n = require_int("n", n, 3, 100_000)
     (cp, vsk), (_, cm) = qc.solitary_intervals(law, w_plus)
     if not qc.is_closed_form(law):
         n = min(n, N_GENERAL)  # ≈ 10 ms per wave by quadrature
@@ -126,6 +127,11 @@ def solitary_family(law: HardeningSofteningLaw, w_plus: float, n: int = 160) -> 
         w_B = background(Vs)
         dM, _, _, energy, err, ok = closed_or_general(w_B, Vs)
         ok &= (lo < Vs) & (Vs < hi) & np.isfinite(energy)  # drop points rounding onto an end
+        if not np.any(ok):  # the interval (width ∝ (w₊ − w*)²) is below the rounding of V
+            raise ParameterError(
+                "w_plus", w_plus, f"|w_plus - w*| resolvable around w* = {law.w_star:.10g}",
+                f"the velocity interval ({lo!r}, {hi!r}) holds no resolvable velocity",
+            )  # fmt: skip
         kind = "tensile" if dM[ok][0] > 0 else "compressive"
         return Vs[ok], np.abs(dM[ok]), energy[ok], kind, float(np.max(err[ok]))
 

@@ -7,7 +7,10 @@ on the law.
 
 from __future__ import annotations
 
-from fpucore.law import CubicLaw, HardeningSofteningLaw
+import numpy as np
+
+from fpucore.errors import ParameterError
+from fpucore.law import CubicLaw, HardeningSofteningLaw, require_law
 from fpucore.qc import closed_forms as cf
 from fpucore.qc import general as gen
 
@@ -15,8 +18,9 @@ BRANCHES = ("lower", "upper")
 
 
 def is_closed_form(law: HardeningSofteningLaw) -> bool:
-    """True when the closed forms of paper §4 apply (the cubic law object)."""
-    return isinstance(law, CubicLaw)
+    """True when the closed forms of paper §4 apply (the cubic law object); ParameterError
+    naming ``law`` when it is no law at all (None, a string ...)."""
+    return isinstance(require_law(law), CubicLaw)
 
 
 def sound_speeds(law: HardeningSofteningLaw, w_plus: float) -> tuple[float, float, float]:
@@ -41,15 +45,22 @@ def w_minus_sonic(law: HardeningSofteningLaw, w_plus: float) -> float:
 
 
 def rayleigh_roots(law: HardeningSofteningLaw, w_plus: float, V):
-    """(w_near, w_far): the other intersections of f with the Rayleigh line (V may be an array;
-    NaN where they do not exist)."""
+    """(w_near, w_far): the other intersections of f with the Rayleigh line (V may be an array,
+    each V in (0, c₋]; ParameterError naming V otherwise: issue 14, NaN was returned)."""
     if is_closed_form(law):
         return cf.rayleigh_roots(law, w_plus, V)
-    return gen.rayleigh_roots(law, w_plus, V)
+    cm = gen.sound_speeds(law, w_plus)[2]
+    Va = cf.finite_array("V", V)
+    roots = gen.rayleigh_roots(law, w_plus, Va if np.ndim(V) else float(Va))
+    missing = ~(np.isfinite(roots[0]) & np.isfinite(roots[1])) | (Va <= 0)
+    if np.any(missing):
+        bad = float(np.broadcast_to(Va, missing.shape)[missing].flat[0])
+        raise ParameterError("V", bad, f"(0, {cm:.10g}]", "Rayleigh roots exist for 0 < V <= c-")
+    return roots
 
 
 def w_S(law: HardeningSofteningLaw, w_plus: float, V):
-    """Saddle w_S(V) ≠ w₊ of eq. wS (V may be an array)."""
+    """Saddle w_S(V) ≠ w₊ of eq. wS, the far Rayleigh root (V in (0, c₋], may be an array)."""
     return rayleigh_roots(law, w_plus, V)[1]
 
 

@@ -17,9 +17,10 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from fpucore.budget import require_memory
-from fpucore.errors import require_finite
-from fpucore.law import HardeningSofteningLaw
+from fpucore.errors import ParameterError, fmt_interval, require_finite, require_int
+from fpucore.law import HardeningSofteningLaw, require_law
 from fpucore.qc import dispatch as qc
+from fpucore.qc.closed_forms import V_SPAN as V_SPAN_QC
 from fpucore.qc.closed_forms import first_integral, require_V
 
 
@@ -57,9 +58,33 @@ class PhasePlane:
     elapsed_s: float = 0.0
 
 
+V_SPAN = V_SPAN_QC  # phase portraits for c_max / V_SPAN <= V <= V_SPAN c_max
+N_GRID_MAX = 10**9  # an integer; the memory budget below decides how large
+N_ORBIT_MAX = 100_001
+
+
+def require_phase_V(law: HardeningSofteningLaw, V: float) -> float:
+    """V > 0 within a factor V_SPAN of c_max: far outside, V² swamps f (or the reverse) and the
+    portrait is the trivial one of a linear equation, computed with overflow (V = 1e300: all
+    NaN) or a division by V² = 0 (V = 1e-300: ZeroDivisionError) — issue 14."""
+    V = require_V(V)
+    c = law.c_max
+    if not c / V_SPAN <= V <= c * V_SPAN:
+        raise ParameterError(
+            "V", V, fmt_interval(c / V_SPAN, c * V_SPAN, open_=False),
+            f"phase portraits within a factor {V_SPAN:g} of c_max = {c:.10g}",
+        )  # fmt: skip
+    return V
+
+
 def critical_points(law: HardeningSofteningLaw, w_plus: float, V: float) -> list[CriticalPoint]:
     """Critical points (w_c, 0) of eq. TW_QC_gen2 for (w₊, V), sorted by w."""
-    ws = [w_plus] + [w for w in qc.rayleigh_roots(law, w_plus, V) if math.isfinite(w)]
+    law = require_law(law)
+    w_plus = law.require_convex("w_plus", w_plus)
+    V = require_phase_V(law, V)
+    ws = [w_plus]
+    if V <= qc.sound_speeds(law, w_plus)[2]:  # beyond c₋ the Rayleigh line meets f only at w₊
+        ws += [w for w in qc.rayleigh_roots(law, w_plus, V) if math.isfinite(w)]
     out = []
     for w in sorted(set(ws)):
         lam2 = 12.0 * (V * V - float(law.df(w))) / (V * V)
@@ -91,14 +116,17 @@ def phase_plane(
     level sets and critical points are returned).
     """
     t0 = time.perf_counter()
+    law = require_law(law)
+    n_grid = require_int("n_grid", n_grid, 3, N_GRID_MAX)
+    n_orbit = require_int("n_orbit", n_orbit, 3, N_ORBIT_MAX)
     # the grid (W, W′, H and the temporaries of H: ~8 arrays of n_grid² floats), before allocating
-    n = require_finite("n_grid", n_grid)
-    n_floats = 8.0 * n * n  # (n * n: inf, not OverflowError, for a huge n)
+    n_floats = 8.0 * n_grid * n_grid
     require_memory("n_grid", 8 * n_floats, f"~8 arrays of n_grid² = {n_grid}² floats", n_grid)
     w_plus = law.require_convex("w_plus", w_plus)
-    V = require_finite("V", V)
-    if V <= 0:
-        V = require_V(V)
+    V = require_phase_V(law, V)
+    sk_tol = require_finite("sk_tol", sk_tol)
+    if not 0.0 <= sk_tol <= 1e-3:
+        raise ParameterError("sk_tol", sk_tol, "[0, 0.001]", "relative distance from V_SK")
     cps = critical_points(law, w_plus, V)
     orbits: list[Orbit] = []
     regime = "none"

@@ -2,12 +2,13 @@
 
 layout (state vector, end conditions, status codes)  →  observer (events, probes, guard)
 →  kernels (first-order RHS, DOP853/DOPRI5, Yoshida)  and  rkn (RKN12/RKN8 steppers)
-→  engine (configure: validation and memory/work estimates; output_schedule; the STEPPERS
-table; run_chain; status messages)  →  scenarios (riemann, gaussian, seeded)
+→  steppers (the METHODS table)  →  config (validation, memory and work estimates before
+allocating, output schedule)  →  messages (status text)  →  engine (run_chain: the loop)
+→  scenarios (riemann, gaussian, seeded)
 →  tracking (fronts and pulses in space–time)
 """
 
-from fpucore.simulate.engine import memory_estimate, work_estimate
+from fpucore.simulate.config import memory_estimate, work_estimate
 from fpucore.simulate.scenarios import (
     BOUNDARIES,
     GUARDS,

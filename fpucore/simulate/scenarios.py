@@ -65,17 +65,17 @@ from fpucore.errors import ParameterError, require_finite
 from fpucore.law import HardeningSofteningLaw
 from fpucore.result import Result, status_of
 from fpucore.simulate import tracking
-from fpucore.simulate.engine import (
+from fpucore.simulate.config import (
     BOUNDARIES,
     GUARDS,
     MAX_L,
-    METHODS,
     configure,
     require_int,
     require_positive,
     restoring_interval,
-    run_chain,
 )
+from fpucore.simulate.engine import run_chain
+from fpucore.simulate.steppers import METHODS
 
 __all__ = [
     "SimulationResult",
@@ -336,7 +336,7 @@ def whole_periods(t_end: float, T: float) -> tuple[int, float]:
     """(K, t_K): the number K of whole periods T in t_end and their time t_K = K·T ≤ t_end up to
     rounding.  t_end = K/V computed in floating point can fall an ulp short of K·(1/V) (for ~9 %
     of velocities): such a t_end counts as K periods, and t_K (≤ t_end (1 + 1e-12)) is taken at
-    t_end by the output schedule (:func:`fpucore.simulate.engine.output_schedule`)."""
+    t_end by the output schedule (:func:`fpucore.simulate.config.output_schedule`)."""
     K = int(math.floor(t_end / T + 1e-9))
     if K >= 1 and K * T > t_end * (1.0 + 1e-12):
         K -= 1  # t_end more than rounding short of K periods: the last whole one is K − 1

@@ -24,7 +24,8 @@ from typing import ClassVar
 import numpy as np
 
 from fpucore import qc
-from fpucore.errors import ParameterError, require_finite
+from fpucore.errors import ParameterError, require_finite, require_int
+from fpucore.law import require_law
 from fpucore.result import Result, status_of
 from fpucore.wave import bounds as wb
 from fpucore.wave import period_map as pm
@@ -111,6 +112,14 @@ class WaveResult(Result):
     @property
     def T(self) -> float:
         return 1.0 / self.V
+
+    def errors(self) -> dict[str, float]:
+        """The error fields that apply to this wave: a superkink has no E_ren^D (two different
+        backgrounds), so its energy_error (NaN, like its energy) is left out."""
+        out = Result.errors(self)
+        if self.kind == "superkink":
+            del out["energy_error"]
+        return out
 
     def as_dict(self, profile: bool = True, arrays: bool | None = None) -> dict:
         """Every field (see :meth:`fpucore.result.Result.as_dict`); ``profile=False`` leaves out the
@@ -231,14 +240,16 @@ def _result(law, spec: Spec, done: Solved, jacobian: str, tol: float, t0: float)
     )
 
 
-def _check_common(tol, jacobian, max_iter, time_budget_s):
+def _check_common(law, tol, jacobian, max_iter, time_budget_s, predictor):
+    require_law(law)
+    if predictor is not None and not callable(predictor):
+        raise ParameterError("predictor", type(predictor).__name__, "None or a callable N -> x0")
     tol = require_finite("tol", tol)
     if not (1e-15 <= tol <= 1e-3):
         raise ParameterError("tol", tol, "[1e-15, 1e-3]")
-    if jacobian not in ("exact", "fd"):
+    if not isinstance(jacobian, str) or jacobian not in ("exact", "fd"):
         raise ParameterError("jacobian", jacobian, "'exact' or 'fd'")
-    if not (isinstance(max_iter, int) and 1 <= max_iter <= 1000):
-        raise ParameterError("max_iter", max_iter, "an integer in [1, 1000]")
+    require_int("max_iter", max_iter, 1, 1000)
     time_budget_s = require_finite("time_budget_s", time_budget_s)
     if time_budget_s <= 0:
         raise ParameterError("time_budget_s", time_budget_s, "> 0")
@@ -263,11 +274,15 @@ def solve_superkink(
     a front with w′ < 0) or "upper" (mirror image).  Boundary strains: w_left = w₋, w_right = w₊
     (eq. fixedBCs, w± from eq. wpm_cubic).  N=None: automatic from the wave's width.
     jacobian="fd" uses the paper's finite-difference Jacobian (dense; slow, for comparison).
-    tol: Newton stops at residual <= tol x max(1, |w_left|, |w_right|) (relative to the strain
-    scale); the step count m keeps the step-doubling error below the same bound.
+    tol: relative to the strain scale s = max(1, |w_left|, |w_right|) — Newton accepts residual
+    <= tol·s and then steps on until its next correction is <= tol·s or stops shrinking
+    (round-off); the step count m keeps the step-doubling error below the same bound
+    (:class:`fpucore.wave.attempt.Tolerances`).  Where round-off exceeds tol·s (stiff laws) the
+    achievable level is used and reported (``residual_floor``, ``message``).  The result carries
+    bounds against the infinite chain's exact wave (``profile_error`` …, :mod:`.bounds`).
     Non-convergence returns converged=False with the reason in ``message``.
     """
-    tol, time_budget_s = _check_common(tol, jacobian, max_iter, time_budget_s)
+    tol, time_budget_s = _check_common(law, tol, jacobian, max_iter, time_budget_s, predictor)
     spec = superkink_spec(law, require_finite("V", V), branch)
     return _solve(law, spec, N, tol, jacobian, max_iter, time_budget_s, predictor)
 
@@ -289,7 +304,7 @@ def solve_solitary(
     ẇ_1(T) = 0 puts the extremum at n = 0; boundary strains w_left = w_right = w_B.
     tol is relative to the strain scale, as in :func:`solve_superkink`.
     """
-    tol, time_budget_s = _check_common(tol, jacobian, max_iter, time_budget_s)
+    tol, time_budget_s = _check_common(law, tol, jacobian, max_iter, time_budget_s, predictor)
     spec = solitary_spec(law, require_finite("w_plus", w_plus), require_finite("V", V))
     return _solve(law, spec, N, tol, jacobian, max_iter, time_budget_s, predictor)
 

@@ -140,7 +140,10 @@ def test_very_close_to_V_SK_returns_or_refuses_within_budget():
     if r.converged:
         _own_budget(r)
     else:
-        assert "NOT converged" in r.message and ("try" in r.message or "stalled" in r.message)
+        # the reason: what to try, where it stalled, or (budget spent in the plateau route on a
+        # loaded machine) the nearest solvable V
+        reason = ("try", "stalled", "nearest solvable V")
+        assert "NOT converged" in r.message and any(k in r.message for k in reason), r.message
         assert np.all(np.isfinite(r.w))
 
 

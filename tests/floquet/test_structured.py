@@ -103,3 +103,13 @@ def test_bands_of_the_monodromy_match_the_dense_matrix():
 def test_bad_method():
     with pytest.raises(ParameterError, match="method="):
         fq.spectrum(fq.HomogeneousState(LAW, 1.0, 5.0, 16), method="qr")
+
+
+def test_hessenberg_eigvals_closed_form():
+    """tridiag(1, 2, 1) of size n (Hessenberg): eigenvalues 2 + 2 cos(jπ/(n+1)), j = 1 … n."""
+    n = 60
+    h = 2.0 * np.eye(n) + np.eye(n, k=1) + np.eye(n, k=-1)
+    h[0, 5] = 0.0
+    ev = np.sort(fq.hessenberg.hessenberg_eigvals(h.copy()).real)
+    exact = np.sort(2.0 + 2.0 * np.cos(np.arange(1, n + 1) * np.pi / (n + 1)))
+    assert np.max(np.abs(ev - exact)) < 1e-13

@@ -13,6 +13,7 @@ from fpucore import CubicLaw, ParameterError
 from fpucore.law import (
     LAW_CUBIC,
     LAW_POLY,
+    POLY_IDS,
     PolynomialLaw,
     ddforce,
     dforce,
@@ -260,14 +261,19 @@ def test_quartic_solitary_vs_mpmath(quartic_ref, tag):
     assert sw.first_integral_residual < 1e-12 and sw.elapsed_s > 0
 
 
-def test_quartic_branches_differ():
-    """Without the mirror symmetry the two superkink branches have different velocity ranges."""
+def test_quartic_branch_ranges_are_not_mirror_images():
+    """The two superkink branches cover the same velocities (the equal-area and Rayleigh
+    conditions are symmetric in w₊ ↔ w₋, so the upper branch is the lower one with its states
+    swapped), but their w₊-ranges are not mirror images about w* as for the cubic: the lower
+    branch ends where w₋ reaches β (not at α), the upper one at w₊ = β."""
     law = law_from_expression(QUARTIC)
     lo_l, hi_l = G.superkink_velocity_bounds(law, "lower")
     lo_u, hi_u = G.superkink_velocity_bounds(law, "upper")
-    assert hi_l == hi_u == law.c_max and abs(lo_l - lo_u) < 1e-9  # both end with f′(α or β)=0 …
+    assert hi_l == hi_u == law.c_max and abs(lo_l - lo_u) < 1e-9
     wl, _ = G.superkink_w_plus_range(law, "lower")
-    assert law.alpha < wl < 0  # … but the lower branch stops where w₋ reaches β, not at α
+    _, wu = G.superkink_w_plus_range(law, "upper")
+    assert law.alpha < wl < 0 and wu == law.beta
+    assert abs((law.w_star - wl) - (wu - law.w_star)) > 0.05  # 3.139 vs 3.070; cubic: equal
 
 
 # =============================================================================== (c) refusals
@@ -325,28 +331,36 @@ def test_qc_general_refusals():
 
 # =============================================================================== (d) kernels
 def test_poly_kernels_match_polyval():
+    """Every polynomial kernel (generic loop and the unrolled ones of degree 3–5) against
+    numpy.polyval; PolynomialLaw picks the unrolled id by degree."""
     rng = np.random.default_rng(7)
-    for coeffs in ((1.0, 10.0, -1.0), (1.0, 10.0, -1.0, -0.01), tuple(rng.normal(size=7))):
+    cases = [tuple(rng.normal(size=n)) for n in (3, 4, 5, 7)] + [(1.0, 10.0, -1.0, -0.01)]
+    for coeffs in cases:
         p = np.array(coeffs)
+        ids = (LAW_POLY,) + ((p.size,) if p.size in POLY_IDS else ())
         c = np.concatenate([[0.0], p])[::-1]  # numpy.polyval order, zero constant term
-        for w in rng.uniform(-3, 8, 50):
-            scale = np.polyval(np.abs(c), abs(w))
-            assert abs(force(LAW_POLY, p, w) - np.polyval(c, w)) <= 1e-14 * scale
-            dc, ddc = np.polyder(c), np.polyder(c, 2)
-            assert abs(dforce(LAW_POLY, p, w) - np.polyval(dc, w)) <= 1e-14 * (1 + abs(w)) * scale
-            assert abs(ddforce(LAW_POLY, p, w) - np.polyval(ddc, w)) <= 1e-13 * (1 + w * w) * scale
+        dc, ddc = np.polyder(c), np.polyder(c, 2)
+        for law_id in ids:
+            for w in rng.uniform(-3, 8, 30):
+                s = np.polyval(np.abs(c), abs(w))
+                assert abs(force(law_id, p, w) - np.polyval(c, w)) <= 1e-14 * s
+                assert abs(dforce(law_id, p, w) - np.polyval(dc, w)) <= 1e-14 * (1 + abs(w)) * s
+                assert abs(ddforce(law_id, p, w) - np.polyval(ddc, w)) <= 1e-13 * (1 + w * w) * s
+    deg7 = PolynomialLaw((1.0, 10.0, -1.0, -0.01, 1e-4, -1e-5, 1e-7))
+    assert law_from_expression(QUARTIC).law_id == 4 and deg7.law_id == LAW_POLY
 
 
 def test_cubic_as_polynomial_kernels_agree():
     rng = np.random.default_rng(3)
     for law in CUBICS:
         poly = law.as_polynomial()
-        assert poly.law_id == LAW_POLY and law.law_id == LAW_CUBIC
+        assert poly.law_id in POLY_IDS and law.law_id == LAW_CUBIC
         for name in ("alpha", "beta", "w_star"):
             assert close(getattr(poly, name), getattr(law, name), 1e-14)
         for w in rng.uniform(law.alpha, law.beta, 40):
             for k in (force, dforce, ddforce):
-                a, b = k(LAW_POLY, poly.params, w), k(LAW_CUBIC, law.params, w)
+                a, b = k(poly.law_id, poly.params, w), k(LAW_CUBIC, law.params, w)
+                assert a == k(LAW_POLY, poly.params, w)  # unrolled = loop, same order
                 assert abs(a - b) <= 1e-14 * max(1.0, abs(b), abs(law.b) * w * w)
             for m in ("f", "df", "ddf", "phi"):
                 assert close(float(getattr(poly, m)(w)), float(getattr(law, m)(w)), 1e-13)
