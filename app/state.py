@@ -23,7 +23,7 @@ from fpucore.errors import ParameterError
 
 from . import compute
 
-TABS = ("force", "phase", "profiles", "diagram", "floquet", "simulation")
+TABS = ("force", "phase", "profiles", "diagram", "floquet", "simulation", "atlas")
 MODES = ("solitary", "superkink")
 
 

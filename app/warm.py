@@ -22,7 +22,12 @@ log = logging.getLogger("fpu-explorer")
 os.environ.setdefault("BOKEH_RESOURCES", "server")  # see app/main.py; before panel is imported
 
 from app.explorer import Explorer  # noqa: E402
+from fpucore.parallel import apply_thread_policy  # noqa: E402
 from fpucore.warm import warm_all  # noqa: E402
+
+# the thread budget (fpucore/parallel/threads.py): the server computes for several sessions at
+# once, so one BLAS/OpenMP thread per computation; parallelism comes from processes (Executor)
+apply_thread_policy(1)
 
 DEFAULT_SCENES = "force,phase,profiles,diagram,simulation"
 

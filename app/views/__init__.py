@@ -1,5 +1,6 @@
 """One thin view class per scene (tab); each only renders what fpucore computed."""
 
+from .atlas import AtlasScene
 from .diagram import DiagramScene
 from .floquet import FloquetScene
 from .force_law import ForceLawScene
@@ -14,6 +15,7 @@ SCENES = (
     DiagramScene,
     FloquetScene,
     SimulationScene,
+    AtlasScene,
 )
 
 __all__ = ["SCENES"] + [cls.__name__ for cls in SCENES]

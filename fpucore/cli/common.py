@@ -54,15 +54,16 @@ class Parser(argparse.ArgumentParser):
         self.exit(2, f"fpu: error: {message}\n")
 
 
-def check_out_path(path: str, name: str = "--out") -> None:
+def check_out_path(path: str, name: str = "--out", store: bool = False) -> None:
     """Refuse an output file that cannot be written, before any computation: its directory must
     exist and be writable, and the path must not be a directory (issue 14: both failed only after
-    the whole sweep, with a traceback)."""
+    the whole sweep, with a traceback).  ``store``: the output is a directory store (the atlas's
+    Zarr), which may exist already (resume)."""
     if not path:
         raise ParameterError(name, path, "a file name")
     target = os.path.abspath(os.path.expanduser(path))
     parent = os.path.dirname(target)
-    if os.path.isdir(target):
+    if os.path.isdir(target) and not store:
         raise ParameterError(name, path, "a file path", "it is a directory")
     if not os.path.isdir(parent):
         raise ParameterError(name, path, "a file in an existing directory",

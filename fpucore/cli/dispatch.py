@@ -9,12 +9,12 @@ from __future__ import annotations
 
 import sys
 
-from fpucore.cli import floquet, qc, simulate, warm, wave
+from fpucore.cli import atlas, floquet, qc, simulate, warm, wave
 from fpucore.cli.common import Parser, check_out_path
 from fpucore.errors import ParameterError
 from fpucore.parallel.threads import apply_thread_policy
 
-COMMANDS = (qc, warm, wave, floquet, simulate)
+COMMANDS = (qc, warm, wave, floquet, simulate, atlas)
 
 
 def build_parser() -> Parser:
@@ -32,7 +32,7 @@ def main(argv: list[str] | None = None) -> int:
         # core for it; commands that fan out (sweeps, atlas) run their jobs in 1-thread workers
         apply_thread_policy(getattr(args, "threads", None))
         if getattr(args, "out", None) is not None:  # an unwritable output fails before the work
-            check_out_path(args.out)
+            check_out_path(args.out, store=getattr(args, "out_is_store", False))
         return int(args.func(args) or 0)
     except ParameterError as exc:
         sys.stderr.write(f"fpu: error: {exc}\n")

@@ -20,7 +20,8 @@ above it before anything is allocated (exit 2).
 from __future__ import annotations
 
 import sys
-import time
+
+from tqdm import tqdm
 
 from fpucore import simulate, wave
 from fpucore.budget import parse_size, require_time_budget
@@ -31,23 +32,23 @@ TIME_BUDGET_S = 60.0  # default --time-budget: the CLI never runs unbounded
 
 
 class _Bar:
-    """A minimal text progress bar on stderr (no dependency)."""
+    """Progress of a simulation on stderr: a tqdm bar (percent done, elapsed, ETA), drawn from
+    the first progress report on — a run refused by validation prints only its one-line error."""
 
-    def __init__(self, label: str, width: int = 40):
-        self.label, self.width, self.last = label, width, -1
-        self.t0 = time.perf_counter()
+    def __init__(self, label: str):
+        self.label = label
+        self.bar = None
 
     def __call__(self, frac: float) -> None:
+        if self.bar is None:
+            self.bar = tqdm(
+                total=100, desc=self.label, unit="%", file=sys.stderr, dynamic_ncols=True
+            )
         pct = int(100 * min(max(frac, 0.0), 1.0))
-        if pct == self.last:
-            return
-        self.last = pct
-        k = pct * self.width // 100
-        el = time.perf_counter() - self.t0
-        sys.stderr.write(f"\r{self.label} [{'#' * k}{'.' * (self.width - k)}] {pct:3d}% {el:6.1f}s")
+        if pct > self.bar.n:
+            self.bar.update(pct - self.bar.n)
         if pct >= 100:
-            sys.stderr.write("\n")
-        sys.stderr.flush()
+            self.bar.close()
 
 
 def _progress(args, law, L: float, t_end: float, method: str, rtol: float):

@@ -148,17 +148,21 @@ def extrapolate(N: np.ndarray, e: np.ndarray, err: np.ndarray) -> tuple[float, f
 
 def classify(N: np.ndarray, e: np.ndarray, err: np.ndarray) -> dict:
     """Three-way classification from the points (N_k, e_k ± err_k), N ascending, the requested
-    N last.  Returns classification, p, σ_p, e∞, σ∞, shrinks (bool), checked (bool: ≥ 3 points)."""
+    N last.  Returns classification, p, σ_p, C (e ≈ C N^−p), e∞, σ∞, shrinks, intermittent
+    (bools), checked (bool: ≥ 3 points)."""
     N = np.asarray(N, float)
     e = np.asarray(e, float)
     err = np.asarray(err, float)
-    out = {"p": math.nan, "p_error": math.nan, "e_inf": math.nan, "e_inf_error": math.nan,
+    out = {"p": math.nan, "p_error": math.nan, "C": math.nan, "e_inf": math.nan,
+           "e_inf_error": math.nan,
            "shrinks": False, "intermittent": False, "checked": N.size >= 3}  # fmt: skip
     if not e[-1] > err[-1]:
         out["classification"] = "stable"
         return out
     if N.size >= 2:
         out["p"], out["p_error"] = fit_power_law(N, e, err)
+        ly = np.log(np.maximum(e, np.maximum(err, 1e-300)))
+        out["C"] = float(np.exp(ly.mean() + out["p"] * np.log(N).mean()))  # e ≈ C N^−p
         out["e_inf"], out["e_inf_error"] = extrapolate(N, e, err)
         out["shrinks"] = bool(e[0] - e[-1] > err[0] + err[-1] and out["p"] > 0)
     limit_zero = out["e_inf"] <= 2.0 * out["e_inf_error"] + err[-1]

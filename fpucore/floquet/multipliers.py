@@ -51,8 +51,9 @@ class FloquetResult(Result):
     :mod:`fpucore.floquet.finite_size`; verdict : the same in one sentence with the evidence.
     finite_size_N / finite_size_excess / finite_size_error : (k,) the points (N_k, max|μ|−1 ± err)
     of the finite-size test, N ascending, the requested N last (only N when "stable" or
-    ``finite_size=False``); finite_size_exponent p ± finite_size_exponent_error : fit
-    max|μ|−1 ∝ N^−p; extrapolated_excess ± extrapolated_excess_error : fit e∞ + C/N at N → ∞;
+    ``finite_size=False``); finite_size_exponent p ± finite_size_exponent_error and
+    finite_size_prefactor C : the fitted line max|μ|−1 = C N^−p; extrapolated_excess ±
+    extrapolated_excess_error : fit e∞ + C′/N at N → ∞;
     finite_size_checked : ≥ 3 chain lengths were available; finite_size_s : its wall time (s).
     monodromy_s / check_s / eig_s / elapsed_s : wall times (s).
     """
@@ -82,6 +83,7 @@ class FloquetResult(Result):
     finite_size_error: np.ndarray
     finite_size_exponent: float
     finite_size_exponent_error: float
+    finite_size_prefactor: float
     extrapolated_excess: float
     extrapolated_excess_error: float
     finite_size_checked: bool
@@ -300,6 +302,7 @@ def spectrum(
         finite_size_error=fs_err,
         finite_size_exponent=fit["p"],
         finite_size_exponent_error=fit["p_error"],
+        finite_size_prefactor=fit["C"],
         extrapolated_excess=fit["e_inf"],
         extrapolated_excess_error=fit["e_inf_error"],
         finite_size_checked=bool(fit["checked"]),

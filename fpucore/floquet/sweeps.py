@@ -1,15 +1,18 @@
 """Sweeps of the Floquet spectrum along wave families (paper Figs. floquet_SK, floquet_cubicSW).
 
-For each velocity V of a list the discrete wave is solved (``solve_superkink`` /
-``solve_solitary``, continued from the previous converged wave when the solver accepts an
-initial guess), its spectrum computed with :func:`fpucore.floquet.spectrum`, and one row kept:
-V, max |μ|, max |μ| away from the trivial cluster, the error bar, the verdict.  Running the same
+A sweep is a one-row atlas (:func:`fpucore.atlas.run` with ``floquet=True``): the velocities are
+cut into chunks of ``CHUNK`` consecutive values, each chunk solved on a worker of the execution
+layer (:mod:`fpucore.parallel`; all cores, one BLAS thread each) with continuation from the
+previous converged wave of its chunk, and its spectra computed.  One row per V is kept: V,
+max |μ|, max |μ| away from the trivial cluster, the error bar, the verdict.  Running the same
 sweep at several N measures the N-dependence of the spurious oscillatory instabilities.
 
-Cache.  Every row is stored as one JSON file in ``$FPU_CACHE_DIR/floquet`` (default
-``./.fpu_cache/floquet``), named by the SHA-256 of its exact key (kind, law parameters, branch,
-w₊, V, N, m, tol, cache version; floats by ``repr``, so equal keys mean bit-equal parameters).  The
-key is stored inside the file and compared on load: a row is never returned for other parameters.
+Cache.  With ``use_cache`` the sweep is an atlas store in ``$FPU_CACHE_DIR/floquet`` (default
+``./.fpu_cache/floquet``) named by the SHA-256 of its key: the inputs (kind, law parameters,
+branch, w₊, the velocities, N, m, tol, chunk; floats by ``repr``, so equal keys mean bit-equal
+inputs) **and the code** — the hash of fpucore's source and its version (issue 14 item 4: a
+modified copy of the code must not serve the old rows).  Running the same sweep again resumes
+that store: nothing is recomputed; an interrupted sweep keeps its finished chunks.
 """
 
 from __future__ import annotations
@@ -18,29 +21,39 @@ import hashlib
 import json
 import math
 import os
-import sys
-import time
+import shutil
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
+from tqdm import tqdm
 
+from fpucore.atlas.point import spec_of
+from fpucore.atlas.run import run as run_atlas
+from fpucore.atlas.store import fpucore_version
 from fpucore.errors import ParameterError, require_finite, require_int
 from fpucore.floquet.monodromy import MAX_N
-from fpucore.floquet.multipliers import spectrum
+from fpucore.jit_cache import source_hash
 from fpucore.law import require_law
-from fpucore.wave import solve_solitary, solve_superkink
-from fpucore.wave.continuation import family_interval, qc_shift_predictor
-from fpucore.wave.setup import solitary_spec, superkink_spec
+from fpucore.parallel import Executor
 
-CACHE_VERSION = 1
 SWEEP_MAX_V = 10_000  # velocities per sweep
+CHUNK = 3  # velocities per chunk: fixed (results must not depend on the number of workers)
 _ROW_KEYS = (
     "V", "max_modulus", "max_modulus_away_from_1", "error", "symmetry_error", "integrator_error",
     "n_unstable", "n_trivial", "trivial_split", "verdict", "wave_converged", "wave_residual",
     "converged", "elapsed_s", "message",
 )  # fmt: skip
+# sweep row key ← atlas record field
+_FROM_ATLAS = {
+    "max_modulus": "max_modulus", "max_modulus_away_from_1": "max_modulus_away_from_1",
+    "error": "max_modulus_error", "symmetry_error": "symmetry_error",
+    "integrator_error": "floquet_integrator_error", "n_unstable": "n_unstable",
+    "n_trivial": "n_trivial", "trivial_split": "trivial_split", "verdict": "verdict",
+    "wave_converged": "converged", "wave_residual": "residual", "converged": "floquet_converged",
+    "elapsed_s": "elapsed_s", "message": "message",
+}  # fmt: skip
 
 
 def cache_dir() -> Path:
@@ -49,70 +62,34 @@ def cache_dir() -> Path:
     return Path(root) / "floquet"
 
 
-def cache_key(law, kind: str, V: float, N: int, w_plus, branch: str, m, tol: float) -> dict:
+def cache_key(law, kind: str, V_values, N: int, w_plus, branch: str, m, tol: float) -> dict:
+    """The inputs and the code that determine a sweep's rows (see module doc)."""
     return {
-        "version": CACHE_VERSION,
         "kind": kind,
         "law_id": int(law.law_id),
         "params": [repr(float(x)) for x in law.params],
         "branch": branch if kind == "superkink" else None,
         "w_plus": None if w_plus is None else repr(float(w_plus)),
-        "V": repr(float(V)),
+        "V": [repr(float(v)) for v in V_values],
         "N": int(N),
         "m": None if m is None else int(m),
         "tol": repr(float(tol)),
+        "chunk": CHUNK,
+        "fpucore_source": source_hash(),
+        "fpucore_version": fpucore_version(),
     }
 
 
-def key_path(key: dict) -> Path:
+def cache_path(key: dict) -> Path:
     h = hashlib.sha256(json.dumps(key, sort_keys=True).encode()).hexdigest()[:32]
-    return cache_dir() / f"{h}.json"
-
-
-def cache_load(key: dict) -> dict | None:
-    """The cached row for exactly this key, or None (missing, unreadable or a different key)."""
-    p = key_path(key)
-    try:
-        data = json.loads(p.read_text())
-    except (OSError, ValueError):
-        return None
-    if not isinstance(data, dict) or data.get("key") != key:
-        return None
-    row = data.get("row")
-    return row if isinstance(row, dict) else None
-
-
-def cache_store(key: dict, row: dict) -> None:
-    """Write atomically (temp file + rename); a failing cache never fails the sweep."""
-    p = key_path(key)
-    try:
-        p.parent.mkdir(parents=True, exist_ok=True)
-        tmp = p.with_suffix(f".tmp{os.getpid()}")
-        tmp.write_text(json.dumps({"key": key, "row": _plain(row)}))
-        os.replace(tmp, p)
-    except OSError:
-        pass
-
-
-def _plain(x):
-    if isinstance(x, dict):
-        return {k: _plain(v) for k, v in x.items()}
-    if isinstance(x, (list, tuple, np.ndarray)):
-        return [_plain(v) for v in x]
-    if isinstance(x, (np.bool_, bool)):
-        return bool(x)
-    if isinstance(x, (np.integer,)):
-        return int(x)
-    if isinstance(x, (float, np.floating)):
-        x = float(x)
-        return x if math.isfinite(x) else None
-    return x
+    return cache_dir() / f"sweep-{h}.zarr"
 
 
 @dataclass(frozen=True)
 class SweepResult:
     """max |μ| along a family.  Arrays (n,) in the order of V; error is each row's error bar
-    (:attr:`fpucore.floquet.FloquetResult.error`); NaN where the wave did not converge."""
+    (:attr:`fpucore.floquet.FloquetResult.error`); NaN where the wave did not converge.
+    cached : rows read from the cache store (computed by an earlier run)."""
 
     kind: str
     N: int
@@ -154,49 +131,51 @@ def _csv(v) -> str:
     return '"' + s.replace('"', "'") + '"' if ("," in s or '"' in s) else s
 
 
-def text_progress(stream=None) -> Callable:
-    """A progress callback drawing ``[#####.....] i/n V=… max|mu|-1=…`` on stderr."""
-    stream = stream or sys.stderr
+def _plain(x):
+    if isinstance(x, (np.bool_, bool)):
+        return bool(x)
+    if isinstance(x, np.integer):
+        return int(x)
+    if isinstance(x, (float, np.floating)):
+        x = float(x)
+        return x if math.isfinite(x) else None
+    if isinstance(x, np.str_):
+        return str(x)
+    return x
+
+
+def tqdm_progress(n: int, desc: str = "floquet sweep") -> Callable:
+    """A ``progress(i, n, V, row)`` callback drawing a tqdm bar on stderr."""
+    bar = tqdm(total=n, desc=desc, unit="V", dynamic_ncols=True)
 
     def cb(i: int, n: int, V: float, row: dict | None) -> None:
-        done = int(30 * i / max(n, 1))
-        ex = "" if row is None else f" max|mu|-1={row['max_modulus_away_from_1'] - 1:.2e}"
-        if row is not None and not math.isfinite(row["max_modulus_away_from_1"]):
-            ex = " (wave not converged)"
-        stream.write(f"\r[{'#' * done}{'.' * (30 - done)}] {i}/{n} V={V:.6g}{ex}   ")
-        if i == n:
-            stream.write("\n")
-        stream.flush()
+        bar.update(i - bar.n)
+        ex = row.get("max_modulus_away_from_1") if row else None
+        bar.set_postfix_str(f"V={V:.6g}" + ("" if ex is None else f" max|mu|-1={ex - 1:.2e}"))
 
+    cb.close = bar.close  # type: ignore[attr-defined]
     return cb
 
 
-def _spec(kind, law, V, w_plus, branch):
-    if kind == "superkink":
-        return superkink_spec(law, V, branch)
-    return solitary_spec(law, w_plus, V)
+def _nan_row(V: float, message: str) -> dict:
+    row = {k: None for k in _ROW_KEYS}
+    row.update(V=float(V), n_unstable=0, n_trivial=0, verdict="not computed",
+               wave_converged=False, converged=False, elapsed_s=0.0, message=message)  # fmt: skip
+    return row
 
 
-def _solve(kind, law, V, w_plus, N, branch, tol, prev):
-    """Solve the wave at V; continue from prev = (wave, spec) with the QC-shift predictor of
-    :mod:`fpucore.wave.continuation` when prev lies on the same branch, else from the QC guess."""
-
-    def solve(pred):
-        if kind == "superkink":
-            return solve_superkink(law, V, branch, N, tol, predictor=pred)
-        return solve_solitary(law, w_plus, V, N, tol, predictor=pred)
-
-    sp = _spec(kind, law, V, w_plus, branch)
-    r = None
-    if prev is not None:
-        r_prev, sp_prev = prev
-        if family_interval(law, sp_prev) == family_interval(law, sp):
-            x_prev = np.empty(2 * r_prev.N)
-            x_prev[0::2], x_prev[1::2] = r_prev.w, r_prev.wdot
-            r = solve(qc_shift_predictor(law, sp, x_prev, r_prev.N, sp_prev))
-    if r is None or not r.converged:
-        r = solve(None)
-    return r, sp
+def _row(V: float, rec: dict) -> dict:
+    """The sweep row of one atlas record."""
+    if rec["status"] == "" or (rec["status"] != "ok" and not math.isfinite(rec["max_modulus"])):
+        row = _nan_row(V, rec["message"] or "not computed")
+        if rec["status"] == "not_converged":
+            row["message"] = f"wave not converged: {rec['message']}"
+        row["wave_residual"] = _plain(rec["residual"])
+        row["elapsed_s"] = _plain(rec["elapsed_s"]) or 0.0
+        return row
+    row = {"V": float(V)}
+    row.update({k: _plain(rec[src]) for k, src in _FROM_ATLAS.items()})
+    return row
 
 
 def check_sweep_args(law, kind, V_values, w_plus, N, branch, m, tol, time_budget_s):
@@ -247,47 +226,75 @@ def sweep(
     tol: float = 1e-12,
     use_cache: bool = True,
     time_budget_s: float = 3600.0,
+    executor: Executor | None = None,
+    workers: int | None = None,
 ) -> SweepResult:
     """max |μ| against V along a family of discrete waves (Figs. floquet_SK, floquet_cubicSW).
 
-    kind : "superkink" (w_plus unused) or "solitary" (w_plus required).  V_values : velocities,
-    swept in the given order (continuation follows it).  N : even chain size.  progress : callback
-    ``progress(i, n, V, row)`` (True: a text bar on stderr).  Rows whose wave does not converge are
-    kept with NaN moduli and the solver's message.  time_budget_s : the sweep stops (remaining
-    rows NaN, message says so) once exceeded.
+    kind : "superkink" (w_plus unused) or "solitary" (w_plus required).  V_values : velocities
+    (continuation follows their order within each chunk of ``CHUNK``).  N : even chain size.
+    progress : callback ``progress(i, n, V, row)`` (True: a tqdm bar on stderr).  Rows whose
+    wave does not converge are kept with NaN moduli and the solver's message.  time_budget_s :
+    the sweep stops (remaining rows NaN, message says so) once exceeded.  executor : an
+    :class:`fpucore.parallel.Executor` to run on (default: a process pool of ``workers``
+    processes, all cores, started for this sweep).
     """
-    t0 = time.perf_counter()
     w_plus, Vs, N, m, tol, time_budget_s = check_sweep_args(
         law, kind, V_values, w_plus, N, branch, m, tol, time_budget_s
     )
+    row = w_plus if kind == "solitary" else branch
     for v in Vs:  # every velocity must lie on the family before anything is computed
-        _spec(kind, law, float(v), w_plus, branch)
-    if progress is True:
-        progress = text_progress()
-    rows, cached = [], []
-    prev = None
-    msg = ""
+        spec_of(law, kind, row, float(v))
     n = Vs.size
-    for i, V in enumerate(Vs):
-        if time.perf_counter() - t0 > time_budget_s:
-            msg = f"time budget {time_budget_s:g} s exhausted after {i} of {n} velocities"
-            rows += [_nan_row(v, msg) for v in Vs[i:]]
-            cached += [False] * (n - i)
-            break
-        key = cache_key(law, kind, V, N, w_plus, branch, m, tol)
-        row = cache_load(key) if use_cache else None
-        if row is not None:
-            cached.append(True)
-            prev = None  # continuation restarts from the solver's own guess after a cache hit
-        else:
-            cached.append(False)
-            row, prev = _one_row(kind, law, V, w_plus, N, branch, m, tol, prev)
-            if use_cache and row["wave_converged"]:
-                cache_store(key, row)
-        rows.append(row)
-        if progress:
-            progress(i + 1, n, float(V), row)
+    bar = progress = tqdm_progress(n) if progress is True else progress
+    rows: list = [None] * n
+    computed = np.zeros(n, bool)
+    count = [0]
+
+    def on_points(points) -> None:
+        for _, j, rec in points:
+            rows[j] = _row(Vs[j], rec)
+            computed[j] = True
+            count[0] += 1
+            if progress:
+                progress(count[0], n, float(Vs[j]), rows[j])
+
+    def first(done: int, total: int, failed: int) -> None:
+        if count[0] == 0:
+            count[0] = done  # rows already in the cache store
+
+    kw = dict(rows=[row], V=Vs, N=int(N), tol=tol, floquet=True, m=m, chunk=CHUNK,
+              executor=executor, workers=workers, progress=first, on_points=on_points,
+              time_budget_s=time_budget_s)  # fmt: skip
+    res = None
+    if use_cache:
+        path = cache_path(cache_key(law, kind, Vs, N, w_plus, branch, m, tol))
+        try:
+            path.parent.mkdir(parents=True, exist_ok=True)
+            res = run_atlas(law, kind, out=path, resume=True, **kw)
+        except ParameterError as exc:
+            if exc.name != "out":
+                raise
+            if "locked" not in str(exc):  # an unreadable or foreign store under our key
+                shutil.rmtree(path, ignore_errors=True)
+                res = run_atlas(law, kind, out=path, resume=True, **kw)
+        except OSError:
+            res = None
+    if res is None:  # no cache, or another sweep is writing this one right now
+        res = run_atlas(law, kind, **kw)
+    ds = res.dataset
+    recs = {k: ds[k].values[0] for k in ds.data_vars}
+    for j in range(n):
+        if rows[j] is None:
+            rec = {k: v[j] for k, v in recs.items()}
+            if recs["done"][j]:
+                rows[j] = _row(Vs[j], rec)
+            else:
+                rows[j] = _nan_row(Vs[j], res.message or "not computed")
+    if bar is not None and hasattr(bar, "close"):
+        bar.close()
     arr = lambda k: np.array([np.nan if r[k] is None else r[k] for r in rows], float)  # noqa: E731
+    cached = ~computed & (recs["done"] == 1)
     return SweepResult(
         kind=kind,
         N=int(N),
@@ -298,46 +305,8 @@ def sweep(
         error=arr("error"),
         n_unstable=np.array([r["n_unstable"] or 0 for r in rows], int),
         converged=np.array([bool(r["converged"]) for r in rows]),
-        cached=np.array(cached, bool),
+        cached=cached,
         rows=rows,
-        elapsed_s=time.perf_counter() - t0,
-        message=msg or f"{n} velocities, {int(np.sum(cached))} from cache",
+        elapsed_s=res.elapsed_s,
+        message=res.message if res.stopped else f"{n} velocities, {int(cached.sum())} from cache",
     )
-
-
-def _nan_row(V: float, message: str) -> dict:
-    row = {k: None for k in _ROW_KEYS}
-    row.update(V=float(V), n_unstable=0, n_trivial=0, verdict="not computed",
-               wave_converged=False, converged=False, elapsed_s=0.0, message=message)  # fmt: skip
-    return row
-
-
-def _one_row(kind, law, V, w_plus, N, branch, m, tol, prev):
-    t0 = time.perf_counter()
-    try:
-        r, sp = _solve(kind, law, float(V), w_plus, N, branch, tol, prev)
-    except ParameterError as exc:
-        return _nan_row(V, str(exc)), None
-    if not getattr(r, "converged", True):
-        row = _nan_row(V, f"wave not converged: {getattr(r, 'message', '')}")
-        row["wave_residual"] = float(getattr(r, "residual", math.nan))
-        return row, None
-    fr = spectrum(r, m=m)
-    row = {
-        "V": float(V),
-        "max_modulus": fr.max_modulus,
-        "max_modulus_away_from_1": fr.max_modulus_away_from_1,
-        "error": fr.error,
-        "symmetry_error": fr.symmetry_error,
-        "integrator_error": fr.integrator_error,
-        "n_unstable": fr.n_unstable,
-        "n_trivial": fr.n_trivial,
-        "trivial_split": fr.trivial_split,
-        "verdict": fr.verdict,
-        "wave_converged": True,
-        "wave_residual": float(getattr(r, "residual", math.nan)),
-        "converged": fr.converged,
-        "elapsed_s": time.perf_counter() - t0,
-        "message": fr.message,
-    }
-    return _plain(row), (r, sp)

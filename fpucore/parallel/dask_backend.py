@@ -64,10 +64,14 @@ class DaskBackend:
         self._jobs: dict[str, Job] = {}
         self._futures: dict[Job, distributed.Future] = {}
         self._lock = threading.Lock()
+        self._closed_workers: int | None = None
         self.client.subscribe_topic(self.topic, self._on_event)
 
     @property
     def n_workers(self) -> int:
+        """Workers the scheduler knows now (after shutdown: the number at shutdown)."""
+        if self._closed_workers is not None:
+            return self._closed_workers
         return len(self.client.scheduler_info().get("workers", {}))
 
     def _on_event(self, event) -> None:
@@ -119,6 +123,9 @@ class DaskBackend:
             logging.getLogger(__name__).warning("could not restart Dask worker %s", address)
 
     def shutdown(self) -> None:
+        if self._closed_workers is not None:
+            return
+        self._closed_workers = self.n_workers
         with self._lock:
             jobs = list(self._futures)
         for job in jobs:

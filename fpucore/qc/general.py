@@ -29,10 +29,17 @@ removes both endpoint singularities:
 ξ(s) is tabulated by composite Gauss–Legendre (24 and 16 nodes per panel: their difference is the
 error bar) and inverted by safeguarded Newton; E_ren^QC (eq. Eren_QC) uses the first integral to
 reduce the integrand to (V² w_B + f(w_B)) (w − w_B) + V² (w − w_B)² (as in fpucore.qc) and the same
-substitution.  Results mirror :class:`fpucore.qc.QCSuperkink` / :class:`fpucore.qc.QCSolitary`.
+substitution.  The results subclass :class:`fpucore.qc.QCSuperkink` / :class:`fpucore.qc.QCSolitary`
+(same fields, the result protocol, plus error bars), so every caller takes either.
 
-Caveat: with the tanh substitution the superkink is centred at w(0) = (w₊ + w₋)/2, which equals
-w* only for the cubic (eq. cubic_cond1); in general w₊ + w₋ ≠ 2w*.
+With the tanh substitution the superkink is centred at w(0) = (w₊ + w₋)/2 (``w_center``, where
+the discrete superkink is pinned), which equals w* only for the cubic (eq. cubic_cond1).
+
+Accuracy (tests/law/test_law_general.py): for the cubic written as a polynomial every quantity
+agrees with the closed forms to ≤ 1e-12, except solitary waves whose V lies within a relative
+~1e-4 of c₊, V_SK or c₋ (or in a narrow band, w₊ near w*): there w_M, the profile and E_ren are
+determined by a level set of nearly cancelling terms only to ≈ 64·eps·κ, κ = V²/|V² − c²|
+(seen: 2e-11 relative), and ``energy_error`` grows with κ so that it covers the difference.
 """
 
 from __future__ import annotations

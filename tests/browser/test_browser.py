@@ -358,3 +358,19 @@ def test_serve_command_is_the_containers():
         assert flag in make, flag
         assert flag.replace(" ", '", "') in docker or flag in docker, flag
     assert "panel serve app/main.py" in make and '"panel", "serve", "app/main.py"' in docker
+
+
+def test_atlas_scene_runs_a_small_atlas_through_the_executor(page):
+    """The Atlas tab (app/views/atlas.py): a small atlas with Floquet, run in the server's
+    background through fpucore.parallel's process pool, becomes a heat map with its error bars."""
+    open_app(page, FAST)
+    open_tab(page, "Atlas")
+    page.locator(".scene-atlas .scene-message").get_by_text("atlas store").wait_for()
+    for label, value in (("w₊ rows", "3"), ("velocities", "3")):
+        field = page.locator(".scene-atlas .bk-input-group", has_text=label).locator("input")
+        field.fill(value)
+        field.press("Enter")
+    page.locator(".scene-atlas button", has_text="Run a small atlas").click()
+    text = wait_rendered(page, "atlas", 400.0)  # a process pool starts in the server
+    page.locator(".scene-atlas canvas").first.wait_for()
+    assert "max residual" in text and "atlas run (9 points" in text, text

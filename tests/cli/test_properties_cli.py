@@ -21,7 +21,7 @@ import pytest
 from hypothesis import HealthCheck, event, given, settings
 from hypothesis import strategies as st
 
-from fpucore import floquet
+from fpucore import floquet, wave
 from fpucore.cli import main
 
 CLI = settings(
@@ -244,11 +244,11 @@ def stub_sweep(monkeypatch, tmp_path):
     real_check = floquet.sweeps.check_sweep_args
 
     def stub(law, kind, V_values, w_plus=None, N=500, progress=None, branch="lower", m=None,
-             tol=1e-12, use_cache=True, time_budget_s=3600.0):  # fmt: skip
+             tol=1e-12, use_cache=True, time_budget_s=3600.0, **kw):  # fmt: skip
         real_check(law, kind, V_values, w_plus, N, branch, m, tol, time_budget_s)
         for v in V_values:  # the sweep's own up-front check of every velocity
-            floquet.sweeps.superkink_spec(law, float(v), branch) if kind == "superkink" else (
-                floquet.sweeps.solitary_spec(law, w_plus, float(v)))  # fmt: skip
+            wave.superkink_spec(law, float(v), branch) if kind == "superkink" else (
+                wave.solitary_spec(law, w_plus, float(v)))  # fmt: skip
         raise ValidSweep
 
     monkeypatch.setattr(floquet, "sweep", stub)

@@ -82,6 +82,7 @@ def test_fits_recover_known_laws():
     err = np.full(3, 1e-13)
     p, dp = fs.fit_power_law(N, 0.28 / N, err)
     assert p == pytest.approx(1.0, abs=1e-12) and dp < 1e-6
+    assert fs.classify(N, 0.28 / N, err)["C"] == pytest.approx(0.28, rel=1e-12)
     p, _ = fs.fit_power_law(N, 3.0 * N**-2.5, err)
     assert p == pytest.approx(2.5, abs=1e-12)
     e_inf, de = fs.extrapolate(N, 0.01 + 0.3 / N, err)
@@ -135,6 +136,8 @@ def test_short_chain_superkink_is_classified_with_evidence():
     assert list(fr.finite_size_N) == [64, 96, 128]
     assert np.all(np.diff(fr.finite_size_excess) < 0)
     assert 0.5 < fr.finite_size_exponent < 1.5  # ~1/N (measured 0.95–1.05 at N = 128 … 500)
+    line = fr.finite_size_prefactor * fr.finite_size_N.astype(float) ** -fr.finite_size_exponent
+    assert np.allclose(line, fr.finite_size_excess, rtol=0.3)  # the fitted line the app draws
 
 
 def test_cli_json_has_classification(capsys):

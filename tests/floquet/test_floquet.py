@@ -214,20 +214,15 @@ def test_bad_input():
 
 
 # ----------------------------------------------------------------------------- sweep and cache
-def test_cache_never_returns_other_parameters(tmp_path, monkeypatch):
+def test_cache_key_covers_inputs_and_code(tmp_path, monkeypatch):
+    """Issue 14 item 4: the on-disk sweep cache is keyed on the inputs and the code version."""
     monkeypatch.setenv("FPU_CACHE_DIR", str(tmp_path))
-    k1 = fsw.cache_key(LAW, "superkink", 5.5, 80, None, "lower", None, 1e-12)
-    k2 = fsw.cache_key(LAW, "superkink", np.nextafter(5.5, 6.0), 80, None, "lower", None, 1e-12)
-    assert k1 != k2
-    fsw.cache_store(k1, {"V": 5.5, "max_modulus": 1.0})
-    assert fsw.cache_load(k1)["max_modulus"] == 1.0
-    assert fsw.cache_load(k2) is None
-    # a file whose stored key differs (collision, tampering) is ignored
-    p = fsw.key_path(k2)
-    p.write_text(json.dumps({"key": k1, "row": {"V": 5.5}}))
-    assert fsw.cache_load(k2) is None
-    p.write_text("not json")
-    assert fsw.cache_load(k2) is None
+    k1 = fsw.cache_key(LAW, "superkink", [5.5], 80, None, "lower", None, 1e-12)
+    k2 = fsw.cache_key(LAW, "superkink", [np.nextafter(5.5, 6.0)], 80, None, "lower", None, 1e-12)
+    assert k1 != k2 and fsw.cache_path(k1) != fsw.cache_path(k2)
+    monkeypatch.setattr(fsw, "source_hash", lambda: "0123456789ab")  # an edited copy of fpucore
+    k3 = fsw.cache_key(LAW, "superkink", [5.5], 80, None, "lower", None, 1e-12)
+    assert k3["fpucore_source"] != k1["fpucore_source"] and fsw.cache_path(k3) != fsw.cache_path(k1)
 
 
 def test_sweep_is_cached_and_reports_progress(tmp_path, monkeypatch):
@@ -241,6 +236,9 @@ def test_sweep_is_cached_and_reports_progress(tmp_path, monkeypatch):
     s2 = fq.sweep(LAW, "superkink", V, N=64)
     assert s2.cached.all()
     assert np.array_equal(s1.max_modulus, s2.max_modulus)
+    monkeypatch.setattr(fsw, "source_hash", lambda: "0123456789ab")  # the code changed: a miss
+    s3 = fq.sweep(LAW, "superkink", V, N=64)
+    assert not s3.cached.any() and np.array_equal(s1.max_modulus, s3.max_modulus)
     out = tmp_path / "t.csv"
     s2.to_csv(out)
     lines = out.read_text().splitlines()

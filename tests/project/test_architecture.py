@@ -17,7 +17,7 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
 PKG = ROOT / "fpucore"
-STAGES = ("law", "qc", "tableaux", "wave", "floquet", "simulate", "parallel", "cli")
+STAGES = ("law", "qc", "tableaux", "wave", "floquet", "simulate", "parallel", "atlas", "cli")
 # imports inside functions allowed only to keep a real optional dependency optional
 LATE_OK: set[tuple[str, str]] = {
     # distributed's ~1 s import kept out of every `import fpucore` (only the dask backend needs it)

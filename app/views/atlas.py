@@ -1,0 +1,156 @@
+"""Scene "Atlas" — heat maps over the existence diagram (w₊, V) from an atlas store
+(:mod:`fpucore.atlas`), or from a small atlas run in the background through the execution layer
+(:class:`fpucore.parallel.Executor`, one process per core, one BLAS thread each).
+
+Quantities: max |μ| − 1 (log scale of the excess; needs Floquet), amplitude, E_ren^D.  Cells
+without a wave (outside the existence region, or not converged) are blank; the counts by status
+and the largest error bars are shown next to the plot.  A click on a cell sets (w₊, V) to that
+cell's point (``ExplorerState.pick``); the Profiles / Floquet tabs then show that wave.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import holoviews as hv
+import numpy as np
+import panel as pn
+import xarray as xr
+
+from fpucore import atlas
+from fpucore.errors import ParameterError
+
+from .base import Info, Scene, SceneMessage, as_csv
+
+QUANTITIES = {
+    "max |μ| − 1": "max_modulus",
+    "amplitude": "amplitude",
+    "E_ren": "energy",
+}
+
+
+class AtlasScene(Scene):
+    key = "atlas"
+    title = "Atlas"
+    depends = ("a", "b")
+    plot_height = 480
+
+    def controls(self):
+        self.store = pn.widgets.TextInput(name="atlas store (Zarr)", placeholder="atlas.zarr",
+                                          width=280)  # fmt: skip
+        self.quantity = pn.widgets.Select(name="quantity", options=list(QUANTITIES), width=200)
+        self.n_w = pn.widgets.IntInput(name="w₊ rows", value=8, start=2, end=60, width=130)
+        self.n_V = pn.widgets.IntInput(name="velocities", value=8, start=2, end=60, width=130)
+        self.N_run = pn.widgets.IntInput(name="N", value=200, start=40, end=1000, step=20,
+                                         width=130)  # fmt: skip
+        self.run_btn = pn.widgets.Button(
+            label="Run a small atlas (with Floquet)", color="primary", css_classes=["atlas-run"]
+        )
+        return [self.store, self.quantity, pn.Row(self.n_w, self.n_V), self.N_run, self.run_btn]
+
+    def _extra_watch(self) -> None:
+        self._want_run = False
+        self._ds: xr.Dataset | None = None
+        self._source = ""
+        self.last_plot = None
+
+        def go(_):
+            self._want_run = True
+            self.request()
+
+        self.run_btn.on_click(go)
+        self.store.param.watch(lambda _: self.request(), "value")
+        self.quantity.param.watch(lambda _: self.request(), "value")
+
+    # ------------------------------------------------------------------ data
+    def load(self, path: str) -> xr.Dataset:
+        p = Path(path).expanduser()
+        if not p.is_dir():
+            raise SceneMessage(f"no atlas store at {path}")
+        try:
+            ds = xr.open_zarr(p, consolidated=False).load()
+        except Exception as exc:  # noqa: BLE001  (shown, not raised)
+            raise SceneMessage(f"cannot read {path}: {type(exc).__name__}: {exc}") from None
+        if "w_plus" not in ds.dims:
+            raise SceneMessage("this store is a superkink atlas (over V only): no (w₊, V) map")
+        return ds
+
+    def run_small(self, info: Info) -> xr.Dataset:
+        s = self.state
+        law = s.law()
+        lo, hi = law.alpha, law.beta
+        pad = 0.02 * (hi - lo)
+        rows = f"{lo + pad}:{hi - pad}:{int(self.n_w.value)}"
+        res = atlas.run(law, "solitary", rows=rows, V=int(self.n_V.value),
+                        N=int(self.N_run.value), floquet=True, finite_size=False,
+                        progress=lambda d, n, f: self.set_progress(d, n))  # fmt: skip
+        info.time(f"atlas run ({res.n_computed} points, {res.workers} {res.backend} workers)",
+                  res.elapsed_s)  # fmt: skip
+        return res.dataset
+
+    # ------------------------------------------------------------------ render
+    def render(self, info: Info):
+        if self._want_run:
+            self._want_run = False
+            self._ds, self._source = self.run_small(info), "background run"
+        elif self.store.value:
+            self._ds, self._source = self.load(self.store.value), self.store.value
+        if self._ds is None:
+            raise SceneMessage("Give an atlas store (fpu atlas solitary … --out atlas.zarr) or "
+                               "run a small atlas with the button.", "info")  # fmt: skip
+        ds = self._ds
+        name = self.quantity.value
+        var = QUANTITIES[name]
+        z = ds[var].values.astype(float)
+        if var == "max_modulus":
+            z = z - 1.0
+        ok = ds["status"].values == "ok"
+        z = np.where(ok & np.isfinite(z), z, np.nan)
+        if not np.isfinite(z).any():
+            raise SceneMessage(f"no {name} in this atlas (computed without Floquet?)")
+        counts = {k: int(np.sum(ds["status"].values == k))
+                  for k in ("ok", "not_converged", "no_wave", "failed")}  # fmt: skip
+        info.shown = f"{name} over (w₊, V), {self._source}"
+        info.error("max residual", np.nanmax(np.where(ok, ds["residual"].values, np.nan)))
+        if var == "max_modulus":
+            info.error("max |μ| error bar", np.nanmax(np.where(ok, ds[
+                "max_modulus_error"].values, np.nan)))  # fmt: skip
+        info.notes.append(", ".join(f"{v} {k}" for k, v in counts.items() if v))
+        w, V = ds["w_plus"].values.astype(float), ds["V"].values.astype(float)
+        img = hv.QuadMesh((w, V, z.T), kdims=["w₊", "V"], vdims=[name]).opts(
+            cmap="viridis", colorbar=True, tools=["hover", "tap"], frame_width=520,
+            frame_height=360, title=f"{name} (click a cell: that wave)",
+        )  # fmt: skip
+        self.last_plot = img
+        return img
+
+    @property
+    def dataset(self) -> xr.Dataset | None:
+        """The atlas on screen (None before one is loaded or run)."""
+        return self._ds
+
+    def on_dmaps(self, dmaps: list) -> None:
+        tap = hv.streams.Tap(source=dmaps[0])
+        tap.add_subscriber(lambda x, y: self.pick(x, y))
+
+    def pick(self, x, y) -> bool:
+        """Set the state to the grid point nearest to (x, y) = (w₊, V); False if none."""
+        if x is None or y is None or self._ds is None:
+            return False
+        w, V = self._ds["w_plus"].values, self._ds["V"].values
+        i, j = int(np.argmin(np.abs(w - x))), int(np.argmin(np.abs(V - y)))
+        try:
+            self.state.pick(float(w[i]), float(V[j]))
+        except ParameterError:
+            return False
+        return True
+
+    def download_data(self):
+        if self._ds is None:
+            raise SceneMessage("nothing to download yet")
+        ds = self._ds
+        W, Vg = np.meshgrid(ds["w_plus"].values, ds["V"].values, indexing="ij")
+        cols = {"w_plus": W.ravel(), "V": Vg.ravel()}
+        for k in ("amplitude", "energy", "residual", "max_modulus", "max_modulus_error"):
+            cols[k] = ds[k].values.ravel()
+        return "atlas.csv", as_csv(cols, header=f"atlas from {self._source}")

@@ -1,0 +1,289 @@
+"""Running an atlas: chunks submitted through the execution layer, records gathered into a
+table (and the Zarr store), resumable.
+
+    res = atlas.run(law, "solitary", rows="0.2:6.5:40", V=40, N=500, floquet=True,
+                    out="atlas.zarr", backend="process", workers=None, resume=False)
+    res.dataset        # xarray.Dataset (w_plus, V): every field of point.FIELDS, plus done
+
+Chunks that were stored before (``resume=True``) are loaded, not recomputed.  A chunk whose
+worker died is retried once in the same run; if it dies again its points are recorded as
+``failed`` with the reason but not marked done, so a later ``--resume`` retries them.  Ctrl-C
+(KeyboardInterrupt) cancels the running chunks, releases the store and re-raises: every chunk
+written so far is kept.
+"""
+
+from __future__ import annotations
+
+import math
+import queue
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import ClassVar
+
+import numpy as np
+import xarray as xr
+
+from fpucore.atlas.grid import Grid, make_grid
+from fpucore.atlas.point import FIELDS, empty_record, failure_text, solve_chunk
+from fpucore.atlas.store import (
+    StoreLock,
+    Writer,
+    check_out,
+    create,
+    identity_attrs,
+    open_existing,
+    read_done,
+    skeleton,
+)
+from fpucore.errors import ParameterError, require_finite
+from fpucore.floquet.monodromy import MAX_N
+from fpucore.law import HardeningSofteningLaw
+from fpucore.parallel import Cancelled, Executor, WorkerDied, cores
+from fpucore.result import Result, status_of
+
+STATUS_COUNTS = ("ok", "not_converged", "no_wave", "failed")
+
+
+@dataclass(frozen=True)
+class AtlasResult(Result):
+    """Summary of an atlas run.  dataset : the full table (xarray, dims (row_dim, V)).
+    n_* : points by status over the whole grid (``n_pending``: not computed, e.g. budget hit);
+    n_computed / n_loaded : points computed in this run / read back from the store.
+    max_residual, max_modulus_error : the largest wave residual and Floquet error bar over
+    the ``ok`` points (NaN if none).  points_per_s : n_computed / elapsed_s."""
+
+    kind: str
+    shape: tuple
+    path: str | None
+    dataset: xr.Dataset
+    n_points: int
+    n_ok: int
+    n_not_converged: int
+    n_no_wave: int
+    n_failed: int
+    n_pending: int
+    n_computed: int
+    n_loaded: int
+    max_residual: float
+    max_modulus_error: float
+    backend: str
+    workers: int
+    points_per_s: float
+    converged: bool
+    stopped: bool
+    message: str
+    elapsed_s: float
+
+    ERROR_FIELDS: ClassVar = ("max_residual", "max_modulus_error")
+    EXCLUDE: ClassVar = ("dataset",)
+
+    @property
+    def status(self) -> str:
+        return status_of(self.converged, self.stopped)
+
+
+def check_args(N, tol, time_budget_s) -> None:
+    if N is not None and not (isinstance(N, (int, np.integer)) and 8 <= N <= MAX_N and N % 2 == 0):
+        raise ParameterError("N", N, f"an even integer in [8, {MAX_N}] or None (automatic)")
+    tol = require_finite("tol", tol)
+    if not (1e-15 <= tol <= 1e-3):
+        raise ParameterError("tol", tol, "[1e-15, 1e-3]")
+    if time_budget_s is not None and not (require_finite("time_budget_s", time_budget_s) > 0):
+        raise ParameterError("time_budget_s", time_budget_s, "> 0 seconds or None")
+
+
+class Table:
+    """The grid's records as one numpy array per field (what the store holds)."""
+
+    def __init__(self, grid: Grid, attrs: dict):
+        self.ds = skeleton(grid, attrs)
+        self.cols = {k: self.ds[k].values for k in [*FIELDS, "done"]}
+
+    def put(self, i: int, j0: int, records: list[dict], final: bool) -> None:
+        for j, rec in enumerate(records, start=j0):
+            for k in FIELDS:
+                self.cols[k][i, j] = rec[k]
+            self.cols["done"][i, j] = 1 if final else 0
+
+    def load(self, stored: xr.Dataset, done: np.ndarray) -> None:
+        for k in [*FIELDS, "done"]:
+            vals = stored[k].values
+            self.cols[k][done] = vals[done]
+
+    def count(self, status: str) -> int:
+        return int(np.sum(self.cols["status"] == status))
+
+
+def run(
+    law,
+    kind: str,
+    rows=None,
+    V="40",
+    N: int | None = None,
+    tol: float = 1e-12,
+    floquet: bool = False,
+    finite_size: bool = True,
+    m: int | None = None,
+    chunk: int | None = None,
+    continuation: bool = True,
+    out=None,
+    resume: bool = False,
+    executor: Executor | None = None,
+    backend: str = "process",
+    workers: int | None = None,
+    address: str | None = None,
+    progress: Callable[[int, int, int], None] | None = None,
+    on_points: Callable[[list[tuple[int, int, dict]]], None] | None = None,
+    time_budget_s: float | None = None,
+) -> AtlasResult:
+    """Compute (or resume) an atlas over the grid (rows × V) — see :mod:`fpucore.atlas`.
+
+    law : a force law (CubicLaw or any HardeningSofteningLaw).  kind : "solitary" (rows = w₊
+    values) | "superkink" (rows = branches).
+    V : ``"LO:HI:K"``, a list, or a count K spanning the existence intervals.  N : chain size
+    (None: automatic per point).  floquet : also compute spectra; finite_size : with the
+    spectrum's finite-size test (spectra at 0.4N, 0.6N), which gives the classification.
+    chunk : points per chunk.
+    out : Zarr store path (None: in memory only).  resume : continue an existing store.
+    executor : an Executor to use (else one is made from backend / workers / address and shut
+    down at the end).  progress(done, total, failed) after each chunk; on_points([(i, j,
+    record), ...]) with the records of each chunk.  time_budget_s : stop submitting and cancel
+    what runs once exceeded (points left pending, status "stopped").
+    """
+    t0 = time.perf_counter()
+    if not isinstance(law, HardeningSofteningLaw):
+        raise ParameterError("law", law, "a force law (CubicLaw, PolynomialLaw, ...)")
+    check_args(N, tol, time_budget_s)
+    grid = make_grid(law, kind, rows, V, chunk)
+    attrs = identity_attrs(grid, law, N, tol, floquet, finite_size, m, continuation)
+    table = Table(grid, attrs)
+    lock = writer = None
+    path = None
+    if out is not None:
+        path = check_out(out)
+        exists = path.exists()
+        if exists and not resume:
+            raise ParameterError("out", str(out), "a new path, or resume=True (--resume)",
+                                 "the store exists")  # fmt: skip
+        lock = StoreLock(path)
+    try:
+        n_loaded = 0
+        if path is not None:
+            if path.exists():
+                stored = open_existing(path, grid, attrs)
+                done = read_done(path, grid)
+                table.load(stored, done)
+                n_loaded = int(done.sum())
+            else:
+                create(path, grid, attrs)
+            writer = Writer(path)
+        res = _execute(
+            grid, table, law, N, tol, (floquet, finite_size), m, continuation, writer, executor,
+            backend, workers, address, progress, on_points, time_budget_s, t0,
+        )  # fmt: skip
+        n_computed, used_backend, n_workers, stopped, msg = res
+        if writer is not None:
+            writer.touch()
+    finally:
+        if lock is not None:
+            lock.release()
+    c = table.cols
+    ok = c["status"] == "ok"
+    n_pending = int(np.sum(c["done"] == 0))
+    elapsed = time.perf_counter() - t0
+    counts = {s: table.count(s) for s in STATUS_COUNTS}
+    maxf = lambda a: float(np.nanmax(a[ok])) if ok.any() and np.isfinite(a[ok]).any() else math.nan  # noqa: E731
+    summary = ", ".join(f"{v} {k}" for k, v in counts.items() if v) or "nothing"
+    return AtlasResult(
+        kind=grid.kind, shape=grid.shape, path=None if path is None else str(path),
+        dataset=table.ds, n_points=grid.size, n_ok=counts["ok"],
+        n_not_converged=counts["not_converged"], n_no_wave=counts["no_wave"],
+        n_failed=counts["failed"], n_pending=n_pending, n_computed=n_computed, n_loaded=n_loaded,
+        max_residual=maxf(c["residual"]), max_modulus_error=maxf(c["max_modulus_error"]),
+        backend=used_backend, workers=n_workers,
+        points_per_s=n_computed / elapsed if elapsed > 0 else math.nan,
+        converged=n_pending == 0 and counts["failed"] == 0, stopped=stopped,
+        message=msg or f"{grid.size} points: {summary} ({n_loaded} from the store)",
+        elapsed_s=elapsed,
+    )  # fmt: skip
+
+
+def _execute(grid, table, law, N, tol, floquet, m, continuation, writer, executor, backend,
+             workers, address, progress, on_points, time_budget_s, t0):  # fmt: skip
+    """Submit the chunks not yet done, gather and store them; (n_computed, backend, workers,
+    stopped, message)."""
+    done = table.cols["done"] == 1
+    todo = [(i, j0, j1) for i, j0, j1 in grid.chunks() if not done[i, j0:j1].all()]
+
+    def task(i, j0, j1):
+        return {"law": law, "kind": grid.kind, "row": grid.rows[i],
+                "V": [float(v) for v in grid.V[j0:j1]], "N": None if N is None else int(N),
+                "tol": float(tol), "floquet": bool(floquet[0]), "finite_size": bool(floquet[1]),
+                "m": m, "continuation": bool(continuation)}  # fmt: skip
+
+    own = executor is None and bool(todo)
+    if own:
+        if backend == "process" and len(todo) == 1 and workers is None:
+            backend = "inline"  # one chunk: no pool to start
+        n = min(cores(), len(todo)) if (workers is None and backend == "process") else workers
+        executor = Executor(backend, workers=n, address=address)
+    total, failed = grid.size, int(np.sum(table.cols["status"] == "failed"))
+    n_done = int(done.sum())
+    if progress is not None:
+        progress(n_done, total, failed)
+    finished: queue.Queue = queue.Queue()
+    jobs: dict = {}
+    retried: set = set()
+
+    def submit(key):
+        job = executor.submit(solve_chunk, task(*key))
+        jobs[job] = key
+        job.add_done_callback(finished.put)
+
+    n_computed, stopped, msg = 0, False, ""
+    n_workers = executor.workers if executor is not None else 0
+    try:
+        for key in todo:
+            submit(key)
+        while jobs:
+            if time_budget_s is not None and time.perf_counter() - t0 > time_budget_s:
+                stopped = True
+                msg = f"time budget {time_budget_s:g} s exhausted: {len(jobs)} chunks not done"
+                break
+            try:
+                job = finished.get(timeout=0.2)
+            except queue.Empty:
+                continue
+            key = jobs.pop(job)
+            i, j0, j1 = key
+            exc = job.exception()
+            if isinstance(exc, Cancelled):
+                continue
+            final = True
+            if exc is None:
+                records = job.result()
+            elif isinstance(exc, WorkerDied) and key not in retried:
+                retried.add(key)
+                submit(key)
+                continue
+            else:  # the chunk as a whole failed (worker died twice, unpicklable, ...)
+                final = not isinstance(exc, WorkerDied)  # a dead worker is retried on resume
+                records = [empty_record("failed", failure_text(exc)) for _ in range(j1 - j0)]
+            table.put(i, j0, records, final)
+            if writer is not None:
+                writer.write(i, j0, j1, records, final)
+            n_computed += j1 - j0
+            n_done += j1 - j0
+            failed += sum(r["status"] == "failed" for r in records)
+            if on_points is not None:
+                on_points([(i, j, r) for j, r in enumerate(records, start=j0)])
+            if progress is not None:
+                progress(n_done, total, failed)
+    finally:
+        for job in list(jobs):
+            job.cancel()
+        if own:
+            executor.shutdown()
+    name = executor.backend if executor is not None else "none"
+    return n_computed, name, n_workers, stopped, msg

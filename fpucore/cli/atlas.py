@@ -1,0 +1,117 @@
+"""``fpu atlas``: waves, energies and Floquet multipliers over a grid, stored in Zarr.
+
+fpu atlas solitary --w-plus 0.2:6.5:40 --V 40 --N 500 --floquet --out atlas.zarr
+fpu atlas superkink --V 4.8:5.85:22 --N 500 --floquet --out sk.zarr [--branch both]
+    [--scheduler tcp://HOST:8786 | --workers K | --backend dask] [--resume] [--json]
+
+``--V K``: K velocities spanning the union of the existence intervals over the rows;
+``--V LO:HI:K``: an explicit range.  Progress: a tqdm bar on stderr (points, failed, ETA).
+Ctrl-C stops cleanly (exit 130); every chunk written so far is kept and ``--resume`` goes on.
+"""
+
+from __future__ import annotations
+
+import sys
+
+from tqdm import tqdm
+
+from fpucore import atlas
+from fpucore.atlas.store import check_out
+from fpucore.cli.common import add_law_args, law_from_args, print_json
+from fpucore.errors import ParameterError
+from fpucore.parallel import apply_thread_policy
+
+
+def register(sub) -> None:
+    p = sub.add_parser("atlas", help="sweeps over the existence region, stored in Zarr")
+    asub = p.add_subparsers(dest="atlas_kind", required=True, parser_class=type(p))
+    for kind in ("solitary", "superkink"):
+        q = asub.add_parser(kind, help=f"{kind} atlas over " + ("(w+, V)" if kind == "solitary"
+                                                                 else "V"))  # fmt: skip
+        add_law_args(q)
+        if kind == "solitary":
+            q.add_argument("--w-plus", required=True, help="LO:HI:K or one value (state ahead)")
+        else:
+            q.add_argument("--branch", choices=("lower", "upper", "both"), default="lower")
+        q.add_argument("--V", default="40", help="K (spanning the existence intervals) or "
+                       "LO:HI:K (default 40)")  # fmt: skip
+        q.add_argument("--N", type=int, default=None, help="chain size (default: automatic)")
+        q.add_argument("--tol", type=float, default=1e-12, help="Newton residual tolerance")
+        q.add_argument("--floquet", action="store_true", help="also the Floquet spectra")
+        q.add_argument("--m", type=int, default=None, help="RK steps per period (Floquet)")
+        q.add_argument(
+            "--no-finite-size",
+            action="store_true",
+            help="skip the spectra's finite-size test (no classification; faster)",
+        )
+        q.add_argument("--chunk", type=int, default=None, help="points per chunk along V")
+        q.add_argument("--no-continuation", action="store_true", help="every point cold")
+        q.add_argument("--out", required=True, help="Zarr store (a directory)")
+        q.set_defaults(out_is_store=True)
+        q.add_argument("--resume", action="store_true", help="continue an interrupted store")
+        q.add_argument("--scheduler", default=None, help="Dask scheduler tcp://HOST:PORT")
+        q.add_argument(
+            "--backend",
+            choices=("process", "dask", "inline"),
+            default=None,
+            help="process pool (default), dask (LocalCluster unless --scheduler)",
+        )
+        q.add_argument("--workers", type=int, default=None, help="worker processes (all cores)")
+        q.add_argument("--time-budget", type=float, default=None, help="stop after this many s")
+        q.add_argument("--no-progress", action="store_true", help="no progress bar")
+        q.add_argument("--json", action="store_true", help="print the summary as JSON")
+        q.set_defaults(func=run, kind=kind, threads=1)  # the parent only orchestrates
+
+
+def run(args) -> int:
+    law = law_from_args(args)
+    check_out(args.out)  # before anything is computed
+    if args.scheduler is not None and args.backend not in (None, "dask"):
+        raise ParameterError("backend", args.backend, "dask (or none) with --scheduler")
+    backend = args.backend or ("dask" if args.scheduler else "process")
+    rows = args.w_plus if args.kind == "solitary" else (
+        ["lower", "upper"] if args.branch == "both" else [args.branch])  # fmt: skip
+    apply_thread_policy(1)
+    bar = None
+
+    def progress(done: int, total: int, failed: int) -> None:
+        nonlocal bar
+        if args.no_progress or args.json:
+            return
+        if bar is None:
+            bar = tqdm(total=total, initial=done, unit="pt", desc=f"atlas {args.kind}",
+                       file=sys.stderr, dynamic_ncols=True)  # fmt: skip
+        bar.update(done - bar.n)
+        bar.set_postfix(failed=failed, refresh=True)
+
+    try:
+        res = atlas.run(
+            law, args.kind, rows=rows, V=args.V, N=args.N, tol=args.tol, floquet=args.floquet,
+            finite_size=not args.no_finite_size, m=args.m, chunk=args.chunk,
+            continuation=not args.no_continuation, out=args.out,
+            resume=args.resume, backend=backend, workers=args.workers, address=args.scheduler,
+            progress=progress, time_budget_s=args.time_budget,
+        )  # fmt: skip
+    except KeyboardInterrupt:
+        if bar is not None:
+            bar.close()
+        sys.stderr.write(f"fpu: interrupted; the store keeps what was done: resume with "
+                         f"--resume --out {args.out}\n")  # fmt: skip
+        return 130
+    if bar is not None:
+        bar.close()
+    d = res.as_dict()
+    if args.json:
+        print_json(d)
+    else:
+        print(f"atlas {res.kind} {res.shape[0]} x {res.shape[1]} -> {res.path}")
+        print(f"points   {res.n_ok} ok, {res.n_not_converged} not converged, {res.n_no_wave} no "
+              f"wave, {res.n_failed} failed, {res.n_pending} pending")  # fmt: skip
+        print(f"errors   max residual {res.max_residual:.2g}, max |mu| error "
+              f"{res.max_modulus_error:.2g}")  # fmt: skip
+        print(f"run      {res.n_computed} computed, {res.n_loaded} from the store, "
+              f"{res.elapsed_s:.1f} s, {res.points_per_s:.3g} points/s on {res.workers} "
+              f"{res.backend} workers")  # fmt: skip
+        if res.stopped:
+            print(f"stopped  {res.message}")
+    return 0 if res.n_failed == 0 else 1
