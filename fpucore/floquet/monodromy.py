@@ -51,6 +51,7 @@ _HW_DEFAULT = 0.12  # h·ω_max of the tangent integration (DOP853): quartets to
 _SPREAD_LEVEL = 1e-18  # window half-width: neglected part of every column below this
 MAX_N = 2500  # 5000² dense eig: minutes, 400 MB
 V_SPAN = 1e3  # base states with c_max / V_SPAN <= V <= V_SPAN c_max
+GROWTH_MAX = 200.0  # largest log|μ| bound 2√(−f′)/V of a base state (|μ| <= e^200 ~ 1e87)
 
 
 @dataclass(frozen=True)
@@ -100,8 +101,9 @@ def base_state(r):
 
     Refused (ParameterError naming the attribute): missing attributes or non-numbers; N odd,
     < 4 or > MAX_N; V outside [c_max/1000, 1000 c_max] (a period 1/V of ~1e16 steps, or an
-    overflowing one); non-finite entries; strains beyond the zeros of f (issue 14: w = 1e6
-    overflowed the monodromy, which reached LAPACK as "illegal value")."""
+    overflowing one); non-finite entries; strains whose perturbations grow by more than e^200
+    per period (issue 14: w = 1e6 overflowed the monodromy, which reached LAPACK as "illegal
+    value")."""
     law = require_law(_attr(r, "law", lambda x: x), "r.law")
     V = _attr(r, "V", float)
     w = _attr(r, "w", _strain_array)
@@ -120,15 +122,18 @@ def base_state(r):
     for name, x in (("r.w", w), ("r.wdot", wd), ("r.w_left/r.w_right", np.array([wl, wr]))):
         if not np.all(np.isfinite(x)):
             raise ParameterError(name, "non-finite entries", "finite real numbers")
-    # strains where the spring restores (w f(w) >= 0, between the zeros of f adjacent to 0):
-    # beyond them the cubic potential is unbounded and the base trajectory runs away
+    # Perturbations of a strain with f′(w) < 0 grow like exp(√(−f′) t): over one period
+    # |μ| <= exp(2√(−f′)/V).  Beyond exp(GROWTH_MAX) the monodromy over- or underflows, which
+    # reached LAPACK as "illegal value" (issue 14: w = 1e6); unstable states short of it (the
+    # homogeneous w0 = -0.2 of the finite-size tests) are fine.
     for name, x in (("r.w", w), ("r.w_left/r.w_right", np.array([wl, wr]))):
         with np.errstate(over="ignore", invalid="ignore"):
-            bad = ~np.isfinite(x * law.f(x)) | (x * law.f(x) < 0.0)
+            growth = 2.0 * np.sqrt(np.maximum(-law.df(x), 0.0)) / V
+            bad = ~np.isfinite(law.f(x)) | ~(growth <= GROWTH_MAX)
         if np.any(bad):
             raise ParameterError(
-                name, float(x[bad][0]), "strains where the spring restores, w f(w) >= 0",
-                "beyond the zeros of f the potential is unbounded",
+                name, float(x[bad][0]), f"strains with 2 sqrt(-f'(w))/V <= {GROWTH_MAX:g}",
+                "a perturbation would grow by more than exp(200) in one period",
             )  # fmt: skip
     # |ẇ| of a traveling wave is V |w′| <= V x (strain range): far beyond it is no wave
     wd_max = V_SPAN * V * (float(np.ptp(np.concatenate([w, [wl, wr]]))) + law.beta - law.alpha)

@@ -121,7 +121,7 @@ class _State:
         self.w_left = self.w_right = w
 
 
-def test_spectrum_refuses_strains_beyond_the_zeros_of_f():
+def test_spectrum_refuses_strains_whose_perturbations_overflow():
     refused("r.w", floquet.spectrum, _State(1e6))
 
 
