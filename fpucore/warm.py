@@ -19,6 +19,7 @@ deadlocks (see fpucore.parallel).
 from __future__ import annotations
 
 import multiprocessing as mp
+import signal
 import time
 from collections.abc import Callable
 from concurrent.futures import ProcessPoolExecutor
@@ -73,6 +74,12 @@ GROUPS: tuple[tuple[str, ...], ...] = (
 LAZY = ("simulate-dopri5", "simulate-symplectic")
 
 
+def _ignore_interrupt() -> None:
+    """Worker initializer: Ctrl-C is the parent's to handle (one line, exit 130), not a traceback
+    from each compiling child."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
 def warm_routes(names: tuple[str, ...]) -> float:
     """Run the named routes in this process; returns the seconds spent."""
     t0 = time.perf_counter()
@@ -92,7 +99,8 @@ def warm_all(parallel: bool = True, lazy: bool = True) -> list[str]:
     groups = [tuple(n for n in g if lazy or n not in LAZY) for g in GROUPS]
     groups = [g for g in groups if g]
     if parallel and len(groups) > 1:
-        with ProcessPoolExecutor(len(groups), mp_context=mp.get_context("spawn")) as pool:
+        ctx = mp.get_context("spawn")
+        with ProcessPoolExecutor(len(groups), ctx, initializer=_ignore_interrupt) as pool:
             list(pool.map(warm_routes, groups))
     names = tuple(n for g in groups for n in g)
     warm_routes(names)  # compiled above: loads from the on-disk cache
