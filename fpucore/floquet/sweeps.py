@@ -1,9 +1,10 @@
 """Sweeps of the Floquet spectrum along wave families (paper Figs. floquet_SK, floquet_cubicSW).
 
-A sweep is a one-row atlas (:func:`fpucore.atlas.run` with ``floquet=True``): the velocities are
-cut into chunks of ``CHUNK`` consecutive values, each chunk solved on a worker of the execution
-layer (:mod:`fpucore.parallel`; all cores, one BLAS thread each) with continuation from the
-previous converged wave of its chunk, and its spectra computed.  One row per V is kept: V,
+A sweep is a one-row atlas (:func:`fpucore.atlas.run` with ``floquet=True``): every velocity is
+one task (``CHUNK`` = 1) on a worker of the execution layer (:mod:`fpucore.parallel`; all cores,
+one BLAS thread each): its wave solved from the QC guess and its spectrum computed.  One task per
+velocity keeps the workers balanced (spectra near the sonic end cost more: their finite-size
+test runs); continuation along V measured no gain (benchmarks/README.md, atlas part C).  One row per V is kept: V,
 max |μ|, max |μ| away from the trivial cluster, the error bar, the verdict.  Running the same
 sweep at several N measures the N-dependence of the spurious oscillatory instabilities.
 
@@ -39,7 +40,7 @@ from fpucore.law import require_law
 from fpucore.parallel import Executor
 
 SWEEP_MAX_V = 10_000  # velocities per sweep
-CHUNK = 3  # velocities per chunk: fixed (results must not depend on the number of workers)
+CHUNK = 1  # velocities per task (fixed: results must not depend on the number of workers)
 _ROW_KEYS = (
     "V", "max_modulus", "max_modulus_away_from_1", "error", "symmetry_error", "integrator_error",
     "n_unstable", "n_trivial", "trivial_split", "verdict", "wave_converged", "wave_residual",
@@ -232,7 +233,7 @@ def sweep(
     """max |μ| against V along a family of discrete waves (Figs. floquet_SK, floquet_cubicSW).
 
     kind : "superkink" (w_plus unused) or "solitary" (w_plus required).  V_values : velocities
-    (continuation follows their order within each chunk of ``CHUNK``).  N : even chain size.
+    (one task each).  N : even chain size.
     progress : callback ``progress(i, n, V, row)`` (True: a tqdm bar on stderr).  Rows whose
     wave does not converge are kept with NaN moduli and the solver's message.  time_budget_s :
     the sweep stops (remaining rows NaN, message says so) once exceeded.  executor : an
