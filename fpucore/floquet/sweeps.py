@@ -1,12 +1,12 @@
 """Sweeps of the Floquet spectrum along wave families (paper Figs. floquet_SK, floquet_cubicSW).
 
-A sweep is a one-row atlas (:func:`fpucore.atlas.run` with ``floquet=True``): every velocity is
-one task (``CHUNK`` = 1) on a worker of the execution layer (:mod:`fpucore.parallel`; all cores,
-one BLAS thread each): its wave solved from the QC guess and its spectrum computed.  One task per
-velocity keeps the workers balanced (spectra near the sonic end cost more: their finite-size
-test runs); continuation along V measured no gain (benchmarks/README.md, atlas part C).  One row per V is kept: V,
-max |μ|, max |μ| away from the trivial cluster, the error bar, the verdict.  Running the same
-sweep at several N measures the N-dependence of the spurious oscillatory instabilities.
+A sweep is a one-row atlas (:func:`fpucore.atlas.run` with ``floquet=True``): every velocity is one
+task (``CHUNK`` = 1) on a worker of the execution layer (:mod:`fpucore.parallel`; all cores, one
+BLAS thread each): its wave solved from the QC guess and its spectrum computed.  One task per
+velocity keeps the workers balanced (spectra near the sonic end cost more: their finite-size test
+runs); continuation along V measured no gain (benchmarks/README.md, atlas part C).  One row per V
+is kept: V, max |μ|, max |μ| away from the trivial cluster, the error bar, the verdict.  Running
+the same sweep at several N measures the N-dependence of the spurious oscillatory instabilities.
 
 Cache.  With ``use_cache`` the sweep is an atlas store in ``$FPU_CACHE_DIR/floquet`` (default
 ``./.fpu_cache/floquet``) named by the SHA-256 of its key: the inputs (kind, law parameters,
