@@ -427,3 +427,23 @@ def warm_workers() -> None:
             job.result(timeout=600)
         except Exception:  # noqa: BLE001 - warm-up must never keep the server from starting
             pass
+
+
+def spec_of(a, b, mode, w_plus, V):
+    """fpucore.wave's description (Spec) of the wave the parameters define."""
+    lw = law(a, b)
+    if mode == "superkink":
+        sk = qc.superkink_from_w_plus(lw, w_plus)
+        return lw, wave.superkink_spec(lw, sk.V, sk.branch)
+    return lw, wave.solitary_spec(lw, w_plus, V)
+
+
+def n_needed(a, b, mode, w_plus, V, tol: float) -> int:
+    """The chain size fpucore would choose itself for this wave (``N=None``: tails resolved to
+    0.1·tol·scale, eq. fixedBCs), at least the smallest N it accepts (tails cut at 1e-6 of the
+    amplitude).  Closed-form QC tails only: cheap."""
+    lw, spec = spec_of(a, b, mode, w_plus, V)
+    scale = max(1.0, abs(spec.w_left), abs(spec.w_right))
+    n_auto = wave.required_N(lw, spec, 0.1 * tol * scale)
+    n_fit = wave.required_N(lw, spec, 1e-6 * spec.amplitude_qc)
+    return int(max(n_auto, n_fit))

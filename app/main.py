@@ -8,12 +8,11 @@ os.environ.setdefault("BOKEH_RESOURCES", "server")
 
 import panel as pn  # noqa: E402
 
-from app.explorer import Explorer, sync_url  # noqa: E402
+from app.explorer import from_url  # noqa: E402
 
 pn.extension(loading_indicator=True, notifications=False, throttled=True)
 
-explorer = Explorer()
-sync_url(explorer)  # URL parameters override the defaults before the first render
+explorer = from_url()  # the validated URL parameters, before the first render
 explorer.first_render()
 pn.state.onload(explorer.start)
 explorer.template().servable()

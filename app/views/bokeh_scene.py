@@ -114,10 +114,22 @@ def add_label(fig: figure, color: str = "gray", size: str = "10pt") -> Label:
 
 
 def add_legend(
-    fig: figure, location: str, entries: Iterable[tuple[str, list[GlyphRenderer]]]
+    fig: figure, place: str, entries: Iterable[tuple[str, list[GlyphRenderer]]]
 ) -> list[LegendItem]:
+    """A legend *outside* the data: ``place`` is a side of the figure ("right", "below",
+    "above"), so no entry ever covers a curve."""
     items = [LegendItem(label=label, renderers=rs) for label, rs in entries]
-    fig.add_layout(Legend(items=items, location=location, background_fill_alpha=0.7))
+    orientation = "vertical" if place in ("left", "right") else "horizontal"
+    legend = Legend(
+        items=items,
+        location="top_left" if orientation == "vertical" else "center",
+        orientation=orientation,
+        border_line_alpha=0.0,
+        label_text_font_size="9pt",
+        spacing=2,
+        click_policy="hide",
+    )
+    fig.add_layout(legend, place)
     return items
 
 

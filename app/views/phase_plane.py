@@ -12,8 +12,8 @@ import contourpy
 import numpy as np
 
 from .. import compute
-from ..compute import rnd
-from .base import Info, SceneMessage, as_csv, fmt_num
+from ..compute import exact
+from .base import Info, SceneMessage, as_csv, fmt_num, provenance, python_preamble
 from .bokeh_scene import BokehScene, Updates, add_legend, add_line, add_points, new_figure
 
 ORBIT_COLORS = {"kink": "#d62728", "antikink": "#2ca02c"}
@@ -40,11 +40,15 @@ def contour_lines(pp, levels) -> tuple[np.ndarray, np.ndarray]:
 class PhasePlaneScene(BokehScene):
     key = "phase"
     title = "Phase plane"
+    caption = (
+        "_Level sets of the first integral of the quasicontinuum traveling-wave equation, "
+        "with the current orbit highlighted. Paper: Fig. 2 (pplane)._"
+    )
     cheap = True
 
     def build(self):
         fig = new_figure(
-            "Phase plane of eq. TW_QC_gen2 (Fig. pplane)",
+            "Phase plane (w, w′) of the quasicontinuum traveling waves",
             "w",
             "w′",
             sizing_mode="stretch_width",
@@ -60,7 +64,7 @@ class PhasePlaneScene(BokehScene):
         ]
         items = add_legend(
             fig,
-            "top_right",
+            "right",
             [("orbit", [r]) for r, _ in self.r_orbits]
             + [(kind, [r]) for (kind, _, _), (r, _) in zip(POINT_STYLES, self.r_points)],
         )
@@ -77,7 +81,7 @@ class PhasePlaneScene(BokehScene):
         if not np.all(np.isfinite(pp.H)):
             raise SceneMessage("the first integral is not finite on this grid")
         up = Updates()
-        key = (rnd(s.a), rnd(s.b), rnd(s.w_plus), rnd(s.V))
+        key = (exact(s.a), exact(s.b), exact(s.w_plus), exact(s.V))
 
         qs = np.quantile(pp.H, np.linspace(0.02, 0.6, 12))
         levels = sorted(set(np.round(np.concatenate([qs, pp.separatrix_levels]), 14)))
@@ -115,5 +119,13 @@ class PhasePlaneScene(BokehScene):
         for o in pp.orbits:
             cols[f"{o.name} w"] = o.w
             cols[f"{o.name} w'"] = o.wp
-        hdr = f"phase-plane orbits, w_plus={pp.w_plus!r}, V={pp.V!r}, regime={pp.regime}"
-        return "phase_orbits.csv", as_csv(cols, hdr)
+        hdr = provenance(self.state, f"phase-plane orbits ({pp.regime})")
+        return "phase_orbits.csv", as_csv(cols, hdr + "\n" + self.python_code())
+
+    def python_code(self) -> str:
+        s = self.state
+        return python_preamble(s) + (
+            "from fpucore.qc import phase\n"
+            f"pp = phase.phase_plane(law, {float(s.w_plus)!r}, {float(s.V)!r}, n_grid=241)\n"
+            "print(pp.regime, [(c.kind, c.w) for c in pp.critical_points])\n"
+        )
