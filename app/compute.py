@@ -209,7 +209,11 @@ def law(a: float, b: float) -> CubicLaw:
     """The cubic law f(w) = a w³ + b w² + w (raises ParameterError for a ≥ 0, b ≤ 0, or
     coefficients so large that its closed forms overflow)."""
     try:
-        return CubicLaw(a=float(a), b=float(b))
+        lw = CubicLaw(a=float(a), b=float(b))
+        # the closed forms the scenes use first (α, β, w*, c_max) must be finite doubles
+        if not all(np.isfinite([lw.alpha, lw.beta, lw.w_star, float(lw.f(lw.beta))])):
+            raise OverflowError
+        return lw
     except OverflowError:
         raise ParameterError(
             "b", float(b), "|b| small enough for double precision (e.g. b <= 1e100)", "overflow"

@@ -43,7 +43,6 @@ class FloquetScene(BokehScene):
         "(floquet_SK, Floquet_example, floquet_cubicSW)._"
     )
     plot_height = 340
-    pane_kw: dict = {"sizing_mode": "stretch_width"}
 
     def controls(self):
         self.n_sweep = pn.widgets.IntInput(
@@ -65,7 +64,8 @@ class FloquetScene(BokehScene):
         self.sweep_btn.on_click(go)
 
     def build(self):
-        sq = dict(sizing_mode="stretch_width", height=self.plot_height, match_aspect=True)
+        # fixed square frames: the unit circle is a circle
+        sq = dict(frame_width=330, frame_height=330)
         fa = new_figure("(a) Floquet multipliers μ in the complex plane", "Re μ", "Im μ", **sq)
         fb = new_figure("(b) zoom", "Re μ", "Im μ", **sq)
         fc = new_figure(
@@ -79,10 +79,10 @@ class FloquetScene(BokehScene):
         # markers first, unit circle after: drawn over the 2N crosses (visible at N = 500)
         self.r_mu = add_points(fa, "x", 7, color="#1f77b4", line_width=1.5)
         self.r_unst = add_points(fa, "circle", 14, fill_alpha=0.0, line_color="#d62728")
-        self.r_circle = add_line(fa, "#d62728", 1.5, level="overlay")
+        self.r_circle = add_line(fa, "#d62728", 1.5)
         self.r_zmu = add_points(fb, "x", 10, color="#1f77b4", line_width=2)
         self.r_zunst = add_points(fb, "circle", 18, fill_alpha=0.0, line_color="#d62728")
-        self.r_zcircle = add_line(fb, "#d62728", 1.5, level="overlay")
+        self.r_zcircle = add_line(fb, "#d62728", 1.5)
         for _, src_c in (self.r_circle, self.r_zcircle):
             src_c.data = {"x": np.cos(TH), "y": np.sin(TH)}
         self.legend_a = add_legend(
@@ -105,7 +105,7 @@ class FloquetScene(BokehScene):
         self.sw_vsk = add_vline(fc, "#d62728", "dashed")
         add_legend(fc, "right", [("max |μ|", [self.r_sw[0], self.r_swp[0]])])
         fc.visible = False
-        return column(row(fa, fb, sizing_mode="stretch_width"), fc, sizing_mode="stretch_width")
+        return column(row(fa, fb), fc, sizing_mode="stretch_width")
 
     def _sweep_values(self):
         s = self.state

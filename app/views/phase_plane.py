@@ -96,14 +96,16 @@ class PhasePlaneScene(BokehScene):
                 up.set(r.glyph, line_color=ORBIT_COLORS.get(o.name, "#e377c2"))
                 up.set(item, label={"value": o.name})
             up.show(r, item, k < len(pp.orbits))
+        # only the critical points inside the plotted window are drawn, and only those listed
+        shown = [cp for cp in pp.critical_points if pp.w[0] <= cp.w <= pp.w[-1]]
         for (kind, _, _), (r, src), item in zip(POINT_STYLES, self.r_points, self.point_items):
-            ws = np.array([cp.w for cp in pp.critical_points if cp.kind == kind], float)
+            ws = np.array([cp.w for cp in shown if cp.kind == kind], float)
             up.data(src, key, x=ws, y=np.zeros(len(ws)))
             up.show(r, item, len(ws) > 0)
         up.range(self.fig.x_range, pp.w[0], pp.w[-1])
         up.range(self.fig.y_range, pp.wp[0], pp.wp[-1])
 
-        names = ", ".join(f"{cp.kind} at w = {fmt_num(cp.w, 5)}" for cp in pp.critical_points)
+        names = ", ".join(f"{cp.kind} at w = {fmt_num(cp.w, 5)}" for cp in shown)
         orbit = {"superkink": "kink/antikink heteroclinic pair", "none": "no orbit"}.get(
             pp.regime, f"{pp.regime} solitary wave (homoclinic)"
         )

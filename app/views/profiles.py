@@ -171,7 +171,10 @@ class ProfilesScene(BokehScene):
                 raise
             # N too small for the wave's tails (near c₊): keep the QC curve, advise an N
             need = compute.n_needed(s.a, s.b, s.mode, s.w_plus, s.V, s.tol)
-            info.warning = f"No discrete wave at N = {s.N}: {exc}. {n_advice(need, s.N)}"
+            info.warning = (
+                f"No discrete wave at N = {s.N}: the wave's tails need {exc.valid}. "
+                + n_advice(need, s.N)
+            )
             info.notes.append("discrete wave: none (see the message); QC curve only")
             return self._frame(up, half, ys)
         r = c.value
