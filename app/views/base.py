@@ -123,6 +123,15 @@ def provenance(state: ExplorerState, what: str, **extra) -> str:
     return "\n".join(lines)
 
 
+def state_stamp(state: ExplorerState) -> str:
+    """The parameters a render used, exactly as in the URL (shown under every status, so a
+    reader — and the browser tests — can tell which state is on screen)."""
+    return (
+        f"a={state.a!r} b={state.b!r} w_plus={state.w_plus!r} V={state.V!r} N={state.N} "
+        f"tol={state.tol!r} mode={state.mode}"
+    )
+
+
 def python_preamble(state: ExplorerState) -> str:
     """First lines of every scene's "copy as Python" code."""
     return (
@@ -148,7 +157,7 @@ class Scene(pn.viewable.Viewer):
     caption = ""
     #: state parameters whose change makes this scene stale
     depends: tuple[str, ...] = ("a", "b", "w_plus", "V", "mode", "N", "tol")
-    plot_height = 460
+    plot_height = 560
     #: cheap enough (QC, cached) to render synchronously while the page is being built
     cheap = False
 
@@ -225,6 +234,7 @@ class Scene(pn.viewable.Viewer):
         self._pending = False
         self._running = False
         self._cancel = False
+        self._stamp = state_stamp(state)
         self._extra_watch()
 
     def __panel__(self):
@@ -330,6 +340,7 @@ class Scene(pn.viewable.Viewer):
         t0 = time.perf_counter()
         info = Info()
         self.stale = False
+        self._stamp = state_stamp(self.state)
         try:
             stop_busy = (lambda: None) if building else self._busy()
             try:
@@ -412,7 +423,9 @@ class Scene(pn.viewable.Viewer):
         try:
             self.alert.param.update(alert_type=kind, object=text, visible=True)
             self.hide_plot()
-            self.status.object = "_no plot: see the message_"
+            self.status.object = (
+                f"_no plot: see the message_\n\n<small>Parameters: {self._stamp}</small>"
+            )
             self.code.value = python_preamble(self.state) + f"# nothing shown: {text}\n"
         except Exception:  # noqa: BLE001
             log.exception("scene %s: showing the message failed", self.key)
@@ -442,6 +455,7 @@ class Scene(pn.viewable.Viewer):
         lines.extend(f"_{n}_" for n in info.notes)
         if partial:
             lines.append("_computing the rest ..._")
+        lines.append(f"<small>Parameters: {self._stamp}</small>")
         self.status.object = "\n\n".join(lines)
 
     def _download(self):

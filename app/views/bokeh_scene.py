@@ -107,8 +107,8 @@ def add_vline(fig: figure, color: str, dash: str = "solid", width: float = 1.0) 
     return span
 
 
-def add_label(fig: figure, color: str = "gray", size: str = "10pt") -> Label:
-    lab = Label(x=0.0, y=0.0, text="", text_color=color, text_font_size=size, text_align="center")
+def add_label(fig: figure, color: str = "gray", size: str = "10pt", align: str = "center") -> Label:
+    lab = Label(x=0.0, y=0.0, text="", text_color=color, text_font_size=size, text_align=align)
     fig.add_layout(lab)
     return lab
 

@@ -76,7 +76,7 @@ class DiagramScene(BokehScene):
         return [self.exist_pane]
 
     def build(self):
-        size = dict(frame_width=250, frame_height=200)
+        size = dict(frame_width=340, frame_height=240)
         fa = new_figure("(a) amplitude against velocity", "V", "amplitude", **size)
         fe = new_figure("(b) renormalized energy against velocity", "V", "E_ren", **size)
         self.fig_a, self.fig_e = fa, fe
@@ -106,8 +106,8 @@ class DiagramScene(BokehScene):
             "(c) where solitary waves exist — click to pick (w₊, V)",
             "w₊",
             "V",
-            frame_width=460,
-            frame_height=250,
+            frame_width=620,
+            frame_height=300,
         )
         self.fig_c = fc
         # bands (c₊, V_SK) and (V_SK, c₋) left and right of w*: TSW below V_SK on the left,
@@ -118,8 +118,9 @@ class DiagramScene(BokehScene):
             add_line(fc, "#1f77b4", 1),
             add_line(fc, "#2ca02c", 1),
         ]
-        self.exist_label = add_label(fc, color="black", size="9pt")
+        self.exist_label = add_label(fc, color="black", size="9pt", align="left")
         self.exist_point = add_points(fc, "circle", 11, color="black")
+        self.exist_point[1].name = "diagram-current"  # read by the browser tests
         add_legend(
             fc,
             "right",
@@ -177,7 +178,7 @@ class DiagramScene(BokehScene):
             up.data(src, key, x=d.w_plus, y=y)
         up.set(
             self.exist_label,
-            x=0.5 * (d.alpha + d.w_star),
+            x=float(d.w_plus[0] + 0.02 * (d.w_plus[-1] - d.w_plus[0])),
             y=float(np.min(d.c_plus)) * 1.02,
             text="dark: tensile solitary waves, light: compressive",
         )

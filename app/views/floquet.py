@@ -83,6 +83,8 @@ class FloquetScene(BokehScene):
         self.r_zmu = add_points(fb, "x", 10, color="#1f77b4", line_width=2)
         self.r_zunst = add_points(fb, "circle", 18, fill_alpha=0.0, line_color="#d62728")
         self.r_zcircle = add_line(fb, "#d62728", 1.5)
+        self.r_mu[1].name = "floquet-multipliers"  # read by the browser tests
+        self.r_sw[1].name = "floquet-sweep"
         for _, src_c in (self.r_circle, self.r_zcircle):
             src_c.data = {"x": np.cos(TH), "y": np.sin(TH)}
         self.legend_a = add_legend(

@@ -56,6 +56,7 @@ class ForceLawScene(BokehScene):
         self.r_V = add_line(fig, "#9467bd", 2, "dashed")
         self.r_pts = add_points(fig, "circle", 8, color="black")
         self.r_pts[1].data["label"] = np.empty(0, dtype=object)
+        self.r_V[1].name = "force-rayleigh-V"  # read by the browser tests
         fig.add_tools(
             HoverTool(
                 renderers=[self.r_pts[0]],

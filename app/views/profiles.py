@@ -58,7 +58,7 @@ class ProfilesScene(BokehScene):
 
     def build(self):
         fig = new_figure(
-            "Strain profile: QC (line) and discrete (circles)",
+            "Strain profile: quasicontinuum (line) and discrete chain (circles)",
             "ξ",
             "w",
             sizing_mode="stretch_width",
@@ -70,6 +70,7 @@ class ProfilesScene(BokehScene):
         self.r_dots = add_points(
             fig, "circle", 6, fill_color="white", line_color="black", line_width=1
         )
+        self.r_qc[1].name, self.r_dots[1].name = "profile-qc", "profile-discrete"
         self.legend = add_legend(
             fig,
             "right",
