@@ -5,7 +5,8 @@
   (α, β) with w* marked, V over (c₊, c₋) with V_SK marked (solitary mode) or over the superkink
   bounds of eq. V_bounds_cubic (superkink mode, where V and w₊ are tied).
 * Only the visible scene renders; a parameter change marks the others stale and they render
-  when their tab is opened (Tabs(dynamic=True) also keeps hidden tabs out of the browser).
+  when their tab is opened.  All tabs are in the browser from the start (Tabs(dynamic=False)):
+  an update never races the lazy creation of a tab's figures (it was lost then).
 * (a, b, w_plus, V, mode, tab, N, tol) live in the URL query string.  A URL is validated like
   any input (:func:`app.state.parse_url`): an invalid value is named with its valid range in
   the sidebar, every other value is kept, and the address bar is rewritten to what is shown.
@@ -17,6 +18,7 @@
 from __future__ import annotations
 
 import math
+import urllib.parse
 
 import panel as pn
 import param
@@ -57,7 +59,7 @@ class Explorer:
         )
         self.tabs = pn.Tabs(
             *[(s.title, s) for s in self.scenes],
-            dynamic=True,
+            dynamic=False,  # every figure in the browser from the start: updates never race a lazily built tab
             sizing_mode="stretch_width",
             css_classes=["scene-tabs"],
         )
@@ -324,8 +326,12 @@ def from_url() -> Explorer:
         st = explorer.state
 
         def push(*_):
-            loc.update_query(**{k: url_value(getattr(st, k)) for k in URL_PARAMS})
+            # the whole query is rewritten (not Location.update_query, which parses the old
+            # query — and raises on a 5000-digit value)
+            q = {k: url_value(getattr(st, k)) for k in URL_PARAMS}
+            loc.search = "?" + urllib.parse.urlencode(q)
 
         push()
+        pn.state.onload(push)  # again once the browser's own location has been synced
         st.param.watch(push, list(URL_PARAMS))
     return explorer

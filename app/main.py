@@ -9,6 +9,9 @@ os.environ.setdefault("BOKEH_RESOURCES", "server")
 import panel as pn  # noqa: E402
 
 from app.explorer import from_url  # noqa: E402
+from app.resources import serve_locally  # noqa: E402
+
+serve_locally()
 
 pn.extension(loading_indicator=True, notifications=False, throttled=True)
 

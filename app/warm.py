@@ -22,6 +22,7 @@ os.environ.setdefault("BOKEH_RESOURCES", "server")  # see app/main.py; before pa
 
 from app import compute  # noqa: E402
 from app.explorer import Explorer  # noqa: E402
+from app.resources import serve_locally  # noqa: E402
 from fpucore.warm import warm_all  # noqa: E402
 
 
@@ -61,4 +62,5 @@ def warm(verbose: bool = True, scenes: str | None = None) -> dict[str, float]:
 
 
 if __name__ in ("__main__", "panel_setup_module"):
+    serve_locally()
     warm()

@@ -84,7 +84,6 @@ class FloquetScene(BokehScene):
         self.r_zunst = add_points(fb, "circle", 18, fill_alpha=0.0, line_color="#d62728")
         self.r_zcircle = add_line(fb, "#d62728", 1.5)
         self.r_mu[1].name = "floquet-multipliers"  # read by the browser tests
-        self.r_sw[1].name = "floquet-sweep"
         for _, src_c in (self.r_circle, self.r_zcircle):
             src_c.data = {"x": np.cos(TH), "y": np.sin(TH)}
         self.legend_a = add_legend(
@@ -98,6 +97,7 @@ class FloquetScene(BokehScene):
         )
         self.r_sw = add_line(fc, "#1f77b4", 2)
         self.r_swp = add_points(fc, "circle", 6, color="#1f77b4")
+        self.r_sw[1].name = "floquet-sweep"
         self.whisk = Whisker(
             source=self.r_swp[1], base="x", upper="hi", lower="lo", line_color="#1f77b4"
         )
