@@ -59,7 +59,7 @@ class Explorer:
         )
         self.tabs = pn.Tabs(
             *[(s.title, s) for s in self.scenes],
-            dynamic=False,  # every figure in the browser from the start: updates never race a lazily built tab
+            dynamic=False,  # all figures in the browser at once (see the module docstring)
             sizing_mode="stretch_width",
             css_classes=["scene-tabs"],
         )

@@ -11,10 +11,10 @@ from __future__ import annotations
 
 import os
 import random
-import statistics
 import re
 import shutil
 import socket
+import statistics
 import subprocess
 import sys
 import tempfile
