@@ -148,6 +148,8 @@ def _tracebacks(log_text: str) -> list[str]:
 
 
 def _client_disconnect(tb: str) -> bool:
+    if "bokeh/server/connection.py" in tb and "assert self._session is not None" in tb:
+        return True  # the page went away before its session existed (Bokeh's on_close)
     return tb.strip().splitlines()[-1].startswith(_DISCONNECTS)
 
 
