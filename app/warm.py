@@ -13,6 +13,8 @@ from __future__ import annotations
 
 import logging
 import os
+import subprocess
+import sys
 import time
 
 log = logging.getLogger("fpu-explorer")
@@ -25,18 +27,24 @@ from app.explorer import Explorer  # noqa: E402
 from app.resources import serve_locally  # noqa: E402
 from fpucore.warm import warm_all  # noqa: E402
 
+DEFAULT_SCENES = "force,phase,profiles,diagram,simulation"
+
 
 def warm(verbose: bool = True, scenes: str | None = None) -> dict[str, float]:
     """Warm the JIT and the cache; returns seconds spent per step.
 
-    ``scenes``: comma-separated scene keys to pre-render, "all" (default, from the environment
-    variable FPU_WARM_SCENES) or "none".  The browser tests use "force,phase" to start fast.
+    ``scenes``: comma-separated scene keys to pre-render, "all" or "none"; default (environment
+    variable FPU_WARM_SCENES) every scene but the Floquet spectrum, whose dense eigenvalue call
+    (~1 s alone, 30 s on a loaded machine) would hold the server's start: it is computed when the
+    tab is first shown.  The browser tests use "force,phase" to start fast.
     """
-    scenes = scenes or os.environ.get("FPU_WARM_SCENES", "all")
+    scenes = scenes or os.environ.get("FPU_WARM_SCENES", DEFAULT_SCENES)
     times: dict[str, float] = {}
     t0 = time.perf_counter()
     try:
-        warm_all()
+        warm_all(lazy=False)  # in parallel processes; loads what `fpu warm` already cached
+        # the rarely used integrators compile in a separate process while the server serves
+        subprocess.Popen([sys.executable, "-m", "fpucore", "warm"], stdout=subprocess.DEVNULL)
     except Exception as exc:  # warm-up must never keep the server from starting
         log.warning("fpucore warm-up skipped: %s", exc)
     times["jit"] = time.perf_counter() - t0

@@ -1,6 +1,7 @@
 """Floquet spectrum benchmarks (issue 4): cost split, error against run time, family sweeps.
 
-    python -m benchmarks.bench_floquet            # parts A and B (about a minute on an idle core)
+    python -m benchmarks.bench_floquet            # parts A, B, D (a few minutes on an idle core)
+    python -m benchmarks.bench_floquet --only D   # just the finite-size cost
     python -m benchmarks.bench_floquet --sweep    # + part C: Figs. floquet_SK / floquet_cubicSW
                                                   #   sweeps at several N (cached, minutes)
 
@@ -9,6 +10,11 @@ A. Full spectrum of the N = 500 superkink at V = 5.2 (a = −1, b = 10), warm JI
    on the same matrix (the floor), measured in the same run.  Target: monodromy ≤ 25 % of eig.
 B. Error against run time over the RK step count m: quartet-symmetry violation, step-doubling
    estimate ‖𝓜_m − 𝓜_2m‖, and the change of max |μ| against a reference m = 72.
+D. Cost of the finite-size classification (issue 12): spectrum() with and without the extra
+   spectra at 0.4N, 0.6N, interleaved, single-threaded BLAS, same run.  Target: ≤ +60 %.
+E. Structured half-size route against dense eigvals on the same 𝓜 (issue 17), interleaved,
+   threadpool_limits(1), N = 500: ratio t_structured / t_dense (target ≤ 0.33) and the
+   agreement of max|μ| (within the error bar) and of the unstable counts.
 C. max |μ| against V for superkinks over their velocity range and solitary waves at w₊ = 1, 6,
    at several N (the spurious oscillatory instabilities shrink as N grows).
 """
@@ -19,6 +25,7 @@ import argparse
 import time
 
 import numpy as np
+from threadpoolctl import threadpool_limits
 
 from fpucore import floquet as fq
 from fpucore import qc, wave
@@ -119,16 +126,71 @@ def part_c(Ns=(200, 300, 500), n_sk: int = 22, n_sw: int = 10) -> None:
                   f"error={e_:.1e}")  # fmt: skip
 
 
+def part_d(N: int = 500, repeat: int = 3) -> None:
+    """Finite-size test cost: spectrum(finite_size=True) / spectrum(finite_size=False) − 1."""
+    print(f"D. finite-size classification cost at N={N} (threadpool_limits(1), best of {repeat})")
+    cases = [
+        ("superkink V=5.2", wave.solve_superkink(LAW, 5.2, N=N)),
+        ("solitary w+=6 V=5.0", wave.solve_solitary(LAW, 6.0, 5.0, N=N)),
+        ("solitary w+=1 V=5.3", wave.solve_solitary(LAW, 1.0, 5.3, N=N)),
+    ]
+    with threadpool_limits(1):
+        for name, r in cases:
+            fr = fq.spectrum(r)
+            t_off, t_on = float("inf"), float("inf")
+            for _ in range(repeat):  # interleaved: both see the same machine load
+                t_off = min(t_off, _best(lambda r=r: fq.spectrum(r, finite_size=False), 1))
+                t_on = min(t_on, _best(lambda r=r: fq.spectrum(r), 1))
+            extra = t_on / t_off - 1.0
+            print(f"   {name:<22} {fr.classification:<12} N_k = {fr.finite_size_N.tolist()}  "
+                  f"off {t_off:6.3f} s  on {t_on:6.3f} s  extra {100 * extra:5.1f} %  "
+                  f"target <= 60 %: {'PASS' if extra <= 0.6 else 'FAIL'}")  # fmt: skip
+
+
+def part_e(N: int = 500, repeat: int = 3) -> None:
+    """Structured route vs dense eigvals on the same monodromy, single-threaded, interleaved."""
+    print(f"E. structured vs dense multipliers at N={N} (threadpool_limits(1), best of {repeat})")
+    cases = [
+        ("superkink V=5.2", wave.solve_superkink(LAW, 5.2, N=N)),
+        ("superkink V=5.8", wave.solve_superkink(LAW, 5.8, N=N)),
+        ("solitary w+=6 V=5.0", wave.solve_solitary(LAW, 6.0, 5.0, N=N)),
+    ]
+    with threadpool_limits(1):
+        for name, r in cases:
+            mono = fq.monodromy(r, max(r.m, fq.default_steps(LAW, r.V)))
+            fq.structured_multipliers(mono.matrix, N, mono.K)  # compile
+            t_d, t_s = float("inf"), float("inf")
+            for _ in range(repeat):
+                t_d = min(t_d, _best(lambda m=mono: fq.multipliers_of(m.matrix, N), 1))
+                t_s = min(t_s, _best(lambda m=mono: fq.structured_multipliers(m.matrix, N, m.K), 1))
+            _, _, _, info = fq.structured_multipliers(mono.matrix, N, mono.K)
+            a = fq.spectrum(r, finite_size=False)
+            b = fq.spectrum(r, finite_size=False, method="structured")
+            ratio = t_s / t_d
+            print(f"   {name:<20} dense {t_d:6.3f} s  structured {t_s:6.3f} s (Arnoldi "
+                  f"{info['arnoldi_s']:.3f}, eig(H) {info['eig_s']:.3f})  ratio {ratio:5.2f} "
+                  f"target <= 0.33: {'PASS' if ratio <= 0.33 else 'FAIL'};  max|mu|-1 "
+                  f"{a.max_modulus - 1:.3e} / {b.max_modulus - 1:.3e} (diff "
+                  f"{b.max_modulus - a.max_modulus:.1e}, error {max(a.error, b.error):.1e}), "
+                  f"unstable {a.n_unstable}/{b.n_unstable}")  # fmt: skip
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--sweep", action="store_true", help="also run the family sweeps (part C)")
     ap.add_argument("--N", type=int, nargs="+", default=[200, 300, 500], help="sweep chain sizes")
     ap.add_argument("--quick", action="store_true", help="smaller N for a smoke run")
+    ap.add_argument("--only", choices=("A", "B", "D", "E"), default=None, help="one part only")
     args = ap.parse_args(argv)
     N = 200 if args.quick else 500
+    if args.only in ("D", "E"):
+        (part_d if args.only == "D" else part_e)(N)
+        return 0
     part_a(N)
     part_a2(N)
     part_b(N, ms=(6, 12, 24) if args.quick else (5, 7, 9, 12, 18, 27, 36))
+    part_d(N)
+    part_e(N)
     if args.sweep:
         part_c(tuple(args.N), n_sk=8 if args.quick else 22, n_sw=4 if args.quick else 10)
     return 0

@@ -4,6 +4,7 @@ w_l = 4.6, w_r = 0, L = 3600, t = 300 (Fig. Riemann1), rtol = 1e-10.
     .venv/bin/python -m benchmarks.bench_simulate            # headline + scipy baseline (~1 min)
     .venv/bin/python -m benchmarks.bench_simulate --quick    # skip the scipy baseline
     .venv/bin/python -m benchmarks.bench_simulate --large    # + L = 100 000 run
+    .venv/bin/python -m benchmarks.bench_simulate --against /tmp/old   # + speed against a tree
 
 1. Headline: ``simulate.riemann`` with its default method (Numba RKN12(10) on the second-order
    strain form, error control, observers, tracking), warm JIT, median of 3; wall and process-CPU
@@ -17,13 +18,23 @@ w_l = 4.6, w_r = 0, L = 3600, t = 300 (Fig. Riemann1), rtol = 1e-10.
 4. Other methods on the same run: fpucore's DOP853 (the previous default), DOPRI5 (the paper's
    ode45 pair), RKN8(6) and the symplectic Yoshida-4 (dt = 0.02), with energy drift and tracked
    velocities.
+6. ``--against DIR``: the headline run of every method timed in fresh processes importing
+   fpucore from this tree and from DIR, interleaved (A B A B …, so that the machine's load
+   falls on both alike); ratio of the median CPU times (this tree / DIR) and a check that the
+   final strains are bitwise identical.  Used to show that a refactor of the kernels kept their
+   in-jit speed.
 """
 
 from __future__ import annotations
 
 import argparse
+import json
+import os
 import statistics
+import subprocess
+import sys
 import time
+from pathlib import Path
 
 import numpy as np
 
@@ -63,6 +74,54 @@ def numpy_rhs(law, L):
     return f
 
 
+ROOT = Path(__file__).resolve().parents[1]
+# run in a fresh process with PYTHONPATH=<tree>: one method, warm JIT, median CPU time of `reps`
+_CHILD = """
+import hashlib, json, statistics, sys, time
+from fpucore import simulate
+from fpucore.law import CubicLaw
+law = CubicLaw(-1.0, 10.0)
+method, reps, L, T = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), float(sys.argv[4])
+kw = {"dt": 0.02, "estimate_error": False} if method == "symplectic" else {"rtol": 1e-10}
+simulate.riemann(law, 4.6, 0.0, 64, 1.0, method=method, **kw)
+cpu = []
+for _ in range(reps):
+    c0 = time.process_time()
+    s = simulate.riemann(law, 4.6, 0.0, L, T, method=method, **kw)
+    cpu.append(time.process_time() - c0)
+digest = hashlib.sha1(s.final_w.tobytes()).hexdigest()
+print(json.dumps({"cpu": statistics.median(cpu), "steps": s.n_steps, "digest": digest}))
+"""
+
+
+def child_run(tree: Path, method: str, reps: int, L_: int, T_: float) -> dict:
+    env = dict(os.environ, PYTHONPATH=str(tree))
+    out = subprocess.run(
+        [sys.executable, "-c", _CHILD, method, str(reps), str(L_), str(T_)],
+        env=env,
+        capture_output=True,
+        text=True,
+        check=True,
+    )
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+def against(other: Path, rounds: int = 3) -> None:
+    """Section 6: this tree against ``other``, interleaved fresh processes."""
+    print(f"6. this tree ({ROOT}) against {other}: CPU s, median of {rounds} interleaved processes")
+    for m in simulate.METHODS:
+        T_ = T if m != "dopri5" else 60.0  # dopri5's 50 821 steps over t = 300 take ~5 s
+        mine, theirs, digests = [], [], set()
+        for _ in range(rounds):
+            for tree, acc in ((ROOT, mine), (other, theirs)):
+                r = child_run(tree, m, 1, L, T_)
+                acc.append(r["cpu"])
+                digests.add(r["digest"])
+        a, b = statistics.median(mine), statistics.median(theirs)
+        same = "bitwise identical" if len(digests) == 1 else "DIFFERENT final strains"
+        print(f"   {m:10s} t={T_:g}: this {a:.3f} s, other {b:.3f} s, ratio {a / b:.3f}; {same}")
+
+
 def fmt_waves(s):
     return ", ".join(f"{w.kind} {w.velocity:+.6f}" for w in s.waves)
 
@@ -71,7 +130,12 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser()
     ap.add_argument("--quick", action="store_true", help="skip the scipy baseline")
     ap.add_argument("--large", action="store_true", help="+ an L = 100 000 run")
+    ap.add_argument("--against", type=Path, default=None, help="another source tree to compare")
+    ap.add_argument("--only-against", action="store_true", help="run section 6 only")
     args = ap.parse_args(argv)
+    if args.against is not None and args.only_against:
+        against(args.against)
+        return 0
 
     for m in simulate.METHODS:  # JIT warm-up (cached after the first session)
         simulate.riemann(LAW, WL, WR, 64, 1.0, method=m)
@@ -136,6 +200,8 @@ def main(argv=None) -> int:
             f"5. L=100000, t=20: wall {wl_:.2f} s, cpu {cl_:.2f} s, {sl.n_steps} steps, "
             f"drift {sl.energy_drift:.2e}, status {sl.status}"
         )
+    if args.against is not None:
+        against(args.against)
     return 0
 
 

@@ -2,6 +2,7 @@
 
     .venv/bin/python benchmarks/bench_wave.py            # everything (~1–2 min on 2 cores)
     .venv/bin/python benchmarks/bench_wave.py --quick    # skip the slow scipy baseline
+    .venv/bin/python benchmarks/bench_wave.py --bounds   # only 4. (cost of the error bounds)
 
 1. Discrete superkink, V = 5.2, N = 500, QC guess → residual ≤ 1e-11, warm JIT (median of 7).
 2. Baseline measured in the same run: the paper's method the straightforward Python way —
@@ -11,6 +12,7 @@
 3. Work–precision: (a) RK steps m per period vs integrator error (step doubling) and time;
    (b) chain length N vs truncation error (amplitude / E_ren^D against the automatic-N wave)
    and time; (c) Newton tolerance vs achieved residual and time.
+4. Cost of the error bounds (profile/amplitude/energy_error) as a share of the solve, same run.
 """
 
 from __future__ import annotations
@@ -25,7 +27,9 @@ from scipy.integrate import solve_ivp
 
 from fpucore import qc, wave
 from fpucore.law import CubicLaw
+from fpucore.wave import bounds as wb
 from fpucore.wave import period_map as pm
+from fpucore.wave.attempt import WaveSolve
 
 LAW = CubicLaw(-1.0, 10.0)
 
@@ -79,6 +83,7 @@ def baseline_scipy(V=5.2, N=500, tol=1e-11, max_iter=30):
 def main(argv=None):
     ap = argparse.ArgumentParser()
     ap.add_argument("--quick", action="store_true", help="skip the scipy baseline")
+    ap.add_argument("--bounds", action="store_true", help="only section 4 (error-bound cost)")
     args = ap.parse_args(argv)
     print(f"# bench_wave  (python {sys.version.split()[0]}, numpy {np.__version__})")
     t0 = time.perf_counter()
@@ -180,6 +185,40 @@ def main(argv=None):
         f", max residual {max(fam.residual.max(), sk.residual.max()):.1e}"
     )
 
+    bounds_cost()
+
+
+def bounds_cost(reps: int = 7):
+    """4. Cost of the error bounds (issue 12, target <= 20 %): the solve without them
+    (``WaveSolve(...).solve()``) against the bounds at its solution (``bounds.error_bounds``),
+    same run, median of ``reps``, over waves of the extreme suite."""
+    print("\n## 4. error bounds: share of a wave solve (target <= 20 %)")
+    print("  wave                         N    solve [ms]  bounds [ms]   ratio")
+    cases = [
+        ("superkink V=5.2 N=500", wave.superkink_spec(LAW, 5.2, "lower"), 500),
+        ("superkink V=5.2 auto N", wave.superkink_spec(LAW, 5.2, "lower"), None),
+        ("solitary w+=1 V=5.0", wave.solitary_spec(LAW, 1.0, 5.0), None),
+        ("solitary w+=1 near c-", wave.solitary_spec(LAW, 1.0, 5.5 * (1 - 1e-3)), None),
+        ("solitary w+=1 near c+", wave.solitary_spec(LAW, 1.0, 3 * 2**0.5 * (1 + 1e-3)), None),
+        ("solitary w+=6 V_SK-1e-3", wave.solitary_spec(LAW, 6.0, 7 * 5**0.5 / 3 - 1e-3), None),
+    ]
+    ratios = []
+    for name, sp, N in cases:
+        t_s, done = timed(lambda sp=sp, N=N: WaveSolve(LAW, sp, N, 1e-12, "exact", 40, 60).solve(),
+                          reps)  # fmt: skip
+        sol = sp.kind != "superkink"
+        t_b, _ = timed(
+            lambda d=done, sol=sol: wb.error_bounds(d.system, d.out.x, d.out.factorization, sol),
+            reps,
+        )
+        ratios.append(t_b / t_s)
+        print(f"  {name:26s} {done.N:5d}   {t_s * 1e3:9.1f}   {t_b * 1e3:9.2f}   {t_b / t_s:6.1%}")
+    print(f"  largest share: {max(ratios):.1%}  (target <= 20 %)")
+
 
 if __name__ == "__main__":
-    main()
+    if "--bounds" in sys.argv:
+        wave.solve_superkink(LAW, 5.2, N=500)  # JIT load
+        bounds_cost()
+    else:
+        main()

@@ -1,13 +1,16 @@
 """fpucore — headless core of fpu-explorer.
 
 Superkinks and solitary waves of the FPU chain with hardening–softening springs
-f(w) = a w³ + b w² + w (Vainchtein & Truskinovsky).  One subpackage per stage of the science:
+f(w) = a w³ + b w² + w (Vainchtein & Truskinovsky), or any hardening–softening polynomial
+(``law_from_expression``).  One subpackage per stage of the science:
 
     law (force laws)  →  qc (quasicontinuum closed forms, phase plane, diagrams)
     →  tableaux (RK / embedded / RKN coefficients as data)
     →  wave (discrete traveling waves: period map, Newton system, continuation, families)
     →  floquet (stability: monodromy, multipliers, sweeps)
     |  simulate (direct simulation of the chain and wave tracking)
+    →  parallel (the execution layer: process pool / Dask, the thread budget)
+    →  atlas (sweeps over the existence region, stored in Zarr)
     →  cli (the ``fpu`` command)
 
 ``errors`` (ParameterError) and ``result`` (the result protocol) are imported by all and import
@@ -18,13 +21,24 @@ from fpucore.jit_cache import key_cache_dir
 
 key_cache_dir()  # before any kernel is compiled: see fpucore/jit_cache.py
 
+from fpucore.parallel.threads import configure_threading_layer  # noqa: E402
+
+configure_threading_layer()  # Numba's "omp" layer, chosen before any kernel runs
+
 from fpucore import floquet, qc, simulate, wave  # noqa: E402
 from fpucore.errors import ConvergenceError, ParameterError  # noqa: E402
-from fpucore.law import CubicLaw, HardeningSofteningLaw  # noqa: E402
+from fpucore.law import (  # noqa: E402
+    CubicLaw,
+    HardeningSofteningLaw,
+    PolynomialLaw,
+    law_from_expression,
+)
 
 __all__ = [
     "CubicLaw",
     "HardeningSofteningLaw",
+    "PolynomialLaw",
+    "law_from_expression",
     "ParameterError",
     "ConvergenceError",
     "qc",

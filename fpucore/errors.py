@@ -27,10 +27,16 @@ class ParameterError(ValueError):
             msg += f" ({reason})"
         super().__init__(msg)
 
+    def __reduce__(self):
+        # rebuilt from its four fields (the default pickles only the message, and __init__ needs
+        # all four): a ParameterError raised in a worker process arrives as itself
+        return (type(self), (self.name, self.value, self.valid, self.reason), self.__dict__)
+
 
 class ConvergenceError(RuntimeError):
-    """A solver that could not reach its tolerance within its budget (raised only on request;
-    solvers normally return a result with ``converged=False`` and a ``message``)."""
+    """A result that did not converge, raised only on request by
+    :meth:`fpucore.result.Result.require_converged` (solvers return a result with
+    ``converged=False``, ``status`` and ``message`` instead of raising)."""
 
 
 def require_finite(name: str, value: float) -> float:

@@ -12,8 +12,10 @@ Every result is a frozen dataclass that mixes in :class:`Result` and has
   docstring says otherwise).
 
 ``as_dict()`` is generated from the dataclass fields (plus the names in ``DERIVED``), so a field
-added to a result appears in the CLI's JSON without a hand-kept list.  This module imports
-nothing from fpucore (it is imported by all).
+added to a result appears in the CLI's JSON without a hand-kept list.  A caller that wants
+strictness calls :meth:`Result.require_converged`, which raises
+:class:`fpucore.errors.ConvergenceError` with the result's message.  This module imports only
+:mod:`fpucore.errors` (it is imported by all).
 """
 
 from __future__ import annotations
@@ -22,6 +24,8 @@ import dataclasses
 from typing import Any, ClassVar
 
 import numpy as np
+
+from fpucore.errors import ConvergenceError
 
 STATUSES = ("ok", "not_converged", "stopped")
 
@@ -73,6 +77,13 @@ class Result:
         for name in self.DERIVED:
             out[name] = getattr(self, name)
         return out
+
+    def require_converged(self):
+        """Return self if converged, else raise ConvergenceError (status and message)."""
+        if not getattr(self, "converged", True):
+            name = type(self).__name__
+            raise ConvergenceError(f"{name} {self.status}: {getattr(self, 'message', '')}")
+        return self
 
     def errors(self) -> dict[str, float]:
         """The error fields of this result by name."""

@@ -9,6 +9,8 @@ import sys
 
 import numpy as np
 
+from fpucore.law import CubicLaw, HardeningSofteningLaw, law_from_expression
+
 
 def jsonable(obj):
     """Recursively convert numpy scalars/arrays and non-finite floats for json.dumps."""
@@ -38,7 +40,29 @@ class Parser(argparse.ArgumentParser):
         self.exit(2, f"fpu: error: {message}\n")
 
 
+LAW_HELP = (
+    'any hardening-softening polynomial f(w), replaces --a/--b, e.g. --law "w + 10*w**2 - w**3 '
+    '- 0.01*w**4" (an expression with a leading minus: --law="-...")'
+)
+
+
 def add_law_args(p: argparse.ArgumentParser) -> None:
-    """--a/--b shared by every subcommand (defaults: the paper's a = -1, b = 10)."""
+    """--a/--b (the cubic; defaults: the paper's a = -1, b = 10) or --law EXPR (any
+    hardening–softening polynomial; replaces --a/--b), shared by every subcommand."""
     p.add_argument("--a", type=float, default=-1.0, help="cubic coefficient a < 0 (default -1)")
     p.add_argument("--b", type=float, default=10.0, help="quadratic coefficient b > 0 (default 10)")
+    p.add_argument("--law", default=None, metavar="EXPR", help=LAW_HELP)
+
+
+def law_from_args(args) -> HardeningSofteningLaw:
+    """The law of the command line: ``--law`` parsed by SymPy if given, else CubicLaw(a, b)."""
+    if getattr(args, "law", None) is not None:
+        return law_from_expression(args.law)
+    return CubicLaw(args.a, args.b)
+
+
+def law_fields(law: HardeningSofteningLaw) -> dict:
+    """The law in JSON output: a, b for the cubic; the expression and coefficients otherwise."""
+    if isinstance(law, CubicLaw):
+        return {"a": law.a, "b": law.b, "law": law.describe()}
+    return {"law": law.expression, "coeffs": list(law.coeffs)}

@@ -12,6 +12,7 @@ import sys
 from fpucore.cli import floquet, qc, simulate, warm, wave
 from fpucore.cli.common import Parser
 from fpucore.errors import ParameterError
+from fpucore.parallel.threads import apply_thread_policy
 
 COMMANDS = (qc, warm, wave, floquet, simulate)
 
@@ -27,6 +28,9 @@ def build_parser() -> Parser:
 def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
+    # the thread budget (fpucore/parallel/threads.py): a command computing one job uses every
+    # core for it; commands that fan out (sweeps, atlas) run their jobs in 1-thread workers
+    apply_thread_policy(getattr(args, "threads", None))
     try:
         return int(args.func(args) or 0)
     except ParameterError as exc:

@@ -1,12 +1,13 @@
-"""``fpu qc``: the quasicontinuum numbers for (a, b, w₊[, V]) — a stable contract for scripts."""
+"""``fpu qc``: the quasicontinuum numbers for (law, w₊[, V]) — a stable contract for scripts
+(closed forms for the cubic --a/--b, the numerical §3 theory for --law; both with error bars)."""
 
 from __future__ import annotations
 
 import time
 
 from fpucore import qc
-from fpucore.cli.common import add_law_args, print_json
-from fpucore.law import CubicLaw
+from fpucore.cli.common import add_law_args, law_fields, law_from_args, print_json
+from fpucore.law import HardeningSofteningLaw
 
 
 def register(sub) -> None:
@@ -18,14 +19,12 @@ def register(sub) -> None:
     p.set_defaults(func=run)
 
 
-def compute(a: float, b: float, w_plus: float, V: float | None) -> dict:
+def compute(law: HardeningSofteningLaw, w_plus: float, V: float | None) -> dict:
     t0 = time.perf_counter()
-    law = CubicLaw(a, b)
     sk = qc.superkink_from_w_plus(law, w_plus)
     cp, vsk, cm = qc.sound_speeds(law, w_plus)
     out = {
-        "a": law.a,
-        "b": law.b,
+        **law_fields(law),
         "w_plus": w_plus,
         "w_star": law.w_star,
         "alpha": law.alpha,
@@ -43,13 +42,13 @@ def compute(a: float, b: float, w_plus: float, V: float | None) -> dict:
 
 
 def run(args) -> int:
-    out = compute(args.a, args.b, args.w_plus, args.V)
+    out = compute(law_from_args(args), args.w_plus, args.V)
     if args.json:
         print_json(out)
         return 0
     sk = out["superkink"]
     lines = [
-        f"law      f(w) = {out['a']:g} w^3 + {out['b']:g} w^2 + w   w* = {out['w_star']:.10g}",
+        f"law      {out['law']}   w* = {out['w_star']:.10g}",
         f"convex   (alpha, beta) = ({out['alpha']:.10g}, {out['beta']:.10g})",
         f"speeds   c+ = {out['c_plus']:.10g}   V_SK = {out['V_SK']:.10g}   "
         f"c- = {out['c_minus']:.10g}",

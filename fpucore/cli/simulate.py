@@ -7,8 +7,14 @@
 
 JSON: one object with ``waves`` ([{kind, velocity, velocity_error, amplitude, left_state,
 right_state, background, peak, position, n_fit, method}]), ``energy_drift``, ``error_estimate``,
-``elapsed_s``, ``status``, ``message`` and ``details``.  A progress bar goes to stderr on long runs
-(when stderr is a terminal, or always with ``--progress always``).
+``elapsed_s``, ``status``, ``message`` and ``details`` (with ``work_estimate``).  A progress bar
+goes to stderr on long runs (estimated ≥ 2 s, when stderr is a terminal, or always with
+``--progress always``).
+
+Budgets: ``--time-budget`` (seconds of simulation, default 60) stops a longer run cleanly with
+the times it reached (status "stopped", stop_reason "time_budget", exit 1); ``--memory-budget``
+(e.g. 2GiB; default FPU_MEMORY_BUDGET or 25 % of RAM) refuses a request whose memory estimate is
+above it before anything is allocated (exit 2).
 """
 
 from __future__ import annotations
@@ -17,8 +23,11 @@ import sys
 import time
 
 from fpucore import simulate, wave
-from fpucore.cli.common import add_law_args, print_json
-from fpucore.law import CubicLaw
+from fpucore.budget import parse_size, require_time_budget
+from fpucore.cli.common import add_law_args, law_from_args, print_json
+from fpucore.errors import ParameterError, require_finite
+
+TIME_BUDGET_S = 60.0  # default --time-budget: the CLI never runs unbounded
 
 
 class _Bar:
@@ -41,13 +50,20 @@ class _Bar:
         sys.stderr.flush()
 
 
-def _progress(args, work: float):
+def _progress(args, law, L: float, t_end: float, method: str, rtol: float):
+    """A progress bar when asked, or on a terminal when the run is estimated at ≥ 2 s."""
     mode = args.progress
     if mode == "never":
         return None
-    if mode == "always" or (sys.stderr.isatty() and work >= 1e5):
+    if mode == "always":
         return _Bar("simulate")
-    return None
+    if not sys.stderr.isatty():
+        return None
+    try:
+        est = simulate.work_estimate(law, int(L), float(t_end), method, rtol, args.dt or 0.02)
+    except (TypeError, ValueError, ZeroDivisionError, OverflowError):
+        return None  # bad input: the simulation itself refuses it with the argument's name
+    return _Bar("simulate") if est["seconds"] >= 2.0 else None
 
 
 def _add_run_args(p, t_end_default=None) -> None:
@@ -66,6 +82,19 @@ def _add_run_args(p, t_end_default=None) -> None:
     p.add_argument("--max-sites", type=int, default=1000, help="sites kept per snapshot")
     p.add_argument("--probes", type=int, nargs="*", default=(), help="site numbers to record")
     p.add_argument("--progress", choices=("auto", "always", "never"), default="auto")
+    p.add_argument(
+        "--time-budget",
+        type=float,
+        default=TIME_BUDGET_S,
+        help=f"wall seconds for the simulation (default {TIME_BUDGET_S:g}); past it the run stops "
+        "with the times it reached",
+    )
+    p.add_argument(
+        "--memory-budget",
+        default=None,
+        help="refuse runs estimated above this memory (bytes, 2GiB, 50%%; default "
+        "FPU_MEMORY_BUDGET or 25%% of RAM)",
+    )
     p.add_argument("--json", action="store_true", help="print one JSON object")
 
 
@@ -115,6 +144,8 @@ def _common(args, default_boundary: str, default_rtol: float) -> dict:
         n_snapshots=args.snapshots,
         max_sites_out=args.max_sites,
         probes=tuple(args.probes),
+        time_budget_s=require_time_budget(args.time_budget, "time_budget"),
+        memory_budget=None if args.memory_budget is None else parse_size(args.memory_budget),
     )
 
 
@@ -145,23 +176,28 @@ def _emit(args, s, extra: dict | None = None) -> int:
 
 
 def run_riemann(args) -> int:
-    law = CubicLaw(args.a, args.b)
+    law = law_from_args(args)
     kw = _common(args, "fixed_particles", 1e-10)
-    prog = _progress(args, args.L * args.t_end)
+    prog = _progress(args, law, args.L, args.t_end, kw["method"], kw["rtol"])
     s = simulate.riemann(law, args.w_left, args.w_right, args.L, args.t_end, progress=prog, **kw)
     return _emit(args, s)
 
 
 def run_gaussian(args) -> int:
-    law = CubicLaw(args.a, args.b)
+    law = law_from_args(args)
     kw = _common(args, "fixed_particles", 1e-10)
-    prog = _progress(args, args.L * args.t_end)
+    prog = _progress(args, law, args.L, args.t_end, kw["method"], kw["rtol"])
     s = simulate.gaussian(law, args.w_B, args.A, args.L, args.t_end, progress=prog, **kw)
     return _emit(args, s)
 
 
 def run_wave(args) -> int:
-    law = CubicLaw(args.a, args.b)
+    law = law_from_args(args)
+    # checked before the wave is solved, and named as typed (not as the t_end it implies)
+    periods = require_finite("periods", args.periods)
+    if not (0.0 < periods <= 1e6):
+        raise ParameterError("periods", periods, "(0, 1e+06]", "the run length in periods 1/V")
+    kw = _common(args, "fixed_strain", 1e-12)  # budgets checked before the wave is solved too
     if args.wave_kind == "superkink":
         r = wave.solve_superkink(law, args.V, branch=args.branch, N=args.N)
     else:
@@ -183,8 +219,8 @@ def run_wave(args) -> int:
         else:
             print(f"traveling wave did not converge: {r.message}", file=sys.stderr)
         return 1
-    kw = _common(args, "fixed_strain", 1e-12)
-    t_end = args.periods / r.V
-    prog = _progress(args, (args.L or r.N + r.V * t_end) * t_end)
+    t_end = periods / r.V
+    L_est = args.L or r.N + r.V * t_end + 200
+    prog = _progress(args, law, L_est, t_end, kw["method"], kw["rtol"])
     s = simulate.seeded(r, L=args.L, t_end=t_end, progress=prog, **kw)
     return _emit(args, s, solve)

@@ -7,8 +7,7 @@ fpu wave solitary --w-plus 1 --V 5.0 [--N N] [--json]
 from __future__ import annotations
 
 from fpucore import wave
-from fpucore.cli.common import add_law_args, print_json
-from fpucore.law import CubicLaw
+from fpucore.cli.common import add_law_args, law_fields, law_from_args, print_json
 
 
 def _common(p) -> None:
@@ -39,7 +38,7 @@ def register(sub) -> None:
 
 
 def compute(args):
-    law = CubicLaw(args.a, args.b)
+    law = law_from_args(args)
     jac = "fd" if args.fd else "exact"
     if args.wave_kind == "superkink":
         return wave.solve_superkink(law, args.V, args.branch, args.N, args.tol, jacobian=jac)
@@ -50,7 +49,7 @@ def run(args) -> int:
     r = compute(args)
     if args.json:
         d = r.as_dict(profile=True)
-        d["a"], d["b"] = r.law.a, r.law.b
+        d.update(law_fields(r.law))
         print_json(d)
         return 0 if r.converged else 1
     lines = [
@@ -60,6 +59,8 @@ def run(args) -> int:
         f"iterations {r.iterations}",
         f"errors      tail {r.tail_error:.3g}   integrator {r.integrator_error:.3g} (m={r.m})   "
         f"Jacobian truncation {r.jacobian_truncation:.3g}",
+        f"bounds      profile {r.profile_error:.3g}   amplitude {r.amplitude_error:.3g}   "
+        f"energy {r.energy_error:.3g}   (vs the infinite chain's exact wave)",
         f"amplitude   {r.amplitude:.10g}   energy E_ren^D {r.energy:.10g}",
         f"QC max dev  {r.qc_max_deviation:.3g}   w(0) = {r.w[r.N // 2]:.10g}",
         f"elapsed     {r.elapsed_s:.3f} s   ({r.route})",

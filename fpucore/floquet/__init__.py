@@ -1,8 +1,11 @@
 """Floquet stability of discrete traveling waves (paper §6, eqs. linear, linear_map).
 
 kernels (Numba: shifted rows, exact deflation)  →  monodromy (𝓜 from the tangent flow,
-its multipliers)  →  multipliers (FloquetResult: spectrum, error bars, verdict)
-→  checks (quartet symmetry, homogeneous closed form, phonon gap)  →  sweep (max|μ| along V)
+its multipliers)  →  structured_kernels → structured (the half-size symplectic route)
+→  multipliers (FloquetResult: spectrum, error bars, verdict)
+→  checks (quartet symmetry, homogeneous closed form, phonon gap)  →  finite_size (is an
+excess |μ| − 1 an artefact of the finite ring? the three-way classification)  →  energy (extrema
+of E_ren(V) along solitary families, where stability may change)  →  sweep (max|μ| along V)
 """
 
 from fpucore.floquet.checks import (
@@ -11,8 +14,11 @@ from fpucore.floquet.checks import (
     phonon_gap,
     quartet_symmetry_error,
 )
+from fpucore.floquet.energy import EnergyCriterion, energy_criterion
+from fpucore.floquet.finite_size import CLASSES, chain_lengths
 from fpucore.floquet.monodromy import MAX_N, Monodromy, default_steps, monodromy, multipliers_of
-from fpucore.floquet.multipliers import FloquetResult, spectrum
+from fpucore.floquet.multipliers import METHODS, FloquetResult, spectrum
+from fpucore.floquet.structured import structured_multipliers
 from fpucore.floquet.sweeps import SweepResult, sweep
 
 __all__ = [
@@ -25,6 +31,12 @@ __all__ = [
     "default_steps",
     "monodromy",
     "multipliers_of",
+    "EnergyCriterion",
+    "energy_criterion",
+    "CLASSES",
+    "chain_lengths",
+    "METHODS",
+    "structured_multipliers",
     "FloquetResult",
     "spectrum",
     "SweepResult",

@@ -60,30 +60,45 @@ def homogeneous_multipliers(law, w0: float, V: float, N: int) -> np.ndarray:
     k = 2πj/N (j = 0 … N−1, the periodic BC), solves it with e^{±iωt}, ω² = 4c² sin²(k/2).  The
     shifted map sends y_n(0) to y_{n+1}(T) = e^{ik} e^{±iωT} y_n(0), so μ = e^{i(k ± ωT)},
     T = 1/V.  For k = 0 (ω = 0) both are μ = 1 (the Jordan block of the conserved sums).
-    Returns the 2N multipliers (complex), all on |μ| = 1.
+    Returns the 2N multipliers (complex), all on |μ| = 1 when f′(w0) > 0.
+
+    f′(w0) < 0 (outside the convex interval): ω = ±iσ, σ = 2√(−f′)|sin(k/2)|, so
+    μ = e^{ik} e^{±σT}: a genuine instability, largest at k = π, |μ| = e^{2√(−f′)/V} for every
+    even N (growth rate 2√(−f′(w0)) per unit time, independent of the chain length).
     """
     c2 = float(law.df(w0))
-    if not c2 > 0:
-        raise ParameterError("w0", w0, "f'(w0) > 0", "the constant state must be hyperbolic")
+    if c2 == 0.0:
+        raise ParameterError("w0", w0, "f'(w0) != 0", "degenerate constant state")
     k = 2.0 * np.pi * np.arange(N) / N
-    om = 2.0 * math.sqrt(c2) * np.abs(np.sin(0.5 * k))
+    s = np.abs(np.sin(0.5 * k))
     T = 1.0 / V
-    return np.concatenate([np.exp(1j * (k + om * T)), np.exp(1j * (k - om * T))])
+    if c2 > 0:
+        om = 2.0 * math.sqrt(c2) * s
+        return np.concatenate([np.exp(1j * (k + om * T)), np.exp(1j * (k - om * T))])
+    sig = 2.0 * math.sqrt(-c2) * s
+    return np.concatenate([np.exp(1j * k + sig * T), np.exp(1j * k - sig * T)])
 
 
 @dataclass(frozen=True)
 class HomogeneousState:
     """The constant state w_n ≡ w0 seen as a "traveling wave" of any velocity V (test case with a
-    closed-form spectrum, :func:`homogeneous_multipliers`).  Same attributes as a wave result."""
+    closed-form spectrum, :func:`homogeneous_multipliers`).  Same attributes as a wave result.
+
+    convex=False admits a strain outside the convex interval (f′(w0) < 0, f′ ≠ 0): the test case
+    of a genuine instability with a known growth rate 2√(−f′(w0))."""
 
     law: object
     w0: float
     V: float
     N: int
     kind: str = "homogeneous"
+    convex: bool = True
 
     def __post_init__(self):
-        self.law.require_convex("w0", self.w0)
+        if self.convex:
+            self.law.require_convex("w0", self.w0)
+        elif not (math.isfinite(self.w0) and float(self.law.df(self.w0)) != 0.0):
+            raise ParameterError("w0", self.w0, "finite with f'(w0) != 0")
         if not (self.V > 0 and math.isfinite(self.V)):
             raise ParameterError("V", self.V, "V > 0")
         if not (isinstance(self.N, (int, np.integer)) and self.N >= 4 and self.N % 2 == 0):

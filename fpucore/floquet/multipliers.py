@@ -1,6 +1,7 @@
 """The Floquet spectrum of one traveling wave (paper §6): all 2N multipliers of the monodromy
 matrix (:mod:`fpucore.floquet.monodromy`), the trivial cluster at μ = 1, error bars from the
-quartet symmetry and step doubling, and the verdict."""
+quartet symmetry and step doubling, and the three-way classification (stable / finite-size
+artefact / unstable, :mod:`fpucore.floquet.finite_size`)."""
 
 from __future__ import annotations
 
@@ -13,8 +14,18 @@ import numpy as np
 
 from fpucore.errors import ParameterError, require_finite
 from fpucore.floquet.checks import phonon_gap, quartet_symmetry_error
+from fpucore.floquet.finite_size import (
+    base_at,
+    chain_lengths,
+    classify,
+    min_chain,
+    verdict_text,
+)
 from fpucore.floquet.monodromy import base_state, default_steps, monodromy, multipliers_of
+from fpucore.floquet.structured import structured_multipliers
 from fpucore.result import Result, status_of
+
+METHODS = ("dense", "structured")
 
 
 @dataclass(frozen=True)
@@ -28,10 +39,22 @@ class FloquetResult(Result):
     symmetry_error : max relative mismatch of the quartet symmetry μ ↔ 1/μ̄ (see
     :func:`quartet_symmetry_error`); conjugate_error : the same for μ ↔ μ̄ (0 for real 𝓜).
     integrator_error : ‖𝓜_m − 𝓜_2m‖₂ bound (step doubling of the tangent integration).
-    error : max(symmetry_error, integrator_error, round-off floor) — the error bar of |μ|.
+    error : max(symmetry_error, integrator_error, round-off floor) — the error bar of |μ|
+    (method "structured": also structure_error, and the largest multiplier's own bound).
+    method : "dense" | "structured"; structure_error : the structured route's bound δλ on
+    λ = μ + 1/μ (NaN for dense), see :mod:`fpucore.floquet.structured`.
     excess : max_modulus_away_from_1 − 1; excess_significant : excess > error.
-    unstable : multipliers (away from 1) with |μ| − 1 > error.  verdict : "unstable" |
-    "stable within error".  monodromy_s / check_s / eig_s / elapsed_s : wall times (s).
+    unstable : multipliers (away from 1) with |μ| − 1 > error.
+    growth_rate : V·ln(max_modulus_away_from_1), the growth rate Re λ per unit time (μ = e^{λ/V}).
+    classification : "stable" (nothing beyond the error bar) | "finite_size" (the excess shrinks
+    as the chain grows: an artefact of the finite ring) | "unstable" (it does not shrink), see
+    :mod:`fpucore.floquet.finite_size`; verdict : the same in one sentence with the evidence.
+    finite_size_N / finite_size_excess / finite_size_error : (k,) the points (N_k, max|μ|−1 ± err)
+    of the finite-size test, N ascending, the requested N last (only N when "stable" or
+    ``finite_size=False``); finite_size_exponent p ± finite_size_exponent_error : fit
+    max|μ|−1 ∝ N^−p; extrapolated_excess ± extrapolated_excess_error : fit e∞ + C/N at N → ∞;
+    finite_size_checked : ≥ 3 chain lengths were available; finite_size_s : its wall time (s).
+    monodromy_s / check_s / eig_s / elapsed_s : wall times (s).
     """
 
     multipliers: np.ndarray
@@ -50,6 +73,19 @@ class FloquetResult(Result):
     excess_significant: bool
     unstable: np.ndarray
     verdict: str
+    method: str
+    structure_error: float
+    classification: str
+    growth_rate: float
+    finite_size_N: np.ndarray
+    finite_size_excess: np.ndarray
+    finite_size_error: np.ndarray
+    finite_size_exponent: float
+    finite_size_exponent_error: float
+    extrapolated_excess: float
+    extrapolated_excess_error: float
+    finite_size_checked: bool
+    finite_size_s: float
     phonon_gap: float
     N: int
     V: float
@@ -63,6 +99,8 @@ class FloquetResult(Result):
     message: str
     wave: dict = field(default_factory=dict)
 
+    # finite_size_exponent_error, extrapolated_excess_error, structure_error are NaN where not
+    # applicable, so they are not protocol error fields (those are always finite)
     ERROR_FIELDS: ClassVar = ("error", "symmetry_error", "integrator_error", "conservation_defect")
     DERIVED: ClassVar = ("status", "n_unstable")
 
@@ -110,6 +148,8 @@ def spectrum(
     m: int | None = None,
     trivial_radius: float | None = None,
     check: bool = True,
+    finite_size: bool = True,
+    method: str = "dense",
 ) -> FloquetResult:
     """Floquet multipliers of the traveling wave r (from ``wave.solve_superkink/solve_solitary``,
     or a :class:`HomogeneousState`), with their error bars and the trivial cluster at 1.
@@ -120,8 +160,19 @@ def spectrum(
     block perturbed by ε splits by ~√ε; typically 1e-4), phonon_gap = distance from 1 of the
     nearest continuous-spectrum multiplier of the end states (:func:`phonon_gap`).
     check : also build 𝓜 with 2m steps and report ‖𝓜_m − 𝓜_2m‖ as integrator_error.
+    finite_size : when max|μ| − 1 exceeds the error bar, also compute the spectrum of the same
+    wave on 0.4N and 0.6N sites and classify the excess (:mod:`fpucore.floquet.finite_size`;
+    adds ~30–60 % to the run time).  False: no extra spectra; an excess beyond the error bar is
+    then classified "unstable" with finite_size_checked = False and the verdict says so.
+    method : "dense" (LAPACK dgeev on the deflated (2N−2)² block, the reference) or
+    "structured" (half-size structure-preserving route, :mod:`fpucore.floquet.structured`:
+    elliptic multipliers exactly on the circle; its error bar comes from the measured
+    non-symplecticity and the dropped isotropy defect, ``structure_error``, instead of the
+    quartet symmetry).  The finite-size spectra use the same method.
     """
     t0 = time.perf_counter()
+    if method not in METHODS:
+        raise ParameterError("method", method, " | ".join(repr(x) for x in METHODS))
     law, w, wd, V, N, wl, wr = base_state(r)
     if m is None:
         m = max(int(getattr(r, "m", 0) or 0), default_steps(law, V))
@@ -136,7 +187,12 @@ def spectrum(
         integ = float(math.sqrt(d.sum(axis=0).max() * d.sum(axis=1).max()))  # ≥ ‖δ𝓜‖₂
         check_s = time.perf_counter() - tc
     te = time.perf_counter()
-    mu_rest, mu_sums, defect = multipliers_of(mono.matrix, N)
+    if method == "dense":
+        mu_rest, mu_sums, defect = multipliers_of(mono.matrix, N)
+        mu_err, struct = np.zeros(2 * N - 2), math.nan
+    else:
+        mu_rest, mu_sums, defect, info = structured_multipliers(mono.matrix, N, mono.K)
+        mu_err, struct = info["mu_error"], float(info["lam_error"])
     eig_s = time.perf_counter() - te
     if not np.all(np.isfinite(mu_rest)):
         raise ParameterError("r", "non-finite monodromy", "a bounded base trajectory")
@@ -145,6 +201,8 @@ def spectrum(
     norm = float(np.abs(mono.matrix).sum(axis=0).max())
     floor = 64.0 * np.finfo(float).eps * norm
     error = max(sym, integ if math.isfinite(integ) else 0.0, floor)
+    if method == "structured":  # λ-level bound; per-multiplier bounds mu_err below
+        error = max(error, struct)
 
     gap = min(phonon_gap(law, wb, V, N) for wb in _background_states(r, law))
     # a Jordan block at 1 perturbed by ε splits by ~√ε: ε = the error bar or the wave's residual
@@ -157,10 +215,13 @@ def spectrum(
     near = np.abs(mu_rest - 1.0) < trivial_radius
     trivial = np.concatenate([mu_sums, mu_rest[near]])
     away = mu_rest[~near]
+    err_away = np.maximum(mu_err[~near], error)
     max_mod = float(np.abs(mu).max())
     max_away = float(np.abs(away).max(initial=0.0))
     excess = max_away - 1.0
-    unstable = away[np.abs(away) - 1.0 > error]
+    if away.size:  # the error bar of the largest multiplier (structured: its own bound)
+        error = float(err_away[int(np.argmax(np.abs(away)))])
+    unstable = away[np.abs(away) - 1.0 > err_away]
     unstable = unstable[np.argsort(-np.abs(unstable))]
     msgs = []
     converged = True
@@ -185,12 +246,31 @@ def spectrum(
     if sym > 1e-6:
         converged = False
         msgs.append(f"quartet symmetry violated by {sym:.1e} (increase m)")
-    verdict = "unstable" if unstable.size else "stable within error"
-    msgs.insert(
-        0,
-        f"max|mu|-1 away from 1 = {excess:.3e} {'>' if excess > error else '<='} error "
-        f"{error:.1e}: {verdict}",
-    )
+    growth = V * math.log(max_away) if max_away > 0 else math.nan
+    tf = time.perf_counter()
+    pts = [(N, excess, error)]
+    why = "finite_size=False"
+    if finite_size and excess > error:
+        lengths = chain_lengths(N, min_chain(r))
+        why = "" if lengths else f"N = {N} is too short for two shorter chains"
+        for n_k in lengths:
+            r_k, reason = base_at(r, n_k)
+            if r_k is None:
+                why = reason
+                continue
+            f_k = spectrum(r_k, m=mono.m, check=False, finite_size=False, method=method)
+            pts.append((n_k, f_k.excess, max(f_k.error, integ if math.isfinite(integ) else 0.0)))
+    pts.sort()
+    fs_N = np.array([p[0] for p in pts], dtype=np.int64)
+    fs_e = np.array([p[1] for p in pts])
+    fs_err = np.array([p[2] for p in pts])
+    fit = classify(fs_N, fs_e, fs_err)
+    if not finite_size:
+        fit["checked"] = False
+    cls = fit["classification"]
+    verdict = verdict_text(cls, excess, error, fs_N, fs_e, fit, growth, why)
+    finite_s = time.perf_counter() - tf
+    msgs.insert(0, verdict)
     return FloquetResult(
         multipliers=mu,
         max_modulus=max_mod,
@@ -208,6 +288,19 @@ def spectrum(
         excess_significant=bool(excess > error),
         unstable=unstable,
         verdict=verdict,
+        method=method,
+        structure_error=struct,
+        classification=cls,
+        growth_rate=growth,
+        finite_size_N=fs_N,
+        finite_size_excess=fs_e,
+        finite_size_error=fs_err,
+        finite_size_exponent=fit["p"],
+        finite_size_exponent_error=fit["p_error"],
+        extrapolated_excess=fit["e_inf"],
+        extrapolated_excess_error=fit["e_inf_error"],
+        finite_size_checked=bool(fit["checked"]),
+        finite_size_s=finite_s,
         phonon_gap=gap,
         N=N,
         V=V,

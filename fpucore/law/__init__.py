@@ -1,13 +1,28 @@
-"""Force laws f(w) (paper §2, eqs. cubic, cubic_more).
+"""Force laws f(w) (paper §2, eqs. cubic, cubic_more, and any hardening–softening polynomial).
 
 A law is a small Python object (validation, constants α, β, w*, vectorised f, f′, f″, Φ) plus a
 handle ``(law_id, params)`` that the Numba kernels in :mod:`.kernels` take.
 
-    kernels (Numba f, f′, f″ by law_id)  →  base (the hardening–softening class)  →  cubic
+    kernels (Numba f, f′, f″ by law_id)  →  base (the hardening–softening class)
+    →  polynomial (Σ c_k w^k, hypotheses of §2 checked)  →  cubic  ·  expression (text → law)
 """
 
 from .base import HardeningSofteningLaw
 from .cubic import CubicLaw
-from .kernels import LAW_CUBIC, ddforce, dforce, force
+from .expression import law_from_expression
+from .kernels import LAW_CUBIC, LAW_POLY, POLY_IDS, ddforce, dforce, force
+from .polynomial import PolynomialLaw, real_roots
 
-__all__ = ["HardeningSofteningLaw", "CubicLaw", "LAW_CUBIC", "force", "dforce", "ddforce"]
+__all__ = [
+    "HardeningSofteningLaw",
+    "CubicLaw",
+    "PolynomialLaw",
+    "law_from_expression",
+    "real_roots",
+    "LAW_CUBIC",
+    "LAW_POLY",
+    "POLY_IDS",
+    "force",
+    "dforce",
+    "ddforce",
+]

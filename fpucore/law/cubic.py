@@ -10,6 +10,7 @@ import numpy as np
 from ..errors import ParameterError, require_finite
 from .base import HardeningSofteningLaw
 from .kernels import LAW_CUBIC
+from .polynomial import PolynomialLaw
 
 
 @dataclass(frozen=True)
@@ -91,3 +92,7 @@ class CubicLaw(HardeningSofteningLaw):
 
     def describe(self) -> str:
         return f"f(w) = {self.a:g} w^3 + {self.b:g} w^2 + w"
+
+    def as_polynomial(self) -> PolynomialLaw:
+        """The same law as a :class:`.PolynomialLaw` with coeffs (1, b, a): the general route."""
+        return PolynomialLaw((1.0, self.b, self.a))

@@ -1,31 +1,41 @@
-"""Quasicontinuum (QC) theory (paper §3–4): closed forms for the cubic law, the phase plane and
-the existence / velocity–amplitude diagrams.
+"""Quasicontinuum (QC) theory (paper §3–4): closed forms for the cubic law, the same theory
+numerically for any hardening–softening law, the phase plane and the existence /
+velocity–amplitude diagrams.
 
     closed_forms (eqs. Rline, zero_G, cubic_cond1/2, SKsoln_cubic, SWsoln_cubic, E_ren)
+    → general (§3 for any law: roots + quadrature, with error bars)
+    → dispatch (the public functions: closed forms for the cubic, general otherwise)
     → phase (phase plane of eq. TW_QC_gen2)  → diagram (existence region, families)
 """
 
-from fpucore.qc import diagram, phase
+from fpucore.qc import diagram, general, phase
 from fpucore.qc.closed_forms import (
     EPS,
     QCSolitary,
     QCSuperkink,
     first_integral,
-    rayleigh_roots,
     require_V,
-    solitary,
     solitary_closed_form,
+)
+from fpucore.qc.dispatch import (
+    is_closed_form,
+    rayleigh_roots,
+    solitary,
     solitary_intervals,
     sound_speeds,
     superkink_from_V,
     superkink_from_w_plus,
     superkink_velocity_bounds,
+    superkink_w_plus_range,
     w_minus_sonic,
     w_S,
 )
 
 __all__ = [
     "diagram",
+    "general",
+    "is_closed_form",
+    "superkink_w_plus_range",
     "phase",
     "EPS",
     "QCSolitary",

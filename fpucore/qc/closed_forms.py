@@ -43,7 +43,7 @@ def _cmax2(law: CubicLaw) -> float:
     return 1.0 + law.b**2 / (3.0 * law.abs_a)
 
 
-def _require_w_plus(law: CubicLaw, w_plus: float) -> float:
+def require_w_plus(law: CubicLaw, w_plus: float) -> float:
     """w₊ must lie in the convex interval and away from w*, where the family degenerates."""
     w_plus = law.require_convex("w_plus", w_plus)
     if abs(w_plus - law.w_star) <= 1e-12 * max(1.0, law.w_star):
@@ -84,7 +84,7 @@ def sound_speeds(law: HardeningSofteningLaw, w_plus: float) -> tuple[float, floa
 def solitary_intervals(law: HardeningSofteningLaw, w_plus: float):
     """((c₊, V_SK), (V_SK, c₋)): the two velocity intervals of solitary waves for w₊."""
     law = _cubic(law)
-    w_plus = _require_w_plus(law, w_plus)
+    w_plus = require_w_plus(law, w_plus)
     cp, vsk, cm = sound_speeds(law, w_plus)
     return (cp, vsk), (vsk, cm)
 
@@ -141,6 +141,11 @@ class QCSuperkink(Result):
 
     @property
     def w_star(self) -> float:
+        return self.law.w_star
+
+    @property
+    def w_center(self) -> float:
+        """w(0), the value a discrete superkink is pinned at: w* (eq. cubic_cond1)."""
         return self.law.w_star
 
     @property
@@ -217,7 +222,7 @@ def superkink_from_w_plus(law: HardeningSofteningLaw, w_plus: float) -> QCSuperk
     """Superkink with state w₊ ahead: w₋ = 2w* − w₊ (eq. cubic_cond1), V_SK by eq. cubic_cond2."""
     t0 = time.perf_counter()
     law = _cubic(law)
-    w_plus = _require_w_plus(law, w_plus)
+    w_plus = require_w_plus(law, w_plus)
     V = math.sqrt(_cmax2(law) - law.abs_a * (w_plus - law.w_star) ** 2)
     branch = "lower" if w_plus < law.w_star else "upper"
     return _superkink(law, V, w_plus, 2.0 * law.w_star - w_plus, branch, t0)
@@ -357,7 +362,7 @@ def first_integral(law: HardeningSofteningLaw, w, wp, w_ref: float, V: float):
 _XI_CHECK = np.linspace(0.0, 12.0, 32)
 
 
-def _first_integral_residual(law, w, wp, w_ref: float, V: float) -> float:
+def first_integral_residual(law, w, wp, w_ref: float, V: float) -> float:
     """max |H| on (w, w′) scaled by the size of the terms that cancel in H (so the ratio is a
     round-off-level number for an exact orbit); H as in :func:`first_integral`."""
     d = w - w_ref
@@ -374,7 +379,7 @@ def solitary(law: HardeningSofteningLaw, w_plus: float, V: float) -> QCSolitary:
     """
     t0 = time.perf_counter()
     law = _cubic(law)
-    w_plus = _require_w_plus(law, w_plus)
+    w_plus = require_w_plus(law, w_plus)
     V = require_V(V)
     cp, vsk, cm = sound_speeds(law, w_plus)
     valid = f"{fmt_interval(cp, vsk)} or {fmt_interval(vsk, cm)}"
@@ -399,5 +404,5 @@ def solitary(law: HardeningSofteningLaw, w_plus: float, V: float) -> QCSolitary:
         energy, energy_error, math.nan, 0.0,
     )  # fmt: skip
     xi = _XI_CHECK / gamma  # one half of the (even) profile, out to 12 widths
-    fi = _first_integral_residual(law, sw.profile(xi), sw.dprofile(xi), w_B, V)
+    fi = first_integral_residual(law, sw.profile(xi), sw.dprofile(xi), w_B, V)
     return replace(sw, first_integral_residual=fi, elapsed_s=time.perf_counter() - t0)

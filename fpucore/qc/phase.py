@@ -16,9 +16,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from fpucore.budget import require_memory
 from fpucore.errors import require_finite
 from fpucore.law import HardeningSofteningLaw
-from fpucore.qc import closed_forms as qc
+from fpucore.qc import dispatch as qc
+from fpucore.qc.closed_forms import first_integral, require_V
 
 
 @dataclass(frozen=True)
@@ -89,10 +91,14 @@ def phase_plane(
     level sets and critical points are returned).
     """
     t0 = time.perf_counter()
+    # the grid (W, W′, H and the temporaries of H: ~8 arrays of n_grid² floats), before allocating
+    n = require_finite("n_grid", n_grid)
+    n_floats = 8.0 * n * n  # (n * n: inf, not OverflowError, for a huge n)
+    require_memory("n_grid", 8 * n_floats, f"~8 arrays of n_grid² = {n_grid}² floats", n_grid)
     w_plus = law.require_convex("w_plus", w_plus)
     V = require_finite("V", V)
     if V <= 0:
-        V = qc.require_V(V)
+        V = require_V(V)
     cps = critical_points(law, w_plus, V)
     orbits: list[Orbit] = []
     regime = "none"
@@ -126,11 +132,11 @@ def phase_plane(
         wp_max = math.sqrt(24.0 / (V * V) * float(np.ptp(law.phi(w_grid)))) + 1e-3
     wp_grid = np.linspace(-1.4 * wp_max, 1.4 * wp_max, n_grid)
     W, WP = np.meshgrid(w_grid, wp_grid)
-    H = first = qc.first_integral(law, W, WP, ref, V)
-    levels = [float(qc.first_integral(law, c.w, 0.0, ref, V)) for c in cps if c.kind == "saddle"]
+    H = first = first_integral(law, W, WP, ref, V)
+    levels = [float(first_integral(law, c.w, 0.0, ref, V)) for c in cps if c.kind == "saddle"]
     span = float(np.ptp(first)) or 1.0
     res = max(
-        [float(np.max(np.abs(qc.first_integral(law, o.w, o.wp, ref, V)))) for o in orbits] + [0.0]
+        [float(np.max(np.abs(first_integral(law, o.w, o.wp, ref, V)))) for o in orbits] + [0.0]
     )
     return PhasePlane(
         w_plus, V, w_grid, wp_grid, H, cps, levels, orbits, regime, res / span,

@@ -2,10 +2,13 @@
 
 layout (state vector, end conditions, status codes)  →  observer (events, probes, guard)
 →  kernels (first-order RHS, DOP853/DOPRI5, Yoshida)  and  rkn (RKN12/RKN8 steppers)
-→  engine (run_chain: the integration driver)  →  scenarios (riemann, gaussian, seeded)
+→  steppers (the METHODS table)  →  config (validation, memory and work estimates before
+allocating, output schedule)  →  messages (status text)  →  engine (run_chain: the loop)
+→  scenarios (riemann, gaussian, seeded)
 →  tracking (fronts and pulses in space–time)
 """
 
+from fpucore.simulate.config import memory_estimate, work_estimate
 from fpucore.simulate.scenarios import (
     BOUNDARIES,
     GUARDS,
@@ -17,6 +20,7 @@ from fpucore.simulate.scenarios import (
     restoring_interval,
     riemann,
     seeded,
+    whole_periods,
 )
 
 __all__ = [
@@ -26,6 +30,9 @@ __all__ = [
     "gaussian",
     "seeded",
     "restoring_interval",
+    "whole_periods",
+    "work_estimate",
+    "memory_estimate",
     "BOUNDARIES",
     "GUARDS",
     "METHODS",

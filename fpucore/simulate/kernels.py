@@ -168,22 +168,21 @@ def _err_pass(y, ynew, K, rows, c5, c3, rtol, atol, t5, t3):
 
 
 @njit(cache=True, nogil=True)
-def erk_chunk(
-    y, t, t_stop, h, A, B, E5, E3, dual, err_exp, rtol, atol, max_steps,
-    L, law_id, p, bc, fL, fR, alpha, beta, K, W, g, stats, bad,
-    thr, level, zz, zt, zdir, ev_t, ev_w, ev_s, ev_n, cr_t, cr_s, cr_n,
-    probe_idx, probe_t, probe_out, pcount, c,
-):  # fmt: skip
+def erk_chunk(y, t, t_stop, h, step_limit, pair, ctl, chain, work, obs):
     """Advance y from t to t_stop with an embedded explicit RK pair and error control.
 
-    K : (s+1, 2L+2) stage work, K[0] must hold f(y) on entry and holds f(y) on exit (FSAL);
-    W : (5, 2L+2) work.
-    h : proposed step on entry.  stats (float64, 6): [steps, rejected, rhs evaluations,
-    Σ local error (RMS-norm × RMS scale), max error norm, unused], accumulated.
-    bad (float64, 2): [value, site] of a strain that left (α, β) (the strain range of the run is
-    kept by the observer, rows 1–2 of zz).
-    Returns (t, h_next, status).
+    pair : :class:`~fpucore.simulate.layout.ErkPair`; ctl : :class:`~.layout.Control`;
+    chain : :class:`~.layout.Chain`; obs : :class:`~.layout.Observer`.
+    work : :class:`~.layout.Work` with K (s+1, 2L+2) stage work — K[0] must hold f(y) on entry and
+    holds f(y) on exit (FSAL) — and W (5, 2L+2) work; stats[3] accumulates the local error
+    estimates (RMS-norm × RMS scale).  h : proposed step on entry.  Stops with ST_BUDGET once
+    stats[0] reaches ``step_limit`` (the caller resumes from the returned (t, h): a resumed run
+    takes exactly the steps of an uninterrupted one).  Returns (t, h_next, status).
     """
+    A, B, E5, E3, dual, err_exp = pair.A, pair.B, pair.E5, pair.E3, pair.dual, pair.err_exp
+    rtol, atol, alpha, beta = ctl.rtol, ctl.atol, ctl.lo, ctl.hi
+    L, law_id, p, bc, fL, fR = chain.L, chain.law_id, chain.p, chain.bc, chain.fL, chain.fR
+    K, W, g, stats, bad = work.K, work.W, work.g, work.stats, work.bad
     s = B.size
     nn = y.size
     # stage j lives in row perm[j] of K; the FSAL swap of rows 0 and s is a swap of perm entries
@@ -224,7 +223,7 @@ def erk_chunk(
     strain_accel(K[perm[0]], L, acc0)
     status = 0
     while t < t_stop:
-        if stats[0] >= max_steps:
+        if stats[0] >= step_limit:
             status = ST_BUDGET
             break
         rem = t_stop - t
@@ -264,9 +263,7 @@ def erk_chunk(
             if not clamped:
                 h = hh * step_factor(err, err_exp)
             strain_accel(K[perm[s]], L, acc1)
-            observe(t, hh, cur, K[perm[0]], acc0, ynew, K[perm[s]], acc1, L, law_id, p, bc,
-                     thr, level, zz, zt, zdir, ev_t, ev_w, ev_s, ev_n, cr_t, cr_s, cr_n,
-                     probe_idx, probe_t, probe_out, pcount, c)  # fmt: skip
+            observe(t, hh, cur, K[perm[0]], acc0, ynew, K[perm[s]], acc1, chain, obs)
             tmpa = acc0
             acc0 = acc1
             acc1 = tmpa
@@ -318,28 +315,28 @@ def _drift(y, L, dt):
 
 
 @njit(cache=True, nogil=True)
-def yoshida_chunk(
-    y, t, t_stop, h, max_steps, L, law_id, p, bc, fL, fR, alpha, beta, k0, k1, y0, acc, g, stats,
-    bad,
-    thr, level, zz, zt, zdir, ev_t, ev_w, ev_s, ev_n, cr_t, cr_s, cr_n,
-    probe_idx, probe_t, probe_out, pcount, c,
-):  # fmt: skip
+def yoshida_chunk(y, t, t_stop, h, step_limit, ctl, chain, work, obs):
     """Advance y from t to t_stop with the 4th-order Yoshida composition of velocity Verlet,
     fixed step h (the last step of the chunk is shortened to land on t_stop).
 
-    On entry g must hold the forces at y and k0 = f(y); both hold the values at y on exit.
-    acc : (2, ≥ L) work (ẅ at both step ends).  Returns (t, h, status).
+    work : :class:`~fpucore.simulate.layout.Work` with K (2, 2L+2) = [f(y), work] and
+    W (3, 2L+2) = [copy of y, ẅ at both step ends]; on entry g must hold the forces at y and
+    K[0] = f(y), both hold the values at y on exit.  ctl : only the guard interval is read.
+    Stops with ST_BUDGET once stats[0] reaches ``step_limit``.  Returns (t, h, status).
     """
+    alpha, beta = ctl.lo, ctl.hi
+    L, law_id, p, bc, fL, fR = chain.L, chain.law_id, chain.p, chain.bc, chain.fL, chain.fR
+    k0, k1, y0, g, stats, bad = work.K[0], work.K[1], work.W[0], work.g, work.stats, work.bad
     cbr = 2.0 ** (1.0 / 3.0)
     c1 = 1.0 / (2.0 - cbr)
     c0 = -cbr * c1
     nn = y.size
     status = 0
-    acc0 = acc[0]
-    acc1 = acc[1]
+    acc0 = work.W[1]
+    acc1 = work.W[2]
     strain_accel(k0, L, acc0)
     while t < t_stop:
-        if stats[0] >= max_steps:
+        if stats[0] >= step_limit:
             status = ST_BUDGET
             break
         rem = t_stop - t
@@ -361,9 +358,7 @@ def yoshida_chunk(
         assemble(y, L, bc, g, k1)
         stats[2] += 3
         strain_accel(k1, L, acc1)
-        observe(t, hh, y0, k0, acc0, y, k1, acc1, L, law_id, p, bc, thr, level, zz, zt,
-                 zdir, ev_t, ev_w, ev_s, ev_n, cr_t, cr_s, cr_n, probe_idx, probe_t, probe_out,
-                 pcount, c)  # fmt: skip
+        observe(t, hh, y0, k0, acc0, y, k1, acc1, chain, obs)
         for m in range(nn):
             k0[m] = k1[m]
         tmpa = acc0

@@ -136,26 +136,25 @@ _OBS_BLOCK = 64
 
 
 @njit(cache=True, nogil=True)
-def observe(
-    t0, h, y0, k0, a0, y1, k1, a1, L, law_id, p, bc, thr, level, zz, zt, zdir,
-    ev_t, ev_w, ev_s, ev_n, cr_t, cr_s, cr_n, probe_idx, probe_t, probe_out, pcount, c,
-):  # fmt: skip
+def observe(t0, h, y0, k0, a0, y1, k1, a1, chain, obs):
     """Record extrema / level crossings of every w_n inside [t0, t0+h] and probe samples.
 
     y0/y1 : strains w_n at both step ends, k0/k1 : ẇ_n, a0/a1 : ẅ_n (first L entries are read);
-    law_id, p, bc give d³w/dt³ (:func:`_jerk`) for the degree-7 Hermite interpolant.
-
-    zz : (3, L) per site: [candidate extremum value, running min, running max] of w_n at the step
-    ends (rows 1 and 2 are also the run's strain range); zt : (L,) candidate time; zdir : (L,)
-    int8 zigzag direction (+1 looking for a max, −1 for a min, 0 not started).  ev_* : (L, K)
-    confirmed extrema (time, value, sign ±1), ev_n : (L,) counts.  cr_* : (L, KC) crossings of
-    ``level`` (time, direction ±1), cr_n : counts.  probe_idx : (P,) sites; probe_t : (M,)
-    sorted times; probe_out : (P, M); pcount : (1,) next.  c : (8,) work.
+    chain (:class:`~fpucore.simulate.layout.Chain`) gives d³w/dt³ (:func:`_jerk`) for the
+    degree-7 Hermite interpolant; obs (:class:`~fpucore.simulate.layout.Observer`) holds the
+    arrays filled here (zz rows 1 and 2 are also the run's strain range).
 
     Most sites see nothing in a step, so each block of sites is first screened by a branch-free
     (vectorised) test for a sign change of ẇ or a crossing of ``level``; only blocks with a hit
     are walked site by site.
     """
+    L, law_id, p, bc = chain.L, chain.law_id, chain.p, chain.bc
+    thr, level, zz, zt, zdir = obs.thr, obs.level, obs.zz, obs.zt, obs.zdir
+    ev_t, ev_w, ev_s, ev_n = obs.ev_t, obs.ev_w, obs.ev_s, obs.ev_n
+    cr_t, cr_s, cr_n = obs.cr_t, obs.cr_s, obs.cr_n
+    probe_idx, probe_t, probe_out, pcount, c = (
+        obs.probe_idx, obs.probe_t, obs.probe_out, obs.pcount, obs.c
+    )  # fmt: skip
     for n0 in range(0, L, _OBS_BLOCK):
         n1 = min(n0 + _OBS_BLOCK, L)
         hit = 0

@@ -115,21 +115,21 @@ def _sumsq2(a, b):
 
 
 @njit(cache=True, nogil=True)
-def rkn_chunk(
-    q, t, t_stop, h, C, A, B, BP, E, EP, fsal, err_exp, rtol, atol, max_steps,
-    L, law_id, p, bc, fL, fR, alpha, beta, K, W, g, stats, bad,
-    thr, level, zz, zt, zdir, ev_t, ev_w, ev_s, ev_n, cr_t, cr_s, cr_n,
-    probe_idx, probe_t, probe_out, pcount, c,
-):  # fmt: skip
+def rkn_chunk(q, t, t_stop, h, step_limit, pair, ctl, chain, work, obs):
     """Advance (q, q̇) from t to t_stop with an embedded RKN pair and error control.
 
-    q : (L+1,) positions, updated in place.  K : (s+3, L+1): K[0] = F(q) and K[s+1] = q̇ on entry
-    and on exit; rows 1…s are stage work, K[s+2] the new q̇.  W : (7, L+1) work (W[4] must be 0).
-    C, A, B (= b̄), BP (= b′), E = b − b̂, EP = b′ − b̂′ from an :class:`RKNTableau`; fsal: the last
-    stage is F(q₁).  stats, bad, observer arguments and the return value (t, h_next, status) as
-    for :func:`fpucore.simulate.kernels.erk_chunk`, except that stats[3] accumulates the RMS of the
+    q : (L+1,) positions, updated in place.  pair : :class:`~fpucore.simulate.layout.RknPair`.
+    work : :class:`~.layout.Work` with K (s+3, L+1): K[0] = F(q) and K[s+1] = q̇ on entry and on
+    exit; rows 1…s are stage work, K[s+2] the new q̇; W (7, L+1) work (W[4] must be 0).
+    ctl, chain, obs, ``step_limit`` and the return value (t, h_next, status) as for
+    :func:`fpucore.simulate.kernels.erk_chunk`, except that stats[3] accumulates the RMS of the
     local error vector (e, ė) of each accepted step.
     """
+    C, A, B, BP, E, EP = pair.C, pair.A, pair.B, pair.BP, pair.E, pair.EP
+    fsal, err_exp = pair.fsal, pair.err_exp
+    rtol, atol, alpha, beta = ctl.rtol, ctl.atol, ctl.lo, ctl.hi
+    L, law_id, p, bc, fL, fR = chain.L, chain.law_id, chain.p, chain.bc, chain.fL, chain.fR
+    K, W, g, stats, bad = work.K, work.W, work.g, work.stats, work.bad
     s = B.size
     nn = q.size
     # row of stage j in K: stage 0 in f0, the FSAL stage (or F(q₁)) in fn; the two swap on accept
@@ -169,7 +169,7 @@ def rkn_chunk(
     zero = W[4]
     status = 0
     while t < t_stop:
-        if stats[0] >= max_steps:
+        if stats[0] >= step_limit:
             status = ST_BUDGET
             break
         rem = t_stop - t
@@ -227,9 +227,7 @@ def rkn_chunk(
             if not fsal:
                 accel(nxt, L, law_id, p, bc, fL, fR, g, K[fn])
                 stats[2] += 1
-            observe(t, hh, cur, K[iqd], K[f0], nxt, K[iqd1], K[fn], L, law_id, p, bc, thr,
-                     level, zz, zt, zdir, ev_t, ev_w, ev_s, ev_n, cr_t, cr_s, cr_n,
-                     probe_idx, probe_t, probe_out, pcount, c)  # fmt: skip
+            observe(t, hh, cur, K[iqd], K[f0], nxt, K[iqd1], K[fn], chain, obs)
             tmp = cur
             cur = nxt
             nxt = tmp

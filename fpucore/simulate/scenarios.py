@@ -43,7 +43,14 @@ Guard (``guard``): after every step all strains are checked.  ``"convex"`` (defa
 (stop_reason ``"left_convex"``, with a message) as soon as a strain leaves (α, β); ``"bounded"``
 only stops it outside the zeros of f around 0 (:func:`restoring_interval`), beyond which the cubic
 potential has no restoring force and the strain runs away; excursions outside (α, β) are then
-reported in ``message`` and ``details["strain_range"]``.  A run never returns infinities."""
+reported in ``message`` and ``details["strain_range"]``.  A run never returns infinities.
+
+Budgets (:mod:`fpucore.budget`): the memory of a run is estimated from all its sizes (L, the
+snapshots × sites kept, probes × probe times, the tracking window) before anything is allocated
+and refused above the memory budget (``memory_budget``, FPU_MEMORY_BUDGET, default 25 % of RAM).
+``details["work_estimate"]`` holds the estimated steps, site-force evaluations and seconds;
+``time_budget_s`` stops a run cleanly (stop_reason ``"time_budget"``, status ``"stopped"``) with
+the times it reached; ``max_steps`` bounds the steps (stop_reason ``"budget"``)."""
 
 from __future__ import annotations
 
@@ -58,15 +65,17 @@ from fpucore.errors import ParameterError, require_finite
 from fpucore.law import HardeningSofteningLaw
 from fpucore.result import Result, status_of
 from fpucore.simulate import tracking
-from fpucore.simulate.engine import (
+from fpucore.simulate.config import (
     BOUNDARIES,
     GUARDS,
     MAX_L,
-    METHODS,
+    configure,
+    require_int,
     require_positive,
     restoring_interval,
-    run_chain,
 )
+from fpucore.simulate.engine import run_chain
+from fpucore.simulate.steppers import METHODS
 
 __all__ = [
     "SimulationResult",
@@ -97,8 +106,9 @@ class SimulationResult(Result):
     state: (w, v) for the first-order pairs, (w, ẇ) for the RKN pairs), for the symplectic
     method the step-doubling difference of the strains, max|w_h − w_2h| / 15, at the snapshot
     times; waves : tracked waves (:class:`TrackedWave`);
-    stop_reason : "ok" | "left_convex" | "budget" | "step_underflow" | "nonfinite" (why the run
-    ended); converged : it reached t_end (stop_reason == "ok"); status : "ok" | "stopped" (the
+    stop_reason : "ok" | "left_convex" | "budget" (max_steps) | "time_budget" (time_budget_s) |
+    "step_underflow" | "nonfinite" (why the run ended);
+    converged : it reached t_end (stop_reason == "ok"); status : "ok" | "stopped" (the
     common vocabulary of :mod:`fpucore.result`); message : human-readable summary (reason +
     suggestion on failure).
     final_w : (L,) strains at t_final (full resolution).  details : scenario-specific numbers
@@ -176,15 +186,20 @@ def _threshold(threshold, scale: float) -> float:
 
 
 # --------------------------------------------------------------------------- scenarios
-def _common_kwargs(kw: dict) -> dict:
-    allowed = {
-        "method", "rtol", "atol", "dt", "n_snapshots", "max_sites_out", "probes", "n_probe_t",
-        "threshold", "late_fraction", "max_steps", "progress", "estimate_error", "track", "guard",
-    }  # fmt: skip
-    bad = set(kw) - allowed
+CONFIG_OPTIONS = (
+    "method", "rtol", "atol", "dt", "n_snapshots", "max_sites_out", "probes", "n_probe_t",
+    "late_fraction", "max_steps", "estimate_error", "track", "guard", "time_budget_s",
+    "memory_budget",
+)  # fmt: skip
+
+
+def _split_kwargs(kw: dict) -> tuple[dict, dict]:
+    """(options of :func:`configure`, options of :func:`run_chain`) from a driver's keywords."""
+    bad = set(kw) - set(CONFIG_OPTIONS) - {"progress"}
     if bad:
         raise TypeError(f"unexpected keyword arguments {sorted(bad)}")
-    return kw
+    run = {"progress": kw.pop("progress")} if "progress" in kw else {}
+    return kw, run
 
 
 def riemann(
@@ -205,22 +220,38 @@ def riemann(
 ) -> SimulationResult:
     """Riemann initial data (eq. Riemann_data): w_n(0) = w_left for n ≤ L/2, w_right for
     n > L/2, ẇ_n(0) = 0 (all particles at rest).  L even.  ``threshold`` (strain units) is the
-    detection threshold of the wave tracker, default 2 % of |w_left − w_right|."""
-    kw = _common_kwargs(kw)
+    detection threshold of the wave tracker, default 2 % of |w_left − w_right|.
+
+    Further keywords (all drivers): atol, dt, late_fraction, max_steps, estimate_error, track,
+    guard, ``time_budget_s`` (wall seconds; None = no limit: past it the run stops with
+    stop_reason "time_budget" and the times it reached), ``memory_budget`` (bytes or "2GiB";
+    default FPU_MEMORY_BUDGET or 25 % of RAM, see :mod:`fpucore.budget`) and ``progress``
+    (a callable receiving the fraction of t_end done)."""
+    opts, run = _split_kwargs(kw)
     L = _require_L(L)
     if L % 2:
         raise ParameterError("L", L, "an even integer", "the Riemann jump sits at n = L/2")
     wl = law.require_convex("w_left", w_left)
     wr = law.require_convex("w_right", w_right)
+    thr = _threshold(threshold, abs(wl - wr))
+    cfg = configure(
+        law,
+        L,
+        t_end,
+        boundary,
+        method,
+        rtol,
+        n_snapshots=n_snapshots,
+        max_sites_out=max_sites_out,
+        probes=probes,
+        n_probe_t=n_probe_t,
+        **opts,
+    )
     w0 = np.full(L, wr)
     w0[: L // 2] = wl
     v0 = np.zeros(L + 1)
-    thr = _threshold(threshold, abs(wl - wr))
-    res, _ = run_chain(
-        law, "riemann", w0, v0, t_end, boundary, (wl, wr), method,
-        rtol, kw.pop("atol", None), kw.pop("dt", None), n_snapshots,
-        max_sites_out, probes, n_probe_t, origin=L / 2 - 0.5, threshold=thr, **kw,
-    )  # fmt: skip
+    res, _ = run_chain(law, "riemann", w0, v0, cfg, (wl, wr), origin=L / 2 - 0.5, threshold=thr,
+                       **run)  # fmt: skip
     res["details"].update({"w_left": wl, "w_right": wr, "threshold": thr})
     return SimulationResult(**res)
 
@@ -245,8 +276,8 @@ def gaussian(
     n = 1…L.  w_B must lie in the convex interval (α, β); w_B + A in it too unless
     ``guard="bounded"`` (the paper's w_B = 1, A = 6 starts at w = 7 > β, and w_B = 6, A = −6
     reaches w ≈ 6.94 > β: both need guard="bounded", see docs/simulation.md).  ``threshold``
-    (tracker detection threshold) default 2 % of |A|."""
-    kw = _common_kwargs(kw)
+    (tracker detection threshold) default 2 % of |A|.  Further keywords as for :func:`riemann`."""
+    opts, run = _split_kwargs(kw)
     L = _require_L(L)
     wB = law.require_convex("w_B", w_B)
     A = require_finite("A", A)
@@ -258,17 +289,58 @@ def gaussian(
             f"({lo - wB:.10g}, {hi - wB:.10g})",
             "the peak strain w_B + A must lie between the zeros of f, where the spring restores",
         )
+    thr = _threshold(threshold, abs(A))
+    cfg = configure(
+        law,
+        L,
+        t_end,
+        boundary,
+        method,
+        rtol,
+        n_snapshots=n_snapshots,
+        max_sites_out=max_sites_out,
+        probes=probes,
+        n_probe_t=n_probe_t,
+        **opts,
+    )
     nn = np.arange(1, L + 1, dtype=float)
     w0 = wB + A * np.exp(-0.5 * (nn - L / 2) ** 2)
     v0 = np.zeros(L + 1)
-    thr = _threshold(threshold, abs(A))
-    res, _ = run_chain(
-        law, "gaussian", w0, v0, t_end, boundary, (wB, wB), method,
-        rtol, kw.pop("atol", None), kw.pop("dt", None), n_snapshots,
-        max_sites_out, probes, n_probe_t, origin=L / 2 - 1.0, threshold=thr, **kw,
-    )  # fmt: skip
+    res, _ = run_chain(law, "gaussian", w0, v0, cfg, (wB, wB), origin=L / 2 - 1.0, threshold=thr,
+                       **run)  # fmt: skip
     res["details"].update({"w_B": wB, "A": A, "threshold": thr})
     return SimulationResult(**res)
+
+
+WAVE_ATTRIBUTES = ("V", "law", "N", "w", "wdot", "w_left", "w_right", "kind")
+
+
+def _require_wave(r) -> None:
+    """A converged traveling wave with the attributes seeded reads (ParameterError 'r')."""
+    valid = "a converged traveling wave from fpucore.wave.solve_superkink / solve_solitary"
+    value = None if r is None else f"<{type(r).__name__}>"
+    missing = [a for a in WAVE_ATTRIBUTES if not hasattr(r, a)]
+    if r is None or missing:
+        reason = f"missing {', '.join(missing)}" if r is not None else ""
+        raise ParameterError("r", value, valid, reason)
+    if not getattr(r, "converged", True):
+        raise ParameterError("r", value, valid, f"the wave did not converge: {r.message}")
+    N = require_int("r.N", r.N, 8, MAX_L)
+    for name in ("w", "wdot"):
+        x = np.asarray(getattr(r, name), dtype=float)
+        if x.shape != (N,) or not np.all(np.isfinite(x)):
+            raise ParameterError(f"r.{name}", f"<array {x.shape}>", f"{N} finite numbers")
+
+
+def whole_periods(t_end: float, T: float) -> tuple[int, float]:
+    """(K, t_K): the number K of whole periods T in t_end and their time t_K = K·T ≤ t_end up to
+    rounding.  t_end = K/V computed in floating point can fall an ulp short of K·(1/V) (for ~9 %
+    of velocities): such a t_end counts as K periods, and t_K (≤ t_end (1 + 1e-12)) is taken at
+    t_end by the output schedule (:func:`fpucore.simulate.config.output_schedule`)."""
+    K = int(math.floor(t_end / T + 1e-9))
+    if K >= 1 and K * T > t_end * (1.0 + 1e-12):
+        K -= 1  # t_end more than rounding short of K periods: the last whole one is K − 1
+    return K, K * T
 
 
 def seeded(
@@ -296,9 +368,11 @@ def seeded(
     V_prescribed, V_measured (fit of the passage times t_k at the sites k = 1…K the wave passes —
     crossings of w* for a superkink, of the half-height of the leading flank for a solitary wave;
     t_k = t_0 + k/V exactly for a traveling wave, eq. period), velocity_error, phase_error_max
-    (max_k |t_k − t_0 − k/V|), periods, shape_error (max_n |w_{n+K}(KT) − w_n(0)|, K whole periods).
+    (max_k |t_k − t_0 − k/V|), periods, shape_error (max_n |w_{n+K}(KT) − w_n(0)|, K whole periods,
+    :func:`whole_periods`).  Further keywords as for :func:`riemann`.
     """
-    kw = _common_kwargs(kw)
+    opts, run = _split_kwargs(kw)
+    _require_wave(r)
     V = require_finite("r.V", r.V)
     if V <= 0:
         raise ParameterError("r.V", V, "V > 0")
@@ -306,16 +380,28 @@ def seeded(
     N = int(r.N)
     T = 1.0 / V
     t_end = 50.0 * T if t_end is None else require_positive("t_end", t_end, 1e7)
-    margin = int(margin)
-    if margin < 10:
-        raise ParameterError("margin", margin, "an integer >= 10")
+    margin = require_int("margin", margin, 10, MAX_L)
     L_min = N + int(math.ceil(V * t_end)) + 2 * margin
+    if L is None and L_min > MAX_L:
+        raise ParameterError(
+            "t_end", t_end, f"(0, {(MAX_L - N - 2 * margin) / V:.6g}]",
+            f"the wave's path V·t_end needs a chain longer than L = {MAX_L}",
+        )  # fmt: skip
     L = L_min if L is None else _require_L(L)
     if L < L_min:
         raise ParameterError(
             "L", L, f">= {L_min}", "the chain must hold the wave and its path plus margins"
         )
     L = _require_L(L)
+    K_per, t_K = whole_periods(t_end, T)
+    extra = (t_K,) if K_per >= 1 else ()
+    thr_scale = abs(float(getattr(r, "amplitude", 0.0)) or abs(r.w_left - r.w_right) or 1.0)
+    if r.kind == "superkink":
+        thr_scale = abs(r.w_left - r.w_right)
+    thr = _threshold(threshold, thr_scale)
+    cfg = configure(law, L, t_end, boundary, method, rtol, n_snapshots=n_snapshots,
+                    max_sites_out=max_sites_out, probes=probes, n_probe_t=n_probe_t,
+                    n_extra=len(extra), **opts)  # fmt: skip
     wl, wr = float(r.w_left), float(r.w_right)
     i0 = margin  # chain index of the first computed site (n = −N/2)
     w0 = np.full(L, wr)
@@ -326,11 +412,6 @@ def seeded(
     v0 = np.zeros(L + 1)
     v0[:L] = -np.cumsum(wd[::-1])[::-1]  # v_{j} = v_{j+1} − ẇ_{j+1}, v_L = 0
     site0 = i0 + N // 2  # chain index of the wave's site n = 0
-    K_per = int(math.floor(t_end / T + 1e-9))
-    amp = abs(float(getattr(r, "amplitude", 0.0)) or abs(wl - wr) or 1.0)
-    if r.kind == "superkink":
-        amp = abs(wl - wr)
-    thr = _threshold(threshold, amp)
     # passage level timed at every site: w* for a superkink (w(0) = w*), the half-height of the
     # leading flank for a solitary wave (a crossing time is sharper than an extremum time)
     if r.kind == "superkink":
@@ -339,10 +420,8 @@ def seeded(
         wM = float(np.asarray(r.w)[N // 2])
         level = 0.5 * (wM + wr)
     res, internals = run_chain(
-        law, "seeded", w0, v0, t_end, boundary, (wl, wr), method,
-        rtol, kw.pop("atol", None), kw.pop("dt", None), n_snapshots,
-        max_sites_out, probes, n_probe_t, origin=float(i0 - 1), threshold=thr,
-        extra_times=(K_per * T,) if K_per >= 1 else (), level=level, **kw,
+        law, "seeded", w0, v0, cfg, (wl, wr), origin=float(i0 - 1), threshold=thr,
+        extra_times=extra, level=level, **run,
     )  # fmt: skip
     details = {"kind": r.kind, "V_prescribed": V, "N": N, "periods": K_per, "threshold": thr}
     if res["stop_reason"] == "ok":

@@ -4,7 +4,8 @@ Flow of this subpackage:
 
     period_map (RK integration over one period, tangent columns)  →  system (Newton system,
     banded Jacobian)  →  tails (N from the decay)  →  setup (spec, N, m, K)  →  plateau
-    (flat tops near V_SK)  →  continuation  →  driver (solve_superkink / solve_solitary)
+    (flat tops near V_SK)  →  continuation  →  attempt (one solve: tolerances, routes,
+    rescues)  →  bounds (error bounds, E_ren)  →  driver (solve_superkink / solve_solitary)
     →  family (families over V)
 
     r = wave.solve_superkink(law, V, branch="lower", N=None, tol=1e-12)

@@ -34,7 +34,7 @@ from fpucore.wave.system import newton
 
 def family_interval(law, spec) -> tuple[float, float]:
     if spec.kind == "superkink":
-        return qc.superkink_velocity_bounds(law)
+        return qc.superkink_velocity_bounds(law, spec.branch)  # branches differ for a general law
     (a, b), (c, d) = qc.solitary_intervals(law, spec.w_plus)
     return (a, b) if spec.V < b else (c, d)
 

@@ -6,8 +6,11 @@ map (eqs. period, nonlin_map, nonlin_system, fixedBCs).
 
 Route: QC closed form (eqs. SKsoln_cubic, SWsoln_cubic) → initial guess w_n(0) = w_QC(n), ẇ_n(0) =
 −V w_QC′(n) (ansatz ξ = n − V t) → damped Newton with the exact banded Jacobian
-(:mod:`fpucore.wave.system`).  If that fails: solve on the shorter automatic chain and grow N, then
-continuation in V from a velocity where the QC guess converges (:mod:`fpucore.wave.continuation`).
+(:mod:`fpucore.wave.system`), stopping on the size of the correction.  If that fails: solve on the
+shorter automatic chain and grow N, then continuation in V from a velocity where the QC guess
+converges (:mod:`fpucore.wave.continuation`); flat tops near V_SK by continuation in plateau mass
+(:mod:`fpucore.wave.plateau`) — the attempt logic is :class:`fpucore.wave.attempt.WaveSolve`.
+Error bounds against the infinite chain's exact wave: :mod:`fpucore.wave.bounds`.
 N=None picks N from the wave's width (:mod:`fpucore.wave.tails`).  The RK step count m is chosen by
 step doubling so the integrator error stays at the tolerance, and re-checked at the solution."""
 
@@ -16,7 +19,6 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass
-from dataclasses import replace as _replace
 from typing import ClassVar
 
 import numpy as np
@@ -24,24 +26,11 @@ import numpy as np
 from fpucore import qc
 from fpucore.errors import ParameterError, require_finite
 from fpucore.result import Result, status_of
+from fpucore.wave import bounds as wb
 from fpucore.wave import period_map as pm
-from fpucore.wave import plateau as wp
 from fpucore.wave import tails as wt
-from fpucore.wave.continuation import continue_to
-from fpucore.wave.setup import (
-    M_STEPS,
-    Spec,
-    build_system,
-    choose_K,
-    choose_m,
-    choose_N,
-    qc_guess,
-    required_N,
-    resize,
-    solitary_spec,
-    superkink_spec,
-)
-from fpucore.wave.system import NewtonOutcome, WaveSystem, newton
+from fpucore.wave.attempt import Solved, Tolerances, WaveSolve
+from fpucore.wave.setup import Spec, solitary_spec, superkink_spec
 
 
 @dataclass(frozen=True)
@@ -53,6 +42,13 @@ class WaveResult(Result):
     boundary strains w_{−N/2−1}, w_{N/2} (eq. fixedBCs).  w_plus : state ahead (the superkink's
     w₊ for solitary waves, whose background is w_B = w_left = w_right).
     residual : max-norm of eq. nonlin_system; dropped_residual : |ẇ_{N/2}(T) − ẇ_{N/2−1}(0)|.
+    profile_error : a-posteriori BOUND on max_n |w_n(0) − w_n*(0)| against the exact traveling
+    wave of the infinite chain with the same pinning (Newton stopping point and RK error through
+    J⁻¹, round-off through ‖J⁻¹‖, truncation by N: :mod:`fpucore.wave.bounds`).
+    amplitude_error, energy_error : bounds on |Δ amplitude|, |Δ E_ren^D| derived the same way
+    (solitary waves; a superkink's amplitude |w₋ − w₊| is exact: 0; its energy_error is NaN like
+    its energy).  residual_floor : the round-off level of the residual (× FLOOR_FACTOR) that
+    Newton accepted when it exceeded tol·scale (stiff laws) — the achievable tolerance.
     tail_error : |w − w_∞|, |ẇ| at the 3 outermost sites per end (truncation by finite N).
     integrator_error : step-doubling |Φ_m − Φ_2m| at the solution (m RK steps per period).
     jacobian_truncation : largest tangent-window edge value (neglected Jacobian entries < it).
@@ -84,6 +80,10 @@ class WaveResult(Result):
     tail_error: float
     integrator_error: float
     jacobian_truncation: float
+    profile_error: float
+    amplitude_error: float
+    energy_error: float
+    residual_floor: float
     m: int
     K: int
     jacobian: str
@@ -98,6 +98,9 @@ class WaveResult(Result):
         "tail_error",
         "integrator_error",
         "jacobian_truncation",
+        "profile_error",
+        "amplitude_error",
+        "energy_error",
     )
     DERIVED: ClassVar = ("status",)
 
@@ -109,6 +112,14 @@ class WaveResult(Result):
     def T(self) -> float:
         return 1.0 / self.V
 
+    def errors(self) -> dict[str, float]:
+        """The error fields that apply to this wave: a superkink has no E_ren^D (two different
+        backgrounds), so its energy_error (NaN, like its energy) is left out."""
+        out = Result.errors(self)
+        if self.kind == "superkink":
+            del out["energy_error"]
+        return out
+
     def as_dict(self, profile: bool = True, arrays: bool | None = None) -> dict:
         """Every field (see :meth:`fpucore.result.Result.as_dict`); ``profile=False`` leaves out the
         arrays n, w, wdot, v."""
@@ -118,184 +129,8 @@ class WaveResult(Result):
 # =============================================================================== solver core
 def _solve(law, spec: Spec, N, tol, jacobian, max_iter, time_budget_s, predictor=None):
     t0 = time.perf_counter()
-    N = choose_N(law, spec, N, tol)
-    scale = max(1.0, abs(spec.w_left), abs(spec.w_right))
-    # residual and integrator tolerances are relative to the strain scale: the round-off floor of
-    # eq. nonlin_system grows with |w| (b = 100 or a = -0.01 stagnate at ~3e-14 x scale > 1e-12)
-    int_tol = res_tol = tol * scale
-    x0 = predictor(N) if predictor is not None else qc_guess(spec, N)
-    m = choose_m(law, spec, x0, N, int_tol)
-    K = choose_K(law, spec, x0, m)
-    sysN = build_system(law, spec, N, m, K)
-    hist: list = []
-    routes: list[str] = []
-
-    tail_ok = 1e-5 * spec.amplitude_qc + 1e3 * tol * scale
-    bad_tails: list[float] = []
-
-    def run(sys_, x, budget_left):
-        o = newton(sys_, x, res_tol, max_iter, jacobian, max(1.0, budget_left))
-        hist.extend(o.residual_history)
-        if o.converged:  # a fixed point whose tails miss the boundary states is another wave
-            te = wt.tail_error(o.x[0::2], o.x[1::2], spec.w_left, spec.w_right)
-            if te > tail_ok:
-                bad_tails.append(te)
-                o = _replace(
-                    o,
-                    converged=False,
-                    message=f"converged to a wave whose tails miss "
-                    f"the boundary states (tail error {te:.3g}); try a larger N",
-                )
-        return o
-
-    left = lambda: time_budget_s - (time.perf_counter() - t0)  # noqa: E731
-    gx = _half_plateau(spec) if predictor is None else 0.0
-    if gx >= wp.GX_DIRECT:  # flat top near V_SK: the fixed-V system cannot fix the plateau length
-        out, note = _plateau_route(law, spec, N, m, K, tol, max_iter, left, run)
-        routes.append(note)
-    else:
-        out = _solve_ordinary(
-            law, spec, N, m, K, tol, jacobian, max_iter, predictor, x0, sysN, run, left, routes
-        )
-        if not out.converged and gx >= wp.GX_FALLBACK and left() > 0:
-            out2, note = _plateau_route(law, spec, N, m, K, tol, max_iter, left, run)
-            routes.append(note)
-            out = out2 if out2.converged else out
-    # integrator error at the solution; refine m if the guess-based choice was optimistic
-    x = out.x
-    ierr = _integrator_error(law, spec, x, m)
-    while out.converged and ierr > 10 * int_tol and m < M_STEPS[-1] and left() > 0:
-        m = next(mm for mm in M_STEPS if mm > m)
-        sysN = build_system(law, spec, N, m, K)
-        out = run(sysN, x, left())
-        x = out.x
-        ierr = _integrator_error(law, spec, x, m)
-        routes.append(f"m->{m}")
-    extra, fu = "", math.nan
-    if gx >= wp.GX_FALLBACK:
-        extra, fu = _plateau_note(spec, sysN, out, res_tol, gx)
-        if fu > wp.FRONT_MAX:  # residual ≤ tol, but the plateau length is not determined
-            v_sk = qc.sound_speeds(law, spec.w_plus)[1]
-            d_ok = 2.0 * abs(spec.V - v_sk) * fu / wp.FRONT_MAX  # σ_min ∝ |V − V_SK|
-            v_ok = v_sk + math.copysign(d_ok, spec.V - v_sk)
-            out = _replace(
-                out,
-                converged=False,
-                message=f"plateau length undetermined: front position +-{fu:.2g} sites "
-                f"(> {wp.FRONT_MAX:g}) although the residual is {out.residual:.2g}. Near "
-                f"V_SK = {v_sk!r} the wave is a flat-top kink-antikink bundle whose plateau "
-                "length is only exponentially weakly tied to V (the Jacobian's smallest "
-                "singular value falls like |V - V_SK|); the nearest solvable V is about "
-                f"{v_ok!r}",
-            )
-    return _result(law, spec, N, m, K, out, hist, ierr, jacobian, "; ".join(routes), t0, extra, fu)
-
-
-def _solve_ordinary(
-    law, spec, N, m, K, tol, jacobian, max_iter, predictor, x0, sysN, run, left, routes
-):
-    """The default route: QC guess (or predictor), then rescues 1–3."""
-    scale = max(1.0, abs(spec.w_left), abs(spec.w_right))
-    out = run(sysN, x0, left())
-    routes.append("predictor" if predictor is not None else "qc-guess")
-    # rescue 1: far-field directions are nearly null at large N: converge short, then grow N
-    N_s = required_N(law, spec, 0.1 * tol * scale)
-    if not out.converged and left() > 0 and N_s < N:
-        o_s = run(
-            build_system(law, spec, N_s, m, K),
-            resize(x0, N, N_s, spec.w_left, spec.w_right),
-            left(),
-        )
-        if o_s.converged:
-            out = run(sysN, resize(o_s.x, N_s, N, spec.w_left, spec.w_right), left())
-            routes.append(f"grow-N from {N_s}")
-    # rescue 2: a short chain can trap Newton on a wave clipped by the ends: solve long, cut
-    N_b = max(4 * N, 256)
-    if not out.converged and left() > 0 and N < 256 and predictor is None:
-        o_b = run(build_system(law, spec, N_b, m, K), qc_guess(spec, N_b), left())
-        if o_b.converged:
-            out = run(sysN, resize(o_b.x, N_b, N, spec.w_left, spec.w_right), left())
-            routes.append(f"cut-N from {N_b}")
-    # rescue 3: continuation in V from the family's easy end
-    if not out.converged and left() > 0 and predictor is None:
-        x_c, N_c, note = continue_to(law, spec, tol, jacobian, left(), max_iter)
-        routes.append(note)
-        if x_c is not None:
-            out = run(sysN, resize(x_c, N_c, N, spec.w_left, spec.w_right), left())
-    return out
-
-
-# =============================================================================== flat tops
-def _half_plateau(spec: Spec) -> float:
-    """QC γ·x_f for solitary waves (how long the flat top is), 0 for superkinks."""
-    if spec.kind == "superkink":
-        return 0.0
-    return wp.qc_half_plateau(spec.qcw)
-
-
-def _plateau_route(law, spec: Spec, N, m, K, tol, max_iter, left, run):
-    """Continuation in plateau mass (:mod:`fpucore.wave.plateau`) from a short-plateau wave on
-    the same side of V_SK, then a polish at fixed V with the ordinary pinning.
-    Returns (NewtonOutcome, note)."""
-    v_sk = qc.sound_speeds(law, spec.w_plus)[1]
-    sgn = 1.0 if spec.V > v_sk else -1.0
-    scale = max(1.0, abs(spec.w_left), abs(spec.w_right))
-    t_end = time.perf_counter() + left()
-    r0 = None
-    for g in wp.GX_START:
-        if left() <= 0:
-            break
-        d0 = wp.start_delta(law, spec.w_plus, v_sk, sgn, g)
-        if d0 <= abs(spec.V - v_sk):
-            continue
-        sp0 = solitary_spec(law, spec.w_plus, v_sk + sgn * d0)
-        r0 = _solve(law, sp0, N, tol, "exact", max_iter, max(1.0, left()), None)
-        if r0.converged:
-            break
-    x_best = qc_guess(spec, N)
-    if r0 is None or not r0.converged:
-        return run(build_system(law, spec, N, m, K), x_best, min(left(), 1.0)), (
-            "plateau route: no converged short-plateau start wave"
-        )
-    x0 = np.empty(2 * N)
-    x0[0::2], x0[1::2] = r0.w, r0.wdot
-    path = wp.continue_in_mass(law, spec.w_plus, spec.V, x0, r0.V, N, m, K, tol * scale, t_end)
-    note = f"plateau route from |V-V_SK|={r0.V - v_sk:+.2g}: {path.note}"
-    x_p = path.x if path.x is not None else x_best
-    out = run(build_system(law, spec, N, m, K), x_p, max(1.0, left()))
-    if not out.converged:
-        out = _replace(out, message=_plateau_refusal(out.message, path, v_sk))
-    return out, note
-
-
-def _plateau_refusal(msg: str, path, v_sk: float) -> str:
-    near = f"; the nearest solvable V is about {path.V!r}" if path.x is not None else ""
-    return (
-        f"{msg}. Near V_SK = {v_sk!r} the wave is a flat-top kink-antikink bundle whose plateau "
-        "length is only exponentially weakly tied to V (the Jacobian's smallest singular value "
-        "falls like |V - V_SK|, its singular vector moves the two fronts apart), so the "
-        f"residual cannot fix the plateau in double precision{near}"
-    )
-
-
-def _plateau_note(spec: Spec, sys_: WaveSystem, out, res_tol, gx):
-    """Front-position error bar along the near-null direction (see wave_plateau)."""
-    if not out.converged:
-        return "", math.nan
-    u = wp.front_uncertainty(sys_, out.x, res_tol)
-    if u is None:
-        return "", math.nan
-    f = wp.half_plateau(out.x[0::2], spec.w_left)
-    return (
-        f"; flat top (QC gamma*x_f = {gx:.1f}): fronts at +-{f:.3f} sites, plateau-length "
-        f"uncertainty +-{u.sites:.2g} sites from round-off (residual {u.residual_2:.2g} / "
-        f"sigma_min {u.sigma_min:.2g}; +-{u.sites_at_tol:.2g} at the acceptance tolerance)",
-        u.sites,
-    )
-
-
-def _integrator_error(law, spec: Spec, x: np.ndarray, m: int) -> float:
-    return pm.step_doubling_error(law, x[0::2], x[1::2], 1.0 / spec.V, m, spec.w_left, spec.w_right)
+    done = WaveSolve(law, spec, N, tol, jacobian, max_iter, time_budget_s, predictor).solve()
+    return _result(law, spec, done, jacobian, tol, t0)
 
 
 def particle_velocities(w: np.ndarray, wdot: np.ndarray, V: float, w_left: float) -> np.ndarray:
@@ -319,18 +154,31 @@ def particle_velocities(w: np.ndarray, wdot: np.ndarray, V: float, w_left: float
 
 def renormalized_energy(law, w, wdot, V, w_left, w_right, w_B) -> float:
     """E_ren^D (eq. Eren_D): Σ_n {½v_n² + ½(Φ(w_n) + Φ(w_{n+1})) − Φ(w_B) − ½V²w_B²} over the
-    particles n = −N/2−1 … N/2−1 (particle n sits between springs w_n and w_{n+1}); beyond the
-    chain the summand vanishes to the tail error."""
-    v = particle_velocities(w, wdot, V, w_left)
-    ws = np.concatenate([[w_left], w, [w_right]])
-    ph = law.phi(ws)
-    terms = 0.5 * v**2 + 0.5 * (ph[:-1] + ph[1:]) - float(law.phi(w_B)) - 0.5 * V * V * w_B**2
-    return float(math.fsum(terms))
+    particles n = −N/2−1 … N/2−1 (particle n sits between springs w_n and w_{n+1}), summed
+    relative to the background with the far field beyond the chain added
+    (:func:`fpucore.wave.bounds.energy`; solitary waves, w_left = w_right = w_B)."""
+    return wb.energy(law, np.asarray(w, float), np.asarray(wdot, float), V, w_B)[0]
 
 
-def _result(
-    law, spec, N, m, K, out: NewtonOutcome, hist, ierr, jacobian, route, t0, extra="", fu=math.nan
-):
+def _bounds(spec: Spec, done: Solved):
+    """Error bounds at the solution (:mod:`.bounds`); without a factorisation (Newton stopped
+    before one) only the integrator error is known and the bounds are infinite."""
+    out, S = done.out, done.system
+    solitary = spec.kind != "superkink"
+    if out.factorization is None:
+        x = out.x
+        ierr = pm.step_doubling_error(S.law, x[0::2], x[1::2], S.T, S.m, spec.w_left, spec.w_right)
+        e = renormalized_energy(S.law, x[0::2], x[1::2], S.V, spec.w_left, spec.w_right,
+                                spec.w_left) if solitary else math.nan  # fmt: skip
+        inf = math.inf
+        return wb.WaveBounds(inf, inf if solitary else 0.0, inf if solitary else math.nan, e,
+                             ierr, inf, inf, inf)  # fmt: skip
+    return wb.error_bounds(S, out.x, out.factorization, solitary)
+
+
+def _result(law, spec: Spec, done: Solved, jacobian: str, tol: float, t0: float) -> WaveResult:
+    out, N, hist, route = done.out, done.N, done.history, done.route
+    bd = _bounds(spec, done)
     x = out.x
     w, wd = x[0::2].copy(), x[1::2].copy()
     n = np.arange(N, dtype=np.int64) - N // 2
@@ -339,13 +187,18 @@ def _result(
     if spec.kind == "superkink":
         amp, energy = abs(spec.w_left - spec.w_right), math.nan
     else:
-        amp = abs(w[N // 2] - spec.w_left)
-        energy = renormalized_energy(law, w, wd, spec.V, spec.w_left, spec.w_right, spec.w_left)
+        amp, energy = abs(w[N // 2] - spec.w_left), bd.energy_value
     v = particle_velocities(w, wd, spec.V, spec.w_left)
     msg = out.message
     if out.converged:
         msg = f"converged: residual {out.residual:.3g} in {len(hist) - 1} iterations ({route})"
-        msg += extra
+        if done.residual_floor > Tolerances.of(spec, tol).res_tol:
+            msg += (
+                f"; the requested tol is below the round-off floor of this law: residual "
+                f"accepted at {done.residual_floor:.2g} (achievable), profile error "
+                f"{bd.profile:.2g}"
+            )
+        msg += done.note
     else:
         msg = f"NOT converged ({route}): {msg}"
     return WaveResult(
@@ -370,15 +223,19 @@ def _result(
         energy=energy,
         qc_max_deviation=dev,
         tail_error=wt.tail_error(w, wd, spec.w_left, spec.w_right),
-        integrator_error=ierr,
+        integrator_error=bd.integrator_error,
         jacobian_truncation=out.jacobian_truncation,
-        m=m,
-        K=K,
+        profile_error=bd.profile,
+        amplitude_error=bd.amplitude,
+        energy_error=bd.energy,
+        residual_floor=done.residual_floor,
+        m=done.m,
+        K=done.K,
         jacobian=jacobian,
         route=route,
         v=v,
         branch=spec.branch,
-        front_uncertainty=fu,
+        front_uncertainty=done.front_uncertainty,
     )
 
 
@@ -414,8 +271,12 @@ def solve_superkink(
     a front with w′ < 0) or "upper" (mirror image).  Boundary strains: w_left = w₋, w_right = w₊
     (eq. fixedBCs, w± from eq. wpm_cubic).  N=None: automatic from the wave's width.
     jacobian="fd" uses the paper's finite-difference Jacobian (dense; slow, for comparison).
-    tol: Newton stops at residual <= tol x max(1, |w_left|, |w_right|) (relative to the strain
-    scale); the step count m keeps the step-doubling error below the same bound.
+    tol: relative to the strain scale s = max(1, |w_left|, |w_right|) — Newton accepts residual
+    <= tol·s and then steps on until its next correction is <= tol·s or stops shrinking
+    (round-off); the step count m keeps the step-doubling error below the same bound
+    (:class:`fpucore.wave.attempt.Tolerances`).  Where round-off exceeds tol·s (stiff laws) the
+    achievable level is used and reported (``residual_floor``, ``message``).  The result carries
+    bounds against the infinite chain's exact wave (``profile_error`` …, :mod:`.bounds`).
     Non-convergence returns converged=False with the reason in ``message``.
     """
     tol, time_budget_s = _check_common(tol, jacobian, max_iter, time_budget_s)

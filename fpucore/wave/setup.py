@@ -47,7 +47,7 @@ def superkink_spec(law, V, branch) -> Spec:
         sk.w_plus,
         sk.w_plus,
         "w",
-        law.w_star,
+        sk.w_center,  # w(0): w* for the cubic, (w₊ + w₋)/2 for a general law
         sk,
         sk.amplitude,
         branch,
@@ -126,7 +126,7 @@ def fmt_N(N: int) -> str:
 
 def valid_V(law, spec: Spec) -> str:
     if spec.kind == "superkink":
-        return fmt_interval(*qc.superkink_velocity_bounds(law))
+        return fmt_interval(*qc.superkink_velocity_bounds(law, spec.branch))
     (a, b), (c, d) = qc.solitary_intervals(law, spec.w_plus)
     return f"{fmt_interval(a, b)} or {fmt_interval(c, d)}"
 

@@ -104,6 +104,25 @@ class WaveSystem:
     def residual(self, x: np.ndarray, m=None) -> tuple[np.ndarray, float]:
         return self.residual_from(x, self.integrate(x, m=m))
 
+    def roundoff_rows(self, x: np.ndarray) -> np.ndarray:
+        """(2N,) round-off level of each equation of F at x, in row order (absolute): the period
+        map's level (:func:`period_map.roundoff_level`) on the w rows, and on the ẇ rows (and the
+        pinning row of a solitary wave)."""
+        lw, lwd = pm.roundoff_level(self.law, x[0::2], x[1::2], self.T, self.m)
+        rows = np.full(2 * self.N, lw)
+        rows[self.row_wd] = lwd
+        if self.pin == "wd":
+            rows[self.row_pin] = lwd
+        return rows
+
+    def residual_floor(self, x: np.ndarray) -> float:
+        """Max-norm round-off level of F at x: no residual below it can be asked for."""
+        return float(np.max(self.roundoff_rows(x)))
+
+    def correction_norm(self, dx: np.ndarray) -> float:
+        """Size of a change of x in strain units: max(|δw|, T|δẇ|) (ẇ·T is a strain per period)."""
+        return float(max(np.max(np.abs(dx[0::2])), self.T * np.max(np.abs(dx[1::2]))))
+
     # ------------------------------------------------------------------ exact banded Jacobian
     def _assembly_plan(self):
         """Index arrays (computed once per system) that scatter tangent windows into band
@@ -195,12 +214,19 @@ class NewtonOutcome:
     jacobian_truncation: float
     message: str
     elapsed_s: float
+    correction: float = math.nan  # size of the next Newton correction at x (correction_norm)
+    factorization: tuple | None = field(default=None, repr=False)  # for solve_with
 
 
-def _solve_banded(fact, b):
-    lu, ipiv, kl, ku = fact
-    x, info = lapack.dgbtrs(lu, kl, ku, b.reshape(-1, 1), ipiv)
-    return x[:, 0], info
+def solve_with(fact: tuple, b: np.ndarray, trans: int = 0) -> np.ndarray:
+    """J⁻¹b (trans=0) or J⁻ᵀb (trans=1) with a factorization kept by :func:`newton`:
+    ("band", (lu, ipiv, kl, ku)) from LAPACK dgbtrf or ("dense", scipy lu_factor output)."""
+    kind, f = fact
+    if kind == "band":
+        lu, ipiv, kl, ku = f
+        x, _ = lapack.dgbtrs(lu, kl, ku, np.asarray(b, float).reshape(-1, 1), ipiv, trans=trans)
+        return x[:, 0]
+    return lu_solve(f, b, trans=trans, check_finite=False)
 
 
 def newton(
@@ -211,8 +237,19 @@ def newton(
     jacobian: str = "exact",
     time_budget_s: float = 120.0,
     chord_ratio: float = 0.25,
+    step_tol: float | None = None,
 ) -> NewtonOutcome:
-    """Damped Newton for F(x) = 0 (eq. nonlin_system), max-norm residual ≤ tol.
+    """Damped Newton for F(x) = 0 (eq. nonlin_system).
+
+    Stopping rule.  Converged means max-norm residual ≤ ``tol``.  With ``step_tol`` set (the
+    solver's default) Newton does not stop there: it computes the next correction δ = −J⁻¹F
+    (with the current factorisation, no new Jacobian) and keeps stepping until
+    ``sys.correction_norm(δ)`` ≤ step_tol or the corrections stop shrinking (by half per step:
+    the round-off floor, where ‖δ‖ ≈ ‖J⁻¹‖·round-off).  A small residual is not a small error
+    when J is ill-conditioned (near-sonic waves: ‖J⁻¹‖ ∝ 1/λ²); the correction measures the error
+    through the conditioning.  The last correction and the factorisation are returned
+    (``correction``, ``factorization``) for the a-posteriori bounds of :mod:`.bounds`.
+    With ``step_tol=None`` Newton stops on the residual alone (continuation predictors).
 
     The Jacobian is refreshed every iteration unless the previous step contracted the residual
     by at least ``chord_ratio`` (then the factorisation is reused: a chord step costs one period
@@ -228,6 +265,7 @@ def newton(
     njac, trunc, it = 0, 0.0, 0
     reuse = False
     msg = ""
+    corr, prev_corr = math.nan, math.inf
     if not math.isfinite(res):
         return NewtonOutcome(
             x,
@@ -241,21 +279,23 @@ def newton(
             "initial guess gives a non-finite residual",
             0.0,
         )
-    while res > tol:
-        if it >= max_iter:
+    while res > tol or step_tol is not None:
+        done = res <= tol  # only refining the correction from here on
+        if not done and it >= max_iter:
             msg = (
                 f"no convergence in {max_iter} Newton iterations (residual {res:.3g}); "
                 "try continuation in V from a nearby converged wave or a smaller N"
             )
             break
-        if time.perf_counter() - t0 > time_budget_s:
+        if not done and time.perf_counter() - t0 > time_budget_s:
             msg = (
                 f"time budget {time_budget_s:g} s exhausted after {it} iterations "
                 f"(residual {res:.3g}); try a smaller N"
             )
             break
-        it += 1
-        if not reuse or fact is None:
+        if not done:
+            it += 1
+        if fact is None or not (reuse or done):
             if jacobian == "exact":
                 ab, kl, ku, tr, F, dropped = sys.jacobian_banded(x)
                 trunc = max(trunc, tr)
@@ -267,15 +307,28 @@ def newton(
                 info = 0
             njac += 1
             if info != 0:
+                fact = None
                 msg = "singular Jacobian (LU pivot zero); the pinning may not select a wave here"
                 break
-        if fact[0] == "band":
-            dx, _ = _solve_banded(fact[1], -F)
-        else:
-            dx = lu_solve(fact[1], -F, check_finite=False)
+        dx = solve_with(fact, -F)
         if not np.all(np.isfinite(dx)):
             msg = "non-finite Newton step (ill-conditioned Jacobian)"
             break
+        if done:
+            corr = sys.correction_norm(dx)
+            stalled = corr > 0.5 * prev_corr  # round-off: corrections no longer shrink
+            if corr <= step_tol or stalled or it >= max_iter:
+                break
+            prev_corr = corr
+            xt = x + dx
+            Ft, dt = sys.residual(xt)
+            rt = float(np.max(np.abs(Ft)))
+            if not (math.isfinite(rt) and rt <= tol):
+                break  # keep the accepted iterate; corr is its correction
+            it += 1
+            x, F, dropped, res = xt, Ft, dt, rt
+            hist.append(res)
+            continue
         lam, accepted = 1.0, False
         while lam >= 1.0 / 64:
             xt = x + lam * dx
@@ -304,5 +357,16 @@ def newton(
     if converged:
         msg = f"converged: residual {res:.3g} <= tol {tol:g} in {it} iterations"
     return NewtonOutcome(
-        x, converged, res, abs(dropped), it, tuple(hist), njac, trunc, msg, time.perf_counter() - t0
+        x,
+        converged,
+        res,
+        abs(dropped),
+        it,
+        tuple(hist),
+        njac,
+        trunc,
+        msg,
+        time.perf_counter() - t0,
+        corr,
+        fact,
     )

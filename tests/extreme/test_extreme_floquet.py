@@ -9,7 +9,8 @@ import pytest
 from fpucore import CubicLaw, ParameterError, floquet, qc, wave
 
 STIFF = CubicLaw(-1.0, 100.0)  # f'(w*) = 3334: periods ~ 0.017, frequencies ~ 115
-TINY_A = CubicLaw(-0.01, 10.0)  # w* = 333: strains in the hundreds
+TINY_A = CubicLaw(-0.01, 10.0)
+fq_classes = floquet.CLASSES  # w* = 333: strains in the hundreds
 
 
 def _exact_constant_state(law, w0, V, N):
@@ -43,7 +44,7 @@ def test_constant_state_spectrum_matches_dispersion_relation(law, w0, V):
     assert _set_distance(fr.multipliers, exact) < 1e-9
     assert abs(fr.max_modulus - 1.0) < 1e-9
     assert fr.symmetry_error < 1e-9
-    assert fr.verdict == "stable within error"
+    assert fr.classification == "stable" and fr.verdict.startswith("stable:")
 
 
 @pytest.mark.parametrize("law,frac", [(STIFF, 0.5), (TINY_A, 0.5), (CubicLaw(-1, 10), 0.02)])
@@ -60,6 +61,10 @@ def test_superkink_spectrum_on_extreme_laws(law, frac):
     assert fr.error < 1e-6
     # the |μ| excess is either real (beyond the error bar, listed as unstable) or noise
     assert fr.excess_significant == (fr.n_unstable > 0)
+    # and classified with its evidence: stable, or points at three chain lengths
+    assert fr.classification in fq_classes
+    if fr.classification != "stable":
+        assert fr.finite_size_N.size == 3 and fr.finite_size_N[-1] == r.N
     assert fr.max_modulus_away_from_1 < 1.05
 
 
@@ -77,3 +82,32 @@ def test_huge_chain_is_refused_before_any_work():
     """Dense eig is O(N^3): above the cap the request is refused (no hang), naming N."""
     with pytest.raises(ParameterError, match=r"N=2600 .*N <= 2500"):
         floquet.spectrum(floquet.HomogeneousState(CubicLaw(), 1.0, 5.0, 2600))
+
+
+@pytest.mark.parametrize("law,frac", [(STIFF, 0.2), (STIFF, 0.6), (TINY_A, 0.5),
+                                      (CubicLaw(-1, 10), 0.02)])  # fmt: skip
+def test_structured_route_agrees_with_dense_on_extreme_laws(law, frac):
+    """Issue 17: the half-size route against dense eigvals on the same 𝓜 — max|μ| within the
+    error bar, the same unstable multipliers and the same classification."""
+    lo, hi = qc.superkink_velocity_bounds(law)
+    r = wave.solve_superkink(law, lo + frac * (hi - lo), N=96)
+    a = floquet.spectrum(r)
+    b = floquet.spectrum(r, method="structured")
+    assert b.converged == a.converged, b.message
+    assert abs(a.max_modulus_away_from_1 - b.max_modulus_away_from_1) <= max(a.error, b.error)
+    assert a.n_unstable == b.n_unstable
+    assert a.classification == b.classification
+
+
+def test_unstable_constant_state_on_the_stiff_law():
+    """f′(w0) < 0 beyond β of the stiff law: |μ| = e^{2√(−f′)/V} (derived in
+    tests/floquet/test_finite_size.py), classified unstable by both routes."""
+    w0 = 1.05 * float(STIFF.beta)
+    fp = float(STIFF.df(w0))
+    assert fp < 0
+    V = 60.0
+    for method in ("dense", "structured"):
+        fr = floquet.spectrum(floquet.HomogeneousState(STIFF, w0, V, 32, convex=False),
+                              method=method)  # fmt: skip
+        assert fr.classification == "unstable"
+        assert fr.growth_rate == pytest.approx(2 * math.sqrt(-fp), rel=1e-9)

@@ -79,8 +79,13 @@ def test_near_sonic_solitary_waves_grow_N_and_approach_qc(side, eps):
     assert r.qc_max_deviation <= 0.05 * r.amplitude
     assert abs(r.energy - sw.energy) <= 0.05 * abs(sw.energy)
     # absolute, not relative to the tiny amplitude: tol is relative to the strain scale and the
-    # system's conditioning worsens like 1/λ² (measured: 2.5e-11 at eps = 1e-3)
-    assert _second_N(r, lambda N: wave.solve_solitary(LAW, 1.0, V, N=N)) <= 1e-9 * _scale(r)
+    # system's conditioning worsens like 1/λ² (measured: 2.5e-11 at eps = 1e-3; 8e-9 at 1e-5,
+    # where the two solutions' profile_error bounds are 6e-8 and 1.6e-7)
+    r2 = wave.solve_solitary(LAW, 1.0, V, N=2 * int(math.ceil(0.75 * r.N)))
+    _own_budget(r2)
+    assert _common(r, r2) <= r.profile_error + r2.profile_error
+    if eps >= 1e-3:
+        assert _common(r, r2) <= 1e-9 * _scale(r)
 
 
 def test_near_sonic_N_grows_monotonically():
@@ -135,7 +140,10 @@ def test_very_close_to_V_SK_returns_or_refuses_within_budget():
     if r.converged:
         _own_budget(r)
     else:
-        assert "NOT converged" in r.message and ("try" in r.message or "stalled" in r.message)
+        # the reason: what to try, where it stalled, or (budget spent in the plateau route on a
+        # loaded machine) the nearest solvable V
+        reason = ("try", "stalled", "nearest solvable V")
+        assert "NOT converged" in r.message and any(k in r.message for k in reason), r.message
         assert np.all(np.isfinite(r.w))
 
 
@@ -150,7 +158,12 @@ def test_vanishing_family_near_w_star(dw):
         sw = qc.solitary(LAW, w_plus, V)
         assert r.qc_max_deviation <= 0.02 * r.amplitude  # small, wide: QC is accurate
         m = wave.solve_solitary(LAW, 2 * LAW.w_star - w_plus, V, N=r.N)
-        assert np.max(np.abs(m.w - (2 * LAW.w_star - r.w))) <= 1e-8 * max(1.0, sw.amplitude)
+        # within both error bounds (measured 1.7e-8 against bounds 6e-8 + 2.4e-7 at dw = 0.03:
+        # these wide, weak waves are ill-conditioned; the old stopping rule returned the QC
+        # guess itself, residual 1.3e-12 ≤ tol, whose mirror image is exact by construction)
+        mirror = np.max(np.abs(m.w - (2 * LAW.w_star - r.w)))
+        assert mirror <= r.profile_error + m.profile_error
+        assert mirror <= 1e-7 * max(1.0, sw.amplitude)
 
 
 def test_vanishing_family_refused_with_needed_N():

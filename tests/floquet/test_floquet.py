@@ -43,7 +43,7 @@ def test_homogeneous_state_matches_dispersion_relation(w0, V, N):
     assert _match(fr.multipliers, exact) < 1e-11
     assert abs(fr.max_modulus - 1.0) < 1e-12
     assert fr.symmetry_error < 1e-12
-    assert fr.verdict == "stable within error" and fr.n_unstable == 0
+    assert fr.classification == "stable" and fr.n_unstable == 0
     # the conservation pair is exactly 1 (deflated), the quotient block is [[1, T], [0, 1]]
     assert np.all(np.abs(fr.multipliers[:2] - 1.0) < 1e-13)
     assert fr.multipliers.size == 2 * N

@@ -11,6 +11,7 @@ from scipy.integrate import solve_ivp
 from fpucore.law import CubicLaw
 from fpucore.simulate import kernels as ck
 from fpucore.simulate import rkn as crk
+from fpucore.simulate.layout import Chain, Control, Observer, RknPair, Work
 from fpucore.tableaux import rkn_order
 from fpucore.tableaux.rkn import DPRKN8, DPRKN12, RKN
 
@@ -69,25 +70,22 @@ def _fixed_step(tab, w0, T, n_steps, L):
     s = tab.stages
     q = np.zeros(L + 1)
     q[:L] = w0
-    K = np.zeros((s + 3, L + 1))
-    W = np.zeros((7, L + 1))
-    g = np.zeros(L + 2)
-    p = LAW.params
-    bc = ck.BC_FIXED_PARTICLES
-    crk.accel(q, L, LAW.law_id, p, bc, 0.0, 0.0, g, K[0])
-    stats, bad = np.zeros(6), np.zeros(2)
+    chain = Chain(L, LAW.law_id, LAW.params, ck.BC_FIXED_PARTICLES, 0.0, 0.0)
+    work = Work(np.zeros((s + 3, L + 1)), np.zeros((7, L + 1)), np.zeros(L + 2), np.zeros(6),
+                np.zeros(2))  # fmt: skip
+    crk.accel(q, L, LAW.law_id, LAW.params, chain.bc, 0.0, 0.0, work.g, work.K[0])
+    pair = RknPair(tab.c, tab.A, tab.b, tab.bp, tab.e, tab.ep, tab.fsal, -1.0 / (tab.err_order + 1))
+    ctl = Control(1e6, 1e6, -1e9, 1e9)
     e2, e1, z3 = np.zeros((L, 1)), np.zeros((L, 1), np.int8), np.zeros((3, L))
     en = np.zeros(L, np.int64)
+    obs = Observer(np.inf, np.nan, z3, np.zeros(L), np.zeros(L, np.int8), e2, e2, e1, en, e2, e1,
+                   en, np.zeros(0, np.int64), np.zeros(0), np.zeros((0, 0)),
+                   np.zeros(1, np.int64), np.zeros(8))  # fmt: skip
+    stats = work.stats
     h = T / n_steps
     t = 0.0
     for k in range(1, n_steps + 1):
-        t, _, status = crk.rkn_chunk(
-            q, t, k * h, 1.001 * h, tab.c, tab.A, tab.b, tab.bp, tab.e, tab.ep, tab.fsal,
-            -1.0 / (tab.err_order + 1), 1e6, 1e6, 10**9, L, LAW.law_id, p, bc, 0.0, 0.0,
-            -1e9, 1e9, K, W, g, stats, bad, np.inf, np.nan, z3, np.zeros(L),
-            np.zeros(L, np.int8), e2, e2, e1, en, e2, e1, en, np.zeros(0, np.int64),
-            np.zeros(0), np.zeros((0, 0)), np.zeros(1, np.int64), np.zeros(8),
-        )  # fmt: skip
+        t, _, status = crk.rkn_chunk(q, t, k * h, 1.001 * h, 10**9, pair, ctl, chain, work, obs)
         assert status == ck.ST_OK
     assert stats[0] == n_steps and stats[1] == 0
     return q[:L].copy()

@@ -1,0 +1,225 @@
+"""Energy criterion for solitary-wave families (Friesecke–Pego type; paper eqs. Eren_D, Eren_QC).
+
+Along a family of solitary waves parametrised by V, a change of (linear) stability can only occur
+where the renormalized energy is stationary, dE_ren/dV = 0: there the translation/velocity pair
+of multipliers at μ = 1 (a Jordan block) can leave the unit circle as a real pair.  Away from
+such points the stability type of the family cannot change.  :func:`energy_criterion` locates
+the extrema of E_ren(V) along a discrete family (:func:`fpucore.wave.solitary_family`) and of
+the QC closed form E_ren^QC(V) (:func:`fpucore.qc.solitary`), each with an error bar on V.
+
+Location of an extremum from samples.  A sign change of successive differences E_{i+1} − E_i
+brackets an extremum; the vertex of the parabola through the three samples around it gives
+V*, and E″ its curvature.  Error bar on V* (both added):
+
+* stencil: |V*(i−1, i, i+1) − V*(shifted triple)| — the parabola's truncation error;
+* energy errors: with E(V) ≈ E* + ½E″(V − V*)², any V with |E − E*| ≤ 2δE is
+  indistinguishable, so δV = 2√(δE/|E″|), δE = the wave's energy error bar.
+
+QC extrema are refined by a bounded scalar minimisation inside the bracket (xatol 1e-12·V),
+with the same δE term from the closed form's round-off bound.  The family's two velocity
+intervals (c₊, V_SK) and (V_SK, c₋) are treated separately (E_ren diverges at V_SK).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+from typing import ClassVar
+
+import numpy as np
+from scipy.optimize import minimize_scalar
+
+from fpucore import qc
+from fpucore.errors import ParameterError, require_finite
+from fpucore.result import Result
+from fpucore.wave import Family, solitary_family
+
+QC_SAMPLES = 400  # QC grid points per velocity interval (closed forms: ~1 ms each)
+_END_MARGIN = 1e-4  # relative distance from the interval ends (sonic / V_SK) on the QC grid
+
+
+@dataclass(frozen=True)
+class EnergyCriterion(Result):
+    """Extrema of E_ren(V) along a solitary-wave family, discrete and QC.
+
+    V, energy, energy_error : (n,) the discrete family (energy_error: the wave's own bound,
+    ``WaveResult.energy_error`` where present, else a residual-based indicator, see
+    :func:`wave_energy_error`); wave_converged : (n,) bool.
+    extrema_V, extrema_V_error, extrema_energy : (k,) located extrema of the discrete E_ren;
+    extrema_kind : ("min" | "max", …).
+    qc_V, qc_energy : (m,) the QC closed form on a grid over both intervals;
+    qc_extrema_V, qc_extrema_V_error, qc_extrema_energy, qc_extrema_kind : the same for E_ren^QC.
+    stability_may_change : True where any extremum was found (in the discrete family, or in the
+    QC family inside the sampled V range); the criterion is necessary, not sufficient.
+    location_error : the largest error bar on V of all extrema found (0 when none).
+    """
+
+    w_plus: float
+    V: np.ndarray
+    energy: np.ndarray
+    energy_error: np.ndarray
+    wave_converged: np.ndarray
+    extrema_V: np.ndarray
+    extrema_V_error: np.ndarray
+    extrema_energy: np.ndarray
+    extrema_kind: tuple
+    qc_V: np.ndarray
+    qc_energy: np.ndarray
+    qc_extrema_V: np.ndarray
+    qc_extrema_V_error: np.ndarray
+    qc_extrema_energy: np.ndarray
+    qc_extrema_kind: tuple
+    stability_may_change: bool
+    location_error: float
+    elapsed_s: float
+    converged: bool
+    message: str
+    family: Family | None = field(default=None, repr=False)
+
+    ERROR_FIELDS: ClassVar = ("location_error",)
+    DERIVED: ClassVar = ("status",)
+    EXCLUDE: ClassVar = ("family",)
+
+    @property
+    def status(self) -> str:
+        return "ok" if self.converged else "not_converged"
+
+
+def wave_energy_error(r) -> float:
+    """The wave's E_ren error bar: ``r.energy_error`` when the result carries one, else the
+    indicator N·δw·(1 + max|f(w)| + max|v|), δw = max(residual, tail_error, integrator_error)
+    (each of the N summands of eq. Eren_D moves by ≤ (|f| + |v|)·δw)."""
+    e = float(getattr(r, "energy_error", math.nan))
+    if math.isfinite(e):
+        return e
+    dw = max(float(r.residual), float(r.tail_error), float(r.integrator_error or 0.0))
+    scale = 1.0 + float(np.max(np.abs(r.law.f(r.w)))) + float(np.max(np.abs(r.v)))
+    return r.N * dw * scale
+
+
+def _vertex(v: np.ndarray, e: np.ndarray) -> tuple[float, float]:
+    """(V*, E″) of the parabola through three points."""
+    c2, c1, _ = np.polyfit(v - v[1], e, 2)
+    return float(v[1] - c1 / (2.0 * c2)), float(2.0 * c2)
+
+
+def locate_extrema(V: np.ndarray, E: np.ndarray, dE: np.ndarray) -> list[tuple]:
+    """Extrema of sampled E(V) (V ascending, one velocity interval): list of
+    (V*, δV*, E*, "min" | "max") from sign changes of successive differences (see module doc)."""
+    out = []
+    d = np.diff(E)
+    for i in range(1, V.size - 1):
+        if d[i - 1] == 0.0 or np.sign(d[i - 1]) == np.sign(d[i]):
+            continue
+        sl = slice(i - 1, i + 2)
+        v_star, e2 = _vertex(V[sl], E[sl])
+        alts = []
+        if i + 2 < V.size:
+            alts.append(_vertex(V[i : i + 3], E[i : i + 3])[0])
+        if i - 2 >= 0:
+            alts.append(_vertex(V[i - 2 : i + 1], E[i - 2 : i + 1])[0])
+        stencil = max((abs(a - v_star) for a in alts), default=float(V[i + 1] - V[i - 1]))
+        noise = 2.0 * math.sqrt(float(np.max(dE[sl])) / abs(e2)) if e2 != 0 else math.inf
+        e_star = float(np.polyval(np.polyfit(V[sl] - V[i], E[sl], 2), v_star - V[i]))
+        out.append((v_star, stencil + noise, e_star, "min" if d[i] > 0 else "max"))
+    return out
+
+
+def _qc_interval(law, w_plus: float, lo: float, hi: float, n: int):
+    """QC grid on (lo, hi) and its refined extrema."""
+    span = hi - lo
+    V = np.linspace(lo + _END_MARGIN * span, hi - _END_MARGIN * span, n)
+    sols = [qc.solitary(law, w_plus, float(v)) for v in V]
+    E = np.array([s.energy for s in sols])
+    dE = np.array([s.energy_error for s in sols])
+    ext = []
+    for v0, _, _, kind in locate_extrema(V, E, dE):
+        j = int(np.clip(np.searchsorted(V, v0), 1, V.size - 1))
+        a, b = float(V[max(j - 2, 0)]), float(V[min(j + 1, V.size - 1)])
+        sgn = 1.0 if kind == "min" else -1.0
+        res = minimize_scalar(lambda v, s=sgn: s * qc.solitary(law, w_plus, v).energy,
+                              bounds=(a, b), method="bounded",
+                              options={"xatol": 1e-12 * b})  # fmt: skip
+        h = 1e-3 * (b - a)
+        es = [qc.solitary(law, w_plus, float(res.x) + k * h).energy for k in (-1, 0, 1)]
+        e2 = (es[0] - 2 * es[1] + es[2]) / (h * h)
+        de = qc.solitary(law, w_plus, float(res.x)).energy_error
+        dv = 1e-12 * b + (2.0 * math.sqrt(de / abs(e2)) if e2 != 0 else math.inf)
+        ext.append((float(res.x), dv, float(es[1]), kind))
+    return V, E, ext
+
+
+def energy_criterion(
+    law,
+    w_plus: float,
+    V_values=None,
+    N: int | None = None,
+    tol: float = 1e-12,
+    family: Family | None = None,
+    qc_samples: int = QC_SAMPLES,
+) -> EnergyCriterion:
+    """Extrema of E_ren(V) along the solitary-wave family of w₊ (discrete and QC), where the
+    stability of the family may change (Friesecke–Pego type criterion, see module doc).
+
+    V_values : velocities of the discrete family (sorted here; ≥ 3 per interval to locate an
+    extremum), or ``family`` : an already computed :func:`fpucore.wave.solitary_family`
+    (then V_values, N, tol are not used).  Neither: only the QC family is examined.
+    N, tol : as in :func:`fpucore.wave.solve_solitary`.  qc_samples : QC grid per interval.
+    """
+    t0 = time.perf_counter()
+    w_plus = require_finite("w_plus", w_plus)
+    (a, b), (c, d) = qc.solitary_intervals(law, w_plus)
+    if not (isinstance(qc_samples, (int, np.integer)) and 5 <= qc_samples <= 100000):
+        raise ParameterError("qc_samples", qc_samples, "an integer in [5, 100000]")
+    if family is None and V_values is not None:
+        Vs = np.sort(np.atleast_1d(np.asarray(V_values, dtype=float)))
+        family = solitary_family(law, w_plus, Vs, N=N, tol=tol)
+    if family is not None:
+        res = family.results
+        V = np.array([r.V for r in res], dtype=float)
+        E = np.array([r.energy for r in res], dtype=float)
+        dE = np.array([wave_energy_error(r) for r in res])
+        ok = np.array([bool(r.converged) for r in res])
+    else:
+        V = E = dE = np.zeros(0)
+        ok = np.zeros(0, dtype=bool)
+    ext, qV, qE, qext = [], [], [], []
+    for lo, hi in ((a, b), (c, d)):
+        sel = ok & (V > lo) & (V < hi)
+        if np.count_nonzero(sel) >= 3:
+            order = np.argsort(V[sel])
+            ext += locate_extrema(V[sel][order], E[sel][order], dE[sel][order])
+        gv, ge, ge_ext = _qc_interval(law, w_plus, lo, hi, int(qc_samples))
+        qV.append(gv)
+        qE.append(ge)
+        qext += ge_ext
+    in_range = [x for x in qext if V.size and V.min() <= x[0] <= V.max()]
+    may = bool(ext or (in_range if V.size else qext))
+    n_bad = int(np.count_nonzero(~ok))
+    msg = (f"{len(ext)} extremum(s) of the discrete E_ren, {len(qext)} of E_ren^QC; "
+           f"{n_bad} wave(s) not converged")  # fmt: skip
+    col = lambda xs, k: np.array([x[k] for x in xs], dtype=float)  # noqa: E731
+    return EnergyCriterion(
+        w_plus=w_plus,
+        V=V,
+        energy=E,
+        energy_error=dE,
+        wave_converged=ok,
+        extrema_V=col(ext, 0),
+        extrema_V_error=col(ext, 1),
+        extrema_energy=col(ext, 2),
+        extrema_kind=tuple(x[3] for x in ext),
+        qc_V=np.concatenate(qV),
+        qc_energy=np.concatenate(qE),
+        qc_extrema_V=col(qext, 0),
+        qc_extrema_V_error=col(qext, 1),
+        qc_extrema_energy=col(qext, 2),
+        qc_extrema_kind=tuple(x[3] for x in qext),
+        stability_may_change=may,
+        location_error=float(max([x[1] for x in ext + qext], default=0.0)),
+        elapsed_s=time.perf_counter() - t0,
+        converged=n_bad == 0,
+        message=msg,
+        family=family,
+    )

@@ -1,0 +1,209 @@
+"""Structure-preserving half-size Floquet spectrum (issue 17; ``spectrum(r, method="structured")``).
+
+The dense route (:func:`fpucore.floquet.multipliers_of`) calls LAPACK ``dgeev`` on the deflated
+(2N−2)² block.  This route uses the symplectic structure of the shifted monodromy 𝓜 instead:
+
+1. Canonical coordinates.  With y = D u, v = D p (D the forward difference on the ring) the
+   linearized chain is Hamiltonian in (u, p) with the standard J = [[0, I], [−I, 0]]; the flow
+   and the index shift keep the Poisson tensor Π = R J Rᵀ, R = diag(D, D): 𝓜 Π 𝓜ᵀ = Π.  On the
+   zero-sum subspace (the one the Householder deflation keeps, dimension 2n, n = N − 1)
+   S = R⁺ 𝓜 R is symplectic, S J Sᵀ = J, with the same multipliers as the deflated block.
+   R⁺ is a cumulative sum (O(N)); block means are removed from every pseudo-inverse input and
+   every Krylov vector (otherwise the constant directions, outside the working space, grow and
+   destroy the basis after a few hundred steps).
+2. Half size.  W = S − J Sᵀ J (= S + S⁻¹ for symplectic S) is skew-Hamiltonian; its eigenvalues
+   λ = μ + 1/μ are double, and every Krylov space of one vector is isotropic.  A full-length
+   isotropic Arnoldi process (SHIRA-type: Gram–Schmidt against V and J V, two passes) gives an
+   n×n Hessenberg H with W V = V H + J V G; G = 0 in exact arithmetic, ‖G‖ is measured
+   (the backward error of W).  One LAPACK eig of H (n×n instead of 2n×2n).
+   𝓜 is periodic-banded (tangent windows of ±K sites), so a product with W costs O(N·K).
+3. μ solves μ² − λμ + 1 = 0.  Real λ ∈ [−2, 2] gives μ = e^{±iθ} exactly on the unit circle
+   (no round-off quartet splitting), complex λ the quartet.
+
+Error bar.  The quartet symmetry holds by construction, so it no longer measures the error;
+instead: η = measured non-symplecticity of S (random probes, ‖x + S J Sᵀ J x‖/‖x‖), the dropped
+J-part ‖G‖ and the Hessenberg round-off give a bound δλ = ‖G‖ + (64ε + η)‖H‖ on λ; the bound on
+each μ is δλ/max(|μ − 1/μ|, √δλ) (``mu_error``; large only next to μ = ±1).
+
+Prototype and its measured table: research report r17 (max|μ| within 8e-14 of dense eigvals in
+20 cases, same unstable counts).  Timings: benchmarks/bench_floquet.py part E.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+import scipy.linalg
+
+from fpucore.floquet.structured_kernels import (
+    extract_bands,
+    j_apply,
+    remove_means,
+    s_apply,
+    st_apply,
+    w_apply,
+)
+
+_RESTART_TRIES = 8
+
+
+def band_of(mat: np.ndarray, n: int, K: int | None = None) -> tuple[int, np.ndarray]:
+    """(d0, bands) of the periodic band of 𝓜's four N×N blocks.  K : tangent window half-width
+    of :class:`fpucore.floquet.Monodromy` (the band is rows −K−1 … K−1 around each column after
+    the shift); None: found from the non-zero pattern."""
+    if K is not None and 2 * K + 1 < n:
+        d0, w = -K - 1, 2 * K + 1
+    else:
+        r, c = np.nonzero(mat)
+        d = (r % n - c % n) % n
+        d = np.where(d > n // 2, d - n, d)
+        d0, w = int(d.min(initial=0)), int(d.max(initial=0) - d.min(initial=0) + 1)
+        if w >= n:
+            d0, w = -(n // 2), n
+    bands = np.empty((4, n, w))
+    extract_bands(np.ascontiguousarray(mat, dtype=np.float64), n, d0, bands)
+    return d0, bands
+
+
+def _fresh(V: np.ndarray, k: int, N: int, rng) -> np.ndarray:
+    """A unit mean-free vector orthogonal to V[:k] and J V[:k] (restart after a breakdown)."""
+    jv = np.empty(2 * N)
+    for _ in range(_RESTART_TRIES):
+        x = rng.standard_normal(2 * N)
+        remove_means(x, N)
+        for _pass in range(2):
+            if k:
+                x -= V[:k].T @ (V[:k] @ x)
+                j_apply(x, N, jv)  # J x ;  (J V)ᵀ x = −Vᵀ J x  →  x −= J V (−Vᵀ J x)
+                c = V[:k] @ jv
+                y = V[:k].T @ c
+                x[:N] += y[N:]  # J y = (y_p, −y_u); x += J y
+                x[N:] -= y[:N]
+            remove_means(x, N)
+        nr = float(np.linalg.norm(x))
+        if nr > 1e-8:
+            return x / nr
+    raise RuntimeError("isotropic Arnoldi: no restart direction found")
+
+
+def mu_from_lambda(lam: np.ndarray) -> np.ndarray:
+    """Both roots of μ² − λμ + 1 = 0 per λ, the one with |μ| ≥ 1 first: (2·len(λ),) complex.
+    Real λ ∈ [−2, 2]: μ = e^{±iθ}, 2 cos θ = λ, exactly on the unit circle."""
+    lam = np.asarray(lam, dtype=complex)
+    s = np.sqrt(lam * lam - 4.0)
+    a, b = 0.5 * (lam + s), 0.5 * (lam - s)
+    big = np.where(np.abs(a) >= np.abs(b), a, b)
+    ell = (lam.imag == 0.0) & (np.abs(lam.real) <= 2.0)
+    on = np.exp(1j * np.arccos(np.clip(lam.real, -2.0, 2.0) / 2.0))
+    big = np.where(ell, on, big)
+    small = np.where(ell, np.conj(on), 1.0 / big)
+    return np.concatenate([big, small])
+
+
+def symplectic_defect(bands, d0: int, N: int, probes: int = 4, seed: int = 7) -> float:
+    """η = max over random mean-free probes x of ‖x + S J Sᵀ J x‖ / ‖x‖ (0 for symplectic S)."""
+    rng = np.random.default_rng(seed)
+    t1, t2, a, b = (np.empty(2 * N) for _ in range(4))
+    worst = 0.0
+    for _ in range(probes):
+        x = rng.standard_normal(2 * N)
+        remove_means(x, N)
+        j_apply(x, N, a)
+        st_apply(bands, d0, N, a, b, t1, t2)
+        j_apply(b, N, a)
+        s_apply(bands, d0, N, a, b, t1, t2)
+        worst = max(worst, float(np.linalg.norm(x + b) / np.linalg.norm(x)))
+    return worst
+
+
+def isotropic_arnoldi(bands, d0: int, N: int, rng) -> tuple[np.ndarray, np.ndarray, float, int]:
+    """Full-length isotropic Arnoldi on W (module doc): V (N−1, 2N) orthonormal isotropic rows,
+    H (N−1, N−1) upper Hessenberg with W Vᵀ = Vᵀ H + J Vᵀ G, ‖G‖ (dropped), restarts.
+
+    Each step: one W product (Numba, O(N·K)), then classical Gram–Schmidt against V and J V,
+    twice (CGS2; two BLAS calls per pass reading the basis), block means removed.  A breakdown
+    (an invariant subspace: degenerate λ, e.g. a homogeneous ring) restarts with a random vector
+    orthogonal to V and J V.
+    """
+    m = N - 1
+    V = np.zeros((m, 2 * N))
+    H = np.zeros((m, m))
+    t = [np.empty(2 * N) for _ in range(4)]
+    w = np.empty(2 * N)
+    two = np.empty((2 * N, 2))
+    g2, restarts = 0.0, 0
+    V[0] = _fresh(V, 0, N, rng)
+    for k in range(m):
+        w_apply(bands, d0, N, V[k], w, t[0], t[1], t[2], t[3])
+        wn0 = float(np.linalg.norm(w))
+        Vk = V[: k + 1]
+        for _pass in range(2):
+            two[:, 0] = w
+            two[:N, 1] = -w[N:]  # Jᵀ w = (−w_p, w_u): (J v)·w = v·Jᵀw
+            two[N:, 1] = w[:N]
+            c = Vk @ two  # (k+1, 2): coefficients along V and along J V
+            upd = Vk.T @ c
+            w -= upd[:, 0]
+            w[:N] -= upd[N:, 1]  # J (V g) = ((V g)_p, −(V g)_u)
+            w[N:] += upd[:N, 1]
+            H[: k + 1, k] += c[:, 0]
+            g2 += float(c[:, 1] @ c[:, 1])
+        remove_means(w, N)
+        if k + 1 < m:
+            nr = float(np.linalg.norm(w))
+            if nr <= 1e-10 * max(wn0, 1.0):
+                restarts += 1
+                V[k + 1] = _fresh(V, k + 1, N, rng)
+            else:
+                H[k + 1, k] = nr
+                V[k + 1] = w / nr
+    return V, H, math.sqrt(g2), restarts
+
+
+def structured_multipliers(
+    mat: np.ndarray, n: int, K: int | None = None, seed: int = 12345
+) -> tuple[np.ndarray, np.ndarray, float, dict]:
+    """All 2N multipliers of the shifted monodromy 𝓜 (the *full* 2N×2N matrix, not the deflated
+    block: the deflation destroys the band) by the half-size route (module doc).
+
+    Returns (mu_rest (2N−2,), mu_sums (2,), conservation_defect, info) like
+    :func:`fpucore.floquet.multipliers_of` plus info: lam (N−1,) λ = μ + 1/μ; G_norm (dropped
+    J-part); symplectic_defect η; lam_error δλ; mu_error (2N−2,) per-multiplier bound; restarts;
+    width (band); band_s / arnoldi_s / eig_s (wall times, s).
+    """
+    t0 = time.perf_counter()
+    N = int(n)
+    m = N - 1
+    d0, bands = band_of(mat, N, K)
+    t1 = time.perf_counter()
+    rng = np.random.default_rng(seed)
+    V, H, g_norm, restarts = isotropic_arnoldi(bands, d0, N, rng)
+    t2 = time.perf_counter()
+    hnorm = float(np.abs(H).max()) * math.sqrt(m)
+    lam = scipy.linalg.eigvals(H, overwrite_a=True, check_finite=False)
+    t3 = time.perf_counter()
+    mu_sums = np.array([mat[:N, :N].sum() / N, mat[N:, N:].sum() / N], dtype=complex)
+    # coupling of the sums to the rest: column sums of each block must be constant
+    cs = [mat[:N, :N].sum(0), mat[:N, N:].sum(0), mat[N:, :N].sum(0), mat[N:, N:].sum(0)]
+    defect = max(float(np.abs(c - c.mean()).max()) for c in cs) / math.sqrt(N)
+    mu = mu_from_lambda(lam)
+    eta = symplectic_defect(bands, d0, N)
+    lam_err = g_norm + (64.0 * np.finfo(float).eps + eta) * hnorm
+    sep = np.abs(mu - 1.0 / mu)
+    mu_err = lam_err / np.maximum(sep, math.sqrt(lam_err))
+    info = {
+        "lam": lam,
+        "G_norm": g_norm,
+        "symplectic_defect": eta,
+        "lam_error": lam_err,
+        "mu_error": mu_err,
+        "restarts": restarts,
+        "width": int(bands.shape[2]),
+        "band_s": t1 - t0,
+        "arnoldi_s": t2 - t1,
+        "eig_s": t3 - t2,
+        "elapsed_s": time.perf_counter() - t0,
+    }
+    return mu, mu_sums, defect, info

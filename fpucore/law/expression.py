@@ -1,0 +1,124 @@
+"""Force laws from text: ``law_from_expression("w + 10*w**2 - w**3 - 0.01*w**4")``.
+
+The text is tokenized (standard library) and only numbers, the operators + - * / ** ^ ( ), the
+variable ``w`` and a few function names (so that ``sin(w)`` is reported as *not a polynomial*
+rather than as an unknown name) reach SymPy's parser, which expands it; the coefficients must be
+real and finite and the constant term zero.  The result is a :class:`.PolynomialLaw`, whose
+construction checks the hardening–softening hypotheses of paper §2.
+"""
+
+from __future__ import annotations
+
+import io
+import math
+import tokenize
+
+import sympy
+from sympy.parsing.sympy_parser import (
+    convert_xor,
+    implicit_multiplication,
+    parse_expr,
+    standard_transformations,
+)
+
+from fpucore.errors import ParameterError
+from fpucore.law.polynomial import PolynomialLaw
+
+_FUNCS = ("sin", "cos", "tan", "exp", "log", "sqrt", "sinh", "cosh", "tanh", "Abs", "abs")
+_CONSTS = ("pi", "E")
+_OPS = {"+", "-", "*", "/", "**", "^", "(", ")"}
+_VALID = "a polynomial in w with real finite coefficients and f(0) = 0, e.g. 'w + 10*w**2 - w**3'"
+
+
+def law_from_expression(expression: str) -> PolynomialLaw:
+    """Build a :class:`PolynomialLaw` from text, e.g. ``"w + 10*w**2 - w**3 - 0.01*w**4"``.
+
+    The text is tokenized first and only numbers, the operators + - * / ** ^ ( ), the variable
+    ``w`` and a few function names (so that ``sin(w)`` is reported as *non-polynomial* rather
+    than *unknown*) are let through to SymPy's parser (``^`` means power, ``2w`` means 2*w).
+    Refused with :class:`ParameterError` (name ``"expression"``): unparsable text, unknown names,
+    non-polynomial expressions, non-real or non-finite coefficients, a constant term (f(0) ≠ 0);
+    the law's own hypotheses are then checked by :class:`PolynomialLaw`.
+    """
+    if not isinstance(expression, str):
+        raise ParameterError("expression", expression, _VALID, "the expression must be a string")
+    if len(expression) > 4000 or not expression.strip():
+        raise ParameterError("expression", expression, _VALID, "empty or over-long expression")
+    try:
+        toks = list(tokenize.generate_tokens(io.StringIO(expression).readline))
+    except (tokenize.TokenError, SyntaxError, IndentationError) as exc:
+        raise ParameterError("expression", expression, _VALID, f"could not parse: {exc}") from None
+    for t in toks:
+        if t.type in (tokenize.NEWLINE, tokenize.NL, tokenize.ENDMARKER):
+            continue
+        if t.type == tokenize.NUMBER:
+            if t.string[-1] in "jJ":
+                raise ParameterError(
+                    "expression", expression, _VALID, f"complex number {t.string} not allowed"
+                )
+            continue
+        if t.type == tokenize.NAME:
+            if t.string != "w" and t.string not in _FUNCS + _CONSTS:
+                raise ParameterError(
+                    "expression", expression, _VALID,
+                    f"unknown name '{t.string}': the only variable allowed is w",
+                )  # fmt: skip
+            continue
+        if t.type == tokenize.OP and t.string in _OPS:
+            continue
+        raise ParameterError(
+            "expression", expression, _VALID, f"could not parse: unexpected '{t.string}'"
+        )
+    w = sympy.Symbol("w", real=True)
+    names = {"w": w, "pi": sympy.pi, "E": sympy.E, "abs": sympy.Abs}
+    names.update({n: getattr(sympy, n) for n in _FUNCS if n != "abs"})
+    glob = {n: getattr(sympy, n) for n in ("Integer", "Float", "Rational", "Symbol")}
+    glob["__builtins__"] = {}
+    try:
+        expr = parse_expr(
+            expression,
+            local_dict=names,
+            global_dict=glob,
+            transformations=standard_transformations + (convert_xor, implicit_multiplication),
+            evaluate=True,
+        )
+        expr = sympy.expand(sympy.sympify(expr))
+    except Exception as exc:  # SymPy raises SyntaxError, TypeError, TokenError, SympifyError...
+        raise ParameterError(
+            "expression", expression, _VALID, f"could not parse: {type(exc).__name__}: {exc}"
+        ) from None
+    if expr.has(sympy.zoo, sympy.oo, -sympy.oo, sympy.nan):
+        raise ParameterError("expression", expression, _VALID, "non-finite coefficient")
+    if not expr.is_polynomial(w):
+        raise ParameterError(
+            "expression", expression, _VALID,
+            f"not a polynomial in w: {expr} (functions of w, negative or fractional powers "
+            "are not allowed)",
+        )  # fmt: skip
+    poly = sympy.Poly(expr, w)
+    coeffs = []
+    for (k,), ck in sorted(poly.terms()):
+        z = complex(sympy.N(ck, 17))
+        if z.imag != 0.0:
+            raise ParameterError(
+                "expression",
+                expression,
+                _VALID,
+                f"coefficient of w^{k} is not real: {str(ck)[:40]}",
+            )
+        if not math.isfinite(z.real):
+            raise ParameterError(
+                "expression", expression, _VALID,
+                f"non-finite coefficient of w^{k}: {str(ck)[:24]}... overflows float64",
+            )  # fmt: skip
+        while len(coeffs) < k + 1:
+            coeffs.append(0.0)
+        coeffs[k] = z.real
+    if not coeffs:
+        raise ParameterError("expression", expression, _VALID, "the expression is zero")
+    if coeffs[0] != 0.0:
+        raise ParameterError(
+            "expression", expression, _VALID,
+            f"constant term {coeffs[0]:g}: f(0) must be 0 (the unstrained spring carries no force)",
+        )  # fmt: skip
+    return PolynomialLaw(tuple(coeffs[1:]))

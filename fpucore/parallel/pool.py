@@ -1,0 +1,230 @@
+"""The local process pool: one pipe per worker, one manager thread, workers replaceable.
+
+Why not ``concurrent.futures.ProcessPoolExecutor``: a killed worker breaks the whole pool there
+(BrokenProcessPool) and a running job cannot be stopped.  Here each worker is a
+``multiprocessing`` process with its own duplex pipe; the manager thread waits on every pipe, every
+process sentinel and a wake-up pipe at once (``multiprocessing.connection.wait``), hands queued
+jobs to idle workers, forwards progress, and when a worker dies or its job is cancelled it
+terminates / reaps that process, fails or cancels only that job, and starts a replacement.
+
+Start method: ``forkserver`` with fpucore preloaded (see :mod:`fpucore.parallel.threads`: the
+process that forks workers has never run an OpenMP kernel), ``spawn`` where forkserver is missing.
+"""
+
+from __future__ import annotations
+
+import itertools
+import multiprocessing as mp
+import signal
+import threading
+from collections import deque
+from multiprocessing.connection import wait
+
+from fpucore.parallel.jobs import Cancelled, Job, WorkerDied, accepts_progress
+from fpucore.parallel.worker import worker_main
+
+START_METHOD = "forkserver" if "forkserver" in mp.get_all_start_methods() else "spawn"
+PRELOAD = ["fpucore"]
+TERMINATE_GRACE_S = 2.0
+
+
+def context(method: str = START_METHOD):
+    """The multiprocessing context of the pool (never ``fork``: see module docstring)."""
+    if method == "fork":
+        raise ValueError("fork is unsafe after an OpenMP kernel has run (issue 14 item 5)")
+    ctx = mp.get_context(method)
+    if method == "forkserver":
+        ctx.set_forkserver_preload(PRELOAD)
+    return ctx
+
+
+class _Worker:
+    def __init__(self, ctx, n_threads: int):
+        self.conn, child = ctx.Pipe(duplex=True)
+        self.process = ctx.Process(target=worker_main, args=(child, n_threads), daemon=True)
+        self.process.start()
+        child.close()
+        self.job: Job | None = None
+        self.job_id: int | None = None
+
+    def stop(self, grace_s: float = TERMINATE_GRACE_S) -> None:
+        p = self.process
+        if p.is_alive():
+            p.terminate()
+            p.join(grace_s)
+            if p.is_alive():
+                p.kill()
+        p.join(grace_s)
+        self.conn.close()
+
+
+def describe_exit(exitcode: int | None) -> str:
+    if exitcode is None:
+        return "no exit code"
+    if exitcode < 0:
+        try:
+            return f"killed by {signal.Signals(-exitcode).name}"
+        except ValueError:
+            return f"killed by signal {-exitcode}"
+    return f"exit code {exitcode}"
+
+
+class ProcessPool:
+    """``workers`` processes with ``n_threads`` BLAS/Numba threads each (the policy: 1)."""
+
+    def __init__(self, workers: int, n_threads: int = 1, start_method: str = START_METHOD):
+        self.n_workers, self.n_threads = int(workers), int(n_threads)
+        self.start_method = start_method
+        self._ctx = context(start_method)
+        self._lock = threading.Lock()
+        self._queue: deque[tuple[int, Job, tuple]] = deque()
+        self._kill: deque[Job] = deque()  # running jobs whose worker must be terminated
+        self._ids = itertools.count()
+        self._closed = False
+        self._wake_r, self._wake_w = self._ctx.Pipe(duplex=False)
+        self._workers = [_Worker(self._ctx, self.n_threads) for _ in range(self.n_workers)]
+        self.replaced = 0  # workers started to replace a dead or cancelled one
+        self._thread = threading.Thread(target=self._loop, name="fpucore-pool", daemon=True)
+        self._thread.start()
+
+    # -- caller's side --------------------------------------------------------------------------
+    def submit(self, fn, args: tuple, kwargs: dict, index: int = 0) -> Job:
+        job = Job(index)
+        if self._closed:
+            job.set_exception(Cancelled("the executor is shut down"))
+            return job
+        job.cancel_hook = self._on_cancel
+        with self._lock:
+            self._queue.append((next(self._ids), job, (fn, args, kwargs, accepts_progress(fn))))
+        self._wake()
+        return job
+
+    def _on_cancel(self, job: Job) -> None:
+        with self._lock:
+            queued = [item for item in self._queue if item[1] is job]
+            for item in queued:
+                self._queue.remove(item)
+            if not queued:
+                self._kill.append(job)
+        self._wake()
+
+    def _wake(self) -> None:
+        try:
+            self._wake_w.send_bytes(b"x")
+        except OSError:
+            pass
+
+    def pids(self) -> list[int]:
+        """Process ids of the current workers."""
+        return [w.process.pid for w in self._workers]
+
+    def shutdown(self) -> None:
+        """Cancel queued and running jobs, stop the workers and the manager thread."""
+        if self._closed:
+            return
+        self._closed = True
+        with self._lock:
+            pending = [job for _, job, _ in self._queue]
+            self._queue.clear()
+        for job in pending:
+            job.set_exception(Cancelled("the executor was shut down"))
+        self._wake()
+        self._thread.join(30)
+        for w in self._workers:
+            if w.job is not None:
+                w.job.set_exception(Cancelled("the executor was shut down"))
+            try:
+                w.conn.send(None)
+            except OSError:
+                pass
+        for w in self._workers:
+            w.process.join(TERMINATE_GRACE_S)
+            w.stop()
+        self._wake_r.close()
+        self._wake_w.close()
+
+    # -- manager thread -------------------------------------------------------------------------
+    def _loop(self) -> None:
+        while True:
+            if self._closed:
+                return
+            self._reap_cancelled()
+            self._dispatch()
+            watch = [self._wake_r]
+            for w in self._workers:
+                watch += [w.conn, w.process.sentinel]
+            for obj in wait(watch, timeout=1.0):
+                if obj is self._wake_r:
+                    while self._wake_r.poll():
+                        self._wake_r.recv_bytes()
+                    continue
+                for w in list(self._workers):
+                    if obj is w.conn:
+                        self._drain(w)
+                    elif obj == w.process.sentinel:
+                        self._on_death(w)
+
+    def _dispatch(self) -> None:
+        for w in self._workers:
+            if w.job is not None:
+                continue
+            with self._lock:
+                if not self._queue:
+                    return
+                job_id, job, (fn, args, kwargs, wants_progress) = self._queue.popleft()
+            if job.done():
+                continue
+            try:
+                w.conn.send((job_id, fn, args, kwargs, wants_progress))
+            except Exception as exc:  # unpicklable arguments: that job fails, the worker stays
+                job.set_exception(exc)
+                continue
+            w.job, w.job_id = job, job_id
+            job.state, job.worker = "running", w.process.pid
+
+    def _drain(self, w: _Worker) -> bool:
+        """Read every message waiting on w's pipe; False if the pipe is broken."""
+        try:
+            while w.conn.poll():
+                msg = w.conn.recv()
+                if msg[1] != w.job_id or w.job is None:
+                    continue  # a message of a job already cancelled
+                if msg[0] == "progress":
+                    w.job.set_progress(msg[2])
+                else:
+                    _, _, ok, payload = msg
+                    job, w.job, w.job_id = w.job, None, None
+                    job.set_result(payload) if ok else job.set_exception(payload)
+        except (EOFError, OSError):
+            return False
+        except Exception as exc:  # a value the parent cannot unpickle
+            if w.job is not None:
+                job, w.job, w.job_id = w.job, None, None
+                job.set_exception(exc)
+        return True
+
+    def _on_death(self, w: _Worker) -> None:
+        self._drain(w)  # its last message may have arrived just before it exited
+        if w.process.is_alive():
+            return
+        if w.job is not None:
+            why = describe_exit(w.process.exitcode)
+            w.job.set_exception(WorkerDied(f"worker process {w.process.pid} died ({why}) "
+                                           f"while running job {w.job.index}"))  # fmt: skip
+        self._replace(w)
+
+    def _reap_cancelled(self) -> None:
+        with self._lock:
+            kill, self._kill = list(self._kill), deque()
+        for job in kill:
+            for w in list(self._workers):
+                if w.job is job:
+                    self._replace(w)
+
+    def _replace(self, w: _Worker) -> None:
+        w.job = w.job_id = None
+        w.stop()
+        i = self._workers.index(w)
+        if not self._closed:
+            self._workers[i] = _Worker(self._ctx, self.n_threads)
+            self.replaced += 1

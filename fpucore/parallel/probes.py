@@ -1,0 +1,71 @@
+"""Small jobs that check a backend (picklable, module-level): echo, sleep, fail, die, report the
+thread budget.  Used by the tests of fpucore.parallel and by ``Executor`` health checks."""
+
+from __future__ import annotations
+
+import os
+import signal
+import time
+
+import numba
+import numpy as np
+from threadpoolctl import threadpool_info
+
+from fpucore.errors import ParameterError
+from fpucore.law import CubicLaw
+from fpucore.wave import solve_superkink
+
+
+def square(x: float) -> float:
+    return x * x
+
+
+def sleep(seconds: float, progress=None) -> float:
+    """Sleep in 20 ms slices reporting progress; returns the seconds slept."""
+    t0 = time.monotonic()
+    while (t := time.monotonic() - t0) < seconds:
+        if progress is not None:
+            progress(t / seconds)
+        time.sleep(0.02)
+    return time.monotonic() - t0
+
+
+def spin(seconds: float) -> int:
+    """Busy loop (no sleep: a job that never yields), returns the iterations."""
+    t0, n = time.monotonic(), 0
+    while time.monotonic() - t0 < seconds:
+        n += 1
+    return n
+
+
+def refuse(x: float) -> None:
+    """Raise ParameterError naming x (to check that the class and message cross processes)."""
+    raise ParameterError("x", x, "(0, 1)", "probe")
+
+
+def die(code: int = 9) -> None:
+    """Kill the worker process itself with signal ``code``."""
+    os.kill(os.getpid(), code if code else signal.SIGKILL)
+
+
+def thread_budget() -> dict:
+    """pid, Numba threads and every BLAS/OpenMP library's thread count in this process."""
+
+    return {
+        "pid": os.getpid(),
+        "numba": numba.get_num_threads(),
+        "pools": [(d["user_api"], d["num_threads"]) for d in threadpool_info()],
+    }
+
+
+def superkink(V: float, N: int = 64) -> dict:
+    """A discrete superkink solved in this process (runs Numba's parallel period map):
+    residual, amplitude-like summary and the threading layer used."""
+    r = solve_superkink(CubicLaw(-1.0, 10.0), V, N=N)
+    return {
+        "converged": bool(r.converged),
+        "residual": float(r.residual),
+        "w_max": float(np.max(r.w)),
+        "layer": numba.threading_layer(),
+        "pid": os.getpid(),
+    }

@@ -1,0 +1,70 @@
+"""The loop run by each process-pool worker (in the child process).
+
+Protocol on the worker's duplex pipe.  Parent → worker:
+``(job_id, fn, args, kwargs, wants_progress)``, or ``None`` to exit.  Worker → parent:
+``("progress", job_id, frac)`` (at most every ``PROGRESS_INTERVAL_S``, and the final 1.0) and
+``("done", job_id, ok, value_or_exception)``.
+"""
+
+from __future__ import annotations
+
+import pickle
+import signal
+import time
+import traceback
+
+from fpucore.parallel.jobs import RemoteError
+from fpucore.parallel.threads import apply_thread_policy
+
+PROGRESS_INTERVAL_S = 0.1
+
+
+def portable_exception(exc: BaseException) -> BaseException:
+    """``exc`` with the worker's traceback as a note if it survives pickling, else a
+    RemoteError carrying its class name, message and traceback."""
+    tb = "".join(traceback.format_exception(exc))
+    try:
+        exc.add_note("worker traceback:\n" + tb)
+        pickle.loads(pickle.dumps(exc))
+        return exc
+    except Exception:
+        return RemoteError(f"{type(exc).__name__}: {exc}\nworker traceback:\n{tb}")
+
+
+def progress_sender(conn, job_id: int):
+    """A ``progress(frac)`` callable sending throttled progress messages to the parent."""
+    last = [0.0]
+
+    def progress(frac: float) -> None:
+        now = time.monotonic()
+        if frac >= 1.0 or now - last[0] >= PROGRESS_INTERVAL_S:
+            last[0] = now
+            conn.send(("progress", job_id, float(frac)))
+
+    return progress
+
+
+def worker_main(conn, n_threads: int = 1) -> None:
+    """Serve jobs from ``conn`` until ``None`` arrives or the pipe closes.  Ctrl-C is the
+    parent's business (it cancels or shuts down): a worker ignores SIGINT, so an interrupted
+    sweep never records a point as failed with KeyboardInterrupt."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    apply_thread_policy(n_threads)
+    while True:
+        try:
+            msg = conn.recv()
+        except (EOFError, OSError, KeyboardInterrupt):
+            return
+        if msg is None:
+            return
+        job_id, fn, args, kwargs, wants_progress = msg
+        if wants_progress:
+            kwargs = {**kwargs, "progress": progress_sender(conn, job_id)}
+        try:
+            out = ("done", job_id, True, fn(*args, **kwargs))
+        except BaseException as exc:  # noqa: BLE001  (everything goes back to the caller)
+            out = ("done", job_id, False, portable_exception(exc))
+        try:
+            conn.send(out)
+        except Exception as exc:  # an unpicklable return value
+            conn.send(("done", job_id, False, portable_exception(exc)))

@@ -1,0 +1,94 @@
+"""The public QC functions for any law: the cubic keeps its closed forms (paper §4,
+:mod:`.closed_forms`); every other hardening–softening law goes through the numerical §3 theory
+(:mod:`.general`).  Same signatures and result types (the general results subclass the cubic
+ones), so callers — phase plane, diagrams, discrete waves, the CLI, the explorer — never branch
+on the law.
+"""
+
+from __future__ import annotations
+
+from fpucore.law import CubicLaw, HardeningSofteningLaw
+from fpucore.qc import closed_forms as cf
+from fpucore.qc import general as gen
+
+BRANCHES = ("lower", "upper")
+
+
+def is_closed_form(law: HardeningSofteningLaw) -> bool:
+    """True when the closed forms of paper §4 apply (the cubic law object)."""
+    return isinstance(law, CubicLaw)
+
+
+def sound_speeds(law: HardeningSofteningLaw, w_plus: float) -> tuple[float, float, float]:
+    """(c₊, V_SK, c₋) for the state w₊ ahead (eqs. cplus, Rline + zero_G, cminus)."""
+    if is_closed_form(law):
+        return cf.sound_speeds(law, w_plus)
+    return gen.sound_speeds(law, w_plus)
+
+
+def solitary_intervals(law: HardeningSofteningLaw, w_plus: float):
+    """((c₊, V_SK), (V_SK, c₋)): the two velocity intervals of solitary waves for w₊."""
+    if is_closed_form(law):
+        return cf.solitary_intervals(law, w_plus)
+    return gen.solitary_intervals(law, w_plus)
+
+
+def w_minus_sonic(law: HardeningSofteningLaw, w_plus: float) -> float:
+    """w₋ˢ, the tangency point of the c₋ Rayleigh line (eq. cminus)."""
+    if is_closed_form(law):
+        return cf.w_minus_sonic(law, w_plus)
+    return gen.w_minus_sonic(law, w_plus)
+
+
+def rayleigh_roots(law: HardeningSofteningLaw, w_plus: float, V):
+    """(w_near, w_far): the other intersections of f with the Rayleigh line (V may be an array;
+    NaN where they do not exist)."""
+    if is_closed_form(law):
+        return cf.rayleigh_roots(law, w_plus, V)
+    return gen.rayleigh_roots(law, w_plus, V)
+
+
+def w_S(law: HardeningSofteningLaw, w_plus: float, V):
+    """Saddle w_S(V) ≠ w₊ of eq. wS (V may be an array)."""
+    return rayleigh_roots(law, w_plus, V)[1]
+
+
+def superkink_velocity_bounds(
+    law: HardeningSofteningLaw, branch: str = "lower"
+) -> tuple[float, float]:
+    """(V_lo, V_hi) of superkinks on a branch.  The cubic's two branches share eq.
+    V_bounds_cubic; for a general law they may differ."""
+    if is_closed_form(law):
+        return cf.superkink_velocity_bounds(law)
+    return gen.superkink_velocity_bounds(law, branch)
+
+
+def superkink_w_plus_range(law: HardeningSofteningLaw, branch: str = "lower"):
+    """Open w₊-interval of superkinks on a branch ((α, w*) or (w*, β) for the cubic, whose
+    convex interval is symmetric about w*)."""
+    if is_closed_form(law):
+        if branch not in BRANCHES:
+            return gen.superkink_w_plus_range(law, branch)  # raises the ParameterError
+        return (law.alpha, law.w_star) if branch == "lower" else (law.w_star, law.beta)
+    return gen.superkink_w_plus_range(law, branch)
+
+
+def superkink_from_V(law: HardeningSofteningLaw, V: float, branch: str = "lower"):
+    """Superkink with velocity V on a branch (eq. wpm_cubic for the cubic)."""
+    if is_closed_form(law):
+        return cf.superkink_from_V(law, V, branch)
+    return gen.superkink_from_V(law, V, branch)
+
+
+def superkink_from_w_plus(law: HardeningSofteningLaw, w_plus: float):
+    """Superkink with state w₊ ahead (eqs. Rline, zero_G)."""
+    if is_closed_form(law):
+        return cf.superkink_from_w_plus(law, w_plus)
+    return gen.superkink_from_w_plus(law, w_plus)
+
+
+def solitary(law: HardeningSofteningLaw, w_plus: float, V: float):
+    """QC solitary wave for the state w₊ ahead of the associated superkink, velocity V."""
+    if is_closed_form(law):
+        return cf.solitary(law, w_plus, V)
+    return gen.solitary(law, w_plus, V)

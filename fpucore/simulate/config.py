@@ -1,0 +1,311 @@
+"""Configuration of a chain simulation, before anything is allocated: every option validated
+(ParameterError naming it), the memory of the whole request estimated from all its sizes and
+refused above the budget (:mod:`fpucore.budget`), the work estimated (steps × sites, seconds),
+and the output schedule (the stops of the stepper).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import brentq
+
+from fpucore.budget import fmt_bytes, require_memory, require_time_budget
+from fpucore.errors import ParameterError, require_finite
+from fpucore.law import HardeningSofteningLaw
+from fpucore.simulate.steppers import H_OMEGA_AT_1E10, METHODS, STEPPERS
+
+BOUNDARIES = ("fixed_particles", "fixed_strain", "free")
+GUARDS = ("convex", "bounded")
+MAX_L = 10_000_000
+MAX_PROBE_T = 10_000_000
+# Seconds per site-force evaluation of the whole pipeline (stepper, observer, guard), measured on
+# the paper's Riemann run (benchmarks/bench_simulate.py: 0.64 s / (58 786 × 3600)): the time
+# part of the work estimate, good to a factor ~2 on an idle machine.
+SECONDS_PER_SITE_EVAL = 3.0e-9
+
+
+def require_positive(name: str, x, hi: float = 1e9) -> float:
+    x = require_finite(name, x)
+    if not (0.0 < x <= hi):
+        raise ParameterError(name, x, f"(0, {hi:g}]")
+    return x
+
+
+def require_int(name: str, x, lo: int, hi: int) -> int:
+    """An integer in [lo, hi] (a float with an integer value is accepted; bools are not)."""
+    valid = f"an integer in [{lo}, {hi}]"
+    if isinstance(x, bool):
+        raise ParameterError(name, x, valid)
+    try:
+        xi = int(x)
+    except (TypeError, ValueError, OverflowError):
+        raise ParameterError(name, x, valid) from None
+    if xi != x or not (lo <= xi <= hi):
+        raise ParameterError(name, x, valid)
+    return xi
+
+
+def restoring_interval(law: HardeningSofteningLaw) -> tuple[float, float]:
+    """The zeros of f adjacent to 0, (w_lo, w_hi) ⊃ (α, β): inside, f(w) has the sign of w (the
+    spring resists); beyond them the potential Φ decreases without bound for the cubic law, so a
+    strain that passes them runs away.  Cubic a = −1, b = 10: (5 − √26, 5 + √26)."""
+    out = []
+    for edge, sgn in ((law.beta, 1.0), (law.alpha, -1.0)):
+        step = max(abs(edge), 1e-3)
+        x = edge
+        for _ in range(200):  # bounded search for a sign change of f beyond the edge
+            nxt = x + sgn * step
+            if sgn * float(law.f(nxt)) <= 0.0:
+                out.append(brentq(lambda z: float(law.f(z)), x, nxt, xtol=1e-14))
+                break
+            x, step = nxt, 2 * step
+        else:
+            out.append(sgn * math.inf)
+    return (out[1], out[0])
+
+
+@dataclass(frozen=True)
+class RunConfig:
+    """The validated options of one run (see :func:`configure`); ``memory_bytes`` and
+    ``work`` (steps, site_evals, seconds) are the estimates made before allocation."""
+
+    L: int
+    t_end: float
+    boundary: str
+    method: str
+    rtol: float
+    atol: float
+    dt: float | None
+    n_snapshots: int
+    max_sites_out: int
+    probe_idx: np.ndarray
+    n_probe_t: int
+    late_fraction: float
+    n_track: int
+    max_steps: int
+    estimate_error: bool
+    track: bool
+    n_events: int
+    guard: str
+    time_budget_s: float | None
+    memory_bytes: float
+    work: dict
+
+    @property
+    def stepper(self):
+        return STEPPERS[self.method]
+
+
+def _probe_sites(probes, L: int) -> np.ndarray:
+    """0-based indices from 1-based site numbers in [1, L]."""
+    valid = f"site numbers in [1, {L}]"
+    try:
+        sites = list(probes)
+    except TypeError:
+        raise ParameterError("probes", probes, valid) from None
+    out = []
+    for s in sites:
+        if isinstance(s, bool):
+            raise ParameterError("probes", sites, valid)
+        try:
+            si = int(s)
+        except (TypeError, ValueError, OverflowError):
+            raise ParameterError("probes", sites, valid) from None
+        if si != s or not (1 <= si <= L):
+            raise ParameterError("probes", sites, valid)
+        out.append(si - 1)
+    return np.array(out, dtype=np.int64)
+
+
+def memory_estimate(
+    L: int,
+    method: str,
+    n_snapshots: int,
+    n_sites_out: int,
+    n_probes: int,
+    n_probe_t: int,
+    n_track: int,
+    n_extra: int,
+    n_events: int,
+    estimate_error: bool,
+) -> dict[str, tuple[float, str]]:
+    """Bytes of one run by the argument that sets them: {name: (bytes, what)}.
+
+    "L": the state, the stepper's work arrays, the per-site observer (events n_events per site,
+    4 crossings), the tracking window (n_track full profiles, twice), extra full profiles, the
+    initial data and temporaries (checked against tracemalloc in tests/simulate/test_budgets.py);
+    "n_snapshots": the output field (n_snapshots × sites kept, and its copy when a stopped run
+    is trimmed); "n_probe_t": the probe series ((probes + 1) × n_probe_t, twice)."""
+    st = STEPPERS[method]
+    per_site = st.floats_per_site()
+    if not st.adaptive and estimate_error:  # the step-doubling companion run
+        per_site *= 2
+    per_site += 1 + 3 + 1 + 1  # g, zz, zt, final_w
+    per_site += 2 * n_events + n_events / 8 + 1 + 4 + 0.5 + 1  # events, crossings, counts
+    # the tracking window and the tracker's temporaries (2 × n_track profiles, measured), extra
+    # profiles, w0 and v0, temporaries of the energy (Φ(w), v², …; measured with tracemalloc)
+    per_site += 2 * n_track + n_extra + 2 + 10
+    return {
+        "L": (8.0 * per_site * L, f"{per_site:.0f} floats per site × L={L}"),
+        "n_snapshots": (
+            16.0 * n_snapshots * n_sites_out,
+            f"snapshots {n_snapshots} × {n_sites_out} sites kept (max_sites_out)",
+        ),
+        "n_probe_t": (16.0 * (n_probes + 1) * n_probe_t, f"{n_probes} probes × {n_probe_t} times"),
+    }
+
+
+def work_estimate(
+    law,
+    L: int,
+    t_end: float,
+    method: str,
+    rtol: float,
+    dt,
+    estimate_error: bool = True,
+    n_stops: int = 240,
+) -> dict:
+    """Rough work of a run before it starts: {"steps", "site_evals", "seconds"}.  Fixed step:
+    t_end/dt plus one shortened step per output stop (``n_stops``; + half as many for the
+    step-doubling companion); adaptive: t_end·ω_max/(h·ω) with the measured h·ω of
+    :data:`H_OMEGA_AT_1E10` scaled as rtol^(1/(q+1)) (a factor ~3 either way: the data, not only
+    the law, set the step)."""
+    st = STEPPERS[method]
+    if not st.adaptive:
+        steps = (t_end / dt + n_stops) * (1.5 if estimate_error else 1.0)
+    else:
+        omega = 2.0 * law.c_max
+        h_omega = H_OMEGA_AT_1E10[method] * (rtol / 1e-10) ** (1.0 / (st.order + 1))
+        steps = t_end * omega / h_omega
+    site_evals = steps * st.evals_per_step() * L
+    return {
+        "steps": float(math.ceil(steps)),
+        "site_evals": float(site_evals),
+        "seconds": float(site_evals * SECONDS_PER_SITE_EVAL),
+    }
+
+
+def configure(
+    law: HardeningSofteningLaw,
+    L: int,
+    t_end: float,
+    boundary: str,
+    method: str,
+    rtol: float,
+    atol: float | None = None,
+    dt: float | None = None,
+    n_snapshots: int = 200,
+    max_sites_out: int = 1000,
+    probes: Sequence[int] = (),
+    n_probe_t: int = 4001,
+    late_fraction: float = 1.0 / 3.0,
+    n_track: int = 41,
+    max_steps: int = 20_000_000,
+    estimate_error: bool = True,
+    track: bool = True,
+    n_events: int = 16,
+    guard: str = "convex",
+    time_budget_s: float | None = None,
+    memory_budget: str | float | None = None,
+    n_extra: int = 0,
+) -> RunConfig:
+    """Validate every option of a run of L sites to ``t_end`` and estimate its memory (refused
+    above the budget, ParameterError naming the argument whose size dominates) and work, before
+    anything is allocated.  ``n_extra``: full-resolution profiles requested at extra times."""
+    t_end = require_positive("t_end", t_end, 1e7)
+    if boundary not in BOUNDARIES:
+        raise ParameterError("boundary", boundary, " | ".join(BOUNDARIES))
+    if method not in STEPPERS:
+        raise ParameterError("method", method, " | ".join(METHODS))
+    rtol = require_finite("rtol", rtol)
+    if not (1e-14 <= rtol <= 1e-2):
+        raise ParameterError("rtol", rtol, "[1e-14, 1e-2]")
+    atol = rtol if atol is None else require_positive("atol", atol, 1.0)
+    if not STEPPERS[method].adaptive:
+        dt = 0.02 if dt is None else require_positive("dt", dt, 0.1)
+    n_snapshots = require_int("n_snapshots", n_snapshots, 2, 100_000)
+    max_sites_out = require_int("max_sites_out", max_sites_out, 2, 10_000_000)
+    probe_idx = _probe_sites(probes, L)
+    n_probe_t = require_int("n_probe_t", n_probe_t, 2, MAX_PROBE_T)
+    late_fraction = require_finite("late_fraction", late_fraction)
+    if not (0.0 < late_fraction <= 1.0):
+        raise ParameterError(
+            "late_fraction", late_fraction, "(0, 1]", "the tracking window ends at t_end"
+        )
+    n_track = require_int("n_track", n_track, 3, 10_000)
+    max_steps = require_int("max_steps", max_steps, 1, 10**12)
+    n_events = require_int("n_events", n_events, 1, 1000)
+    if guard not in GUARDS:
+        raise ParameterError("guard", guard, " | ".join(GUARDS))
+    time_budget_s = require_time_budget(time_budget_s)
+    estimate_error, track = bool(estimate_error), bool(track)
+
+    sizes = memory_estimate(
+        L, method, n_snapshots, min(L, max_sites_out), probe_idx.size, n_probe_t,
+        n_track if track else 0, n_extra, n_events, estimate_error,
+    )  # fmt: skip
+    total = sum(b for b, _ in sizes.values())
+    name = max(sizes, key=lambda k: sizes[k][0])
+    values = {"L": L, "n_snapshots": n_snapshots, "n_probe_t": n_probe_t}
+    detail = "estimate: " + "; ".join(f"{what}: {fmt_bytes(b)}" for b, what in sizes.values())
+    require_memory(name, total, detail, value=values[name], budget=memory_budget)
+    n_stops = n_snapshots + (n_track if track else 0) + n_extra
+    work = work_estimate(law, L, t_end, method, rtol, dt, estimate_error, n_stops)
+    return RunConfig(
+        L, t_end, boundary, method, rtol, atol, None if STEPPERS[method].adaptive else dt,
+        n_snapshots, max_sites_out, probe_idx, n_probe_t, late_fraction, n_track, max_steps,
+        estimate_error, track, n_events, guard, time_budget_s, total, work,
+    )  # fmt: skip
+
+
+# --------------------------------------------------------------------------- output schedule
+@dataclass(frozen=True)
+class Schedule:
+    """Output times of a run: t_out (n_snapshots,) from 0 to t_end; t_trk (n_track,) the tracking
+    window [t_end (1 − late_fraction), t_end]; t_extra full-resolution profiles; ``stops`` the
+    sorted union of them (> 0), each a stop of the stepper; out/trk/ext map a stop to its row."""
+
+    t_out: np.ndarray
+    t_trk: np.ndarray
+    t_extra: np.ndarray
+    stops: np.ndarray
+    out: dict
+    trk: dict
+    ext: dict
+
+
+def output_schedule(
+    t_end: float,
+    n_snapshots: int,
+    late_fraction: float,
+    n_track: int,
+    track: bool,
+    extra_times: Sequence[float] = (),
+) -> Schedule:
+    """The stops of a run.  An extra time within rounding of t_end (relative 1e-12: e.g. K·(1/V)
+    for t_end = K/V, one ulp above it for ~9 % of velocities) is taken at t_end; one beyond it,
+    or ≤ 0, is an error of the caller (ValueError), never silently dropped."""
+    t_out = np.linspace(0.0, t_end, n_snapshots)
+    t_a = t_end * (1.0 - late_fraction)
+    t_trk = np.linspace(t_a, t_end, n_track) if track else np.empty(0)
+    extra = []
+    for x in extra_times:
+        x = float(x)
+        if x > t_end and x <= t_end * (1.0 + 1e-12):
+            x = t_end
+        if not (0.0 < x <= t_end):
+            raise ValueError(f"extra output time {x!r} outside (0, t_end = {t_end!r}]")
+        extra.append(x)
+    t_extra = np.asarray(sorted(extra), dtype=float)
+    stops = np.unique(np.concatenate([t_out[1:], t_trk, t_extra]))
+    stops = stops[stops > 0]
+    return Schedule(
+        t_out, t_trk, t_extra, stops,
+        {float(x): k for k, x in enumerate(t_out)},
+        {float(x): k for k, x in enumerate(t_trk)},
+        {float(x): k for k, x in enumerate(t_extra)},
+    )  # fmt: skip

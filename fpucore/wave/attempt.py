@@ -1,0 +1,361 @@
+"""One discrete-wave solve as an object: the attempt logic of :mod:`.driver` (paper §5).
+
+:class:`Tolerances` holds every tolerance of a solve, derived in one place from the user's
+relative ``tol`` and the strain scale.  :class:`WaveSolve` holds what one solve works with (law,
+spec, N, m, K, the tolerances, the time budget, the Newton history, the routes taken) and has one
+method per route or rescue:
+
+    solve()          the whole solve: ordinary() or plateau(), then refine_m(), check_plateau()
+    ordinary()       QC guess (or a predictor), then grow_N(), cut_N(), continue_in_V()
+    plateau()        flat tops near V_SK: continuation in plateau mass (:mod:`.plateau`)
+    newton()         one Newton run on a system, with the tail check every route shares
+
+Stiff laws.  The round-off level of eq. nonlin_system grows with |w|, |ẇ| and |f(w)|
+(:meth:`WaveSystem.residual_floor`; at b = 1000 the ẇ rows carry ~3e-10 of round-off, above
+tol·scale = 1.7e-10).  Newton and the step-count choice therefore aim at
+max(tolerance, FLOOR_FACTOR × round-off level) — the achievable tolerance — and the result
+reports it (``residual_floor``) instead of failing; the error bounds (:mod:`.bounds`) say what
+that costs in the profile.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+from dataclasses import replace as _replace
+
+import numpy as np
+
+from fpucore import qc
+from fpucore.wave import period_map as pm
+from fpucore.wave import plateau as wp
+from fpucore.wave import tails as wt
+from fpucore.wave.continuation import continue_to
+from fpucore.wave.setup import (
+    M_STEPS,
+    Spec,
+    build_system,
+    choose_K,
+    choose_N,
+    qc_guess,
+    required_N,
+    resize,
+    solitary_spec,
+)
+from fpucore.wave.system import NewtonOutcome, WaveSystem, newton
+
+FLOOR_FACTOR = 4.0  # accept residuals / step-doubling errors up to this × the round-off level
+
+
+@dataclass(frozen=True)
+class Tolerances:
+    """Every tolerance of one solve (absolute unless said), from the user's relative ``tol``.
+
+    scale     strain scale s = max(1, |w_left|, |w_right|): round-off of eq. nonlin_system
+              grows with |w| (b = 100 or a = −0.01 stagnate at ~3e-14·s).
+    res_tol   Newton accepts max-norm residual ≤ res_tol = tol·s (raised to the round-off
+              level of the system where that is larger: see :class:`WaveSolve`).
+    step_tol  Newton keeps stepping until its next correction (strain units, max(|δw|, T|δẇ|))
+              is ≤ step_tol = tol·s, or the corrections stop shrinking (round-off).
+    int_tol   step count m: step-doubling error of the period map ≤ int_tol = tol·s.
+    tail_tol  automatic N: the tails decay to tail_tol = 0.1·tol·s at the chain's ends.
+    tail_ok   a converged wave whose tails miss the boundary states by more than
+              1e-5·A_QC + 1e3·tol·s is another wave (rejected).
+    """
+
+    tol: float
+    scale: float
+    res_tol: float
+    step_tol: float
+    int_tol: float
+    tail_tol: float
+    tail_ok: float
+
+    @classmethod
+    def of(cls, spec: Spec, tol: float) -> Tolerances:
+        s = max(1.0, abs(spec.w_left), abs(spec.w_right))
+        t = tol * s
+        return cls(tol, s, t, t, t, 0.1 * t, 1e-5 * spec.amplitude_qc + 1e3 * t)
+
+
+@dataclass(frozen=True)
+class Solved:
+    """What :meth:`WaveSolve.solve` hands to the driver: the final Newton outcome on the final
+    system, the Newton history, routes, the step count actually used, the plateau note."""
+
+    out: NewtonOutcome
+    system: WaveSystem
+    history: tuple
+    route: str
+    m: int
+    K: int
+    N: int
+    residual_floor: float
+    note: str = ""
+    front_uncertainty: float = math.nan
+
+
+def choose_m_floor(law, spec: Spec, x: np.ndarray, int_tol: float, m_min: int = 6) -> int:
+    """Smallest m in M_STEPS (≥ m_min) whose step-doubling error at x is ≤ max(int_tol,
+    FLOOR_FACTOR × round-off level of the map): no more steps once round-off dominates."""
+    w, wd = x[0::2], x[1::2]
+    T = 1.0 / spec.V
+    for m in M_STEPS:
+        if m < m_min:
+            continue
+        e = pm.step_doubling_error(law, w, wd, T, m, spec.w_left, spec.w_right)
+        floor = max(pm.roundoff_level(law, w, wd, T, 2 * m))
+        if e <= max(int_tol, FLOOR_FACTOR * floor):
+            return m
+    return M_STEPS[-1]
+
+
+@dataclass
+class WaveSolve:
+    """One solve of eq. nonlin_system for (law, spec); see the module doc.  ``predictor``: a
+    callable N ↦ initial state (continuation), else the QC guess."""
+
+    law: object
+    spec: Spec
+    N_req: int | None
+    tol: float
+    jacobian: str
+    max_iter: int
+    time_budget_s: float
+    predictor: object = None
+    # filled in __post_init__ / as the solve proceeds
+    tols: Tolerances = field(init=False)
+    t0: float = field(init=False)
+    N: int = field(init=False)
+    m: int = field(init=False)
+    K: int = field(init=False)
+    x0: np.ndarray = field(init=False, repr=False)
+    system: WaveSystem = field(init=False, repr=False)
+    history: list = field(init=False, default_factory=list)
+    routes: list = field(init=False, default_factory=list)
+    floor: float = field(init=False, default=0.0)
+
+    def __post_init__(self):
+        self.t0 = time.perf_counter()
+        self.tols = Tolerances.of(self.spec, self.tol)
+        self.N = choose_N(self.law, self.spec, self.N_req, self.tol)
+        pred = self.predictor
+        self.x0 = pred(self.N) if pred is not None else qc_guess(self.spec, self.N)
+        self.m = choose_m_floor(self.law, self.spec, self.x0, self.tols.int_tol)
+        self.K = choose_K(self.law, self.spec, self.x0, self.m)
+        self.system = self.build(self.N)
+
+    # ------------------------------------------------------------------ helpers
+    def left(self) -> float:
+        """Seconds left of the time budget."""
+        return self.time_budget_s - (time.perf_counter() - self.t0)
+
+    def build(self, N: int) -> WaveSystem:
+        return build_system(self.law, self.spec, N, self.m, self.K)
+
+    def resized(self, x: np.ndarray, N_old: int, N_new: int) -> np.ndarray:
+        return resize(x, N_old, N_new, self.spec.w_left, self.spec.w_right)
+
+    def newton(self, sys_: WaveSystem, x: np.ndarray, budget: float | None = None) -> NewtonOutcome:
+        """Newton on sys_ from x (stopping on the correction, :func:`system.newton`) at the
+        achievable residual tolerance; a fixed point whose tails miss the boundary states is
+        rejected (it is another wave)."""
+        budget = self.left() if budget is None else budget
+        floor = FLOOR_FACTOR * sys_.residual_floor(x)
+        self.floor = max(self.floor, floor)
+        res_tol = max(self.tols.res_tol, floor)
+        o = newton(
+            sys_, x, res_tol, self.max_iter, self.jacobian, max(1.0, budget),
+            step_tol=self.tols.step_tol,
+        )  # fmt: skip
+        self.history.extend(o.residual_history)
+        if o.converged:
+            te = wt.tail_error(o.x[0::2], o.x[1::2], self.spec.w_left, self.spec.w_right)
+            if te > self.tols.tail_ok:
+                o = _replace(
+                    o,
+                    converged=False,
+                    message=f"converged to a wave whose tails miss "
+                    f"the boundary states (tail error {te:.3g}); try a larger N",
+                )
+        return o
+
+    # ------------------------------------------------------------------ the solve
+    def solve(self) -> Solved:
+        gx = self.half_plateau() if self.predictor is None else 0.0
+        if gx >= wp.GX_DIRECT:  # flat top near V_SK: fixed-V Newton cannot fix the plateau
+            out, note = self.plateau()
+            self.routes.append(note)
+        else:
+            out = self.ordinary()
+            if not out.converged and gx >= wp.GX_FALLBACK and self.left() > 0:
+                out2, note = self.plateau()
+                self.routes.append(note)
+                out = out2 if out2.converged else out
+        out = self.refine_m(out)
+        note, fu = "", math.nan
+        if gx >= wp.GX_FALLBACK:
+            out, note, fu = self.check_plateau(out, gx)
+        return Solved(
+            out,
+            self.system,
+            tuple(self.history),
+            "; ".join(self.routes),
+            self.m,
+            self.K,
+            self.N,
+            self.floor,
+            note,
+            fu,
+        )
+
+    def half_plateau(self) -> float:
+        """QC γ·x_f for solitary waves (how long the flat top is), 0 for superkinks."""
+        if self.spec.kind == "superkink":
+            return 0.0
+        return wp.qc_half_plateau(self.spec.qcw)
+
+    def refine_m(self, out: NewtonOutcome) -> NewtonOutcome:
+        """Step-doubling error at the solution; more RK steps if the guess-based m was optimistic
+        (up to the round-off level of the map)."""
+        x, spec = out.x, self.spec
+        T = 1.0 / spec.V
+        while out.converged and self.m < M_STEPS[-1] and self.left() > 0:
+            ierr = pm.step_doubling_error(
+                self.law, x[0::2], x[1::2], T, self.m, spec.w_left, spec.w_right
+            )
+            floor = max(pm.roundoff_level(self.law, x[0::2], x[1::2], T, 2 * self.m))
+            if ierr <= 10 * max(self.tols.int_tol, FLOOR_FACTOR * floor):
+                break
+            self.m = next(mm for mm in M_STEPS if mm > self.m)
+            self.system = self.build(self.N)
+            out = self.newton(self.system, x)
+            x = out.x
+            self.routes.append(f"m->{self.m}")
+        return out
+
+    # ------------------------------------------------------------------ ordinary route
+    def ordinary(self) -> NewtonOutcome:
+        """The default route: QC guess (or predictor), then the rescues."""
+        out = self.newton(self.system, self.x0)
+        self.routes.append("predictor" if self.predictor is not None else "qc-guess")
+        for rescue in (self.grow_N, self.cut_N, self.continue_in_V):
+            if out.converged or self.left() <= 0:
+                break
+            out = rescue(out)
+        return out
+
+    def grow_N(self, out: NewtonOutcome) -> NewtonOutcome:
+        """Rescue 1: far-field directions are nearly null at large N: converge short, grow N."""
+        N_s = required_N(self.law, self.spec, self.tols.tail_tol)
+        if N_s >= self.N:
+            return out
+        o_s = self.newton(self.build(N_s), self.resized(self.x0, self.N, N_s))
+        if not o_s.converged:
+            return out
+        self.routes.append(f"grow-N from {N_s}")
+        return self.newton(self.system, self.resized(o_s.x, N_s, self.N))
+
+    def cut_N(self, out: NewtonOutcome) -> NewtonOutcome:
+        """Rescue 2: a short chain can trap Newton on a wave clipped by the ends: solve long,
+        cut."""
+        if self.N >= 256 or self.predictor is not None:
+            return out
+        N_b = max(4 * self.N, 256)
+        o_b = self.newton(self.build(N_b), qc_guess(self.spec, N_b))
+        if not o_b.converged:
+            return out
+        self.routes.append(f"cut-N from {N_b}")
+        return self.newton(self.system, self.resized(o_b.x, N_b, self.N))
+
+    def continue_in_V(self, out: NewtonOutcome) -> NewtonOutcome:
+        """Rescue 3: continuation in V from the family's easy end."""
+        if self.predictor is not None:
+            return out
+        x_c, N_c, note = continue_to(
+            self.law, self.spec, self.tol, self.jacobian, self.left(), self.max_iter
+        )
+        self.routes.append(note)
+        if x_c is None:
+            return out
+        return self.newton(self.system, self.resized(x_c, N_c, self.N))
+
+    # ------------------------------------------------------------------ flat tops
+    def plateau(self) -> tuple[NewtonOutcome, str]:
+        """Continuation in plateau mass (:mod:`fpucore.wave.plateau`) from a short-plateau wave
+        on the same side of V_SK, then a polish at fixed V with the ordinary pinning."""
+        law, spec = self.law, self.spec
+        v_sk = qc.sound_speeds(law, spec.w_plus)[1]
+        sgn = 1.0 if spec.V > v_sk else -1.0
+        t_end = time.perf_counter() + self.left()
+        start = None
+        for g in wp.GX_START:
+            if self.left() <= 0:
+                break
+            d0 = wp.start_delta(law, spec.w_plus, v_sk, sgn, g)
+            if d0 <= abs(spec.V - v_sk):
+                continue
+            sp0 = solitary_spec(law, spec.w_plus, v_sk + sgn * d0)
+            start = WaveSolve(
+                law, sp0, self.N, self.tol, "exact", self.max_iter, max(1.0, self.left())
+            ).solve()
+            if start.out.converged:
+                break
+        x_best = qc_guess(spec, self.N)
+        if start is None or not start.out.converged:
+            return self.newton(self.system, x_best, min(self.left(), 1.0)), (
+                "plateau route: no converged short-plateau start wave"
+            )
+        path = wp.continue_in_mass(
+            law, spec.w_plus, spec.V, start.out.x, start.system.V, self.N, self.m, self.K,
+            self.tols.res_tol, t_end,
+        )  # fmt: skip
+        note = f"plateau route from |V-V_SK|={start.system.V - v_sk:+.2g}: {path.note}"
+        x_p = path.x if path.x is not None else x_best
+        out = self.newton(self.system, x_p, max(1.0, self.left()))
+        if not out.converged:
+            out = _replace(out, message=plateau_refusal(out.message, path, v_sk))
+        return out, note
+
+    def check_plateau(self, out: NewtonOutcome, gx: float):
+        """Front-position error bar along the near-null direction; a wave whose plateau length
+        the residual does not determine (> wp.FRONT_MAX sites) is reported as not converged.
+        Returns (outcome, note, front uncertainty in sites)."""
+        if not out.converged:
+            return out, "", math.nan
+        u = wp.front_uncertainty(self.system, out.x, self.tols.res_tol)
+        if u is None:
+            return out, "", math.nan
+        f = wp.half_plateau(out.x[0::2], self.spec.w_left)
+        note = (
+            f"; flat top (QC gamma*x_f = {gx:.1f}): fronts at +-{f:.3f} sites, plateau-length "
+            f"uncertainty +-{u.sites:.2g} sites from round-off (residual {u.residual_2:.2g} / "
+            f"sigma_min {u.sigma_min:.2g}; +-{u.sites_at_tol:.2g} at the acceptance tolerance)"
+        )
+        fu = u.sites
+        if fu > wp.FRONT_MAX:  # residual ≤ tol, but the plateau length is not determined
+            v_sk = qc.sound_speeds(self.law, self.spec.w_plus)[1]
+            d_ok = 2.0 * abs(self.spec.V - v_sk) * fu / wp.FRONT_MAX  # σ_min ∝ |V − V_SK|
+            v_ok = v_sk + math.copysign(d_ok, self.spec.V - v_sk)
+            out = _replace(
+                out,
+                converged=False,
+                message=f"plateau length undetermined: front position +-{fu:.2g} sites "
+                f"(> {wp.FRONT_MAX:g}) although the residual is {out.residual:.2g}. Near "
+                f"V_SK = {v_sk!r} the wave is a flat-top kink-antikink bundle whose plateau "
+                "length is only exponentially weakly tied to V (the Jacobian's smallest "
+                "singular value falls like |V - V_SK|); the nearest solvable V is about "
+                f"{v_ok!r}",
+            )
+        return out, note, fu
+
+
+def plateau_refusal(msg: str, path, v_sk: float) -> str:
+    near = f"; the nearest solvable V is about {path.V!r}" if path.x is not None else ""
+    return (
+        f"{msg}. Near V_SK = {v_sk!r} the wave is a flat-top kink-antikink bundle whose plateau "
+        "length is only exponentially weakly tied to V (the Jacobian's smallest singular value "
+        "falls like |V - V_SK|, its singular vector moves the two fronts apart), so the "
+        f"residual cannot fix the plateau in double precision{near}"
+    )
