@@ -8,7 +8,7 @@ functions below.  They add what the views need:
   returned for the very same inputs (two waves 1e-13 apart on either side of V_SK are two
   entries).  Keys are built here only; views ask ``*_cached(...)`` instead of rebuilding them;
 * heavy computations (discrete waves, Floquet spectra, sweeps, discrete families, simulations)
-  run in worker processes (:mod:`app.jobs`, the interface of the execution layer) through
+  run in worker processes (the project's execution layer, :mod:`fpucore.parallel`) through
   :func:`run_job`: progress is forwarded, a caller that no longer wants the result (a newer
   slider value, the Cancel button) leaves, and the job is killed once nobody waits for it;
   two sessions asking for the same key share one job;
@@ -35,10 +35,9 @@ from fpucore import qc, wave
 from fpucore import simulate as sim
 from fpucore.errors import ParameterError
 from fpucore.law import CubicLaw
+from fpucore.parallel import Executor
 from fpucore.qc import diagram, phase
 from fpucore.warm import warm_all
-
-from .jobs import Executor
 
 __all__ = [
     "Computed",
@@ -138,8 +137,10 @@ class Superseded(Exception):
 
 _EXECUTOR: Executor | None = None
 _EXECUTOR_LOCK = threading.Lock()
-_INFLIGHT: dict[Hashable, list] = {}  # key -> [job, number of waiters]
+_INFLIGHT: dict[Hashable, list] = {}  # key -> [job, number of waiters, submit time]
 _INFLIGHT_LOCK = threading.Lock()
+#: jobs cancelled because nobody waited for them any more (for tests and the benchmark)
+CANCELLED = [0]
 
 
 def executor() -> Executor:
@@ -178,7 +179,7 @@ def run_job(
     with _INFLIGHT_LOCK:
         entry = _INFLIGHT.get(key)
         if entry is None or (entry[0].done() and entry[1] == 0):
-            entry = _INFLIGHT[key] = [executor().submit(fn, *args), 0]
+            entry = _INFLIGHT[key] = [executor().submit(fn, *args), 0, time.perf_counter()]
         entry[1] += 1
     job = entry[0]
     try:
@@ -197,9 +198,9 @@ def run_job(
             orphan = entry[1] <= 0 and not job.done()
             if (entry[1] <= 0 or job.done()) and _INFLIGHT.get(key) is entry:
                 del _INFLIGHT[key]
-        if orphan:
-            job.cancel()
-    elapsed = (job.finished or time.perf_counter()) - job.submitted
+        if orphan and job.cancel():
+            CANCELLED[0] += 1
+    elapsed = time.perf_counter() - entry[2]
     CACHE.put(key, value, elapsed)
     return Computed(value, elapsed, False)
 
@@ -283,6 +284,14 @@ def floquet_job(a: float, b: float, mode: str, w_plus: float, V: float, N: int, 
     return r, (fq.spectrum(r) if r.converged else None)
 
 
+def fraction(progress):
+    """fpucore's family callbacks ``progress(i, n, ...)`` → the execution layer's
+    ``progress(fraction)``."""
+    if progress is None:
+        return None
+    return lambda i, n, *rest: progress(i / max(n, 1))
+
+
 def sweep_job(a, b, kind, w_plus, V_values, N, branch, progress=None):
     """max |μ| against V for a family (fpucore.floquet.sweep)."""
     return fq.sweep(
@@ -292,7 +301,7 @@ def sweep_job(a, b, kind, w_plus, V_values, N, branch, progress=None):
         w_plus=w_plus,
         N=int(N),
         branch=branch,
-        progress=progress,
+        progress=fraction(progress),
     )
 
 
@@ -300,7 +309,7 @@ def family_job(a, b, w_plus, V_values, N, tol, progress=None):
     """Discrete solitary waves at the given velocities (fpucore.wave.solitary_family, each solve
     continued from its neighbour); the list of WaveResults."""
     fam = wave.solitary_family(
-        law(a, b), w_plus, np.asarray(V_values, float), N=N, tol=tol, progress=progress
+        law(a, b), w_plus, np.asarray(V_values, float), N=N, tol=tol, progress=fraction(progress)
     )
     return list(fam.results)
 
@@ -419,14 +428,14 @@ def simulation(kind: str, a: float, b: float, params: dict, stop=None, progress=
 def warm_job() -> float:
     """Load (or compile) every Numba kernel in a worker process; seconds spent."""
     t0 = time.perf_counter()
-    warm_all()
+    warm_all(parallel=False)  # a worker warms itself: no processes of its own
     return time.perf_counter() - t0
 
 
 def warm_workers() -> None:
     """Start every worker process and warm its JIT (one warm_job per worker, concurrently)."""
     ex = executor()
-    for job in [ex.submit(warm_job) for _ in range(ex.n_workers)]:
+    for job in [ex.submit(warm_job) for _ in range(ex.workers)]:
         try:
             job.result(timeout=600)
         except Exception:  # noqa: BLE001 - warm-up must never keep the server from starting
