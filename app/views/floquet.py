@@ -32,6 +32,12 @@ from .bokeh_scene import (
 )
 
 TH = np.linspace(0.0, 2.0 * np.pi, 721)
+#: fpucore.floquet's classification in words (never a bare "unstable": the evidence is in (d))
+CLASS_WORDS = {
+    "stable": "stable",
+    "finite_size": "finite-size artefact (the excess shrinks as N grows)",
+    "unstable": "unstable (the excess persists as N grows)",
+}
 
 
 class FloquetScene(BokehScene):
@@ -107,7 +113,24 @@ class FloquetScene(BokehScene):
         self.sw_vsk = add_vline(fc, "#d62728", "dashed")
         add_legend(fc, "right", [("max |μ|", [self.r_sw[0], self.r_swp[0]])])
         fc.visible = False
-        return column(row(fa, fb), fc, sizing_mode="stretch_width")
+        # (d) the evidence of the three-way classification: max|μ| − 1 ± error at 0.4N, 0.6N, N
+        fd = new_figure(
+            "(d) finite-size check: largest |μ| − 1 against the chain size N",
+            "N",
+            "max |μ| − 1",
+            sizing_mode="stretch_width",
+            height=240,
+        )
+        self.fig_d = fd
+        self.r_fs = add_points(fd, "circle", 8, color="#ff7f0e")
+        self.r_fs[1].data = {"x": [], "y": [], "hi": [], "lo": []}
+        self.r_fs[1].name = "floquet-finite-size"
+        fd.add_layout(
+            Whisker(source=self.r_fs[1], base="x", upper="hi", lower="lo", line_color="#ff7f0e")
+        )
+        add_legend(fd, "right", [("max |μ| − 1 ± error", [self.r_fs[0]])])
+        fd.visible = False
+        return column(row(fa, fb), fd, fc, sizing_mode="stretch_width")
 
     def _sweep_values(self):
         s = self.state
@@ -194,21 +217,37 @@ class FloquetScene(BokehScene):
         up.range(self.fig_b.y_range, focus.imag - 3 * r0, focus.imag + 3 * r0)
         up.set(self.fig_b.title, text=f"(b) zoom near μ = {focus.real:.6f}{focus.imag:+.6f}i")
         self._fr, self._r = fr, r
-        verdict = (
-            f"{len(unstable)} multipliers with |μ| − 1 beyond the error bar {fr.error:.1e}"
-            if unstable.size
-            else f"no multiplier beyond |μ| − 1 > error bar {fr.error:.1e}"
-        )
         info.shown = (
             f"{r.kind} wave V = {fmt_num(r.V)}, N = {r.N}: {len(mu)} multipliers, "
             f"max |μ| = {fr.max_modulus:.10f}, away from 1: {fr.max_modulus_away_from_1:.10f} — "
-            f"{fr.verdict} ({verdict})"
+            f"**{CLASS_WORDS.get(fr.classification, fr.classification)}**: {fr.verdict}"
         )
+        self._finite_size(fr, up)
         shown = self._sweep(info, up)
         up.set(self.fig_c, visible=shown)
         if not shown:
             info.notes.append("max |μ| against V: press 'Sweep'")
         return up
+
+    def _finite_size(self, fr, up: Updates) -> None:
+        """(d): the points behind "finite-size artefact" / "unstable" (hidden when stable)."""
+        Ns = np.asarray(fr.finite_size_N, float)
+        ex = np.asarray(fr.finite_size_excess, float)
+        er = np.asarray(fr.finite_size_error, float)
+        ok = np.isfinite(ex) & np.isfinite(er)
+        shown = bool(fr.finite_size_checked and ok.sum() >= 2)
+        up.set(self.fig_d, visible=shown)
+        if not shown:
+            up.set(self.r_fs[1], data={"x": [], "y": [], "hi": [], "lo": []})
+            return
+        Ns, ex, er = Ns[ok], ex[ok], er[ok]
+        up.set(self.r_fs[1], data={"x": Ns, "y": ex, "hi": ex + er, "lo": ex - er})
+        up.range(self.fig_d.x_range, 0.0, float(Ns.max()), pad=0.05)
+        up.range(self.fig_d.y_range, *finite_extent(ex - er, ex + er, [0.0]), pad=0.1)
+        p, dp = fr.finite_size_exponent, fr.finite_size_exponent_error
+        if np.isfinite(p):
+            up.set(self.fig_d.title, text=f"(d) finite-size check: max |μ| − 1 ∝ N^−p, p = "
+                   f"{p:.2f} ± {dp:.2f}")  # fmt: skip
 
     def python_code(self) -> str:
         s = self.state
@@ -219,7 +258,8 @@ class FloquetScene(BokehScene):
             f"r = wave.{name}(law, {pos}, {kw})\n"
             "print(r.converged, r.residual)\n"
             "fr = floquet.spectrum(r)\n"
-            "print(len(fr.multipliers), fr.max_modulus, fr.error, fr.verdict)\n"
+            "print(len(fr.multipliers), fr.max_modulus, fr.error, fr.classification)\n"
+            "print(fr.verdict)\n"
         )
         sw = self._sweep_result
         if sw is not None:
@@ -249,6 +289,11 @@ class FloquetScene(BokehScene):
             "symmetry_error": fr.symmetry_error,
             "integrator_error": fr.integrator_error,
             "verdict": fr.verdict,
+            "classification": fr.classification,
+            "finite_size_N": fr.finite_size_N,
+            "finite_size_excess": fr.finite_size_excess,
+            "finite_size_error": fr.finite_size_error,
+            "finite_size_exponent": fr.finite_size_exponent,
         }
         sw = self._sweep_result
         if sw is not None:
