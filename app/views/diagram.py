@@ -208,6 +208,8 @@ class DiagramScene(BokehScene):
         rows = [r for r in rows if r.converged]
         if rows:
             info.error("max discrete residual", max(r.residual for r in rows))
+            info.error("max amplitude error bound", max(r.amplitude_error for r in rows))
+            info.error("max energy error bound", max(r.energy_error for r in rows))
         return rows
 
     def render(self, info: Info):
@@ -299,6 +301,8 @@ class DiagramScene(BokehScene):
             cols["amp_discrete"] = np.array([r.amplitude for r in self._rows])
             cols["E_discrete"] = np.array([r.energy for r in self._rows])
             cols["residual_discrete"] = np.array([r.residual for r in self._rows])
+            cols["amp_error_discrete"] = np.array([r.amplitude_error for r in self._rows])
+            cols["E_error_discrete"] = np.array([r.energy_error for r in self._rows])
         d = getattr(self, "_exist", None)
         if d is not None:
             cols.update(w_plus=d.w_plus, c_plus=d.c_plus, V_SK=d.V_SK, c_minus=d.c_minus)

@@ -184,6 +184,8 @@ class ProfilesScene(BokehScene):
         info.error("dropped eq.", r.dropped_residual)
         info.error("tail", r.tail_error)
         info.error("max |discrete − QC|", r.qc_max_deviation)
+        info.error("profile error bound", r.profile_error)
+        info.error("amplitude error bound", r.amplitude_error)
         if not r.converged:
             # an unconverged profile is never drawn as if it were a wave
             need = compute.n_needed(s.a, s.b, s.mode, s.w_plus, s.V, s.tol)
@@ -195,7 +197,7 @@ class ProfilesScene(BokehScene):
             return self._frame(up, half, ys)
         self._discrete = r
         sel = np.abs(r.n) <= half
-        info.shown = what + f"; discrete amplitude {fmt_num(r.amplitude)}"
+        info.shown = what + f"; discrete amplitude {fmt_num(r.amplitude)} ± {r.amplitude_error:.1e}"
         return self._frame(up, half, ys, r.n[sel].astype(float), r.w[sel])
 
     def python_code(self) -> str:
