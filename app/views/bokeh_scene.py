@@ -221,8 +221,9 @@ class BokehScene(Scene):
 
         doc = self._doc
         if doc is not None and doc.session_context is not None:
-            # served models may only change on the session's loop: now if we are on it (page
-            # build, a click), else (worker thread) scheduled after the updates already queued
-            pn.state.execute(apply, schedule="auto")
+            # served models change only on the session's loop, in order: Bokeh's thread-safe
+            # next-tick queue (the same queue Panel uses for the status text written after
+            # this), never a direct write from the worker thread
+            doc.add_next_tick_callback(apply)
         else:
             apply()

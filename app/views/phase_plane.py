@@ -55,6 +55,7 @@ class PhasePlaneScene(BokehScene):
             height=self.plot_height,
         )
         self.fig = fig
+        fig.x_range.name, fig.y_range.name = "phase-x", "phase-y"  # read by the browser tests
         self.r_thin = add_line(fig, "#aaaaaa", 0.8)
         self.r_sep = add_line(fig, "#444444", 1.6)
         self.r_orbits = [add_line(fig, "#e377c2", 3.5) for _ in range(2)]
