@@ -443,8 +443,20 @@ def settled(page, timeout: float = 90.0) -> tuple[str, str, dict]:
     raise AssertionError(f"scene dead or stale after {timeout} s: url {q}, status {text!r}")
 
 
-def check_consistent(page, text: str, msg: str, q: dict) -> None:
-    """What the plot's data sources hold matches the status text."""
+def check_consistent(page, text: str, msg: str, q: dict, wait_s: float = 5.0) -> None:
+    """What the plot's data sources hold matches the status text — within ``wait_s``: status
+    and data reach the browser in separate messages, so the data may trail by a few ms."""
+    t_end = time.monotonic() + wait_s
+    while True:
+        try:
+            return check_consistent_now(page, text, msg, q)
+        except AssertionError:
+            if time.monotonic() > t_end:
+                raise
+            page.wait_for_timeout(100)
+
+
+def check_consistent_now(page, text: str, msg: str, q: dict) -> None:
     scene = q["tab"]
     if "no plot" in text:
         assert msg, f"{scene}: no plot and no message"
