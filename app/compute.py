@@ -1,23 +1,30 @@
-"""Thin adapter between the dashboard and fpucore: cached, thread-safe, timed.
+"""Thin adapter between the dashboard and fpucore: cached, exact, off the server process.
 
 The app computes nothing itself: every number shown comes from fpucore's public API through the
-functions below.  They add three things the views need:
+functions below.  They add what the views need:
 
-* a process-wide cache keyed by *rounded* parameters (12 significant digits), shared by all
-  scenes and all browser sessions, with in-flight de-duplication (two sessions asking for the
-  same discrete wave wait for one solve instead of running two);
-* wall time of the underlying computation (``Computed.elapsed_s``) and whether it was cached;
+* a process-wide cache shared by all scenes and sessions, keyed on the **exact** inputs
+  (``repr`` of each float, the law's coefficients, N, tol): a cached result is only ever
+  returned for the very same inputs (two waves 1e-13 apart on either side of V_SK are two
+  entries).  Keys are built here only; views ask ``*_cached(...)`` instead of rebuilding them;
+* heavy computations (discrete waves, Floquet spectra, sweeps, discrete families, simulations)
+  run in worker processes (the project's execution layer, :mod:`fpucore.parallel`) through
+  :func:`run_job`: progress is forwarded, a caller that no longer wants the result (a newer
+  slider value, the Cancel button) leaves, and the job is killed once nobody waits for it;
+  two sessions asking for the same key share one job;
+* wall time of the computation (``Computed.elapsed_s``) and whether it was cached.
 
-Bad parameters surface as ``fpucore.errors.ParameterError`` exactly as fpucore raises them.
+The ``*_job`` functions are module-level and take plain parameters (picklable) and return the
+fpucore result.  Bad parameters surface as ``fpucore.errors.ParameterError``.
 """
 
 from __future__ import annotations
 
-import math
 import threading
 import time
 from collections import OrderedDict
 from collections.abc import Callable, Hashable
+from concurrent.futures import CancelledError
 from dataclasses import dataclass
 from typing import Any
 
@@ -28,17 +35,25 @@ from fpucore import qc, wave
 from fpucore import simulate as sim
 from fpucore.errors import ParameterError
 from fpucore.law import CubicLaw
+from fpucore.parallel import Executor
 from fpucore.qc import diagram, phase
+from fpucore.warm import warm_all
 
-__all__ = ["Computed", "ParameterError", "CACHE", "law"]
+__all__ = [
+    "Computed",
+    "ParameterError",
+    "CancelledError",
+    "Superseded",
+    "CACHE",
+    "law",
+    "exact",
+    "run_job",
+]
 
 
-def rnd(x: float, digits: int = 12) -> float:
-    """Round to ``digits`` significant digits: the cache key of a float parameter."""
-    x = float(x)
-    if not math.isfinite(x) or x == 0.0:
-        return x
-    return float(f"{x:.{digits}g}")
+def exact(x: float) -> str:
+    """Cache-key form of a float: its repr, which round-trips exactly (no rounding)."""
+    return repr(float(x))
 
 
 # --------------------------------------------------------------------------- cache
@@ -78,27 +93,34 @@ class ResultCache:
         try:
             t0 = time.perf_counter()
             value = fn()
-            elapsed = time.perf_counter() - t0
-            with self._lock:
-                self.misses += 1
-                self._data[key] = (value, elapsed)
-                while len(self._data) > self.max_items:
-                    self._data.popitem(last=False)
-            return Computed(value, elapsed, False)
+            self.put(key, value, time.perf_counter() - t0)
+            return Computed(value, time.perf_counter() - t0, False)
         finally:
             with self._lock:
                 self._inflight.pop(key, None)
             ev.set()
 
+    def put(self, key: Hashable, value: Any, elapsed: float) -> None:
+        with self._lock:
+            self.misses += 1
+            self._data[key] = (value, elapsed)
+            while len(self._data) > self.max_items:
+                self._data.popitem(last=False)
+
+    def lookup(self, key: Hashable) -> Computed | None:
+        """The cached entry as a Computed (cached=True), or None."""
+        with self._lock:
+            item = self._data.get(key)
+            if item is None:
+                return None
+            self._data.move_to_end(key)
+            self.hits += 1
+        return Computed(item[0], item[1], True)
+
     def peek(self, key: Hashable):
         with self._lock:
             item = self._data.get(key)
         return None if item is None else item[0]
-
-    def items_like(self, prefix: tuple) -> list[tuple[Hashable, Any]]:
-        """Cached (key, value) pairs whose key starts with ``prefix`` (for continuation)."""
-        with self._lock:
-            return [(k, v[0]) for k, v in self._data.items() if k[: len(prefix)] == prefix]
 
     def clear(self) -> None:
         with self._lock:
@@ -108,10 +130,95 @@ class ResultCache:
 CACHE = ResultCache()
 
 
+# --------------------------------------------------------------------------- worker processes
+class Superseded(Exception):
+    """The caller stopped waiting (a newer request, or Cancel): nothing to show."""
+
+
+_EXECUTOR: Executor | None = None
+_EXECUTOR_LOCK = threading.Lock()
+_INFLIGHT: dict[Hashable, list] = {}  # key -> [job, number of waiters, submit time]
+_INFLIGHT_LOCK = threading.Lock()
+#: jobs cancelled because nobody waited for them any more (for tests and the benchmark)
+CANCELLED = [0]
+
+
+def executor() -> Executor:
+    """The process-wide pool of worker processes (started on first use)."""
+    global _EXECUTOR
+    with _EXECUTOR_LOCK:
+        if _EXECUTOR is None:
+            _EXECUTOR = Executor(backend="process", workers=None)
+        return _EXECUTOR
+
+
+def jobs_in_flight() -> int:
+    """Heavy jobs running or queued (for tests and the benchmark)."""
+    with _INFLIGHT_LOCK:
+        return len(_INFLIGHT)
+
+
+def run_job(
+    key: Hashable,
+    fn: Callable,
+    args: tuple,
+    stop: Callable[[], bool] | None = None,
+    progress: Callable[[float], None] | None = None,
+    poll_s: float = 0.05,
+) -> Computed:
+    """``fn(*args)`` in a worker process, through the cache.
+
+    Waits polling ``stop()`` every ``poll_s``: when it returns True the caller leaves
+    (:class:`Superseded`) and, if no other caller waits for the same key, the job is
+    cancelled (its worker killed).  ``progress(x)`` gets the job's progress in [0, 1].
+    Exceptions of ``fn`` (ParameterError ...) are re-raised here.
+    """
+    hit = CACHE.lookup(key)
+    if hit is not None:
+        return hit
+    with _INFLIGHT_LOCK:
+        entry = _INFLIGHT.get(key)
+        if entry is None or (entry[0].done() and entry[1] == 0):
+            entry = _INFLIGHT[key] = [executor().submit(fn, *args), 0, time.perf_counter()]
+        entry[1] += 1
+    job = entry[0]
+    try:
+        while True:
+            try:
+                value = job.result(timeout=poll_s)
+                break
+            except TimeoutError:
+                if stop is not None and stop():
+                    raise Superseded() from None
+                if progress is not None and job.progress is not None:
+                    progress(job.progress)
+    finally:
+        with _INFLIGHT_LOCK:
+            entry[1] -= 1
+            orphan = entry[1] <= 0 and not job.done()
+            if (entry[1] <= 0 or job.done()) and _INFLIGHT.get(key) is entry:
+                del _INFLIGHT[key]
+        if orphan and job.cancel():
+            CANCELLED[0] += 1
+    elapsed = time.perf_counter() - entry[2]
+    CACHE.put(key, value, elapsed)
+    return Computed(value, elapsed, False)
+
+
 # --------------------------------------------------------------------------- QC (cheap)
 def law(a: float, b: float) -> CubicLaw:
-    """The cubic law f(w) = a w³ + b w² + w (raises ParameterError for a ≥ 0 or b ≤ 0)."""
-    return CubicLaw(a=float(a), b=float(b))
+    """The cubic law f(w) = a w³ + b w² + w (raises ParameterError for a ≥ 0, b ≤ 0, or
+    coefficients so large that its closed forms overflow)."""
+    try:
+        lw = CubicLaw(a=float(a), b=float(b))
+        # the closed forms the scenes use first (α, β, w*, c_max) must be finite doubles
+        if not all(np.isfinite([lw.alpha, lw.beta, lw.w_star, float(lw.f(lw.beta))])):
+            raise OverflowError
+        return lw
+    except OverflowError:
+        raise ParameterError(
+            "b", float(b), "|b| small enough for double precision (e.g. b <= 1e100)", "overflow"
+        ) from None
 
 
 def qc_wave(a: float, b: float, mode: str, w_plus: float, V: float) -> Computed:
@@ -119,164 +226,237 @@ def qc_wave(a: float, b: float, mode: str, w_plus: float, V: float) -> Computed:
     lw = law(a, b)
     if mode == "superkink":
         return CACHE.get(
-            ("qc_sk", rnd(a), rnd(b), rnd(w_plus)), lambda: qc.superkink_from_w_plus(lw, w_plus)
+            ("qc_sk", exact(a), exact(b), exact(w_plus)),
+            lambda: qc.superkink_from_w_plus(lw, w_plus),
         )
     return CACHE.get(
-        ("qc_sw", rnd(a), rnd(b), rnd(w_plus), rnd(V)), lambda: qc.solitary(lw, w_plus, V)
+        ("qc_sw", exact(a), exact(b), exact(w_plus), exact(V)),
+        lambda: qc.solitary(lw, w_plus, V),
     )
 
 
 def qc_family(a: float, b: float, w_plus: float, n: int = 160) -> Computed:
     """fpucore.qc.diagram.solitary_family: amplitude (eq. SWQC_amp) and E_ren (eq. Eren_QC)
     of the QC solitary waves along both velocity intervals for fixed w_plus."""
-    fn = diagram.solitary_family
     lw = law(a, b)
-    return CACHE.get(("qc_family", rnd(a), rnd(b), rnd(w_plus), n), lambda: fn(lw, w_plus, n=n))
+    return CACHE.get(
+        ("qc_family", exact(a), exact(b), exact(w_plus), n),
+        lambda: diagram.solitary_family(lw, w_plus, n=n),
+    )
 
 
 def phase_plane(a: float, b: float, w_plus: float, V: float, n_grid: int = 241) -> Computed:
     """fpucore.qc.phase.phase_plane for the current parameters."""
-    fn = phase.phase_plane
     lw = law(a, b)
     return CACHE.get(
-        ("phase", rnd(a), rnd(b), rnd(w_plus), rnd(V), n_grid),
-        lambda: fn(lw, w_plus, V, n_grid=n_grid),
+        ("phase", exact(a), exact(b), exact(w_plus), exact(V), n_grid),
+        lambda: phase.phase_plane(lw, w_plus, V, n_grid=n_grid),
     )
 
 
 def existence_diagram(a: float, b: float, n: int = 400) -> Computed:
     """fpucore.qc.diagram.existence_diagram: arrays w_plus, c_plus, V_SK, c_minus."""
-    fn = diagram.existence_diagram
     lw = law(a, b)
-    return CACHE.get(("diagram", rnd(a), rnd(b), n), lambda: fn(lw, n=n))
+    return CACHE.get(("diagram", exact(a), exact(b), n), lambda: diagram.existence_diagram(lw, n=n))
 
 
-# --------------------------------------------------------------------------- discrete (costly)
-def _discrete_call(a: float, b: float, mode: str, w_plus: float, V: float, N, tol: float):
-    """(cache key, solver, args, kwargs) of a discrete wave (raises ParameterError)."""
+# --------------------------------------------------------------------------- jobs (workers)
+def wave_call(a: float, b: float, mode: str, w_plus: float, V: float, N: int, tol: float):
+    """(fpucore function name, positional args, keyword args) of a discrete wave — the exact
+    call, used by the job, the cache key and "copy as Python".  Raises ParameterError."""
     lw = law(a, b)
-    N = None if N is None else int(N)
     if mode == "superkink":
         sk = qc.superkink_from_w_plus(lw, w_plus)  # validates w_plus, gives V_SK and branch
-        key = ("wave_sk", rnd(a), rnd(b), sk.branch, N, rnd(tol, 3), rnd(sk.V))
-        return key, wave.solve_superkink, (lw, sk.V), dict(branch=sk.branch, N=N, tol=tol)
-    key = ("wave_sw", rnd(a), rnd(b), rnd(w_plus), N, rnd(tol, 3), rnd(V))
-    return key, wave.solve_solitary, (lw, w_plus, V), dict(N=N, tol=tol)
+        return "solve_superkink", (lw, sk.V), {"branch": sk.branch, "N": int(N), "tol": tol}
+    return "solve_solitary", (lw, float(w_plus), float(V)), {"N": int(N), "tol": float(tol)}
 
 
-def discrete_wave(
-    a: float, b: float, mode: str, w_plus: float, V: float, N: int | None, tol: float
-) -> Computed:
-    """Discrete traveling wave (fixed point of eq. nonlin_map) via fpucore.wave.
-
-    Superkink: ``wave.solve_superkink(law, V, branch)`` with the branch of w_plus; solitary:
-    ``wave.solve_solitary(law, w_plus, V)``.  Families (sweeps) use fpucore.wave.continuation,
-    which seeds each solve from its neighbour.
-    """
-    key, solve, args, kwargs = _discrete_call(a, b, mode, w_plus, V, N, tol)
-    return CACHE.get(key, lambda: solve(*args, **kwargs))
+def wave_job(a: float, b: float, mode: str, w_plus: float, V: float, N: int, tol: float):
+    """Discrete traveling wave (fixed point of eq. nonlin_map): fpucore.wave.solve_superkink
+    (branch of w_plus) or fpucore.wave.solve_solitary.  Returns the WaveResult."""
+    name, args, kwargs = wave_call(a, b, mode, w_plus, V, N, tol)
+    return getattr(wave, name)(*args, **kwargs)
 
 
-def discrete_wave_cached(
-    a: float, b: float, mode: str, w_plus: float, V: float, N: int | None, tol: float
-) -> bool:
-    """Whether :func:`discrete_wave` would answer from the cache (no solve)."""
-    try:
-        key = _discrete_call(a, b, mode, w_plus, V, N, tol)[0]
-    except ParameterError:
-        return False
-    return CACHE.peek(key) is not None
+def floquet_job(a: float, b: float, mode: str, w_plus: float, V: float, N: int, tol: float):
+    """(WaveResult, FloquetResult or None if the wave did not converge)."""
+    r = wave_job(a, b, mode, w_plus, V, N, tol)
+    return r, (fq.spectrum(r) if r.converged else None)
 
 
-def floquet_spectrum(
-    a: float, b: float, mode: str, w_plus: float, V: float, N: int | None, tol: float
-) -> tuple[Computed, Computed]:
-    """(discrete wave, Floquet spectrum of it) — the wave comes from the shared cache."""
-    r = discrete_wave(a, b, mode, w_plus, V, N, tol)
-    key = ("floquet", rnd(a), rnd(b), mode, rnd(w_plus), rnd(V), N, rnd(tol, 3))
-    return r, CACHE.get(key, lambda: fq.spectrum(r.value))
+def fraction(progress):
+    """fpucore's family callbacks ``progress(i, n, ...)`` → the execution layer's
+    ``progress(fraction)``."""
+    if progress is None:
+        return None
+    return lambda i, n, *rest: progress(i / max(n, 1))
 
 
-def floquet_sweep(
-    a: float,
-    b: float,
-    kind: str,
-    w_plus: float | None,
-    V_values,
-    N: int,
-    branch: str = "lower",
-    progress=None,
-) -> Computed:
-    """max |μ| against V for the family (fpucore.floquet.sweep; progress(i, n, ...))."""
-    lw = law(a, b)
-    Vs = tuple(rnd(v) for v in V_values)
-    wp = None if w_plus is None else rnd(w_plus)
-    return CACHE.get(
-        ("fsweep", rnd(a), rnd(b), kind, wp, Vs, int(N), branch),
-        lambda: fq.sweep(
-            lw,
-            kind=kind,
-            V_values=np.array(Vs),
-            w_plus=w_plus,
-            N=int(N),
-            branch=branch,
-            progress=progress,
-        ),
+def sweep_job(a, b, kind, w_plus, V_values, N, branch, progress=None):
+    """max |μ| against V for a family (fpucore.floquet.sweep)."""
+    return fq.sweep(
+        law(a, b),
+        kind=kind,
+        V_values=np.asarray(V_values, float),
+        w_plus=w_plus,
+        N=int(N),
+        branch=branch,
+        progress=fraction(progress),
     )
 
 
-def discrete_family(
-    a: float, b: float, w_plus: float, V_values, N: int | None, tol: float, progress=None
-) -> Computed:
-    """Discrete solitary waves at the given velocities (amplitude/energy dots of Figs.
-    SWamp_cubic_DvsQC, SWenergy_cubic_DvsQC) via fpucore.wave.family.solitary_family, which
-    continues each solve from its neighbour.  Returns the list of wave results."""
-    lw = law(a, b)
-    Vs = tuple(rnd(v) for v in V_values)
-
-    def run():
-        cb = None if progress is None else (lambda i, n, *rest: progress(i, n))
-        fam = wave.solitary_family(lw, w_plus, np.array(Vs), N=N, tol=tol, progress=cb)
-        return list(fam.results)
-
-    return CACHE.get(("dfamily", rnd(a), rnd(b), rnd(w_plus), Vs, N, rnd(tol, 3)), run)
+def family_job(a, b, w_plus, V_values, N, tol, progress=None):
+    """Discrete solitary waves at the given velocities (fpucore.wave.solitary_family, each solve
+    continued from its neighbour); the list of WaveResults."""
+    fam = wave.solitary_family(
+        law(a, b), w_plus, np.asarray(V_values, float), N=N, tol=tol, progress=fraction(progress)
+    )
+    return list(fam.results)
 
 
-# --------------------------------------------------------------------------- simulation
-def simulation(kind: str, a: float, b: float, params: dict, progress=None) -> Computed:
-    """Direct simulation via fpucore.simulate: kind "riemann" | "gaussian" | "seeded".
-
-    ``params`` holds the keyword arguments of the fpucore function (for "seeded" also
-    mode/w_plus/V/N/tol of the seeding wave, which comes from the shared cache).
-    """
+def simulation_job(kind: str, a: float, b: float, params: dict, progress=None):
+    """Direct simulation via fpucore.simulate: kind "riemann" | "gaussian" | "seeded" (for
+    "seeded", ``params`` also holds mode/w_plus/V/N/tol of the seeding wave)."""
     lw = law(a, b)
     p = dict(params)
-    key = ("sim", kind, rnd(a), rnd(b), tuple(sorted((k, str(v)) for k, v in p.items())))
     extra = {} if progress is None else {"progress": progress}
-
-    def call(fn, *args, **kw):
-        return fn(*args, **kw, **extra)
-
     if kind == "riemann":
-        fn = sim.riemann
-        return CACHE.get(key, lambda: call(fn, lw, p.pop("w_left"), p.pop("w_right"), **p))
+        return sim.riemann(lw, p.pop("w_left"), p.pop("w_right"), **p, **extra)
     if kind == "gaussian":
-        fn = sim.gaussian
-        return CACHE.get(key, lambda: call(fn, lw, p.pop("w_B"), p.pop("A"), **p))
+        return sim.gaussian(lw, p.pop("w_B"), p.pop("A"), **p, **extra)
     if kind == "seeded":
-        fn = sim.seeded
         wave_args = [p.pop(k) for k in ("mode", "w_plus", "V", "N", "tol")]
-
-        def run():
-            r = discrete_wave(a, b, *wave_args).value
-            if not getattr(r, "converged", True):
-                raise ParameterError(
-                    "V",
-                    wave_args[2],
-                    "a converged traveling wave",
-                    f"the seeding wave did not converge: {r.message}",
-                )
-            return call(fn, r, **p)
-
-        return CACHE.get(key, run)
+        r = wave_job(a, b, *wave_args)
+        if not r.converged:
+            raise ParameterError(
+                "N", wave_args[3], "a converged seeding wave", f"did not converge: {r.message}"
+            )
+        return sim.seeded(r, **p, **extra)
     raise ParameterError("kind", kind, "'riemann', 'gaussian' or 'seeded'")
+
+
+# --------------------------------------------------------------------------- keys + front ends
+def wave_key(a, b, mode, w_plus, V, N, tol) -> tuple:
+    """Exact key of a discrete wave: the solver's own inputs (raises ParameterError)."""
+    name, args, kwargs = wave_call(a, b, mode, w_plus, V, N, tol)
+    return ("wave", name, exact(a), exact(b), *(exact(x) for x in args[1:]), repr(kwargs))
+
+
+def floquet_key(a, b, mode, w_plus, V, N, tol) -> tuple:
+    return ("floquet",) + wave_key(a, b, mode, w_plus, V, N, tol)
+
+
+def sweep_key(a, b, kind, w_plus, V_values, N, branch) -> tuple:
+    wp = None if w_plus is None else exact(w_plus)
+    Vs = tuple(exact(v) for v in V_values)
+    return ("fsweep", exact(a), exact(b), kind, wp, Vs, int(N), branch)
+
+
+def family_key(a, b, w_plus, V_values, N, tol) -> tuple:
+    Vs = tuple(exact(v) for v in V_values)
+    return ("dfamily", exact(a), exact(b), exact(w_plus), Vs, int(N), exact(tol))
+
+
+def simulation_key(kind: str, a: float, b: float, params: dict) -> tuple:
+    items = tuple(sorted((k, repr(v)) for k, v in params.items()))
+    return ("sim", kind, exact(a), exact(b), items)
+
+
+def is_cached(key: Hashable) -> bool:
+    return CACHE.peek(key) is not None
+
+
+def discrete_wave(a, b, mode, w_plus, V, N, tol, stop=None, progress=None) -> Computed:
+    """Discrete traveling wave (see :func:`wave_job`) in a worker process, cached exactly."""
+    key = wave_key(a, b, mode, w_plus, V, N, tol)
+    return run_job(key, wave_job, (a, b, mode, w_plus, V, N, tol), stop, progress)
+
+
+def discrete_wave_cached(a, b, mode, w_plus, V, N, tol) -> bool:
+    """Whether :func:`discrete_wave` would answer from the cache (no solve)."""
+    try:
+        return is_cached(wave_key(a, b, mode, w_plus, V, N, tol))
+    except ParameterError:
+        return False
+
+
+def floquet_spectrum(a, b, mode, w_plus, V, N, tol, stop=None, progress=None):
+    """(wave Computed, spectrum Computed or None): the wave from the shared cache if there,
+    else wave and spectrum in one worker job."""
+    wk = wave_key(a, b, mode, w_plus, V, N, tol)
+    rc = CACHE.lookup(wk)
+    args = (a, b, mode, w_plus, V, N, tol)
+    c = run_job(floquet_key(*args), floquet_job, args, stop, progress)
+    r, fr = c.value
+    if rc is None:
+        CACHE.put(wk, r, r.elapsed_s)
+        rc = Computed(r, r.elapsed_s, c.cached)
+    spec = None if fr is None else Computed(fr, fr.elapsed_s, c.cached)
+    return rc, spec
+
+
+def floquet_sweep(a, b, kind, w_plus, V_values, N, branch="lower", stop=None, progress=None):
+    """max |μ| against V for the family (fpucore.floquet.sweep) in a worker process."""
+    Vs = [float(v) for v in V_values]
+    key = sweep_key(a, b, kind, w_plus, Vs, N, branch)
+    return run_job(key, sweep_job, (a, b, kind, w_plus, Vs, int(N), branch), stop, progress)
+
+
+def floquet_sweep_cached(a, b, kind, w_plus, V_values, N, branch="lower") -> bool:
+    return is_cached(sweep_key(a, b, kind, w_plus, V_values, N, branch))
+
+
+def discrete_family(a, b, w_plus, V_values, N, tol, stop=None, progress=None) -> Computed:
+    """Discrete solitary waves at the given velocities (amplitude/energy dots of Figs.
+    SWamp_cubic_DvsQC, SWenergy_cubic_DvsQC) in a worker process."""
+    Vs = [float(v) for v in V_values]
+    key = family_key(a, b, w_plus, Vs, N, tol)
+    return run_job(key, family_job, (a, b, w_plus, Vs, N, tol), stop, progress)
+
+
+def discrete_family_cached(a, b, w_plus, V_values, N, tol) -> bool:
+    return is_cached(family_key(a, b, w_plus, V_values, N, tol))
+
+
+def simulation(kind: str, a: float, b: float, params: dict, stop=None, progress=None):
+    """Direct simulation (see :func:`simulation_job`) in a worker process."""
+    law(a, b)  # validate here: the message comes without a worker round trip
+    key = simulation_key(kind, a, b, params)
+    return run_job(key, simulation_job, (kind, a, b, dict(params)), stop, progress)
+
+
+def warm_job() -> float:
+    """Load (or compile) every Numba kernel in a worker process; seconds spent."""
+    t0 = time.perf_counter()
+    warm_all(parallel=False)  # a worker warms itself: no processes of its own
+    return time.perf_counter() - t0
+
+
+def warm_workers() -> None:
+    """Start every worker process and warm its JIT (one warm_job per worker, concurrently)."""
+    ex = executor()
+    for job in [ex.submit(warm_job) for _ in range(ex.workers)]:
+        try:
+            job.result(timeout=600)
+        except Exception:  # noqa: BLE001 - warm-up must never keep the server from starting
+            pass
+
+
+def spec_of(a, b, mode, w_plus, V):
+    """fpucore.wave's description (Spec) of the wave the parameters define."""
+    lw = law(a, b)
+    if mode == "superkink":
+        sk = qc.superkink_from_w_plus(lw, w_plus)
+        return lw, wave.superkink_spec(lw, sk.V, sk.branch)
+    return lw, wave.solitary_spec(lw, w_plus, V)
+
+
+def n_needed(a, b, mode, w_plus, V, tol: float) -> int:
+    """The chain size fpucore would choose itself for this wave (``N=None``: tails resolved to
+    0.1·tol·scale, eq. fixedBCs), at least the smallest N it accepts (tails cut at 1e-6 of the
+    amplitude).  Closed-form QC tails only: cheap."""
+    lw, spec = spec_of(a, b, mode, w_plus, V)
+    scale = max(1.0, abs(spec.w_left), abs(spec.w_right))
+    n_auto = wave.required_N(lw, spec, 0.1 * tol * scale)
+    n_fit = wave.required_N(lw, spec, 1e-6 * spec.amplitude_qc)
+    return int(max(n_auto, n_fit))

@@ -5,59 +5,67 @@
   (α, β) with w* marked, V over (c₊, c₋) with V_SK marked (solitary mode) or over the superkink
   bounds of eq. V_bounds_cubic (superkink mode, where V and w₊ are tied).
 * Only the visible scene renders; a parameter change marks the others stale and they render
-  when their tab is opened (Tabs(dynamic=True) also keeps hidden tabs out of the browser).
-* (a, b, w_plus, V, mode, tab, N, tol) live in the URL query string.
+  when their tab is opened.  All tabs are in the browser from the start (Tabs(dynamic=False)):
+  an update never races the lazy creation of a tab's figures (it was lost then).
+* (a, b, w_plus, V, mode, tab, N, tol) live in the URL query string.  A URL is validated like
+  any input (:func:`app.state.parse_url`): an invalid value is named with its valid range in
+  the sidebar, every other value is kept, and the address bar is rewritten to what is shown.
+* Slider and exact box always show the state's value: a value outside a slider's theoretical
+  range (typed, or from a URL) widens the slider to include it, and the sidebar says why the
+  scenes show a message.
 """
 
 from __future__ import annotations
 
 import math
+import urllib.parse
 
 import panel as pn
 import param
 
-from .state import TABS, ExplorerState
+from .state import (
+    A_RANGE,
+    B_RANGE,
+    N_RANGE,
+    TABS,
+    TOL_OPTIONS,
+    URL_PARAMS,
+    ExplorerState,
+    parse_url,
+    url_value,
+)
 from .views import SCENES
-
-URL_PARAMS = {
-    "a": "a",
-    "b": "b",
-    "w_plus": "w_plus",
-    "V": "V",
-    "mode": "mode",
-    "tab": "tab",
-    "N": "N",
-    "tol": "tol",
-}
-TOL_OPTIONS = [1e-4, 1e-6, 1e-8, 1e-10, 1e-12, 1e-13]
 
 CSS = """
 .scene-status p { margin: 0.2em 0; font-size: 0.92em; }
 """
 
 
-def _clip(x: float, lo: float, hi: float) -> float:
-    return min(max(x, lo), hi) if math.isfinite(x) else lo
-
-
 class Explorer:
     """One browser session's dashboard (state + widgets + scenes)."""
 
-    def __init__(self, state: ExplorerState | None = None):
+    def __init__(self, state: ExplorerState | None = None, url_errors: list[str] | None = None):
         self.state = state or ExplorerState()
         self.scenes = [cls(self.state) for cls in SCENES]
         self.by_key = {s.key: s for s in self.scenes}
         self._syncing = False
         self._build_widgets()
+        self.url_alert = pn.pane.Alert(
+            "\n\n".join(url_errors or []),
+            alert_type="warning",
+            visible=bool(url_errors),
+            css_classes=["url-message"],
+            sizing_mode="stretch_width",
+        )
         self.tabs = pn.Tabs(
-            *[(s.title, s.panel) for s in self.scenes],
-            dynamic=True,
+            *[(s.title, s) for s in self.scenes],
+            dynamic=False,  # all figures in the browser at once (see the module docstring)
             sizing_mode="stretch_width",
             css_classes=["scene-tabs"],
         )
         self.tabs.active = TABS.index(self.state.tab)
         self.tabs.param.watch(self._on_tab, "active")
-        self.state.param.watch(self._on_state, list(URL_PARAMS))
+        self.state.param.watch(self._on_state, list(URL_PARAMS) + ["note"])
         self._sync_widgets()
 
     # ------------------------------------------------------------------ widgets
@@ -73,8 +81,8 @@ class Explorer:
         mk = dict(sizing_mode="stretch_width", show_value=True)
         self.a = pn.widgets.FloatSlider(
             label="a",
-            start=-5.0,
-            end=-0.1,
+            start=A_RANGE[0],
+            end=A_RANGE[1],
             step=0.01,
             value=st.a,
             css_classes=["w-a"],
@@ -83,8 +91,8 @@ class Explorer:
         )
         self.b = pn.widgets.FloatSlider(
             label="b",
-            start=1.0,
-            end=20.0,
+            start=B_RANGE[0],
+            end=B_RANGE[1],
             step=0.05,
             value=st.b,
             css_classes=["w-b"],
@@ -119,12 +127,18 @@ class Explorer:
         )
         self.ranges = pn.pane.Markdown("", css_classes=["ranges"], sizing_mode="stretch_width")
         self.N = pn.widgets.IntSlider(
-            label="N (sites)", start=50, end=2000, step=10, value=st.N, css_classes=["w-N"], **mk
+            label="N (sites, even)",
+            start=N_RANGE[0],
+            end=N_RANGE[1],
+            step=2,
+            value=st.N,
+            css_classes=["w-N"],
+            **mk,
         )
         self.tol = pn.widgets.DiscreteSlider(
             label="tolerance",
-            options=TOL_OPTIONS,
-            value=min(TOL_OPTIONS, key=lambda t: abs(math.log10(t) - math.log10(st.tol))),
+            options=list(TOL_OPTIONS),
+            value=nearest_tol(st.tol),
             css_classes=["w-tol"],
             sizing_mode="stretch_width",
         )
@@ -151,35 +165,30 @@ class Explorer:
                 widget.value_throttled = value
 
     def _sync_widgets(self):
-        """State → widgets: ranges from the theory, values clipped into them."""
+        """State → widgets: ranges from the theory; the value shown is always the state's (a
+        value outside the theoretical range widens the slider, and the sidebar says so)."""
         st = self.state
         self._syncing = True
         try:
             self.mode.value = st.mode
-            self._put(self.a, _clip(st.a, self.a.start, self.a.end))
-            self._put(self.b, _clip(st.b, self.b.start, self.b.end))
-            self._put(self.N, int(_clip(st.N, self.N.start, self.N.end)))
-            self._put(self.tol, min(TOL_OPTIONS, key=lambda t: abs(math.log10(t / st.tol))))
+            self._put(self.a, st.a, **widened(st.a, *A_RANGE))
+            self._put(self.b, st.b, **widened(st.b, *B_RANGE))
+            self._put(self.N, int(st.N), **widened(st.N, *N_RANGE))
+            self._put(self.tol, nearest_tol(st.tol))
             summ = st.summary()
             if "alpha" in summ:
                 lo, hi = summ["alpha"], summ["beta"]
                 span = hi - lo
-                self._put(
-                    self.w_plus,
-                    _clip(st.w_plus, lo + 1e-9 * span, hi - 1e-9 * span),
-                    start=lo + 1e-6 * span,
-                    end=hi - 1e-6 * span,
-                    step=span / 2000,
-                )
+                lo, hi = lo + 1e-6 * span, hi - 1e-6 * span
+                self._put(self.w_plus, st.w_plus, step=span / 2000, **widened(st.w_plus, lo, hi))
             try:
                 lo, hi = st.V_range()
-                self._put(self.V, _clip(st.V, lo, hi), start=lo, end=hi, step=(hi - lo) / 4000)
-            except Exception:  # w_plus invalid: keep the V slider where it was
+                self._put(self.V, st.V, step=(hi - lo) / 4000, **widened(st.V, lo, hi))
+            except Exception:  # noqa: BLE001 - w_plus invalid: keep the V slider where it was
                 pass
             self.w_plus_exact.value = st.w_plus
             self.V_exact.value = st.V
             self.ranges.object = self._ranges_text(summ)
-            self.V.disabled = False
         finally:
             self._syncing = False
 
@@ -193,18 +202,25 @@ class Explorer:
         ]
         if "V_SK" in s:
             lines.append(
-                f"TSW/CSW: (c₊, V_SK) = ({s['c_plus']:.6g}, {s['V_SK']:.6g}) and "
+                "solitary-wave velocities (tensile or compressive): "
+                f"(c₊, V_SK) = ({s['c_plus']:.6g}, {s['V_SK']:.6g}) and "
                 f"(V_SK, c₋) = ({s['V_SK']:.6g}, {s['c_minus']:.6g})"
             )
             lines.append(f"**V_SK = {s['V_SK']:.10g}** (superkink)")
             lines.append(f"superkink V bounds ({s['V_lo']:.6g}, {s['V_hi']:.6g})")
         kind = st.kind()
         lines.append(f"current: **{kind}**" if kind != "invalid" else f"⚠ {st.problem()}")
+        if st.note:
+            lines.append(f"_{st.note}_")
         return "\n\n".join(lines)
 
     # ------------------------------------------------------------------ events
     def _on_state(self, *events):
         names = {e.name for e in events}
+        if names == {"note"}:
+            self.ranges.object = self._ranges_text(self.state.summary())
+            return
+        names.discard("note")
         if names - {"tab"}:
             self._sync_widgets()
             for s in self.scenes:
@@ -254,6 +270,7 @@ class Explorer:
             sizing_mode="stretch_width",
         )
         return [
+            self.url_alert,
             self.mode,
             self.a,
             self.b,
@@ -274,7 +291,47 @@ class Explorer:
         )
 
 
-def sync_url(explorer: Explorer) -> None:
-    """Two-way sync of the state with the URL query string (server sessions only)."""
-    if pn.state.location is not None:
-        pn.state.location.sync(explorer.state, URL_PARAMS)
+def nearest_tol(tol: float) -> float:
+    """The tolerance option closest (in log) to tol."""
+    t = float(tol) if math.isfinite(tol) and tol > 0 else 1e-10
+    return min(TOL_OPTIONS, key=lambda o: abs(math.log10(o / t)))
+
+
+def widened(x: float, lo: float, hi: float) -> dict:
+    """Slider start/end: the theoretical range, widened to include x if x lies outside (so the
+    slider shows the state's value, never a clipped one)."""
+    if not math.isfinite(x):
+        return {"start": lo, "end": hi}
+    return {"start": min(lo, x), "end": max(hi, x)}
+
+
+def session_query() -> dict[str, str]:
+    """The page's URL query as {name: first value} (server sessions; empty otherwise)."""
+    args = pn.state.session_args or {}
+    out = {}
+    for k, v in args.items():
+        if k in URL_PARAMS and v:
+            raw = v[0]
+            out[k] = raw.decode("utf-8", "replace") if isinstance(raw, bytes) else str(raw)
+    return out
+
+
+def from_url() -> Explorer:
+    """The session's Explorer built from its validated URL (one state, no default-then-URL
+    double render), with the URL rewritten to the state and kept in sync with it."""
+    values, errors = parse_url(session_query())
+    explorer = Explorer(ExplorerState(**values), url_errors=errors)
+    loc = pn.state.location
+    if loc is not None:
+        st = explorer.state
+
+        def push(*_):
+            # the whole query is rewritten (not Location.update_query, which parses the old
+            # query — and raises on a 5000-digit value)
+            q = {k: url_value(getattr(st, k)) for k in URL_PARAMS}
+            loc.search = "?" + urllib.parse.urlencode(q)
+
+        push()
+        pn.state.onload(push)  # again once the browser's own location has been synced
+        st.param.watch(push, list(URL_PARAMS))
+    return explorer

@@ -25,6 +25,14 @@ from . import compute
 
 TABS = ("force", "phase", "profiles", "diagram", "floquet", "simulation", "atlas")
 MODES = ("solitary", "superkink")
+#: what the sliders (and so the URL) may set; N even (fpucore's N_MIN = 64)
+A_RANGE = (-5.0, -0.1)
+B_RANGE = (1.0, 20.0)
+N_RANGE = (64, 4000)
+TOL_OPTIONS = (1e-4, 1e-6, 1e-8, 1e-10, 1e-12, 1e-13)
+#: longest URL value read (a 5000-digit value is refused before any conversion)
+MAX_URL_VALUE = 40
+URL_PARAMS = ("a", "b", "w_plus", "V", "mode", "tab", "N", "tol")
 
 
 class ExplorerState(param.Parameterized):
@@ -36,12 +44,15 @@ class ExplorerState(param.Parameterized):
     V = param.Number(5.0, doc="velocity V > 0")
     mode = param.Selector(default="solitary", objects=list(MODES))
     tab = param.Selector(default="force", objects=list(TABS))
-    N = param.Integer(500, bounds=(20, 20000), doc="number of lattice sites of the discrete solve")
-    tol = param.Number(1e-10, bounds=(1e-14, 1e-2), doc="Newton tolerance of the discrete solve")
+    N = param.Integer(500, doc="number of lattice sites of the discrete solve (even)")
+    tol = param.Number(1e-10, doc="Newton tolerance of the discrete solve")
+    #: what the state changed by itself (e.g. V moved with w_plus), shown in the sidebar
+    note = param.String("")
 
     def __init__(self, **params):
         super().__init__(**params)
         self._tying = False
+        self._solitary_V = self.V if self.mode == "solitary" else None
         self.param.watch(self._tie, ["w_plus", "V", "mode", "a", "b"])
         if self.mode == "superkink":
             self._tie_superkink(from_V=False)
@@ -115,10 +126,37 @@ class ExplorerState(param.Parameterized):
         if self._tying:
             return
         names = {e.name for e in events}
+        self.note = ""
+        if "mode" in names and self.mode == "solitary":
+            self._back_to_solitary()
         if self.mode == "superkink":
+            if "mode" in names:
+                old = [e.old for e in events if e.name == "V"]
+                self._solitary_V = old[0] if old else self.V
             self._tie_superkink(from_V=names == {"V"})
         elif "w_plus" in names and "V" not in names and len(events) == 1:
             self._remap_V(events[0].old)
+
+    def _back_to_solitary(self) -> None:
+        """Superkink → solitary: V = V_SK is no solitary wave.  Return to the solitary V used
+        before if it is valid for the current w_plus, else to the middle of (c₊, V_SK)."""
+        try:
+            lw = self.law()
+            (cp, vsk), (_, cm) = qc.solitary_intervals(lw, self.w_plus)
+        except ParameterError:
+            return
+        V0 = self._solitary_V
+        if V0 is not None and (cp < V0 < vsk or vsk < V0 < cm):
+            newV = V0
+        elif cp < self.V < vsk or vsk < self.V < cm:
+            return
+        else:
+            newV = 0.5 * (cp + vsk)
+        self._tying = True
+        try:
+            self.V = newV
+        finally:
+            self._tying = False
 
     def _tie_superkink(self, from_V: bool) -> None:
         """Keep V = V_SK(w_plus) (or w_plus = w_+(V) on the same branch) in superkink mode."""
@@ -138,8 +176,9 @@ class ExplorerState(param.Parameterized):
             self._tying = False
 
     def _remap_V(self, old_w_plus: float) -> None:
-        """Solitary mode: when w_plus moves, keep V at the same relative position inside the
-        same interval (below/above V_SK), so a slider move never produces an invalid state."""
+        """Solitary mode: when w_plus moves, V stays where it is if it is still valid; only if
+        it left the new intervals is it moved to the same relative position inside the same
+        interval (below/above V_SK) — and ``note`` says so (never silently)."""
         try:
             lw = self.law()
             (cp0, vsk0), (_, cm0) = qc.solitary_intervals(lw, old_w_plus)
@@ -147,6 +186,8 @@ class ExplorerState(param.Parameterized):
         except ParameterError:
             return
         V = self.V
+        if cp1 < V < vsk1 or vsk1 < V < cm1:
+            return
         if cp0 < V < vsk0:
             s, (lo, hi) = (V - cp0) / (vsk0 - cp0), (cp1, vsk1)
         elif vsk0 < V < cm0:
@@ -160,6 +201,10 @@ class ExplorerState(param.Parameterized):
                 self.V = newV
             finally:
                 self._tying = False
+            self.note = (
+                f"V moved from {V:.8g} to {newV:.8g}: {V:.8g} is outside ({lo:.8g}, {hi:.8g}) "
+                f"at w₊ = {self.w_plus:.8g}"
+            )
 
     # ------------------------------------------------------------------ actions
     def pick(self, w_plus: float, V: float) -> None:
@@ -172,3 +217,70 @@ class ExplorerState(param.Parameterized):
             self._tying = False
         if self.mode == "superkink":
             self._tie_superkink(from_V=False)
+
+
+# ---------------------------------------------------------------------- URL values
+def _float(name: str, raw: str, valid: str, lo: float | None = None, hi: float | None = None):
+    try:
+        x = float(raw)
+    except ValueError:
+        raise ParameterError(name, raw, valid, "not a number") from None
+    if not math.isfinite(x) or (lo is not None and not lo <= x <= hi):
+        raise ParameterError(name, x, valid)
+    return x
+
+
+def parse_url_value(name: str, raw: str):
+    """One URL query value → the state's value (raises ParameterError naming the value and
+    the valid range; the same ranges the sliders have)."""
+    if len(raw) > MAX_URL_VALUE:
+        raise ParameterError(name, raw[:12] + "…", f"at most {MAX_URL_VALUE} characters")
+    if name == "a":
+        return _float(name, raw, f"[{A_RANGE[0]:g}, {A_RANGE[1]:g}]", *A_RANGE)
+    if name == "b":
+        return _float(name, raw, f"[{B_RANGE[0]:g}, {B_RANGE[1]:g}]", *B_RANGE)
+    if name in ("w_plus", "V"):
+        return _float(name, raw, "a finite number")
+    if name == "mode":
+        if raw not in MODES:
+            raise ParameterError(name, raw, " or ".join(MODES))
+        return raw
+    if name == "tab":
+        if raw not in TABS:
+            raise ParameterError(name, raw, ", ".join(TABS))
+        return raw
+    if name == "N":
+        valid = f"an even integer in [{N_RANGE[0]}, {N_RANGE[1]}]"
+        try:
+            N = int(raw.strip())
+        except ValueError:
+            raise ParameterError(name, raw, valid, "not an integer") from None
+        if N % 2 or not N_RANGE[0] <= N <= N_RANGE[1]:
+            raise ParameterError(name, N, valid)
+        return N
+    if name == "tol":
+        x = _float(name, raw, "one of " + ", ".join(f"{t:g}" for t in TOL_OPTIONS))
+        for t in TOL_OPTIONS:
+            if abs(x - t) <= 1e-9 * t:
+                return t
+        raise ParameterError(name, x, "one of " + ", ".join(f"{t:g}" for t in TOL_OPTIONS))
+    raise ParameterError(name, raw, "one of " + ", ".join(URL_PARAMS))
+
+
+def parse_url(query: dict[str, str]) -> tuple[dict, list[str]]:
+    """(valid values, one message per invalid value) of a URL query; unknown names are
+    ignored, every valid value is kept even when another one is invalid."""
+    values, errors = {}, []
+    for name in URL_PARAMS:
+        if name not in query:
+            continue
+        try:
+            values[name] = parse_url_value(name, str(query[name]))
+        except ParameterError as exc:
+            errors.append(f"URL value ignored: {exc}")
+    return values, errors
+
+
+def url_value(x) -> str:
+    """The URL form of a state value (floats exact: repr)."""
+    return repr(x) if isinstance(x, float) else str(x)

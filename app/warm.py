@@ -2,7 +2,8 @@
 connections, so no visitor waits for Numba compilation or for the default view.
 
 1. fpucore's JIT warm-up (loads or compiles every Numba kernel; with cache=True and a writable
-   NUMBA_CACHE_DIR the compiled code is reused from disk across restarts);
+   NUMBA_CACHE_DIR the compiled code is reused from disk across restarts), in the server process
+   and in every worker process of the heavy computations (app.compute.warm_workers);
 2. renders every scene once for the default parameters, which fills the process-wide result
    cache (QC scenes, the default discrete wave and its Floquet spectrum) and imports/initializes
    HoloViews' Bokeh backend.
@@ -21,7 +22,9 @@ log = logging.getLogger("fpu-explorer")
 
 os.environ.setdefault("BOKEH_RESOURCES", "server")  # see app/main.py; before panel is imported
 
+from app import compute  # noqa: E402
 from app.explorer import Explorer  # noqa: E402
+from app.resources import serve_locally  # noqa: E402
 from fpucore.parallel import apply_thread_policy  # noqa: E402
 from fpucore.warm import warm_all  # noqa: E402
 
@@ -50,6 +53,9 @@ def warm(verbose: bool = True, scenes: str | None = None) -> dict[str, float]:
     except Exception as exc:  # warm-up must never keep the server from starting
         log.warning("fpucore warm-up skipped: %s", exc)
     times["jit"] = time.perf_counter() - t0
+    t = time.perf_counter()
+    compute.warm_workers()
+    times["workers"] = time.perf_counter() - t
 
     explorer = Explorer()
     for scene in explorer.scenes:
@@ -69,4 +75,5 @@ def warm(verbose: bool = True, scenes: str | None = None) -> dict[str, float]:
 
 
 if __name__ in ("__main__", "panel_setup_module"):
+    serve_locally()
     warm()

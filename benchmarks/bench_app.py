@@ -1,5 +1,6 @@
 """Server time of the dashboard (issue: QC scenes ≤ 50 ms per slider move, discrete profile at
-N = 500 ≤ 1 s, page interactive ≤ 3 s with a warm cache).
+N = 500 ≤ 1 s, page interactive ≤ 3 s with a warm cache; issue 13: QC slider ≤ 100 ms server time
+and ≤ 0.5 s in the browser while another session's Floquet spectrum runs).
 
 Run: ``.venv/bin/python -m benchmarks.bench_app`` (add ``--browser`` for the time to
 interactive of the served page, measured with Playwright on /usr/bin/chromium).
@@ -12,6 +13,11 @@ interactive of the served page, measured with Playwright on /usr/bin/chromium).
   which runs on the event loop before the scene's worker starts.
 * Profiles with the discrete wave at N = 500: cold (new V: the Newton solve runs; JIT warm) and
   cached (same parameters again).
+* Concurrency (``--concurrent``): QC slider moves (force, phase) while another "session" waits
+  for a Floquet spectrum at N = 1400 in a worker process — median/max server time, and the
+  ratio to the same moves with nothing else running (measured in the same run).  With
+  ``--browser`` also the browser's key-press → view-updated time on a served page while a
+  second page runs that spectrum.
 """
 
 from __future__ import annotations
@@ -21,6 +27,7 @@ import os
 import statistics
 import subprocess
 import sys
+import threading
 import time
 import urllib.request
 from pathlib import Path
@@ -107,7 +114,63 @@ def bench_discrete(n: int) -> None:
     print(f"  cached (plot only):         median {ms(statistics.median(cached))}")
 
 
-def bench_browser(loads: int) -> None:
+def heavy_in_background() -> threading.Thread:
+    """Another session: a Floquet spectrum at N = 1400 in a worker process (not cached)."""
+    V = 5.15 + 1e-6 * (time.time() % 1)  # a new V each run: never answered from the cache
+    th = threading.Thread(
+        target=lambda: compute.floquet_spectrum(-1.0, 10.0, "solitary", 1.0, V, 1400, 1e-10),
+        daemon=True,
+    )
+    th.start()
+    time.sleep(1.0)  # the job is running in its worker
+    return th
+
+
+def bench_concurrent(n: int) -> None:
+    print(f"QC slider moves while another session's Floquet spectrum (N = 1400) runs ({n} moves)")
+    print(f"  {'scene':<10}{'alone':>12}{'with heavy':>14}{'max':>12}{'ratio':>8}")
+    compute.warm_workers()
+    for key in ("force", "phase"):
+        st, sc = attached(key)
+        alone = statistics.median(moves(st, sc, "V", [4.5 + 0.011 * k for k in range(n)]))
+        th = heavy_in_background()
+        busy = moves(st, sc, "V", [4.51 + 0.011 * k for k in range(n)])
+        running = th.is_alive()
+        med = statistics.median(busy)
+        print(
+            f"  {key:<10}{ms(alone):>12}{ms(med):>14}{ms(max(busy)):>12}{med / alone:>8.2f}"
+            + ("" if running else "  (spectrum finished during the moves)")
+        )
+        th.join()
+
+
+def bench_browser_concurrent(url: str, b, n: int) -> None:
+    """Key press → force scene updated in one page while another page runs a spectrum."""
+    heavy = b.new_page()
+    heavy.goto(url + "/main?tab=floquet&N=1400&tol=1e-10&V=5.1" + str(int(time.time()) % 97))
+    heavy.locator(".scene-floquet .scene-cancel button").wait_for(state="visible", timeout=120_000)
+    pg = b.new_page(viewport={"width": 1500, "height": 1000})
+    pg.goto(url + "/main?tab=force&V=5.05")
+    status = pg.locator(".scene-force .scene-status p", has_text="Time:").first
+    status.wait_for(timeout=60_000)
+    pg.locator(".w-V .noUi-handle").first.focus()
+    ts = []
+    for _ in range(n):
+        before = " ".join(pg.locator(".scene-force .scene-status p").all_inner_texts())
+        t = time.monotonic()
+        pg.keyboard.press("ArrowLeft")
+        while " ".join(pg.locator(".scene-force .scene-status p").all_inner_texts()) == before:
+            pg.wait_for_timeout(10)
+        ts.append(time.monotonic() - t)
+    print(
+        f"Browser: key press → force scene updated while a spectrum runs in another page "
+        f"({n} moves): median {statistics.median(ts):.3f} s, max {max(ts):.3f} s"
+    )
+    heavy.close()
+    pg.close()
+
+
+def bench_browser(loads: int, concurrent: bool = False, n: int = 9) -> None:
     """Time from navigation to the first scene's completed render, warm server cache."""
     import socket
 
@@ -165,6 +228,9 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--moves", type=int, default=9, help="slider moves per scene")
     ap.add_argument("--browser", action="store_true", help="also time the served page")
     ap.add_argument("--loads", type=int, default=3, help="page loads for --browser")
+    ap.add_argument(
+        "--concurrent", action="store_true", help="QC moves while another session computes"
+    )
     args = ap.parse_args(argv)
     os.environ.setdefault("BOKEH_RESOURCES", "server")
     try:
@@ -176,8 +242,10 @@ def main(argv: list[str] | None = None) -> int:
     compute.CACHE.clear()
     bench_qc(args.moves)
     bench_discrete(3)
+    if args.concurrent:
+        bench_concurrent(args.moves)
     if args.browser:
-        bench_browser(args.loads)
+        bench_browser(args.loads, args.concurrent, args.moves)
     return 0
 
 

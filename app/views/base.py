@@ -2,11 +2,19 @@
 
 A scene renders only when it is visible (the app calls :meth:`Scene.request` for the active
 tab and marks the others stale).  Rendering runs in a per-scene worker thread that coalesces
-requests (latest parameters win), so slider drags never queue up stale work and the Bokeh event
-loop stays free; Panel schedules the resulting model updates on the session's loop.
+requests (latest parameters win); heavy fpucore calls run in worker processes
+(:func:`app.compute.run_job`) and a newer request or the Cancel button makes the thread stop
+waiting (the job is killed if nobody else waits for it), so slider drags never queue stale work.
 
-Every outcome is shown in the scene: a plot with its error estimates and timings, or a message
-(``ParameterError`` text or a one-line failure) — never a traceback.
+Root-cause rules (issue 13):
+
+* the figures of a scene are Bokeh models built once (structure fixed); a render only changes
+  their data, ranges and visibility (:mod:`.bokeh_scene`) — no model is ever replaced;
+* every change of a served model goes through the session's event loop, and the worker thread
+  catches everything: it can never die with its running flag set, and every scene recovers from
+  any state (a message, a failure, a cancelled job) at the next request;
+* every outcome is shown in the scene: a plot with its error estimates and timings, or a
+  message (``ParameterError`` text or a one-line failure) — never a traceback.
 """
 
 from __future__ import annotations
@@ -19,14 +27,15 @@ import threading
 import time
 from dataclasses import dataclass, field
 
-import holoviews as hv
 import numpy as np
 import panel as pn
 from panel.io.state import set_curdoc
 
+import fpucore
 from fpucore.cli.common import jsonable
 from fpucore.errors import ParameterError
 
+from .. import compute
 from ..compute import Computed
 from ..state import ExplorerState
 
@@ -102,21 +111,58 @@ def as_json(obj) -> io.StringIO:
     return buf
 
 
-class Scene:
-    """Base class of the six scenes.  Subclasses set ``key``/``title`` and implement
-    :meth:`render` (returning a HoloViews object — or, in ``BokehScene``, the in-place
-    updates of a Bokeh figure built once — and filling ``info``), optionally
-    :meth:`controls` (extra widgets) and :meth:`download_data`."""
+def provenance(state: ExplorerState, what: str, **extra) -> str:
+    """Header of a data file: what it holds and everything needed to reproduce it."""
+    lines = [
+        what,
+        f"fpu-explorer / fpucore {fpucore.__version__}",
+        f"law: f(w) = a w^3 + b w^2 + w with a={state.a!r}, b={state.b!r}",
+        f"mode={state.mode} w_plus={state.w_plus!r} V={state.V!r} N={state.N} tol={state.tol!r}",
+    ]
+    lines += [f"{k}={v!r}" for k, v in extra.items()]
+    return "\n".join(lines)
+
+
+def state_stamp(state: ExplorerState) -> str:
+    """The parameters a render used, exactly as in the URL (shown under every status, so a
+    reader — and the browser tests — can tell which state is on screen)."""
+    return (
+        f"a={state.a!r} b={state.b!r} w_plus={state.w_plus!r} V={state.V!r} N={state.N} "
+        f"tol={state.tol!r} mode={state.mode}"
+    )
+
+
+def python_preamble(state: ExplorerState) -> str:
+    """First lines of every scene's "copy as Python" code."""
+    return (
+        f"# reproduces the fpu-explorer view; generated with fpucore {fpucore.__version__}\n"
+        "import fpucore\n"
+        "from fpucore import floquet, qc, simulate, wave\n"
+        "from fpucore.law import CubicLaw\n\n"
+        f"print(fpucore.__version__)  # {fpucore.__version__!r} when generated\n"
+        f"law = CubicLaw(a={float(state.a)!r}, b={float(state.b)!r})\n"
+    )
+
+
+class Scene(pn.viewable.Viewer):
+    """Base class of the scenes (a Panel Viewer: ``__panel__`` is the scene's layout).
+
+    Subclasses set ``key``/``title``/``caption`` and implement :meth:`make_plot`,
+    :meth:`render` (filling ``info``, returning what :meth:`publish` applies),
+    :meth:`python_code` and :meth:`download_data`; optionally :meth:`controls`."""
 
     key = "scene"
     title = "Scene"
+    #: one line under the plot: what it shows in words and the paper's figure
+    caption = ""
     #: state parameters whose change makes this scene stale
     depends: tuple[str, ...] = ("a", "b", "w_plus", "V", "mode", "N", "tol")
-    plot_height = 460
+    plot_height = 560
     #: cheap enough (QC, cached) to render synchronously while the page is being built
     cheap = False
 
-    def __init__(self, state: ExplorerState):
+    def __init__(self, state: ExplorerState, **params):
+        super().__init__(**params)
         self.state = state
         self.plot = self.make_plot()
         self.alert = pn.pane.Alert(
@@ -126,8 +172,12 @@ class Scene:
             "", css_classes=["scene-status"], sizing_mode="stretch_width"
         )
         self.progress = pn.indicators.Progress(
-            value=0, max=100, visible=False, sizing_mode="stretch_width", bar_color="info"
+            value=-1, max=100, visible=False, sizing_mode="stretch_width", bar_color="info"
         )
+        self.cancel_btn = pn.widgets.Button(
+            label="Cancel", color="warning", visible=False, css_classes=["scene-cancel"]
+        )
+        self.cancel_btn.on_click(lambda _: self.cancel())
         self.download = pn.widgets.FileDownload(
             callback=self._download,
             filename=f"{self.key}.csv",
@@ -135,17 +185,39 @@ class Scene:
             color="light",
             css_classes=["scene-download"],
         )
+        self.code = pn.widgets.TextAreaInput(
+            value="", height=200, sizing_mode="stretch_width", css_classes=["scene-code"]
+        )
+        self.copy_btn = pn.widgets.Button(
+            label="Copy as Python", color="light", css_classes=["scene-copy"]
+        )
+        self.copy_btn.js_on_click(
+            args={"code": self.code},
+            code="if (navigator.clipboard) { navigator.clipboard.writeText(code.value)"
+            ".catch(() => {}); }",
+        )
         self._extra = self.extra_panes()
         side = pn.Column(
             pn.pane.Markdown("#### Error and time", margin=(0, 5)),
             self.status,
             self.progress,
+            self.cancel_btn,
             *self.controls(),
-            self.download,
-            width=320,
+            pn.Row(self.download, self.copy_btn),
+            pn.Card(
+                self.code, title="Python", collapsed=True, sizing_mode="stretch_width", margin=2
+            ),
+            width=330,
+        )
+        main = pn.Column(
+            self.alert,
+            self.plot,
+            *self._extra,
+            pn.pane.Markdown(self.caption, css_classes=["scene-caption"]),
+            sizing_mode="stretch_width",
         )
         self.panel = pn.Row(
-            pn.Column(self.alert, self.plot, *self._extra, sizing_mode="stretch_width"),
+            main,
             side,
             sizing_mode="stretch_width",
             name=self.title,
@@ -155,23 +227,22 @@ class Scene:
         self.renders = 0
         self.last_info: Info | None = None
         self.last_message: str | None = None
-        self._sig: tuple | None = None
-        self._pipes: list = []
-        self._dmaps: list = []
         # the session's document: worker threads render in its context, so Panel resolves
         # resources (server-relative, not CDN) and schedules model updates on its event loop
         self._doc = pn.state.curdoc
         self._lock = threading.Lock()
         self._pending = False
         self._running = False
+        self._cancel = False
+        self._stamp = state_stamp(state)
         self._extra_watch()
 
+    def __panel__(self):
+        return self.panel
+
     # ------------------------------------------------------------------ subclass API
-    def make_plot(self):
-        """The pane the plot is shown in (HoloViews here; raw Bokeh in BokehScene)."""
-        return pn.pane.HoloViews(
-            None, sizing_mode="stretch_width", min_height=self.plot_height, linked_axes=False
-        )
+    def make_plot(self):  # pragma: no cover - abstract
+        raise NotImplementedError
 
     def controls(self) -> list:
         return []
@@ -185,6 +256,13 @@ class Scene:
 
     def render(self, info: Info):  # pragma: no cover - abstract
         raise NotImplementedError
+
+    def publish(self, obj) -> None:  # pragma: no cover - abstract
+        raise NotImplementedError
+
+    def python_code(self) -> str:
+        """fpucore calls that reproduce what is shown (after a successful render)."""
+        return python_preamble(self.state)
 
     def download_data(self) -> tuple[str, io.StringIO]:
         raise SceneMessage("nothing to download yet")
@@ -201,50 +279,17 @@ class Scene:
         self.publish(obj)
         self._write_status(info, time.perf_counter(), partial=True)
 
-    def set_progress(self, done: int, total: int) -> None:
-        self.progress.visible = True
-        self.progress.value = int(100 * done / max(total, 1))
+    def superseded(self) -> bool:
+        """True once the running render is no longer wanted (a newer request or Cancel)."""
+        return self._pending or self._cancel
 
-    # ------------------------------------------------------------------ in-place plot updates
-    def publish(self, obj) -> None:
-        """Show a HoloViews object.  If it has the same structure as the one on screen (same
-        panels, same element types and labels), only the data are sent: each panel is a
-        DynamicMap fed by a Pipe, so Bokeh updates its data sources in place instead of
-        rebuilding the figure (tens of ms instead of hundreds).  Otherwise rebuild."""
-        self.plot.visible = True
-        for pane in self._extra:
-            pane.visible = True
-        panels = list(obj) if isinstance(obj, hv.Layout) else [obj]
-        sig = tuple(_signature(p) for p in panels)
-        if sig == self._sig and self._pipes:
-            pipes = list(self._pipes)
+    def cancel(self) -> None:
+        """The Cancel button: stop waiting for the running job (killed if nobody else waits)."""
+        self._cancel = True
 
-            def send():
-                for pipe, p in zip(pipes, panels):
-                    pipe.send(p)
-
-            doc = self._doc
-            if doc is not None and doc.session_context is not None:
-                # HoloViews plot updates belong on the session's event loop, after the
-                # (also scheduled) build of the plot they update
-                pn.state.execute(send, schedule=True)
-            else:
-                send()
-            return
-        self._pipes = [hv.streams.Pipe(data=p) for p in panels]
-        dmaps = [hv.DynamicMap(_identity, streams=[pipe]) for pipe in self._pipes]
-        if isinstance(obj, hv.Layout):
-            out = hv.Layout(dmaps).cols(obj._max_cols).opts(shared_axes=False)
-            dmaps = list(out)  # .opts() clones: streams must attach to what is displayed
-        else:
-            out = dmaps[0]
-        self._dmaps = dmaps
-        self.on_dmaps(dmaps)
-        self._sig = sig
-        self.plot.object = out
-
-    def on_dmaps(self, dmaps: list) -> None:
-        """Hook: attach streams (e.g. a Tap) to freshly built panels."""
+    def set_progress(self, done: float, total: float | None = None) -> None:
+        x = float(done) if total is None else float(done) / max(float(total), 1.0)
+        self.progress.value = int(100 * min(max(x, 0.0), 1.0))
 
     # ------------------------------------------------------------------ refresh machinery
     def request(self) -> None:
@@ -257,14 +302,24 @@ class Scene:
         threading.Thread(target=self._loop, name=f"scene-{self.key}", daemon=True).start()
 
     def _loop(self) -> None:
-        with set_curdoc(self._doc):
-            while True:
-                with self._lock:
-                    if not self._pending:
-                        self._running = False
-                        return
-                    self._pending = False
-                self.refresh()
+        """Worker thread: render until no request is pending.  Catches everything, so the
+        running flag is always cleared and the next request starts a new thread."""
+        try:
+            with set_curdoc(self._doc):
+                while True:
+                    with self._lock:
+                        if not self._pending:
+                            self._running = False
+                            return
+                        self._pending = False
+                        self._cancel = False
+                    try:
+                        self.refresh()
+                    except BaseException:  # noqa: BLE001 - logged; the loop goes on
+                        log.exception("scene %s: render loop", self.key)
+        finally:
+            with self._lock:
+                self._running = False
 
     def wait_idle(self, timeout: float = 60.0) -> bool:
         """For tests: wait until the worker has nothing left to do."""
@@ -285,9 +340,20 @@ class Scene:
         t0 = time.perf_counter()
         info = Info()
         self.stale = False
-        stop_spinner = (lambda: None) if building else self._spinner()
+        self._stamp = state_stamp(self.state)
         try:
-            obj = self.render(info)
+            stop_busy = (lambda: None) if building else self._busy()
+            try:
+                obj = self.render(info)
+            finally:
+                stop_busy()
+        except compute.Superseded:
+            if self._cancel:
+                self._show_message(
+                    "Cancelled. Change a parameter or press the button again to recompute.",
+                    "info",
+                )
+            return None  # else a newer request is pending: the loop renders it next
         except SceneMessage as exc:
             self._show_message(str(exc), exc.kind)
             return None
@@ -300,30 +366,26 @@ class Scene:
                 f"computation failed: {type(exc).__name__}: {exc}".splitlines()[0], "danger"
             )
             return None
-        finally:
-            stop_spinner()
-            self.progress.visible = False
         try:
             self.publish(obj)
+            if info.warning:
+                self.alert.param.update(alert_type="warning", object=info.warning)
+            self.alert.visible = bool(info.warning)
+            self.last_message = None
+            self.renders += 1
+            self.last_info = info
+            self._write_status(info, t0)
+            self.code.value = self.python_code()
         except Exception as exc:
             log.exception("scene %s: plot update failed", self.key)
-            self._sig = None  # rebuild next time
             self._show_message(f"plot update failed: {type(exc).__name__}: {exc}", "danger")
             return None
-        if info.warning:
-            self.alert.alert_type = "warning"
-            self.alert.object = info.warning
-        self.alert.visible = bool(info.warning)
-        self.last_message = None
-        self.renders += 1
-        self.last_info = info
-        self._write_status(info, t0)
         return info
 
-    def _spinner(self):
-        """Show the plot's loading spinner only if the render takes longer than
-        SPINNER_DELAY_S: toggling it costs tens of ms of model updates, more than a fast
-        (QC, cached) render itself.  Returns the function that stops it."""
+    def _busy(self):
+        """Spinner, progress bar and Cancel button, shown only if the render takes longer than
+        SPINNER_DELAY_S: toggling them costs tens of ms of model updates, more than a fast
+        (QC, cached) render itself.  Returns the function that stops them."""
         lock = threading.Lock()
         flags = {"done": False, "on": False}
         doc = self._doc
@@ -332,7 +394,12 @@ class Scene:
             with lock, set_curdoc(doc):
                 if not flags["done"]:
                     flags["on"] = True
-                    self.plot.loading = True
+                    try:
+                        self.plot.loading = True
+                        self.progress.param.update(value=-1, visible=True)
+                        self.cancel_btn.visible = True
+                    except Exception:  # noqa: BLE001 - cosmetic; never kill the timer's caller
+                        log.exception("scene %s: busy indicator", self.key)
 
         timer = threading.Timer(SPINNER_DELAY_S, on)
         timer.daemon = True
@@ -344,19 +411,29 @@ class Scene:
                 flags["done"] = True
                 if flags["on"]:
                     self.plot.loading = False
+                    self.progress.visible = False
+                    self.cancel_btn.visible = False
 
         return stop
 
     def _show_message(self, text: str, kind: str) -> None:
+        """The message instead of the plot.  Never raises (the worker thread must survive)."""
         self.last_message = text
         self.last_info = None
-        self.alert.alert_type = kind
-        self.alert.object = text
-        self.alert.visible = True
+        try:
+            self.alert.param.update(alert_type=kind, object=text, visible=True)
+            self.hide_plot()
+            self.status.object = (
+                f"_no plot: see the message_\n\n<small>Parameters: {self._stamp}</small>"
+            )
+            self.code.value = python_preamble(self.state) + f"# nothing shown: {text}\n"
+        except Exception:  # noqa: BLE001
+            log.exception("scene %s: showing the message failed", self.key)
+
+    def hide_plot(self) -> None:
         self.plot.visible = False
         for pane in self._extra:
             pane.visible = False
-        self.status.object = "_no plot: see the message_"
 
     def _write_status(self, info: Info, t0: float, partial: bool = False) -> None:
         lines = []
@@ -378,6 +455,7 @@ class Scene:
         lines.extend(f"_{n}_" for n in info.notes)
         if partial:
             lines.append("_computing the rest ..._")
+        lines.append(f"<small>Parameters: {self._stamp}</small>")
         self.status.object = "\n\n".join(lines)
 
     def _download(self):
@@ -387,23 +465,3 @@ class Scene:
             buf, name = io.StringIO(f"# {exc}\n"), f"{self.key}-unavailable.txt"
         self.download.filename = name
         return buf
-
-
-def _identity(data):
-    return data
-
-
-def _signature(obj) -> tuple:
-    """Structure of a panel: element types, groups and labels (what HoloViews matches on)."""
-    items = list(obj) if isinstance(obj, hv.Overlay) else [obj]
-    return tuple((type(e).__name__, e.group, e.label) for e in items)
-
-
-hv.extension("bokeh", logo=False)
-# axes follow the data when a DynamicMap panel is updated in place
-hv.opts.defaults(
-    *(
-        getattr(hv.opts, n)(framewise=True)
-        for n in ("Curve", "Scatter", "Area", "Contours", "QuadMesh", "ErrorBars", "Overlay")
-    )
-)

@@ -107,17 +107,29 @@ def add_vline(fig: figure, color: str, dash: str = "solid", width: float = 1.0) 
     return span
 
 
-def add_label(fig: figure, color: str = "gray", size: str = "10pt") -> Label:
-    lab = Label(x=0.0, y=0.0, text="", text_color=color, text_font_size=size, text_align="center")
+def add_label(fig: figure, color: str = "gray", size: str = "10pt", align: str = "center") -> Label:
+    lab = Label(x=0.0, y=0.0, text="", text_color=color, text_font_size=size, text_align=align)
     fig.add_layout(lab)
     return lab
 
 
 def add_legend(
-    fig: figure, location: str, entries: Iterable[tuple[str, list[GlyphRenderer]]]
+    fig: figure, place: str, entries: Iterable[tuple[str, list[GlyphRenderer]]]
 ) -> list[LegendItem]:
+    """A legend *outside* the data: ``place`` is a side of the figure ("right", "below",
+    "above"), so no entry ever covers a curve."""
     items = [LegendItem(label=label, renderers=rs) for label, rs in entries]
-    fig.add_layout(Legend(items=items, location=location, background_fill_alpha=0.7))
+    orientation = "vertical" if place in ("left", "right") else "horizontal"
+    legend = Legend(
+        items=items,
+        location="top_left" if orientation == "vertical" else "center",
+        orientation=orientation,
+        border_line_alpha=0.0,
+        label_text_font_size="9pt",
+        spacing=2,
+        click_policy="hide",
+    )
+    fig.add_layout(legend, place)
     return items
 
 
@@ -209,8 +221,9 @@ class BokehScene(Scene):
 
         doc = self._doc
         if doc is not None and doc.session_context is not None:
-            # served models may only change on the session's loop: now if we are on it (page
-            # build, a click), else (worker thread) scheduled after the updates already queued
-            pn.state.execute(apply, schedule="auto")
+            # served models change only on the session's loop, in order: Bokeh's thread-safe
+            # next-tick queue (the same queue Panel uses for the status text written after
+            # this), never a direct write from the worker thread
+            doc.add_next_tick_callback(apply)
         else:
             apply()

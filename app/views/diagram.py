@@ -18,8 +18,8 @@ from bokeh.layouts import row
 from panel.io.state import set_curdoc
 
 from .. import compute
-from ..compute import rnd
-from .base import Info, SceneMessage, as_csv, fmt_num
+from ..compute import exact
+from .base import Info, SceneMessage, as_csv, fmt_num, provenance, python_preamble
 from .bokeh_scene import (
     BokehScene,
     FigurePane,
@@ -40,7 +40,13 @@ CSW_LINE = "#9e9ac8"
 
 class DiagramScene(BokehScene):
     key = "diagram"
-    title = "Diagrams"
+    title = "Amplitude, energy, existence"
+    caption = (
+        "_Amplitude and renormalized energy of the solitary waves against their velocity "
+        "(quasicontinuum curves, discrete dots on demand), and where tensile and compressive "
+        "solitary waves exist. Paper: Figs. 4, 6, 9 and 10 (SWvelocities_cubic, "
+        "SWamp_energy_QCcubic, SWamp_cubic_DvsQC, SWenergy_cubic_DvsQC)._"
+    )
     cheap = True
     plot_height = 300
     pane_kw: dict = {}
@@ -70,9 +76,9 @@ class DiagramScene(BokehScene):
         return [self.exist_pane]
 
     def build(self):
-        size = dict(frame_width=250, frame_height=200)
-        fa = new_figure("(a) amplitude", "V", "amplitude", **size)
-        fe = new_figure("(b) renormalized energy", "V", "E_ren", **size)
+        size = dict(frame_width=340, frame_height=240)
+        fa = new_figure("(a) amplitude against velocity", "V", "amplitude", **size)
+        fe = new_figure("(b) renormalized energy against velocity", "V", "E_ren", **size)
         self.fig_a, self.fig_e = fa, fe
         # per panel: QC below / above V_SK, current point, discrete dots, and the V lines
         self.panels = {}
@@ -91,17 +97,17 @@ class DiagramScene(BokehScene):
         pa = self.panels["amp"]
         self.amp_legend = add_legend(
             fa,
-            "top_left",
+            "below",
             [("QC below", [pa["qc"][0][0]]), ("QC above", [pa["qc"][1][0]])]
             + [("discrete", [pa["dots"][0]])],
         )
 
         fc = new_figure(
-            "(c) existence diagram — click to pick (w₊, V)",
+            "(c) where solitary waves exist — click to pick (w₊, V)",
             "w₊",
             "V",
-            frame_width=460,
-            frame_height=250,
+            frame_width=620,
+            frame_height=300,
         )
         self.fig_c = fc
         # bands (c₊, V_SK) and (V_SK, c₋) left and right of w*: TSW below V_SK on the left,
@@ -112,11 +118,12 @@ class DiagramScene(BokehScene):
             add_line(fc, "#1f77b4", 1),
             add_line(fc, "#2ca02c", 1),
         ]
-        self.exist_label = add_label(fc, color="black", size="9pt")
+        self.exist_label = add_label(fc, color="black", size="9pt", align="left")
         self.exist_point = add_points(fc, "circle", 11, color="black")
+        self.exist_point[1].name = "diagram-current"  # read by the browser tests
         add_legend(
             fc,
-            "bottom_right",
+            "right",
             [
                 (lab, [r])
                 for lab, (r, _) in zip(
@@ -160,7 +167,7 @@ class DiagramScene(BokehScene):
         c = compute.existence_diagram(s.a, s.b)
         d = c.value
         info.time("existence diagram", c)
-        key = (rnd(s.a), rnd(s.b))
+        key = (exact(s.a), exact(s.b))
         k = 0
         for side in (d.w_plus < d.w_star, d.w_plus > d.w_star):
             x = d.w_plus[side]
@@ -171,9 +178,9 @@ class DiagramScene(BokehScene):
             up.data(src, key, x=d.w_plus, y=y)
         up.set(
             self.exist_label,
-            x=0.5 * (d.alpha + d.w_star),
+            x=float(d.w_plus[0] + 0.02 * (d.w_plus[-1] - d.w_plus[0])),
             y=float(np.min(d.c_plus)) * 1.02,
-            text="dark: TSW, light: CSW",
+            text="dark: tensile solitary waves, light: compressive",
         )
         up.data(self.exist_point[1], x=[float(s.w_plus)], y=[float(s.V)])
         up.range(self.fig_c.x_range, d.w_plus[0], d.w_plus[-1], pad=0.02)
@@ -188,22 +195,11 @@ class DiagramScene(BokehScene):
             t = (np.arange(k) + 0.5) / k
             Vs += list(lo + (hi - lo) * t)
         key_args = (s.a, s.b, s.w_plus, Vs, s.N, s.tol)
-        cached = compute.CACHE.peek(
-            (
-                "dfamily",
-                compute.rnd(s.a),
-                compute.rnd(s.b),
-                compute.rnd(s.w_plus),
-                tuple(compute.rnd(v) for v in Vs),
-                s.N,
-                compute.rnd(s.tol, 3),
-            )
-        )
-        if cached is None and not self._want_discrete:
+        if not self._want_discrete and not compute.discrete_family_cached(*key_args):
             info.notes.append("discrete dots: press 'Add discrete points'")
             return None
         self._want_discrete = False
-        c = compute.discrete_family(*key_args, progress=self.set_progress)
+        c = compute.discrete_family(*key_args, stop=self.superseded, progress=self.set_progress)
         info.time(f"{len(Vs)} discrete waves", c)
         rows = [r for r in c.value if hasattr(r, "amplitude")]
         bad = [r for r in rows if not r.converged]
@@ -212,6 +208,8 @@ class DiagramScene(BokehScene):
         rows = [r for r in rows if r.converged]
         if rows:
             info.error("max discrete residual", max(r.residual for r in rows))
+            info.error("max amplitude error bound", max(r.amplitude_error for r in rows))
+            info.error("max energy error bound", max(r.energy_error for r in rows))
         return rows
 
     def render(self, info: Info):
@@ -232,7 +230,7 @@ class DiagramScene(BokehScene):
         self._family_shown = True
         fam = c.value
         info.time("QC family", c)
-        key = (rnd(s.a), rnd(s.b), rnd(s.w_plus))
+        key = (exact(s.a), exact(s.b), exact(s.w_plus))
         kinds = (fam.kind_below, fam.kind_above)
         colors = [TSW if kind == "tensile" else CSW_LINE for kind in kinds]
         cur = None
@@ -303,11 +301,31 @@ class DiagramScene(BokehScene):
             cols["amp_discrete"] = np.array([r.amplitude for r in self._rows])
             cols["E_discrete"] = np.array([r.energy for r in self._rows])
             cols["residual_discrete"] = np.array([r.residual for r in self._rows])
+            cols["amp_error_discrete"] = np.array([r.amplitude_error for r in self._rows])
+            cols["E_error_discrete"] = np.array([r.energy_error for r in self._rows])
         d = getattr(self, "_exist", None)
         if d is not None:
             cols.update(w_plus=d.w_plus, c_plus=d.c_plus, V_SK=d.V_SK, c_minus=d.c_minus)
-        hdr = (
+        hdr = provenance(
+            self.state,
             f"QC solitary family for w_plus={fam.w_plus!r} (c_plus={fam.c_plus!r}, "
-            f"V_SK={fam.V_SK!r}, c_minus={fam.c_minus!r}); existence diagram columns"
+            f"V_SK={fam.V_SK!r}, c_minus={fam.c_minus!r}); existence diagram columns",
         )
-        return "diagram.csv", as_csv(cols, hdr)
+        return "diagram.csv", as_csv(cols, hdr + "\n" + self.python_code())
+
+    def python_code(self) -> str:
+        s = self.state
+        code = python_preamble(s) + (
+            "from fpucore.qc import diagram\n"
+            f"fam = diagram.solitary_family(law, {float(s.w_plus)!r}, n=160)\n"
+            "d = diagram.existence_diagram(law, n=400)\n"
+            "print(fam.c_plus, fam.V_SK, fam.c_minus)\n"
+        )
+        if getattr(self, "_rows", None):
+            Vs = [float(r.V) for r in self._rows]
+            code += (
+                f"rows = wave.solitary_family(law, {float(s.w_plus)!r}, {Vs!r}, "
+                f"N={int(s.N)}, tol={float(s.tol)!r}).results\n"
+                "print([(r.V, r.amplitude, r.energy) for r in rows])\n"
+            )
+        return code

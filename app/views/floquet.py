@@ -1,27 +1,54 @@
-"""Scene 5 — Floquet spectrum (Figs. floquet_SK, Floquet_example, floquet_cubicSW).
+"""Scene 5 — Floquet spectrum (paper's Figs. floquet_SK, Floquet_example, floquet_cubicSW).
 
 (a) the 2N multipliers μ (blue ×) of the discrete wave at the current parameters with the unit
-circle (red); (b) a zoom on the multiplier of largest modulus away from the trivial cluster at
-μ = 1, where instability quartets (|μ| beyond the error bar, red) show; (c) on demand,
-max |μ| against V for the family, V_SK dashed.
+circle drawn over them (red); (b) a zoom on the multiplier of largest modulus away from the
+trivial cluster at μ = 1, where instability quartets (|μ| − 1 beyond the error bar, red rings)
+show; (c) on demand, max |μ| against V for the family, V_SK dashed, the current V marked.
+
+The three figures are built once; panel (c) is hidden until a sweep exists (its visibility
+changes, the layout does not).  Spectrum and sweep run in worker processes.
 """
 
 from __future__ import annotations
 
-import holoviews as hv
 import numpy as np
 import panel as pn
+from bokeh.layouts import column, row
+from bokeh.models import Whisker
 
 from fpucore import qc
 
 from .. import compute
-from .base import Info, Scene, SceneMessage, as_csv, as_json, fmt_num
+from .base import Info, SceneMessage, as_json, fmt_num, provenance, python_preamble
+from .bokeh_scene import (
+    BokehScene,
+    Updates,
+    add_legend,
+    add_line,
+    add_points,
+    add_vline,
+    finite_extent,
+    new_figure,
+)
+
+TH = np.linspace(0.0, 2.0 * np.pi, 721)
+#: fpucore.floquet's classification in words (never a bare "unstable": the evidence is in (d))
+CLASS_WORDS = {
+    "stable": "stable",
+    "finite_size": "finite-size artefact (the excess shrinks as N grows)",
+    "unstable": "unstable (the excess persists as N grows)",
+}
 
 
-class FloquetScene(Scene):
+class FloquetScene(BokehScene):
     key = "floquet"
-    title = "Floquet"
-    plot_height = 520
+    title = "Floquet stability"
+    caption = (
+        "_Floquet multipliers of the discrete traveling wave: a multiplier outside the unit "
+        "circle (beyond its error bar) means a linear instability. Paper: Figs. 11, 12 and 15 "
+        "(floquet_SK, Floquet_example, floquet_cubicSW)._"
+    )
+    plot_height = 340
 
     def controls(self):
         self.n_sweep = pn.widgets.IntInput(
@@ -34,6 +61,7 @@ class FloquetScene(Scene):
 
     def _extra_watch(self):
         self._want_sweep = False
+        self._fr = self._r = self._sweep_result = None
 
         def go(_):
             self._want_sweep = True
@@ -41,10 +69,73 @@ class FloquetScene(Scene):
 
         self.sweep_btn.on_click(go)
 
+    def build(self):
+        # fixed square frames: the unit circle is a circle
+        sq = dict(frame_width=330, frame_height=330)
+        fa = new_figure("(a) Floquet multipliers μ in the complex plane", "Re μ", "Im μ", **sq)
+        fb = new_figure("(b) zoom", "Re μ", "Im μ", **sq)
+        fc = new_figure(
+            "(c) largest |μ| against V along the family",
+            "V",
+            "max |μ|",
+            sizing_mode="stretch_width",
+            height=260,
+        )
+        self.fig_a, self.fig_b, self.fig_c = fa, fb, fc
+        # markers first, unit circle after: drawn over the 2N crosses (visible at N = 500)
+        self.r_mu = add_points(fa, "x", 7, color="#1f77b4", line_width=1.5)
+        self.r_unst = add_points(fa, "circle", 14, fill_alpha=0.0, line_color="#d62728")
+        self.r_circle = add_line(fa, "#d62728", 1.5)
+        self.r_zmu = add_points(fb, "x", 10, color="#1f77b4", line_width=2)
+        self.r_zunst = add_points(fb, "circle", 18, fill_alpha=0.0, line_color="#d62728")
+        self.r_zcircle = add_line(fb, "#d62728", 1.5)
+        self.r_mu[1].name = "floquet-multipliers"  # read by the browser tests
+        for _, src_c in (self.r_circle, self.r_zcircle):
+            src_c.data = {"x": np.cos(TH), "y": np.sin(TH)}
+        self.legend_a = add_legend(
+            fa,
+            "below",
+            [
+                ("multipliers μ", [self.r_mu[0]]),
+                ("|μ| − 1 beyond error", [self.r_unst[0]]),
+                ("unit circle", [self.r_circle[0]]),
+            ],
+        )
+        self.r_sw = add_line(fc, "#1f77b4", 2)
+        self.r_swp = add_points(fc, "circle", 6, color="#1f77b4")
+        self.r_sw[1].name = "floquet-sweep"
+        self.whisk = Whisker(
+            source=self.r_swp[1], base="x", upper="hi", lower="lo", line_color="#1f77b4"
+        )
+        self.r_swp[1].data = {"x": [], "y": [], "hi": [], "lo": []}
+        fc.add_layout(self.whisk)
+        self.sw_V = add_vline(fc, "black")
+        self.sw_vsk = add_vline(fc, "#d62728", "dashed")
+        add_legend(fc, "right", [("max |μ|", [self.r_sw[0], self.r_swp[0]])])
+        fc.visible = False
+        # (d) the evidence of the three-way classification: max|μ| − 1 ± error at 0.4N, 0.6N, N
+        fd = new_figure(
+            "(d) finite-size check: largest |μ| − 1 against the chain size N",
+            "N",
+            "max |μ| − 1",
+            sizing_mode="stretch_width",
+            height=240,
+        )
+        self.fig_d = fd
+        self.r_fs = add_points(fd, "circle", 8, color="#ff7f0e")
+        self.r_fs[1].data = {"x": [], "y": [], "hi": [], "lo": []}
+        self.r_fs[1].name = "floquet-finite-size"
+        fd.add_layout(
+            Whisker(source=self.r_fs[1], base="x", upper="hi", lower="lo", line_color="#ff7f0e")
+        )
+        add_legend(fd, "right", [("max |μ| − 1 ± error", [self.r_fs[0]])])
+        fd.visible = False
+        return column(row(fa, fb), fd, fc, sizing_mode="stretch_width")
+
     def _sweep_values(self):
         s = self.state
         lw = s.law()
-        k = int(self.n_sweep.value)
+        k = int(self.n_sweep.value or 12)
         if s.mode == "superkink":
             lo, hi = qc.superkink_velocity_bounds(lw)
             Vs = lo + (hi - lo) * (np.arange(k) + 0.5) / k
@@ -54,133 +145,157 @@ class FloquetScene(Scene):
         Vs = np.concatenate([cp + (vsk - cp) * t, vsk + (cm - vsk) * t])
         return "solitary", s.w_plus, Vs, vsk, "lower"
 
-    def _sweep(self, info: Info):
+    def _sweep(self, info: Info, up: Updates) -> bool:
         s = self.state
         kind, wp, Vs, vsk, branch = self._sweep_values()
-        key = (
-            "fsweep",
-            compute.rnd(s.a),
-            compute.rnd(s.b),
-            kind,
-            None if wp is None else compute.rnd(wp),
-            tuple(compute.rnd(v) for v in Vs),
-            int(s.N),
-            branch,
-        )
-        if compute.CACHE.peek(key) is None and not self._want_sweep:
-            return None
+        args = (s.a, s.b, kind, wp, Vs, s.N, branch)
+        if not self._want_sweep and not compute.floquet_sweep_cached(*args):
+            self._sweep_result = None
+            return False
         self._want_sweep = False
-
-        def progress(*args):
-            if len(args) >= 2:
-                self.set_progress(int(args[0]), int(args[1]))
-
-        c = compute.floquet_sweep(s.a, s.b, kind, wp, Vs, s.N, branch=branch, progress=progress)
+        c = compute.floquet_sweep(*args, stop=self.superseded, progress=self.set_progress)
         sw = c.value
         info.time(f"sweep ({len(Vs)} V)", c)
         self._sweep_result = sw
-        items = [
-            hv.Curve((sw.V, sw.max_modulus), "V", "max |μ|", label="max |μ|").opts(
-                color="#1f77b4", line_width=2
-            ),
-            hv.Scatter((sw.V, sw.max_modulus), "V", "max |μ|").opts(color="#1f77b4", size=6),
-            hv.ErrorBars((sw.V, sw.max_modulus, sw.error), "V", ["max |μ|", "err"]),
-            hv.VLine(s.V).opts(color="black"),
-        ]
-        if vsk is not None:
-            items.append(hv.VLine(vsk).opts(color="#d62728", line_dash="dashed"))
-        return hv.Overlay(items).opts(
-            title="(c) max |μ| against V", frame_width=420, frame_height=220, show_grid=True
+        mm, err = np.asarray(sw.max_modulus, float), np.asarray(sw.error, float)
+        ok = np.isfinite(mm)
+        up.data(self.r_sw[1], x=sw.V[ok], y=mm[ok])
+        up.set(
+            self.r_swp[1],
+            data={"x": sw.V[ok], "y": mm[ok], "hi": (mm + err)[ok], "lo": (mm - err)[ok]},
         )
+        up.set(self.sw_V, location=float(s.V))
+        x_sk = float(vsk if vsk is not None else s.V)
+        up.set(self.sw_vsk, location=x_sk, visible=vsk is not None)
+        up.range(self.fig_c.x_range, float(np.min(sw.V)), float(np.max(sw.V)), pad=0.04)
+        lo, hi = finite_extent(mm[ok] - err[ok], mm[ok] + err[ok], [1.0])
+        up.range(self.fig_c.y_range, lo, hi, pad=0.1)
+        if (~ok).any():
+            info.notes.append(f"sweep: {int((~ok).sum())} velocities did not converge (not drawn)")
+        return True
 
     def render(self, info: Info):
         s = self.state
         self.require_valid()
-        rc, fc = compute.floquet_spectrum(s.a, s.b, s.mode, s.w_plus, s.V, s.N, s.tol)
-        r, fr = rc.value, fc.value
-        info.time(f"discrete N={r.N}", rc)
-        info.time("Floquet", fc)
+        self._fr = self._r = None
+        rc, fc = compute.floquet_spectrum(
+            s.a, s.b, s.mode, s.w_plus, s.V, s.N, s.tol, stop=self.superseded,
+            progress=self.set_progress,
+        )  # fmt: skip
+        r = rc.value
+        info.time(f"discrete wave N={r.N}", rc)
         info.error("wave residual", r.residual)
+        if not r.converged or fc is None:
+            raise SceneMessage(
+                f"The discrete wave at N = {r.N} did not converge, so it has no Floquet spectrum "
+                f"to show: {r.message} Try a larger N (accuracy card) or a V farther from the "
+                "limits."
+            )
+        fr = fc.value
+        info.time("Floquet", fc)
         info.error("quartet symmetry", fr.symmetry_error)
         info.error("integrator", fr.integrator_error)
-        if not r.converged:
-            raise SceneMessage(f"the discrete wave did not converge: {r.message}")
+        up = Updates()
         mu = np.asarray(fr.multipliers)
         unstable = np.asarray(fr.unstable)
-        th = np.linspace(0, 2 * np.pi, 721)
-        circle = hv.Curve((np.cos(th), np.sin(th)), "Re μ", "Im μ").opts(color="#d62728")
-        pts = hv.Scatter((mu.real, mu.imag), "Re μ", "Im μ", label="μ").opts(
-            marker="x", color="#1f77b4", size=8
-        )
-        items = [circle, pts]
-        if unstable.size:
-            items.append(
-                hv.Scatter(
-                    (unstable.real, unstable.imag), "Re μ", "Im μ", label="|μ| > 1 beyond error"
-                ).opts(marker="circle", fill_alpha=0, line_color="#d62728", size=14)
-            )
-        full = hv.Overlay(items).opts(
-            title="(a) Floquet multipliers",
-            frame_width=300,
-            frame_height=300,
-            data_aspect=1,
-            show_grid=True,
-            legend_position="bottom_left",
-        )
+        key = compute.floquet_key(s.a, s.b, s.mode, s.w_plus, s.V, s.N, s.tol)
+        up.data(self.r_mu[1], key, x=mu.real, y=mu.imag)
+        up.data(self.r_unst[1], key, x=unstable.real, y=unstable.imag)
+        up.show(self.r_unst[0], self.legend_a[1], unstable.size > 0)
+        ext = max(1.1, float(np.max(np.abs(mu))) * 1.05) if mu.size else 1.1
+        up.range(self.fig_a.x_range, -ext, ext)
+        up.range(self.fig_a.y_range, -ext, ext)
         # zoom: around the multiplier of largest modulus away from the trivial cluster at 1
         away = mu[np.abs(mu - 1.0) > 1e-3] if mu.size else mu
         focus = away[np.argmax(np.abs(away))] if away.size else 1.0 + 0j
         r0 = max(4.0 * (abs(focus) - 1.0), 20.0 * max(fr.symmetry_error, 1e-9), 1e-6)
         near = np.abs(mu - focus) < 6 * r0
-        zoom = hv.Overlay(
-            [
-                hv.Curve((np.cos(th), np.sin(th)), "Re μ", "Im μ").opts(color="#d62728"),
-                hv.Scatter((mu.real[near], mu.imag[near]), "Re μ", "Im μ").opts(
-                    marker="x", color="#1f77b4", size=10
-                ),
-            ]
-            + ([items[-1]] if unstable.size else [])
-        ).opts(
-            title=f"(b) zoom near μ = {focus.real:.6f}{focus.imag:+.6f}i",
-            xlim=(focus.real - 3 * r0, focus.real + 3 * r0),
-            ylim=(focus.imag - 3 * r0, focus.imag + 3 * r0),
-            frame_width=300,
-            frame_height=300,
-            show_grid=True,
-        )
+        zu = unstable[np.abs(unstable - focus) < 6 * r0] if unstable.size else unstable
+        up.data(self.r_zmu[1], key, x=mu.real[near], y=mu.imag[near])
+        up.data(self.r_zunst[1], key, x=zu.real, y=zu.imag)
+        up.range(self.fig_b.x_range, focus.real - 3 * r0, focus.real + 3 * r0)
+        up.range(self.fig_b.y_range, focus.imag - 3 * r0, focus.imag + 3 * r0)
+        up.set(self.fig_b.title, text=f"(b) zoom near μ = {focus.real:.6f}{focus.imag:+.6f}i")
         self._fr, self._r = fr, r
         info.shown = (
-            f"{r.kind} V = {fmt_num(r.V)}, N = {r.N}: max |μ| = {fr.max_modulus:.10f}, "
-            f"away from 1: {fr.max_modulus_away_from_1:.10f} — {fr.verdict}"
+            f"{r.kind} wave V = {fmt_num(r.V)}, N = {r.N}: {len(mu)} multipliers, "
+            f"max |μ| = {fr.max_modulus:.10f}, away from 1: {fr.max_modulus_away_from_1:.10f} — "
+            f"**{CLASS_WORDS.get(fr.classification, fr.classification)}**: {fr.verdict}"
         )
-        layout = full + zoom
-        sweep = self._sweep(info)
-        if sweep is not None:
-            layout = layout + sweep
-        else:
-            info.notes.append("max |μ| vs V: press 'Sweep'")
-        return layout.cols(2).opts(shared_axes=False)
+        self._finite_size(fr, up)
+        shown = self._sweep(info, up)
+        up.set(self.fig_c, visible=shown)
+        if not shown:
+            info.notes.append("max |μ| against V: press 'Sweep'")
+        return up
+
+    def _finite_size(self, fr, up: Updates) -> None:
+        """(d): the points behind "finite-size artefact" / "unstable" (hidden when stable)."""
+        Ns = np.asarray(fr.finite_size_N, float)
+        ex = np.asarray(fr.finite_size_excess, float)
+        er = np.asarray(fr.finite_size_error, float)
+        ok = np.isfinite(ex) & np.isfinite(er)
+        shown = bool(fr.finite_size_checked and ok.sum() >= 2)
+        up.set(self.fig_d, visible=shown)
+        if not shown:
+            up.set(self.r_fs[1], data={"x": [], "y": [], "hi": [], "lo": []})
+            return
+        Ns, ex, er = Ns[ok], ex[ok], er[ok]
+        up.set(self.r_fs[1], data={"x": Ns, "y": ex, "hi": ex + er, "lo": ex - er})
+        up.range(self.fig_d.x_range, 0.0, float(Ns.max()), pad=0.05)
+        up.range(self.fig_d.y_range, *finite_extent(ex - er, ex + er, [0.0]), pad=0.1)
+        p, dp = fr.finite_size_exponent, fr.finite_size_exponent_error
+        if np.isfinite(p):
+            up.set(self.fig_d.title, text=f"(d) finite-size check: max |μ| − 1 ∝ N^−p, p = "
+                   f"{p:.2f} ± {dp:.2f}")  # fmt: skip
+
+    def python_code(self) -> str:
+        s = self.state
+        name, args, kwargs = compute.wave_call(s.a, s.b, s.mode, s.w_plus, s.V, s.N, s.tol)
+        pos = ", ".join(repr(float(x)) for x in args[1:])
+        kw = ", ".join(f"{k}={v!r}" for k, v in kwargs.items())
+        code = python_preamble(s) + (
+            f"r = wave.{name}(law, {pos}, {kw})\n"
+            "print(r.converged, r.residual)\n"
+            "fr = floquet.spectrum(r)\n"
+            "print(len(fr.multipliers), fr.max_modulus, fr.error, fr.classification)\n"
+            "print(fr.verdict)\n"
+        )
+        sw = self._sweep_result
+        if sw is not None:
+            kind, wp, Vs, _, branch = self._sweep_values()
+            code += (
+                f"sw = floquet.sweep(law, kind={kind!r}, V_values={[float(v) for v in Vs]!r}, "
+                f"w_plus={wp!r}, N={int(s.N)}, branch={branch!r})\n"
+                "print(sw.V, sw.max_modulus)\n"
+            )
+        return code
 
     def download_data(self):
-        fr = getattr(self, "_fr", None)
+        fr, r = self._fr, self._r
         if fr is None:
             raise SceneMessage("nothing shown yet")
         mu = np.asarray(fr.multipliers)
         out = {
-            "V": self._r.V,
-            "N": self._r.N,
-            "kind": self._r.kind,
+            "header": provenance(self.state, "Floquet multipliers of the discrete wave"),
+            "python": self.python_code(),
+            "V": r.V,
+            "N": r.N,
+            "kind": r.kind,
             "multipliers_re": mu.real,
             "multipliers_im": mu.imag,
             "max_modulus": fr.max_modulus,
+            "error": fr.error,
             "symmetry_error": fr.symmetry_error,
             "integrator_error": fr.integrator_error,
             "verdict": fr.verdict,
+            "classification": fr.classification,
+            "finite_size_N": fr.finite_size_N,
+            "finite_size_excess": fr.finite_size_excess,
+            "finite_size_error": fr.finite_size_error,
+            "finite_size_exponent": fr.finite_size_exponent,
         }
-        sw = getattr(self, "_sweep_result", None)
+        sw = self._sweep_result
         if sw is not None:
             out["sweep"] = {"V": sw.V, "max_modulus": sw.max_modulus, "error": sw.error}
         return "floquet.json", as_json(out)
-
-
-_ = as_csv

@@ -14,8 +14,8 @@ from bokeh.models import HoverTool
 from fpucore import qc
 
 from .. import compute
-from ..compute import rnd
-from .base import Info, SceneMessage, as_csv, fmt_num
+from ..compute import exact
+from .base import Info, SceneMessage, as_csv, fmt_num, provenance, python_preamble
 from .bokeh_scene import (
     BokehScene,
     Updates,
@@ -32,11 +32,16 @@ from .bokeh_scene import (
 class ForceLawScene(BokehScene):
     key = "force"
     title = "Force law"
+    caption = (
+        "_The force law f(w) with the superkink's Rayleigh line cutting two equal areas "
+        "(shaded) and, for solitary waves, the sonic lines and the current Rayleigh line. "
+        "Paper: Fig. 1 (superkink)._"
+    )
     cheap = True
 
     def build(self):
         fig = new_figure(
-            "Force law and Rayleigh line (Fig. superkink)",
+            "Force law f(w) and the Rayleigh lines",
             "w",
             "f(w)",
             sizing_mode="stretch_width",
@@ -51,6 +56,7 @@ class ForceLawScene(BokehScene):
         self.r_V = add_line(fig, "#9467bd", 2, "dashed")
         self.r_pts = add_points(fig, "circle", 8, color="black")
         self.r_pts[1].data["label"] = np.empty(0, dtype=object)
+        self.r_V[1].name = "force-rayleigh-V"  # read by the browser tests
         fig.add_tools(
             HoverTool(
                 renderers=[self.r_pts[0]],
@@ -64,7 +70,7 @@ class ForceLawScene(BokehScene):
                 ("f", "sk", "cp", "cm", "V"),
                 add_legend(
                     fig,
-                    "top_left",
+                    "right",
                     [
                         ("f(w)", [self.r_f[0]]),
                         ("Rayleigh line (V_SK)", [self.r_sk[0]]),
@@ -90,8 +96,8 @@ class ForceLawScene(BokehScene):
         info.error("Rayleigh residual", sk.rayleigh_residual)
         info.error("equal-area residual |G|", sk.driving_force)
         up = Updates()
-        law_key = (rnd(s.a), rnd(s.b))
-        wp_key = law_key + (rnd(sk.w_plus),)
+        law_key = (exact(s.a), exact(s.b))
+        wp_key = law_key + (exact(sk.w_plus),)
 
         span = beta - alpha
         w = np.linspace(alpha - 0.06 * span, beta + 0.06 * span, 801)
@@ -166,4 +172,15 @@ class ForceLawScene(BokehScene):
     def download_data(self):
         if not getattr(self, "_data", None):
             raise SceneMessage("nothing shown yet")
-        return "force_law.csv", as_csv(self._data, self._header)
+        hdr = provenance(self.state, self._header) + "\n" + self.python_code()
+        return "force_law.csv", as_csv(self._data, hdr)
+
+    def python_code(self) -> str:
+        s = self.state
+        code = python_preamble(s) + (
+            f"sk = qc.superkink_from_w_plus(law, {float(s.w_plus)!r})  # equal areas, V_SK\n"
+            "print(sk.V, sk.w_minus, sk.rayleigh_residual)\n"
+        )
+        if s.mode == "solitary":
+            code += f"print(qc.sound_speeds(law, {float(s.w_plus)!r}))  # c+, V_SK, c-\n"
+        return code

@@ -12,8 +12,8 @@ import contourpy
 import numpy as np
 
 from .. import compute
-from ..compute import rnd
-from .base import Info, SceneMessage, as_csv, fmt_num
+from ..compute import exact
+from .base import Info, SceneMessage, as_csv, fmt_num, provenance, python_preamble
 from .bokeh_scene import BokehScene, Updates, add_legend, add_line, add_points, new_figure
 
 ORBIT_COLORS = {"kink": "#d62728", "antikink": "#2ca02c"}
@@ -40,17 +40,22 @@ def contour_lines(pp, levels) -> tuple[np.ndarray, np.ndarray]:
 class PhasePlaneScene(BokehScene):
     key = "phase"
     title = "Phase plane"
+    caption = (
+        "_Level sets of the first integral of the quasicontinuum traveling-wave equation, "
+        "with the current orbit highlighted. Paper: Fig. 2 (pplane)._"
+    )
     cheap = True
 
     def build(self):
         fig = new_figure(
-            "Phase plane of eq. TW_QC_gen2 (Fig. pplane)",
+            "Phase plane (w, w′) of the quasicontinuum traveling waves",
             "w",
             "w′",
             sizing_mode="stretch_width",
             height=self.plot_height,
         )
         self.fig = fig
+        fig.x_range.name, fig.y_range.name = "phase-x", "phase-y"  # read by the browser tests
         self.r_thin = add_line(fig, "#aaaaaa", 0.8)
         self.r_sep = add_line(fig, "#444444", 1.6)
         self.r_orbits = [add_line(fig, "#e377c2", 3.5) for _ in range(2)]
@@ -60,7 +65,7 @@ class PhasePlaneScene(BokehScene):
         ]
         items = add_legend(
             fig,
-            "top_right",
+            "right",
             [("orbit", [r]) for r, _ in self.r_orbits]
             + [(kind, [r]) for (kind, _, _), (r, _) in zip(POINT_STYLES, self.r_points)],
         )
@@ -77,7 +82,7 @@ class PhasePlaneScene(BokehScene):
         if not np.all(np.isfinite(pp.H)):
             raise SceneMessage("the first integral is not finite on this grid")
         up = Updates()
-        key = (rnd(s.a), rnd(s.b), rnd(s.w_plus), rnd(s.V))
+        key = (exact(s.a), exact(s.b), exact(s.w_plus), exact(s.V))
 
         qs = np.quantile(pp.H, np.linspace(0.02, 0.6, 12))
         levels = sorted(set(np.round(np.concatenate([qs, pp.separatrix_levels]), 14)))
@@ -92,14 +97,16 @@ class PhasePlaneScene(BokehScene):
                 up.set(r.glyph, line_color=ORBIT_COLORS.get(o.name, "#e377c2"))
                 up.set(item, label={"value": o.name})
             up.show(r, item, k < len(pp.orbits))
+        # only the critical points inside the plotted window are drawn, and only those listed
+        shown = [cp for cp in pp.critical_points if pp.w[0] <= cp.w <= pp.w[-1]]
         for (kind, _, _), (r, src), item in zip(POINT_STYLES, self.r_points, self.point_items):
-            ws = np.array([cp.w for cp in pp.critical_points if cp.kind == kind], float)
+            ws = np.array([cp.w for cp in shown if cp.kind == kind], float)
             up.data(src, key, x=ws, y=np.zeros(len(ws)))
             up.show(r, item, len(ws) > 0)
         up.range(self.fig.x_range, pp.w[0], pp.w[-1])
         up.range(self.fig.y_range, pp.wp[0], pp.wp[-1])
 
-        names = ", ".join(f"{cp.kind} at w = {fmt_num(cp.w, 5)}" for cp in pp.critical_points)
+        names = ", ".join(f"{cp.kind} at w = {fmt_num(cp.w, 5)}" for cp in shown)
         orbit = {"superkink": "kink/antikink heteroclinic pair", "none": "no orbit"}.get(
             pp.regime, f"{pp.regime} solitary wave (homoclinic)"
         )
@@ -115,5 +122,13 @@ class PhasePlaneScene(BokehScene):
         for o in pp.orbits:
             cols[f"{o.name} w"] = o.w
             cols[f"{o.name} w'"] = o.wp
-        hdr = f"phase-plane orbits, w_plus={pp.w_plus!r}, V={pp.V!r}, regime={pp.regime}"
-        return "phase_orbits.csv", as_csv(cols, hdr)
+        hdr = provenance(self.state, f"phase-plane orbits ({pp.regime})")
+        return "phase_orbits.csv", as_csv(cols, hdr + "\n" + self.python_code())
+
+    def python_code(self) -> str:
+        s = self.state
+        return python_preamble(s) + (
+            "from fpucore.qc import phase\n"
+            f"pp = phase.phase_plane(law, {float(s.w_plus)!r}, {float(s.V)!r}, n_grid=241)\n"
+            "print(pp.regime, [(c.kind, c.w) for c in pp.critical_points])\n"
+        )

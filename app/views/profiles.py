@@ -12,8 +12,9 @@ import numpy as np
 import panel as pn
 
 from .. import compute
-from ..compute import rnd
-from .base import Info, SceneMessage, as_csv, fmt_num
+from ..compute import exact
+from ..state import N_RANGE
+from .base import Info, SceneMessage, as_csv, fmt_num, provenance, python_preamble
 from .bokeh_scene import (
     BokehScene,
     Updates,
@@ -25,9 +26,26 @@ from .bokeh_scene import (
 )
 
 
+def n_advice(need: int, N: int) -> str:
+    """What to do about N, in words, with an N the dashboard can set."""
+    if need > N_RANGE[1]:
+        return (
+            f"This wave needs about N = {need} sites, more than the dashboard's {N_RANGE[1]}: "
+            "move V away from the sonic limit c₊."
+        )
+    if need != N:
+        return f"fpucore's own choice for this wave is N = {need}: set it in the accuracy card."
+    return "Try a larger N (accuracy card) or move V away from V_SK."
+
+
 class ProfilesScene(BokehScene):
     key = "profiles"
-    title = "Profiles"
+    title = "Wave profiles"
+    caption = (
+        "_Strain profile of the traveling wave: quasicontinuum closed form (line) and the "
+        "discrete chain's wave at N sites (circles). Paper: Figs. 5, 7 and 8 (SWs_cubic, "
+        "TWcubic, SWs_cubic_DvsQC)._"
+    )
 
     def controls(self):
         self.show_discrete = pn.widgets.Checkbox(label="discrete wave (N, tol)", value=True)
@@ -40,7 +58,7 @@ class ProfilesScene(BokehScene):
 
     def build(self):
         fig = new_figure(
-            "Strain profile: QC (line) and discrete (circles)",
+            "Strain profile: quasicontinuum (line) and discrete chain (circles)",
             "ξ",
             "w",
             sizing_mode="stretch_width",
@@ -52,9 +70,10 @@ class ProfilesScene(BokehScene):
         self.r_dots = add_points(
             fig, "circle", 6, fill_color="white", line_color="black", line_width=1
         )
+        self.r_qc[1].name, self.r_dots[1].name = "profile-qc", "profile-discrete"
         self.legend = add_legend(
             fig,
-            "top_right",
+            "right",
             [
                 ("QC", [self.r_qc[0]]),
                 ("kink / antikink fronts", [r for r, _ in self.r_fronts]),
@@ -85,7 +104,7 @@ class ProfilesScene(BokehScene):
         half = min(half, 0.5 * self.state.N) if self.show_discrete.value else half
         xi = np.linspace(-half, half, 1601)
         wq = qcw.profile(xi)
-        key = (s.mode, rnd(s.a), rnd(s.b), rnd(s.w_plus), rnd(s.V), rnd(half))
+        key = (s.mode, exact(s.a), exact(s.b), exact(s.w_plus), exact(s.V), exact(half))
         up.data(self.r_qc[1], key, x=xi, y=wq)
         self._cols = {"xi": xi, "w_qc": wq}
         fronts = []
@@ -143,28 +162,78 @@ class ProfilesScene(BokehScene):
             # the QC curve now, the dots when the solve is done
             self.show_intermediate(self._frame(up, half, ys), info)
             up = Updates()
-        c = compute.discrete_wave(s.a, s.b, s.mode, s.w_plus, s.V, s.N, s.tol)
+        try:
+            c = compute.discrete_wave(
+                s.a, s.b, s.mode, s.w_plus, s.V, s.N, s.tol, stop=self.superseded,
+                progress=self.set_progress,
+            )  # fmt: skip
+        except compute.ParameterError as exc:
+            if exc.name != "N":
+                raise
+            # N too small for the wave's tails (near c₊): keep the QC curve, advise an N
+            need = compute.n_needed(s.a, s.b, s.mode, s.w_plus, s.V, s.tol)
+            info.warning = (
+                f"No discrete wave at N = {s.N}: the wave's tails need {exc.valid}. "
+                + n_advice(need, s.N)
+            )
+            info.notes.append("discrete wave: none (see the message); QC curve only")
+            return self._frame(up, half, ys)
         r = c.value
-        self._discrete = r
         info.time(f"discrete N={r.N}", c)
         info.error("residual", r.residual)
         info.error("dropped eq.", r.dropped_residual)
-        info.error("tail", getattr(r, "tail_error", float("nan")))
-        info.error("max |discrete − QC|", getattr(r, "qc_max_deviation", float("nan")))
+        info.error("tail", r.tail_error)
+        info.error("max |discrete − QC|", r.qc_max_deviation)
+        info.error("profile error bound", r.profile_error)
+        info.error("amplitude error bound", r.amplitude_error)
         if not r.converged:
+            # an unconverged profile is never drawn as if it were a wave
+            need = compute.n_needed(s.a, s.b, s.mode, s.w_plus, s.V, s.tol)
+            info.warning = (
+                f"The discrete solve did not converge at N = {r.N}, so its points are not drawn. "
+                f"{n_advice(need, r.N)} (fpucore: {r.message.split(':')[0]})"
+            )
             info.notes.append(f"discrete solve did not converge: {r.message}")
+            return self._frame(up, half, ys)
+        self._discrete = r
         sel = np.abs(r.n) <= half
-        info.shown = what + f"; discrete amplitude {fmt_num(r.amplitude)}"
+        info.shown = what + f"; discrete amplitude {fmt_num(r.amplitude)} ± {r.amplitude_error:.1e}"
         return self._frame(up, half, ys, r.n[sel].astype(float), r.w[sel])
+
+    def python_code(self) -> str:
+        s = self.state
+        code = python_preamble(s)
+        if s.mode == "superkink":
+            code += f"q = qc.superkink_from_w_plus(law, {float(s.w_plus)!r})  # QC superkink\n"
+        else:
+            code += f"q = qc.solitary(law, {float(s.w_plus)!r}, {float(s.V)!r})  # QC wave\n"
+        code += "print(q.V, q.amplitude)\n"
+        if self.show_discrete.value:
+            name, args, kwargs = compute.wave_call(s.a, s.b, s.mode, s.w_plus, s.V, s.N, s.tol)
+            pos = ", ".join(repr(float(x)) for x in args[1:])
+            kw = ", ".join(f"{k}={v!r}" for k, v in kwargs.items())
+            code += (
+                f"r = wave.{name}(law, {pos}, {kw})\n"
+                "print(r.converged, r.residual, r.amplitude)\n"
+                "w_qc = q.profile(r.n)  # the QC curve at the sites\n"
+            )
+        return code
 
     def download_data(self):
         r = getattr(self, "_discrete", None)
         if r is not None:
-            hdr = (
-                f"discrete {r.kind} wave V={r.V!r} N={r.N} residual={r.residual:.3e} "
-                f"(w_n(0), wdot_n(0); fixed ends w_left={r.w_left!r}, w_right={r.w_right!r})"
+            s = self.state
+            qcw = compute.qc_wave(s.a, s.b, s.mode, s.w_plus, s.V).value
+            hdr = provenance(
+                self.state,
+                f"discrete {r.kind} wave w_n(0), wdot_n(0) (fixed ends w_left={r.w_left!r}, "
+                f"w_right={r.w_right!r}) and the QC profile w_qc at the same sites",
+                residual=float(r.residual),
+                converged=bool(r.converged),
             )
-            return "profile_discrete.csv", as_csv({"n": r.n, "w": r.w, "wdot": r.wdot}, hdr)
+            cols = {"n": r.n, "w": r.w, "wdot": r.wdot, "w_qc": qcw.profile(r.n.astype(float))}
+            return "profile_discrete.csv", as_csv(cols, hdr + "\n" + self.python_code())
         if getattr(self, "_cols", None):
-            return "profile_qc.csv", as_csv(self._cols, "QC profile")
+            hdr = provenance(self.state, "QC profile w(xi)")
+            return "profile_qc.csv", as_csv(self._cols, hdr + "\n" + self.python_code())
         raise SceneMessage("nothing shown yet")

@@ -1,32 +1,50 @@
-"""Scene 6 — direct simulation (Figs. stabSK, Riemann1, stabSW, SWdyn).
+"""Scene 6 — direct simulation (paper's Figs. stabSK, Riemann1, stabSW, SWdyn).
 
 Space-time image of the strain w_n(t) for data seeded by the current discrete traveling wave
-(eq. fixedBCs), Riemann data (eq. Riemann_data) or a Gaussian bump (eq. GaussIC), with the
-waves the tracker found and their measured velocities.  Runs only when "Run" is pressed.
+(eq. fixedBCs), Riemann data (eq. Riemann_data) or a Gaussian bump (eq. GaussIC), the initial and
+final profiles, and the table of the waves the tracker found with their measured velocities.
+Runs only when "Run" is pressed, in a worker process (progress and Cancel).  The image is a
+Bokeh ``image`` glyph (one texture, no per-cell quads: no moiré).
 """
 
 from __future__ import annotations
 
-import holoviews as hv
+import io
+
 import numpy as np
 import panel as pn
+from bokeh.layouts import column
+from bokeh.models import ColorBar, ColumnDataSource, LinearColorMapper
+from bokeh.palettes import Viridis256
 
 from .. import compute
-from .base import Info, Scene, SceneMessage, as_json, fmt_num
+from .base import Info, SceneMessage, fmt_num, provenance, python_preamble
+from .bokeh_scene import BokehScene, Updates, add_legend, add_line, new_figure
+
+KIND_WORDS = {
+    "seeded": "the current traveling wave (TW-seeded)",
+    "riemann": "Riemann data",
+    "gaussian": "a Gaussian bump",
+}
 
 
-class SimulationScene(Scene):
+class SimulationScene(BokehScene):
     key = "simulation"
     title = "Simulation"
-    depends = ("a", "b", "w_plus", "V", "mode", "N", "tol")
-    plot_height = 560
+    caption = (
+        "_Direct simulation of the FPU chain: strain w_n(t) in space and time, and the waves "
+        "it forms. Paper: Figs. 13, 14, 16 and 17 (stabSK, "
+        "Riemann1, stabSW, SWdyn)._"
+    )
+    plot_height = 380
 
     def controls(self):
         self.kind = pn.widgets.RadioButtonGroup(
             options={"TW-seeded": "seeded", "Riemann": "riemann", "Gaussian": "gaussian"},
             value="seeded",
         )
-        self.L = pn.widgets.IntInput(label="L (sites)", value=800, start=50, end=20000, width=140)
+        # TW-seeded runs need L >= 900 (the seeding wave plus the margins): default 1000
+        self.L = pn.widgets.IntInput(label="L (sites)", value=1000, start=50, end=20000, width=140)
         self.t_end = pn.widgets.FloatInput(
             label="t_end", value=40.0, start=0.1, end=2000, width=140
         )
@@ -45,7 +63,6 @@ class SimulationScene(Scene):
         self.run_btn = pn.widgets.Button(
             label="Run simulation", color="primary", css_classes=["simulation-run"]
         )
-        self.table = pn.pane.Markdown("", sizing_mode="stretch_width")
         return [
             self.kind,
             pn.Row(self.L, self.t_end),
@@ -53,18 +70,55 @@ class SimulationScene(Scene):
             pn.Row(self.w_B, self.A),
             self.guard,
             self.run_btn,
-            self.table,
         ]
+
+    def extra_panes(self):
+        self.table = pn.pane.Markdown("", sizing_mode="stretch_width", css_classes=["sim-table"])
+        return [self.table]
 
     def _extra_watch(self):
         self._want_run = False
         self._params = None
+        self._sim = None
 
         def go(_):
             self._want_run = True
             self.request()
 
         self.run_btn.on_click(go)
+
+    def build(self):
+        fi = new_figure(
+            "Strain w_n(t) in space and time",
+            "site n",
+            "time t",
+            sizing_mode="stretch_width",
+            height=self.plot_height,
+            tools="pan,wheel_zoom,box_zoom,save,reset,hover",
+        )
+        self.mapper = LinearColorMapper(palette=Viridis256, low=0.0, high=1.0)
+        self.img_src = ColumnDataSource(
+            {"image": [np.zeros((2, 2))], "x": [0.0], "y": [0.0], "dw": [1.0], "dh": [1.0]}
+        )
+        fi.image(
+            image="image", x="x", y="y", dw="dw", dh="dh", source=self.img_src,
+            color_mapper=self.mapper,
+        )  # fmt: skip
+        fi.add_layout(ColorBar(color_mapper=self.mapper, title="w"), "right")
+        fp = new_figure(
+            "Initial and final strain profiles",
+            "site n",
+            "w",
+            sizing_mode="stretch_width",
+            height=220,
+        )
+        self.fig_img, self.fig_prof = fi, fp
+        self.r_first = add_line(fp, "gray", 1.5, "dashed")
+        self.r_last = add_line(fp, "black", 1.5)
+        self.prof_legend = add_legend(
+            fp, "right", [("t = 0", [self.r_first[0]]), ("final", [self.r_last[0]])]
+        )
+        return column(fi, fp, sizing_mode="stretch_width")
 
     def _job(self):
         s = self.state
@@ -77,26 +131,21 @@ class SimulationScene(Scene):
         else:
             if s.problem() is not None:
                 raise SceneMessage(s.problem())
-            p.update(mode=s.mode, w_plus=s.w_plus, V=s.V, N=s.N, tol=s.tol)
+            p.update(mode=s.mode, w_plus=s.w_plus, V=s.V, N=int(s.N), tol=s.tol)
         return kind, p
 
     def render(self, info: Info):
-        s = self.state
-        job = self._job()
+        # a failed or superseded run must not leave the previous run's numbers on screen
+        self._sim = None
+        self.table.object = ""
         if self._want_run:
-            self._params = job
-        self._want_run = False
+            self._want_run = False
+            self._params = self._job()
         if self._params is None:
             raise SceneMessage("Choose the initial data and press 'Run simulation'.", "info")
         kind, p = self._params
-
-        def progress(*args):
-            if len(args) >= 2:
-                self.set_progress(int(args[0]), int(args[1]))
-            elif len(args) == 1 and isinstance(args[0], float):
-                self.set_progress(int(100 * args[0]), 100)
-
-        c = compute.simulation(kind, s.a, s.b, p, progress=progress)
+        s = self.state
+        c = compute.simulation(kind, s.a, s.b, p, stop=self.superseded, progress=self.set_progress)
         sim = c.value
         info.time(f"simulation ({kind})", c)
         info.error("energy drift", sim.energy_drift)
@@ -106,7 +155,7 @@ class SimulationScene(Scene):
             if sim.method != "symplectic"
             else f"symplectic, dt {sim.dt:g}"
         )
-        if getattr(sim, "status", 0) not in (0, "ok", "success", None):
+        if getattr(sim, "status", "ok") not in ("ok", None):
             info.notes.append(f"status {sim.status}: {sim.message}")
         elif sim.details.get("left_convex_interval"):
             lo, hi = sim.details["strain_range"]
@@ -116,63 +165,100 @@ class SimulationScene(Scene):
         snaps = np.asarray(sim.snapshots, dtype=float)
         if snaps.size == 0 or not np.all(np.isfinite(snaps)):
             raise SceneMessage(f"the simulation returned no finite snapshots: {sim.message}")
-        t, n = np.asarray(sim.t), np.asarray(sim.sites)
-        img = hv.QuadMesh((n, t, snaps), ["n", "t"], "w").opts(
-            cmap="viridis",
-            colorbar=True,
-            frame_width=560,
-            frame_height=330,
-            title=f"strain w_n(t), {kind} data",
-            tools=["hover"],
+        t, n = np.asarray(sim.t, float), np.asarray(sim.sites, float)
+        up = Updates()
+        dn = (n[-1] - n[0]) / max(len(n) - 1, 1)
+        dt = (t[-1] - t[0]) / max(len(t) - 1, 1)
+        up.set(
+            self.img_src,
+            data={
+                "image": [snaps],
+                "x": [n[0] - 0.5 * dn],
+                "y": [t[0] - 0.5 * dt],
+                "dw": [n[-1] - n[0] + dn],
+                "dh": [t[-1] - t[0] + dt],
+            },
         )
-        last = hv.Curve((n, snaps[-1]), "n", "w", label=f"t = {t[-1]:.4g}").opts(color="black")
-        first = hv.Curve((n, snaps[0]), "n", "w", label="t = 0").opts(
-            color="gray", line_dash="dashed"
-        )
-        prof = (first * last).opts(
-            frame_width=560,
-            frame_height=170,
-            legend_position="top_right",
-            title="initial and final profiles",
-        )
-        rows = ["| kind | V measured | amplitude | left | right |", "|---|---|---|---|---|"]
+        up.set(self.mapper, low=float(snaps.min()), high=float(snaps.max()))
+        up.range(self.fig_img.x_range, n[0] - 0.5 * dn, n[-1] + 0.5 * dn)
+        up.range(self.fig_img.y_range, t[0] - 0.5 * dt, t[-1] + 0.5 * dt)
+        up.data(self.r_first[1], x=n, y=snaps[0])
+        up.data(self.r_last[1], x=n, y=snaps[-1])
+        up.set(self.prof_legend[1], label={"value": f"t = {t[-1]:.4g}"})
+        up.range(self.fig_prof.x_range, n[0], n[-1])
+        up.range(self.fig_prof.y_range, float(snaps.min()), float(snaps.max()), pad=0.05)
+        rows = [
+            "| wave | velocity V (measured) | amplitude | strain left | strain right |",
+            "|---|---|---|---|---|",
+        ]
         for wv in sim.waves:
             rows.append(
                 f"| {wv.kind} | {wv.velocity:.8g} | {fmt_num(wv.amplitude, 5)} | "
                 f"{fmt_num(wv.left_state, 5)} | {fmt_num(wv.right_state, 5)} |"
             )
         self.table.object = (
-            "**Tracked waves**\n\n" + "\n".join(rows) if sim.waves else ("_no waves tracked_")
+            "**Waves found by the tracker**\n\n" + "\n".join(rows)
+            if sim.waves
+            else "_no waves tracked_"
         )
         self._sim = (kind, p, sim)
         speeds = ", ".join(f"{wv.velocity:.6g}" for wv in sim.waves[:4])
-        info.shown = f"{kind} simulation to t = {t[-1]:.4g}; tracked velocities: {speeds or 'none'}"
+        info.shown = (
+            f"simulation of {KIND_WORDS[kind]} to t = {t[-1]:.4g}; "
+            f"tracked velocities: {speeds or 'none'}"
+        )
         if kind == "seeded":
-            info.notes.append(f"seeding wave V = {fmt_num(p['V'])}")
-        return (img + prof).cols(1).opts(shared_axes=False)
+            info.notes.append(f"seeding wave V = {fmt_num(p['V'])}, N = {p['N']}")
+        return up
+
+    def hide_plot(self) -> None:
+        super().hide_plot()
+        self.table.object = ""
+
+    def python_code(self) -> str:
+        code = python_preamble(self.state)
+        if self._sim is None:
+            return code + "# no simulation yet: press 'Run simulation'\n"
+        kind, p, _ = self._sim
+        q = dict(p)
+        if kind == "seeded":
+            wave_args = [q.pop(k) for k in ("mode", "w_plus", "V", "N", "tol")]
+            name, args, kwargs = compute.wave_call(self.state.a, self.state.b, *wave_args)
+            pos = ", ".join(repr(float(x)) for x in args[1:])
+            kw = ", ".join(f"{k}={v!r}" for k, v in kwargs.items())
+            code += f"r = wave.{name}(law, {pos}, {kw})\n"
+            call = "simulate.seeded(r, "
+        elif kind == "riemann":
+            call = f"simulate.riemann(law, {q.pop('w_left')!r}, {q.pop('w_right')!r}, "
+        else:
+            call = f"simulate.gaussian(law, {q.pop('w_B')!r}, {q.pop('A')!r}, "
+        code += "sim = " + call + ", ".join(f"{k}={v!r}" for k, v in q.items()) + ")\n"
+        code += "print(sim.energy_drift, [(w.kind, w.velocity) for w in sim.waves])\n"
+        return code
 
     def download_data(self):
-        sim = getattr(self, "_sim", None)
-        if sim is None:
+        if self._sim is None:
             raise SceneMessage("no simulation yet")
-        kind, p, s = sim
-        out = {
-            "kind": kind,
-            "params": p,
-            "t": s.t,
-            "sites": s.sites,
-            "energy_drift": s.energy_drift,
-            "error_estimate": s.error_estimate,
-            "waves": [
-                {
-                    "kind": w.kind,
-                    "velocity": w.velocity,
-                    "amplitude": w.amplitude,
-                    "left_state": w.left_state,
-                    "right_state": w.right_state,
-                }
-                for w in s.waves
-            ],
-            "final_profile": np.asarray(s.snapshots)[-1],
-        }
-        return "simulation.json", as_json(out)
+        kind, p, sim = self._sim
+        hdr = provenance(
+            self.state,
+            f"space-time strain field w_n(t) of a simulation of {KIND_WORDS[kind]}: one row per "
+            "time t, one column per site n",
+            kind=kind,
+            **p,
+            energy_drift=float(sim.energy_drift),
+            error_estimate=float(sim.error_estimate),
+        )
+        hdr += "\nwaves: " + "; ".join(
+            f"{w.kind} V={w.velocity!r} amplitude={w.amplitude!r}" for w in sim.waves
+        )
+        hdr += "\n" + self.python_code()
+        buf = io.StringIO()
+        for line in hdr.splitlines():
+            buf.write(f"# {line}\n")
+        sites = np.asarray(sim.sites)
+        buf.write("t," + ",".join(f"n={int(k)}" for k in sites) + "\n")
+        for ti, rowv in zip(np.asarray(sim.t), np.asarray(sim.snapshots)):
+            buf.write(repr(float(ti)) + "," + ",".join(repr(float(v)) for v in rowv) + "\n")
+        buf.seek(0)
+        return "simulation_field.csv", buf

@@ -48,7 +48,8 @@ def test_force_scene_draws_the_equal_area_construction():
     name, buf = sc.download_data()
     text = buf.getvalue()
     assert name.endswith(".csv") and text.startswith("# superkink construction")
-    rows = np.loadtxt(text.splitlines()[2:], delimiter=",")
+    assert "a=-1.0, b=10.0" in text and "fpucore" in text  # the header reproduces the view
+    rows = np.loadtxt([ln for ln in text.splitlines() if not ln.startswith("#")][1:], delimiter=",")
     w, f, R = rows.T
     # R is the Rayleigh line through (w₊, f(w₊)) with slope V_SK² (eq. Rline)
     assert np.allclose(R, f[np.argmin(abs(w - 1))] * 0 + (1 + 10 - 1) + 4 * 65 / 9 * (w - 1))

