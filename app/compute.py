@@ -293,7 +293,9 @@ def fraction(progress):
 
 
 def sweep_job(a, b, kind, w_plus, V_values, N, branch, progress=None):
-    """max |μ| against V for a family (fpucore.floquet.sweep)."""
+    """max |μ| against V for a family (fpucore.floquet.sweep), run inline in this worker: a pool
+    worker is daemonic and may not start a pool of its own (the server's pool already spreads
+    the sessions' jobs over the cores)."""
     return fq.sweep(
         law(a, b),
         kind=kind,
@@ -302,6 +304,7 @@ def sweep_job(a, b, kind, w_plus, V_values, N, branch, progress=None):
         N=int(N),
         branch=branch,
         progress=fraction(progress),
+        executor=Executor(backend="inline"),
     )
 
 

@@ -12,15 +12,17 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import holoviews as hv
 import numpy as np
 import panel as pn
 import xarray as xr
+from bokeh.events import Tap
+from bokeh.models import ColorBar, ColumnDataSource, LinearColorMapper
 
 from fpucore import atlas
 from fpucore.errors import ParameterError
 
-from .base import Info, Scene, SceneMessage, as_csv
+from .base import Info, SceneMessage, as_csv, provenance, python_preamble
+from .bokeh_scene import BokehScene, Updates, new_figure
 
 QUANTITIES = {
     "max |μ| − 1": "max_modulus",
@@ -29,11 +31,29 @@ QUANTITIES = {
 }
 
 
-class AtlasScene(Scene):
+class AtlasScene(BokehScene):
     key = "atlas"
     title = "Atlas"
+    caption = (
+        "_Heat map of an atlas of discrete solitary waves over the existence region (w₊, V): "
+        "max |μ| − 1 of their Floquet spectra, their amplitude or renormalized energy. Click a "
+        "cell to open that wave. Paper: Figs. 8, 9 and 14 (one line of this map each)._"
+    )
     depends = ("a", "b")
     plot_height = 480
+
+    def build(self):
+        fig = new_figure("Atlas over (w₊, V) (click a cell: that wave)", "w₊", "V",
+                         sizing_mode="stretch_width", height=self.plot_height)  # fmt: skip
+        self.fig = fig
+        self.mapper = LinearColorMapper(palette="Viridis256", nan_color=(0, 0, 0, 0))
+        self.src = ColumnDataSource({"image": [], "x": [], "y": [], "dw": [], "dh": []},
+                                    name="atlas-image")  # fmt: skip
+        fig.image("image", x="x", y="y", dw="dw", dh="dh", source=self.src,
+                  color_mapper=self.mapper)  # fmt: skip
+        fig.add_layout(ColorBar(color_mapper=self.mapper, width=12), "right")
+        fig.on_event(Tap, lambda ev: self.pick(ev.x, ev.y))
+        return fig
 
     def controls(self):
         self.store = pn.widgets.TextInput(name="atlas store (Zarr)", placeholder="atlas.zarr",
@@ -52,7 +72,8 @@ class AtlasScene(Scene):
         self._want_run = False
         self._ds: xr.Dataset | None = None
         self._source = ""
-        self.last_plot = None
+        self._rows = ""
+        self.last_z: np.ndarray | None = None
 
         def go(_):
             self._want_run = True
@@ -80,7 +101,7 @@ class AtlasScene(Scene):
         law = s.law()
         lo, hi = law.alpha, law.beta
         pad = 0.02 * (hi - lo)
-        rows = f"{lo + pad}:{hi - pad}:{int(self.n_w.value)}"
+        rows = self._rows = f"{lo + pad}:{hi - pad}:{int(self.n_w.value)}"
         res = atlas.run(law, "solitary", rows=rows, V=int(self.n_V.value),
                         N=int(self.N_run.value), floquet=True, finite_size=False,
                         progress=lambda d, n, f: self.set_progress(d, n))  # fmt: skip
@@ -117,21 +138,24 @@ class AtlasScene(Scene):
                 "max_modulus_error"].values, np.nan)))  # fmt: skip
         info.notes.append(", ".join(f"{v} {k}" for k, v in counts.items() if v))
         w, V = ds["w_plus"].values.astype(float), ds["V"].values.astype(float)
-        img = hv.QuadMesh((w, V, z.T), kdims=["w₊", "V"], vdims=[name]).opts(
-            cmap="viridis", colorbar=True, tools=["hover", "tap"], frame_width=520,
-            frame_height=360, title=f"{name} (click a cell: that wave)",
-        )  # fmt: skip
-        self.last_plot = img
-        return img
+        self.last_z = z  # (n_w, n_V): what the image shows
+        # cell edges half way between grid points (the grid may be non-uniform in V)
+        dw = (w[-1] - w[0]) / max(len(w) - 1, 1) if len(w) > 1 else 1.0
+        dv = (V[-1] - V[0]) / max(len(V) - 1, 1) if len(V) > 1 else 1.0
+        up = Updates()
+        up.data(self.src, None, image=[z.T], x=[w[0] - dw / 2], y=[V[0] - dv / 2],
+                dw=[dw * len(w)], dh=[dv * len(V)])  # fmt: skip
+        finite = z[np.isfinite(z)]
+        up.set(self.mapper, low=float(finite.min()), high=float(finite.max()))
+        up.set(self.fig.title, text=f"{name} over (w₊, V) (click a cell: that wave)")
+        up.range(self.fig.x_range, w[0] - dw / 2, w[-1] + dw / 2)
+        up.range(self.fig.y_range, V[0] - dv / 2, V[-1] + dv / 2)
+        return up
 
     @property
     def dataset(self) -> xr.Dataset | None:
         """The atlas on screen (None before one is loaded or run)."""
         return self._ds
-
-    def on_dmaps(self, dmaps: list) -> None:
-        tap = hv.streams.Tap(source=dmaps[0])
-        tap.add_subscriber(lambda x, y: self.pick(x, y))
 
     def pick(self, x, y) -> bool:
         """Set the state to the grid point nearest to (x, y) = (w₊, V); False if none."""
@@ -153,4 +177,17 @@ class AtlasScene(Scene):
         cols = {"w_plus": W.ravel(), "V": Vg.ravel()}
         for k in ("amplitude", "energy", "residual", "max_modulus", "max_modulus_error"):
             cols[k] = ds[k].values.ravel()
-        return "atlas.csv", as_csv(cols, header=f"atlas from {self._source}")
+        hdr = provenance(self.state, f"atlas from {self._source}")
+        return "atlas.csv", as_csv(cols, hdr + "\n" + self.python_code())
+
+    def python_code(self) -> str:
+        if self._source and self._source != "background run":
+            return python_preamble(self.state) + (
+                f"import xarray as xr\nds = xr.open_zarr({self._source!r}, consolidated=False)\n"
+            )
+        return python_preamble(self.state) + (
+            "from fpucore import atlas\n"
+            f"res = atlas.run(law, 'solitary', rows='{self._rows}', V={int(self.n_V.value)}, "
+            f"N={int(self.N_run.value)}, floquet=True, finite_size=False)\n"
+            "print(res.dataset)\n"
+        )

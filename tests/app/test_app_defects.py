@@ -223,7 +223,7 @@ def test_8_legends_sit_outside_the_data(key):
         list(sc.fig_c.references()) if key == "diagram" else []
     )
     legends = [m for m in figs if isinstance(m, Legend)]
-    assert legends
+    assert legends or key == "atlas"  # the atlas heat map has a color bar, no legend
     plots = {m for m in figs if hasattr(m, "center") and hasattr(m, "below")}
     for p in plots:
         assert not any(isinstance(x, Legend) for x in p.center), p.title.text
@@ -272,7 +272,8 @@ def test_10_odd_inputs_give_messages_not_tracebacks():
         compute.law(-1.0, 1e200)  # used to be an OverflowError
     st, sc = attached("force", b=1e200)
     sc.refresh()
-    assert sc.last_message and "b=" in sc.last_message
+    msg = sc.last_message or ""
+    assert ("b=" in msg or "(a, b)=" in msg) and "1e+200" in msg, msg  # names b and its value
 
 
 # ------------------------------------------------------------------------------- defect 11

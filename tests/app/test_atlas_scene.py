@@ -30,7 +30,7 @@ def test_scene_shows_the_store(store):
     sc.wait_idle(120)
     info = sc.refresh()
     assert info is not None and any(k == "max residual" for k, _ in info.errors)
-    z = sc.last_plot.dimension_values(2, flat=False)  # the QuadMesh on screen
+    z = sc.last_z  # the image on screen
     ds = sc.dataset
     ref = np.where(ds.status.values == "ok", ds.max_modulus.values - 1.0, np.nan)
     assert np.allclose(np.sort(z[np.isfinite(z)]), np.sort(ref[np.isfinite(ref)]), rtol=0, atol=0)
