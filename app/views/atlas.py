@@ -47,8 +47,12 @@ class AtlasScene(BokehScene):
                          sizing_mode="stretch_width", height=self.plot_height)  # fmt: skip
         self.fig = fig
         self.mapper = LinearColorMapper(palette="Viridis256", nan_color=(0, 0, 0, 0))
-        self.src = ColumnDataSource({"image": [], "x": [], "y": [], "dw": [], "dh": []},
-                                    name="atlas-image")  # fmt: skip
+        # a 1 x 1 transparent image until an atlas is shown: BokehJS's image glyph needs a 2-D
+        # array in every row of its source ("expected a 2D array" otherwise)
+        self.src = ColumnDataSource(
+            {"image": [np.full((1, 1), np.nan)], "x": [0.0], "y": [0.0], "dw": [1.0], "dh": [1.0]},
+            name="atlas-image",
+        )
         fig.image("image", x="x", y="y", dw="dw", dh="dh", source=self.src,
                   color_mapper=self.mapper)  # fmt: skip
         fig.add_layout(ColorBar(color_mapper=self.mapper, width=12), "right")
@@ -143,8 +147,11 @@ class AtlasScene(BokehScene):
         dw = (w[-1] - w[0]) / max(len(w) - 1, 1) if len(w) > 1 else 1.0
         dv = (V[-1] - V[0]) / max(len(V) - 1, 1) if len(V) > 1 else 1.0
         up = Updates()
-        up.data(self.src, None, image=[z.T], x=[w[0] - dw / 2], y=[V[0] - dv / 2],
-                dw=[dw * len(w)], dh=[dv * len(V)])  # fmt: skip
+        # set, not Updates.data: the image column is a *list* of 2-D arrays (np.asarray would
+        # stack it into one 3-D array, which BokehJS's image glyph rejects)
+        up.set(self.src, data={"image": [np.ascontiguousarray(z.T)], "x": [w[0] - dw / 2],
+                               "y": [V[0] - dv / 2], "dw": [dw * len(w)],
+                               "dh": [dv * len(V)]})  # fmt: skip
         finite = z[np.isfinite(z)]
         up.set(self.mapper, low=float(finite.min()), high=float(finite.max()))
         up.set(self.fig.title, text=f"{name} over (w₊, V) (click a cell: that wave)")
