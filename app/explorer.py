@@ -325,13 +325,23 @@ def from_url() -> Explorer:
     if loc is not None:
         st = explorer.state
 
-        def push(*_):
+        def wanted() -> str:
             # the whole query is rewritten (not Location.update_query, which parses the old
             # query — and raises on a 5000-digit value)
-            q = {k: url_value(getattr(st, k)) for k in URL_PARAMS}
-            loc.search = "?" + urllib.parse.urlencode(q)
+            return "?" + urllib.parse.urlencode({k: url_value(getattr(st, k)) for k in URL_PARAMS})
+
+        def push(*_):
+            loc.search = wanted()
+
+        def reassert(event):
+            # The browser's Location view reports its own (original) search once it starts;
+            # under load that report can arrive after the onload push, and would leave the
+            # address bar stale.  Any search that is not the state's is answered with the state's.
+            if event.new != wanted():
+                push()
 
         push()
         pn.state.onload(push)  # again once the browser's own location has been synced
         st.param.watch(push, list(URL_PARAMS))
+        loc.param.watch(reassert, ["search"])
     return explorer
