@@ -25,7 +25,7 @@ browser:
 	  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null; }
 
 # Same steps as the Dockerfile: JIT warm-up in parallel processes (fills NUMBA_CACHE_DIR; the
-# rarely used integrators compile in the background once the server is up), then panel serve with
+# simulation's integrators compile in the background once the server is up), then panel serve with
 # the app's warm-up (--setup: kernels + default scenes into the result cache; --warm: one page).
 serve: setup
 	$(BIN)/fpu warm --essential

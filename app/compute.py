@@ -431,7 +431,9 @@ def simulation(kind: str, a: float, b: float, params: dict, stop=None, progress=
 def warm_job() -> float:
     """Load (or compile) every Numba kernel in a worker process; seconds spent."""
     t0 = time.perf_counter()
-    warm_all(parallel=False)  # a worker warms itself: no processes of its own
+    # a worker warms itself (no processes of its own), the essential routes only: the lazy ones
+    # are compiled by the server's background `fpu warm` and loaded from the cache when used
+    warm_all(parallel=False, lazy=False)
     return time.perf_counter() - t0
 
 

