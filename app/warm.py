@@ -15,6 +15,7 @@ import logging
 import os
 import subprocess
 import sys
+import threading
 import time
 
 log = logging.getLogger("fpu-explorer")
@@ -35,6 +36,18 @@ apply_thread_policy(1)
 DEFAULT_SCENES = "force,phase,profiles,diagram,simulation"
 
 
+def _warm_background() -> None:
+    t = time.perf_counter()
+    compute.warm_workers()
+    log.info("fpu-explorer: workers warm in %.2f s", time.perf_counter() - t)
+    try:
+        subprocess.Popen(
+            [sys.executable, "-m", "fpucore", "warm", "--serial"], stdout=subprocess.DEVNULL
+        )
+    except OSError as exc:
+        log.warning("background JIT warm-up not started: %s", exc)
+
+
 def warm(verbose: bool = True, scenes: str | None = None) -> dict[str, float]:
     """Warm the JIT and the cache; returns seconds spent per step.
 
@@ -53,15 +66,10 @@ def warm(verbose: bool = True, scenes: str | None = None) -> dict[str, float]:
     except Exception as exc:  # warm-up must never keep the server from starting
         log.warning("fpucore warm-up skipped: %s", exc)
     times["jit"] = time.perf_counter() - t0
-    t = time.perf_counter()
-    compute.warm_workers()
-    times["workers"] = time.perf_counter() - t
-    try:  # the simulation's integrators (fpucore.warm.LAZY) compile on one core while we serve
-        subprocess.Popen(
-            [sys.executable, "-m", "fpucore", "warm", "--serial"], stdout=subprocess.DEVNULL
-        )
-    except OSError as exc:
-        log.warning("background JIT warm-up not started: %s", exc)
+    # the worker processes start and load the cache while the server starts serving (they were
+    # ~10 s of the wait for /liveness); a heavy job submitted meanwhile queues behind their
+    # warm-up.  Then the simulation's integrators (fpucore.warm.LAZY) compile on one core.
+    threading.Thread(target=_warm_background, name="fpu-warm-workers", daemon=True).start()
 
     explorer = Explorer()
     for scene in explorer.scenes:
