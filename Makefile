@@ -24,11 +24,13 @@ browser:
 	  echo "installing Debian chromium (apt)"; \
 	  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null; }
 
-# Same steps as the Dockerfile: JIT warm-up in parallel processes (fills NUMBA_CACHE_DIR; the
-# simulation's integrators compile in the background once the server is up), then panel serve with
+# Same steps as the Dockerfile: JIT warm-up of the essential routes in one process (fills
+# NUMBA_CACHE_DIR; the simulation's integrators compile in the background once the server is up;
+# --serial: the two spawned compile processes took 2.7x longer here, benchmarks/README.md
+# "First start"), then panel serve with
 # the app's warm-up (--setup: kernels + default scenes into the result cache; --warm: one page).
 serve: setup
-	$(BIN)/fpu warm --essential
+	$(BIN)/fpu warm --essential --serial
 	$(BIN)/panel serve app/main.py --port $(PORT) --address 0.0.0.0 \
 	  --allow-websocket-origin='*' --liveness --num-threads 2 --setup app/warm.py --warm
 
