@@ -3,11 +3,13 @@
 With ``cache=True`` the compiled code lands in NUMBA_CACHE_DIR, so later processes (the server,
 its workers, the tests) load it from disk (~1 s) instead of compiling (~30 s in all).
 
-First start is cut in two ways (measured in benchmarks/README.md, "First start"):
+First start (measured in benchmarks/README.md, "First start"):
 
-* routes compile in parallel, one spawned process per group in :data:`GROUPS` (balanced by
-  measured compile time: the RKN12 chain stepper alone is ~40 % of the total), so two cores
-  halve the wall time; the parent then only loads the cached machine code;
+* ``parallel=True`` compiles one spawned process per group in :data:`GROUPS` (balanced by
+  measured compile time: the RKN12 chain stepper alone is ~40 % of the total) and the parent
+  then loads the cached code.  On the shared 2-core machine this measured 2.7× *slower* than one
+  process for the essential set (35.8 s against 13.5 s, same load), so ``make serve`` and the
+  server use ``parallel=False``; the option stays for idle multi-core machines (``fpu warm``);
 * the chain simulation's integrators (:data:`LAZY`: the default RKN12 stepper, DOPRI5, the
   symplectic stepper) are not needed to serve the first page: ``warm_all(lazy=False)`` leaves
   them out and :func:`warm_lazy` (``fpu warm --serial`` in the server's background) compiles
