@@ -466,15 +466,18 @@ def n_needed(a, b, mode, w_plus, V, tol: float) -> int:
 
 
 # --------------------------------------------------------------------------- energy criterion
-#: QC samples per velocity interval for the energy criterion: closed forms (cubic) are cheap
-#: (~0.2 ms each); other laws solve the §3 theory point by point (~15 ms each)
-ENERGY_QC_SAMPLES = {True: fq.energy.QC_SAMPLES, False: 60}
+#: QC samples per velocity interval for the energy criterion (extrema are bracketed on this
+#: grid, then refined): for closed forms (cubic) the 160 points of the diagram's curve (~0.05 s
+#: in all; 400 cost 0.15–0.35 s in the cheap, synchronously rendered Diagrams scene and found
+#: the same extrema on the families tested); other laws solve the §3 theory point by point
+#: (~15 ms each)
+ENERGY_QC_SAMPLES = {True: 160, False: 60}
 
 
 def energy_extrema_qc(a: float, b: float, w_plus: float) -> Computed:
     """Extrema of E_ren^QC(V) (eq. Eren_QC) along the solitary family of w_plus, each with its
     error bar on V (fpucore.floquet.energy_criterion without discrete waves: QC closed forms on
-    a grid, refined by a bounded minimisation; ~0.15 s for the cubic).  Cheap: in process."""
+    a grid, refined by a bounded minimisation; ~0.05 s for the cubic).  Cheap: in process."""
     lw = law(a, b)
     n = ENERGY_QC_SAMPLES[bool(qc.is_closed_form(lw))]
     return CACHE.get(
@@ -511,15 +514,23 @@ def family_energy_extrema(a, b, w_plus, V_values, N, tol) -> Computed:
     return sampled_energy_extrema(key, a, b, w_plus, V, E, dE, ok)
 
 
-def sweep_energy_extrema(a, b, w_plus, V_values, N) -> Computed:
-    """The discrete E_ren's extrema from the waves of a cached solitary Floquet sweep (its rows
-    carry each wave's energy and energy_error): see :func:`sampled_energy_extrema`.  None if
-    the sweep is not cached."""
+def sweep_energy_check(a, b, w_plus, V_values, N) -> Computed | None:
+    """The energy criterion on a cached solitary Floquet sweep (its rows carry each wave's
+    E_ren, energy_error and classification): (EnergyCriterion with the discrete extrema from the
+    sweep's waves and the QC extrema, list of fpucore.floquet.StabilityChange — the cross-check
+    of the classifications against the extrema).  Parabola fits plus the QC grid (~0.05 s for
+    the cubic); None if the sweep is not cached."""
     Vs = [float(v) for v in V_values]
     key = sweep_key(a, b, "solitary", w_plus, Vs, N, "lower")
     sw = CACHE.peek(key)
     if sw is None:
         return None
-    return sampled_energy_extrema(
-        key, a, b, w_plus, sw.V, sw.energy, sw.energy_error, np.asarray(sw.converged, bool)
-    )
+    lw = law(a, b)
+    n = ENERGY_QC_SAMPLES[bool(qc.is_closed_form(lw))]
+
+    def check():
+        ok = np.asarray(sw.converged, bool)
+        ec = fq.criterion_from_samples(lw, w_plus, sw.V, sw.energy, sw.energy_error, ok, n)
+        return ec, fq.stability_changes(lw, w_plus, sw.V, sw.classification, ec)
+
+    return CACHE.get(("energy_sweep", key, n), check)
