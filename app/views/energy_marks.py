@@ -16,7 +16,9 @@ from bokeh.models import ColumnDataSource, HoverTool
 
 from .bokeh_scene import Updates
 
-EMPTY = {"x": [], "left": [], "right": [], "lo": [], "hi": [], "label": []}
+#: x = V*, y = mid-height (the tests read x, y like every named source), band [left, right],
+#: vertical extent [lo, hi], label = the hover text
+EMPTY = {"x": [], "y": [], "left": [], "right": [], "lo": [], "hi": [], "label": []}
 
 
 def fmt_extremum(kind: str, v: float, dv: float) -> str:
@@ -52,8 +54,9 @@ class ExtremumMarks:
         labels = [fmt_extremum(k, v, d) for k, v, d in zip(kinds, V, dV)]
         up.set(
             self.src,
-            data={"x": V, "left": V - dV, "right": V + dV, "lo": np.full(n, float(y_lo)),
-                  "hi": np.full(n, float(y_hi)), "label": labels},
+            data={"x": V, "y": np.full(n, 0.5 * (y_lo + y_hi)), "left": V - dV,
+                  "right": V + dV, "lo": np.full(n, float(y_lo)), "hi": np.full(n, float(y_hi)),
+                  "label": labels},
         )  # fmt: skip
         for r in self.renderers:
             up.set(r, visible=n > 0)

@@ -279,6 +279,8 @@ def test_every_scene_renders_a_plot(page):
         wait_rendered(page, key, 240.0)  # Floquet is the slow one
         page.locator(f".scene-{key} canvas").first.wait_for()
         assert "Error:" in status_text(page, key), status_text(page, key)
+        if key == "diagram":  # the energy criterion's sentence (issue 12)
+            assert "Energy criterion" in status_text(page, key), status_text(page, key)
         print(f"[browser] {key}: {status_text(page, key)[:120]}")
     # simulation: runs on demand
     open_tab(page, "Simulation")
@@ -516,6 +518,12 @@ def test_floquet_plot_follows_N_and_shows_the_sweep_without_reload(page):
     while not source(page, "floquet-sweep")["x"] and time.monotonic() < t_end:
         page.wait_for_timeout(200)
     assert len(source(page, "floquet-sweep")["x"]) >= 1  # panel (c) without a reload
+    # the energy criterion on (c) (issue 12): E_ren is monotone along w₊ = 1, so no mark
+    t_end = time.monotonic() + 60
+    while "Energy criterion" not in status_text(page, "floquet") and time.monotonic() < t_end:
+        page.wait_for_timeout(200)
+    assert "no minimum or maximum" in status_text(page, "floquet")
+    assert source(page, "floquet-energy-extremum")["x"] == []
     assert not app_tracebacks()
 
 
