@@ -467,17 +467,15 @@ def n_needed(a, b, mode, w_plus, V, tol: float) -> int:
 
 # --------------------------------------------------------------------------- energy criterion
 #: QC samples per velocity interval for the energy criterion (extrema are bracketed on this
-#: grid, then refined): for closed forms (cubic) the 160 points of the diagram's curve (~0.05 s
-#: in all; 400 cost 0.15–0.35 s in the cheap, synchronously rendered Diagrams scene and found
-#: the same extrema on the families tested); other laws solve the §3 theory point by point
-#: (~15 ms each)
-ENERGY_QC_SAMPLES = {True: 160, False: 60}
+#: grid, then refined): closed forms (cubic) evaluate the whole grid at once (~1 ms; ~8 ms with
+#: an extremum to refine); other laws solve the §3 theory point by point (~15 ms each)
+ENERGY_QC_SAMPLES = {True: fq.energy.QC_SAMPLES, False: 60}
 
 
 def energy_extrema_qc(a: float, b: float, w_plus: float) -> Computed:
     """Extrema of E_ren^QC(V) (eq. Eren_QC) along the solitary family of w_plus, each with its
     error bar on V (fpucore.floquet.energy_criterion without discrete waves: QC closed forms on
-    a grid, refined by a bounded minimisation; ~0.05 s for the cubic).  Cheap: in process."""
+    a grid, refined by a bounded minimisation; 1–10 ms for the cubic).  Cheap: in process."""
     lw = law(a, b)
     n = ENERGY_QC_SAMPLES[bool(qc.is_closed_form(lw))]
     return CACHE.get(
@@ -518,7 +516,7 @@ def sweep_energy_check(a, b, w_plus, V_values, N) -> Computed | None:
     """The energy criterion on a cached solitary Floquet sweep (its rows carry each wave's
     E_ren, energy_error and classification): (EnergyCriterion with the discrete extrema from the
     sweep's waves and the QC extrema, list of fpucore.floquet.StabilityChange — the cross-check
-    of the classifications against the extrema).  Parabola fits plus the QC grid (~0.05 s for
+    of the classifications against the extrema).  Parabola fits plus the QC grid (1–10 ms for
     the cubic); None if the sweep is not cached."""
     Vs = [float(v) for v in V_values]
     key = sweep_key(a, b, "solitary", w_plus, Vs, N, "lower")

@@ -110,6 +110,17 @@ def test_classification_across_the_soft_minimum(soft_coarse):
         assert np.all(np.abs(np.abs(fr.trivial) - 1.0) < 1e-10)
 
 
+@pytest.mark.parametrize("w_plus", [1.0, 6.0, W_SOFT])
+def test_qc_grid_is_the_scalar_closed_form(w_plus):
+    """The criterion's QC grid (one vectorised closed form per interval, background w_S(V) above
+    V_SK) against fpucore.qc.solitary one velocity at a time, within its round-off bound."""
+    for lo, hi in qc.solitary_intervals(LAW, w_plus):
+        V, E, dE = fq.energy.qc_energy_grid(LAW, w_plus, lo, hi, 50)
+        for i in (0, 17, 49):
+            s = qc.solitary(LAW, w_plus, float(V[i]))
+            assert abs(E[i] - s.energy) <= dE[i] + s.energy_error, (w_plus, V[i])
+
+
 def test_bad_input():
     with pytest.raises(ParameterError, match="w_plus"):
         fq.energy_criterion(LAW, float("nan"))
