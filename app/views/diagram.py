@@ -330,7 +330,10 @@ class DiagramScene(BokehScene):
                     fmt_extremum(k, v, d) for k, v, d in zip(kd, Vd, dVd)
                 )
                 up.set(self.ext_legend[1], label={"value": label})
-            words.append(criterion_words(Vd, dVd, kd, "the discrete dots", "between them"))
+            words.append(
+                criterion_words(Vd, dVd, kd, "the discrete dots", "that the dots resolve (more "
+                                "points per interval may find one)")
+            )  # fmt: skip
         else:
             self.ext_d.update(up, [], [], (), *ylim, self.ext_legend[1])
         info.shown += ". " + " ".join(words)

@@ -221,7 +221,8 @@ class FloquetScene(BokehScene):
         else:
             info.notes.append(
                 criterion_words(ec.extrema_V, ec.extrema_V_error, ec.extrema_kind,
-                                "the sweep's discrete waves", "between the swept velocities")
+                                "the sweep's discrete waves",
+                                "that the swept velocities resolve (more may find one)")
                 + " "
                 + criterion_words(ec.qc_extrema_V, ec.qc_extrema_V_error, ec.qc_extrema_kind,
                                   "the QC family", "between c₊ and c₋")

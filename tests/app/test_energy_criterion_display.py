@@ -106,3 +106,24 @@ def test_floquet_sweep_panel_shows_the_criterion_and_the_cross_check():
         assert "does not cross between stable" in status
     code = sc.python_code()
     assert "criterion_from_samples" in code and "stability_changes" in code
+
+
+def test_diagram_marks_the_discrete_minimum_once_its_dots_exist():
+    """20 dots per interval put one next to the minimum (0.549, 0.766, 0.984, …): the discrete
+    E_ren's minimum is marked (dashed) within its error bar plus the measured QC–discrete
+    deviation (≤ 2 %, fpucore.floquet.energy.QC_DISCRETE_ALLOWANCE) of the QC one."""
+    st, sc = attached("diagram", w_plus=W_SOFT, V=0.7, N=200, tol=1e-8)
+    sc.n_discrete.value = 20
+    args = (st.a, st.b, st.w_plus)
+    sc.refresh()
+    assert not sc.ext_d.line.visible  # not asked for yet: no discrete waves, no mark
+    sc._want_discrete = True  # what the button sets
+    sc.refresh()
+    assert sc.last_message is None, sc.last_message
+    d = sc.ext_d.src.data
+    assert len(d["x"]) == 1 and sc.ext_d.line.visible and sc.ext_legend[1].visible
+    dv = d["right"][0] - d["x"][0]
+    v_qc = qc_minimum_on_a_dense_grid()
+    assert abs(d["x"][0] - v_qc) <= dv + fq.energy.QC_DISCRETE_ALLOWANCE * v_qc
+    assert "E_ren(V) of the discrete dots has a minimum" in sc.status.object
+    assert compute.family_energy_extrema(*args, [0.5, 0.6], 200, 1e-8) is None  # not cached
