@@ -3,7 +3,9 @@
 (a) amplitude |w(0) − w_B| and (b) renormalized energy E_ren against V for the current w₊
 (Figs. SWamp_energy_QCcubic, SWamp_cubic_DvsQC, SWenergy_cubic_DvsQC): QC curves (closed form),
 discrete dots on demand, V_SK dashed red, sonic limits c₊ (blue) and c₋ (green), current V
-marked.  (c) the existence diagram V vs w₊ (Fig. SWvelocities_cubic) with TSW (dark) and CSW
+marked; on (b) the extrema of E_ren^QC (and of the discrete E_ren once its dots are computed),
+where by the energy criterion the family's stability can change.  (c) the existence diagram
+V vs w₊ (Fig. SWvelocities_cubic) with TSW (dark) and CSW
 (light) regions; a click picks (w₊, V).
 """
 
@@ -33,6 +35,7 @@ from .bokeh_scene import (
     finite_extent,
     new_figure,
 )
+from .energy_marks import ExtremumMarks, criterion_words, fmt_extremum
 
 TSW, CSW = "#6a51a3", "#cbc9e2"
 CSW_LINE = "#9e9ac8"
@@ -94,6 +97,15 @@ class DiagramScene(BokehScene):
                 ],
                 "V": add_vline(fig, "black"),
             }
+        # energy criterion on (b): extrema of E_ren^QC (solid) and of the discrete dots (dashed)
+        self.ext_qc = ExtremumMarks(fe, "#ff7f0e", "solid", "diagram-energy-extremum-qc")
+        self.ext_d = ExtremumMarks(fe, "#8c564b", "dashed", "diagram-energy-extremum-discrete")
+        self.ext_legend = add_legend(
+            fe,
+            "below",
+            [("E_ren^QC extremum", self.ext_qc.renderers),
+             ("discrete E_ren extremum", self.ext_d.renderers)],
+        )  # fmt: skip
         pa = self.panels["amp"]
         self.amp_legend = add_legend(
             fa,
@@ -199,6 +211,7 @@ class DiagramScene(BokehScene):
             info.notes.append("discrete dots: press 'Add discrete points'")
             return None
         self._want_discrete = False
+        self._family_args = key_args
         c = compute.discrete_family(*key_args, stop=self.superseded, progress=self.set_progress)
         info.time(f"{len(Vs)} discrete waves", c)
         rows = [r for r in c.value if hasattr(r, "amplitude")]
@@ -282,7 +295,48 @@ class DiagramScene(BokehScene):
             f"V_SK = {fmt_num(fam.V_SK)}, c₋ = {fmt_num(fam.c_minus)}; "
             f"current V = {fmt_num(s.V)}"
         )
+        self._energy_criterion(info, up, elim, bool(self._rows))
         return up
+
+    def _energy_criterion(self, info: Info, up: Updates, ylim, with_discrete: bool) -> None:
+        """(b): where E_ren(V) is stationary (QC closed forms always — cheap; the discrete E_ren
+        only when its dots are computed), and the sentence saying so in the status."""
+        s = self.state
+        self._ec_qc = self._ec_d = None
+        try:
+            c = compute.energy_extrema_qc(s.a, s.b, s.w_plus)
+        except compute.ParameterError as exc:
+            info.notes.append(f"energy criterion not shown: {exc}")
+            self.ext_qc.update(up, [], [], (), *ylim, self.ext_legend[0])
+            self.ext_d.update(up, [], [], (), *ylim, self.ext_legend[1])
+            return
+        ec = self._ec_qc = c.value
+        info.time("energy criterion (QC)", c)
+        V, dV, kinds = ec.qc_extrema_V, ec.qc_extrema_V_error, ec.qc_extrema_kind
+        self.ext_qc.update(up, V, dV, kinds, *ylim, self.ext_legend[0])
+        if len(V):
+            info.error("E_ren^QC extremum location", ec.location_error)
+            label = "E_ren^QC " + "; ".join(fmt_extremum(k, v, d) for k, v, d in zip(kinds, V, dV))
+            up.set(self.ext_legend[0], label={"value": label})
+        words = [criterion_words(V, dV, kinds, "the QC family", "between c₊ and c₋")]
+        cd = compute.family_energy_extrema(*self._family_args) if with_discrete else None
+        if cd is not None:
+            ed = self._ec_d = cd.value
+            info.time("energy criterion (discrete dots)", cd)
+            Vd, dVd, kd = ed.extrema_V, ed.extrema_V_error, ed.extrema_kind
+            self.ext_d.update(up, Vd, dVd, kd, *ylim, self.ext_legend[1])
+            if len(Vd):
+                label = "discrete E_ren " + "; ".join(
+                    fmt_extremum(k, v, d) for k, v, d in zip(kd, Vd, dVd)
+                )
+                up.set(self.ext_legend[1], label={"value": label})
+            words.append(
+                criterion_words(Vd, dVd, kd, "the discrete dots", "that the dots resolve (more "
+                                "points per interval may find one)")
+            )  # fmt: skip
+        else:
+            self.ext_d.update(up, [], [], (), *ylim, self.ext_legend[1])
+        info.shown += ". " + " ".join(words)
 
     def download_data(self):
         fam = getattr(self, "_fam", None)
@@ -303,6 +357,14 @@ class DiagramScene(BokehScene):
             cols["residual_discrete"] = np.array([r.residual for r in self._rows])
             cols["amp_error_discrete"] = np.array([r.amplitude_error for r in self._rows])
             cols["E_error_discrete"] = np.array([r.energy_error for r in self._rows])
+        ec = getattr(self, "_ec_qc", None)
+        if ec is not None:
+            cols["E_QC_extremum_V"] = ec.qc_extrema_V
+            cols["E_QC_extremum_V_error"] = ec.qc_extrema_V_error
+        ed = getattr(self, "_ec_d", None)
+        if ed is not None:
+            cols["E_discrete_extremum_V"] = ed.extrema_V
+            cols["E_discrete_extremum_V_error"] = ed.extrema_V_error
         d = getattr(self, "_exist", None)
         if d is not None:
             cols.update(w_plus=d.w_plus, c_plus=d.c_plus, V_SK=d.V_SK, c_minus=d.c_minus)
@@ -315,11 +377,15 @@ class DiagramScene(BokehScene):
 
     def python_code(self) -> str:
         s = self.state
+        qc_n = compute.ENERGY_QC_SAMPLES[True]
         code = python_preamble(s) + (
             "from fpucore.qc import diagram\n"
             f"fam = diagram.solitary_family(law, {float(s.w_plus)!r}, n=160)\n"
             "d = diagram.existence_diagram(law, n=400)\n"
             "print(fam.c_plus, fam.V_SK, fam.c_minus)\n"
+            "# energy criterion: extrema of E_ren^QC(V), where stability may change\n"
+            f"ec = floquet.energy_criterion(law, {float(s.w_plus)!r}, qc_samples={qc_n})\n"
+            "print(ec.qc_extrema_kind, ec.qc_extrema_V, ec.qc_extrema_V_error)\n"
         )
         if getattr(self, "_rows", None):
             Vs = [float(r.V) for r in self._rows]

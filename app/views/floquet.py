@@ -3,7 +3,9 @@
 (a) the 2N multipliers μ (blue ×) of the discrete wave at the current parameters with the unit
 circle drawn over them (red); (b) a zoom on the multiplier of largest modulus away from the
 trivial cluster at μ = 1, where instability quartets (|μ| − 1 beyond the error bar, red rings)
-show; (c) on demand, max |μ| against V for the family, V_SK dashed, the current V marked.
+show; (c) on demand, max |μ| against V for the family, V_SK dashed, the current V marked and,
+for a solitary family, the extrema of E_ren(V) (energy criterion: from the sweep's own waves,
+solid, and the QC family, dotted) with the cross-check of the classifications against them.
 
 The three figures are built once; panel (c) is hidden until a sweep exists (its visibility
 changes, the layout does not).  Spectrum and sweep run in worker processes.
@@ -30,6 +32,7 @@ from .bokeh_scene import (
     finite_extent,
     new_figure,
 )
+from .energy_marks import ExtremumMarks, criterion_words, fmt_extremum
 
 TH = np.linspace(0.0, 2.0 * np.pi, 721)
 #: fpucore.floquet's classification in words (never a bare "unstable": the evidence is in (d))
@@ -111,7 +114,15 @@ class FloquetScene(BokehScene):
         fc.add_layout(self.whisk)
         self.sw_V = add_vline(fc, "black")
         self.sw_vsk = add_vline(fc, "#d62728", "dashed")
-        add_legend(fc, "right", [("max |μ|", [self.r_sw[0], self.r_swp[0]])])
+        self.ext_d = ExtremumMarks(fc, "#ff7f0e", "solid", "floquet-energy-extremum")
+        self.ext_q = ExtremumMarks(fc, "#ff7f0e", "dotted", "floquet-energy-extremum-qc")
+        self.sw_legend = add_legend(
+            fc,
+            "right",
+            [("max |μ|", [self.r_sw[0], self.r_swp[0]]),
+             ("E_ren extremum (sweep's waves)", self.ext_d.renderers),
+             ("E_ren^QC extremum", self.ext_q.renderers)],
+        )  # fmt: skip
         fc.visible = False
         # (d) the evidence of the three-way classification: max|μ| − 1 ± error at 0.4N, 0.6N, N
         fd = new_figure(
@@ -150,7 +161,7 @@ class FloquetScene(BokehScene):
         kind, wp, Vs, vsk, branch = self._sweep_values()
         args = (s.a, s.b, kind, wp, Vs, s.N, branch)
         if not self._want_sweep and not compute.floquet_sweep_cached(*args):
-            self._sweep_result = None
+            self._sweep_result = self._ec = None
             return False
         self._want_sweep = False
         c = compute.floquet_sweep(*args, stop=self.superseded, progress=self.set_progress)
@@ -170,9 +181,72 @@ class FloquetScene(BokehScene):
         up.range(self.fig_c.x_range, float(np.min(sw.V)), float(np.max(sw.V)), pad=0.04)
         lo, hi = finite_extent(mm[ok] - err[ok], mm[ok] + err[ok], [1.0])
         up.range(self.fig_c.y_range, lo, hi, pad=0.1)
+        self._energy_criterion(info, up, kind, wp, Vs, (lo - 0.2 * (hi - lo), hi + 0.2 * (hi - lo)))
         if (~ok).any():
             info.notes.append(f"sweep: {int((~ok).sum())} velocities did not converge (not drawn)")
         return True
+
+    def _energy_criterion(self, info: Info, up: Updates, kind, wp, Vs, ylim) -> None:
+        """(c): extrema of E_ren along the swept solitary family (the sweep's own waves and the
+        QC family) and the cross-check of the sweep's classifications against them."""
+        s = self.state
+        self._ec = None
+        c = compute.sweep_energy_check(s.a, s.b, wp, Vs, s.N) if kind == "solitary" else None
+        if c is None:
+            for marks, item in ((self.ext_d, self.sw_legend[1]), (self.ext_q, self.sw_legend[2])):
+                marks.update(up, [], [], (), *ylim, item)
+            if kind != "solitary":
+                info.notes.append("energy criterion: for solitary-wave families only")
+            return
+        ec, changes = self._ec = c.value
+        info.time("energy criterion", c)
+        for marks, item, V, dV, kinds, what in (
+            (self.ext_d, self.sw_legend[1], ec.extrema_V, ec.extrema_V_error, ec.extrema_kind,
+             "E_ren (sweep's waves)"),
+            (self.ext_q, self.sw_legend[2], ec.qc_extrema_V, ec.qc_extrema_V_error,
+             ec.qc_extrema_kind, "E_ren^QC"),
+        ):  # fmt: skip
+            marks.update(up, V, dV, kinds, *ylim, item)
+            if len(V):
+                text = "; ".join(fmt_extremum(k, v, d) for k, v, d in zip(kinds, V, dV))
+                up.set(item, label={"value": f"{what} {text}"})
+        if ec.location_error > 0:
+            info.error("E_ren extremum location", ec.location_error)
+        if len(ec.extrema_V) == 0 and len(ec.qc_extrema_V) == 0:
+            info.notes.append(
+                "Energy criterion: E_ren(V) has no minimum or maximum, neither along the sweep's "
+                "discrete waves nor in the QC family between c₊ and c₋, so along this family "
+                "the stability cannot change through its translation mode."
+            )
+        else:
+            info.notes.append(
+                criterion_words(ec.extrema_V, ec.extrema_V_error, ec.extrema_kind,
+                                "the sweep's discrete waves",
+                                "that the swept velocities resolve (more may find one)")
+                + " "
+                + criterion_words(ec.qc_extrema_V, ec.qc_extrema_V_error, ec.qc_extrema_kind,
+                                  "the QC family", "between c₊ and c₋")
+            )  # fmt: skip
+        for ch in changes:
+            step = (f"the classification changes from {ch.class_from} to {ch.class_to} between "
+                    f"V = {fmt_num(ch.V_from)} and V = {fmt_num(ch.V_to)}")  # fmt: skip
+            if ch.explained:
+                info.notes.append(
+                    f"Cross-check: {step}, next to the E_ren extremum at V = "
+                    f"{fmt_num(ch.extremum_V)} — consistent with the criterion."
+                )
+            else:
+                info.notes.append(
+                    f"Cross-check: {step}, where E_ren(V) has no extremum: by the energy "
+                    "criterion this is not a change of stability of the infinite chain through "
+                    "its translation mode — most likely a finite-size effect (paper §6); check "
+                    "with a larger N."
+                )
+        if not changes:
+            info.notes.append(
+                "Cross-check: the classification along the sweep does not cross between stable "
+                "(or finite-size artefact) and unstable, consistent with the energy criterion."
+            )
 
     def render(self, info: Info):
         s = self.state
@@ -269,6 +343,15 @@ class FloquetScene(BokehScene):
                 f"w_plus={wp!r}, N={int(s.N)}, branch={branch!r})\n"
                 "print(sw.V, sw.max_modulus)\n"
             )
+            if kind == "solitary":
+                code += (
+                    "# energy criterion: extrema of E_ren (the sweep's waves, the QC family)\n"
+                    f"ec = floquet.criterion_from_samples(law, {wp!r}, sw.V, sw.energy, "
+                    "sw.energy_error, sw.converged)\n"
+                    "print(ec.extrema_V, ec.extrema_V_error, ec.qc_extrema_V)\n"
+                    "print(floquet.stability_changes(law, sw.w_plus, sw.V, sw.classification, "
+                    "ec))\n"
+                )
         return code
 
     def download_data(self):
@@ -297,5 +380,17 @@ class FloquetScene(BokehScene):
         }
         sw = self._sweep_result
         if sw is not None:
-            out["sweep"] = {"V": sw.V, "max_modulus": sw.max_modulus, "error": sw.error}
+            out["sweep"] = {"V": sw.V, "max_modulus": sw.max_modulus, "error": sw.error,
+                            "classification": sw.classification, "energy": sw.energy,
+                            "energy_error": sw.energy_error}  # fmt: skip
+        ec = getattr(self, "_ec", None)
+        if ec is not None:
+            crit, changes = ec
+            out["energy_criterion"] = {
+                "extrema_V": crit.extrema_V, "extrema_V_error": crit.extrema_V_error,
+                "extrema_kind": crit.extrema_kind, "qc_extrema_V": crit.qc_extrema_V,
+                "qc_extrema_V_error": crit.qc_extrema_V_error,
+                "qc_extrema_kind": crit.qc_extrema_kind,
+                "unexplained_changes": [(c.V_from, c.V_to) for c in changes if not c.explained],
+            }  # fmt: skip
         return "floquet.json", as_json(out)

@@ -14,7 +14,13 @@ from fpucore.floquet.checks import (
     phonon_gap,
     quartet_symmetry_error,
 )
-from fpucore.floquet.energy import EnergyCriterion, energy_criterion
+from fpucore.floquet.energy import (
+    EnergyCriterion,
+    StabilityChange,
+    criterion_from_samples,
+    energy_criterion,
+    stability_changes,
+)
 from fpucore.floquet.finite_size import CLASSES, chain_lengths
 from fpucore.floquet.monodromy import MAX_N, Monodromy, default_steps, monodromy, multipliers_of
 from fpucore.floquet.multipliers import METHODS, FloquetResult, spectrum
@@ -33,6 +39,9 @@ __all__ = [
     "multipliers_of",
     "EnergyCriterion",
     "energy_criterion",
+    "criterion_from_samples",
+    "StabilityChange",
+    "stability_changes",
     "CLASSES",
     "chain_lengths",
     "METHODS",

@@ -32,10 +32,11 @@ from scipy.optimize import minimize_scalar
 
 from fpucore import qc
 from fpucore.errors import ParameterError, require_finite
+from fpucore.floquet.finite_size import CLASSES
 from fpucore.result import Result
 from fpucore.wave import Family, solitary_family
 
-QC_SAMPLES = 400  # QC grid points per velocity interval (closed forms: ~1 ms each)
+QC_SAMPLES = 400  # QC grid points per velocity interval (cubic: one vectorised closed form)
 _END_MARGIN = 1e-4  # relative distance from the interval ends (sonic / V_SK) on the QC grid
 
 
@@ -122,17 +123,31 @@ def locate_extrema(V: np.ndarray, E: np.ndarray, dE: np.ndarray) -> list[tuple]:
         stencil = max((abs(a - v_star) for a in alts), default=float(V[i + 1] - V[i - 1]))
         noise = 2.0 * math.sqrt(float(np.max(dE[sl])) / abs(e2)) if e2 != 0 else math.inf
         e_star = float(np.polyval(np.polyfit(V[sl] - V[i], E[sl], 2), v_star - V[i]))
-        out.append((v_star, stencil + noise, e_star, "min" if d[i] > 0 else "max"))
+        # kind from the curvature (a tie d[i] == 0 next to the extremum must not flip it)
+        out.append((v_star, stencil + noise, e_star, "min" if e2 > 0 else "max"))
     return out
+
+
+def qc_energy_grid(law, w_plus: float, lo: float, hi: float, n: int):
+    """(V, E_ren^QC, its error bound) on n points of (lo, hi) (one velocity interval, the ends
+    moved in by _END_MARGIN of its width).  The cubic: all at once by the closed form
+    (:func:`fpucore.qc.solitary_closed_form`, the formulas of :func:`fpucore.qc.solitary`;
+    background w₊ below V_SK, w_S(V) above it); other laws point by point."""
+    span = hi - lo
+    V = np.linspace(lo + _END_MARGIN * span, hi - _END_MARGIN * span, n)
+    if qc.is_closed_form(law):
+        v_sk = qc.sound_speeds(law, w_plus)[1]
+        w_B = np.full_like(V, w_plus) if hi <= v_sk else qc.w_S(law, w_plus, V)
+        _, _, _, E, dE, ok = qc.solitary_closed_form(law, w_B, V)
+        if np.all(ok):
+            return V, np.asarray(E, float), np.asarray(dE, float)
+    sols = [qc.solitary(law, w_plus, float(v)) for v in V]
+    return V, np.array([s.energy for s in sols]), np.array([s.energy_error for s in sols])
 
 
 def _qc_interval(law, w_plus: float, lo: float, hi: float, n: int):
     """QC grid on (lo, hi) and its refined extrema."""
-    span = hi - lo
-    V = np.linspace(lo + _END_MARGIN * span, hi - _END_MARGIN * span, n)
-    sols = [qc.solitary(law, w_plus, float(v)) for v in V]
-    E = np.array([s.energy for s in sols])
-    dE = np.array([s.energy_error for s in sols])
+    V, E, dE = qc_energy_grid(law, w_plus, lo, hi, n)
     ext = []
     for v0, _, _, kind in locate_extrema(V, E, dE):
         j = int(np.clip(np.searchsorted(V, v0), 1, V.size - 1))
@@ -150,6 +165,12 @@ def _qc_interval(law, w_plus: float, lo: float, hi: float, n: int):
     return V, E, ext
 
 
+def _check_qc_samples(qc_samples) -> None:
+    ok = isinstance(qc_samples, (int, np.integer)) and not isinstance(qc_samples, bool)
+    if not (ok and (qc_samples == 0 or 5 <= qc_samples <= 100000)):
+        raise ParameterError("qc_samples", qc_samples, "0 or an integer in [5, 100000]")
+
+
 def energy_criterion(
     law,
     w_plus: float,
@@ -165,13 +186,12 @@ def energy_criterion(
     V_values : velocities of the discrete family (sorted here; ≥ 3 per interval to locate an
     extremum), or ``family`` : an already computed :func:`fpucore.wave.solitary_family`
     (then V_values, N, tol are not used).  Neither: only the QC family is examined.
-    N, tol : as in :func:`fpucore.wave.solve_solitary`.  qc_samples : QC grid per interval.
+    N, tol : as in :func:`fpucore.wave.solve_solitary`.  qc_samples : QC grid per interval
+    (0: skip the QC family).
     """
     t0 = time.perf_counter()
     w_plus = require_finite("w_plus", w_plus)
-    (a, b), (c, d) = qc.solitary_intervals(law, w_plus)
-    if not (isinstance(qc_samples, (int, np.integer)) and 5 <= qc_samples <= 100000):
-        raise ParameterError("qc_samples", qc_samples, "an integer in [5, 100000]")
+    _check_qc_samples(qc_samples)  # before any wave is solved
     if family is None and V_values is not None:
         Vs = np.sort(np.atleast_1d(np.asarray(V_values, dtype=float)))
         family = solitary_family(law, w_plus, Vs, N=N, tol=tol)
@@ -184,22 +204,53 @@ def energy_criterion(
     else:
         V = E = dE = np.zeros(0)
         ok = np.zeros(0, dtype=bool)
+    return criterion_from_samples(law, w_plus, V, E, dE, ok, qc_samples, family, t0)
+
+
+def criterion_from_samples(
+    law,
+    w_plus: float,
+    V,
+    energy,
+    energy_error,
+    converged,
+    qc_samples: int = QC_SAMPLES,
+    family: Family | None = None,
+    t0: float | None = None,
+) -> EnergyCriterion:
+    """The criterion from discrete E_ren samples already computed elsewhere (e.g. the waves of
+    a Floquet sweep, whose rows carry energy and energy_error): V, energy, energy_error,
+    converged : (n,) arrays, any order (non-converged or non-finite samples are ignored).
+    qc_samples : QC grid per interval, 0 to skip the QC family (then only the samples count).
+    Costs only the parabola fits plus, with qc_samples > 0, the QC grid (cubic: ~1 ms for both
+    intervals, ~8 ms with an extremum to refine; other laws ~15 ms per sample)."""
+    t0 = time.perf_counter() if t0 is None else t0
+    w_plus = require_finite("w_plus", w_plus)
+    (a, b), (c, d) = qc.solitary_intervals(law, w_plus)
+    _check_qc_samples(qc_samples)
+    V = np.atleast_1d(np.asarray(V, dtype=float))
+    E = np.atleast_1d(np.asarray(energy, dtype=float))
+    dE = np.atleast_1d(np.asarray(energy_error, dtype=float))
+    ok = np.atleast_1d(np.asarray(converged, dtype=bool)) & np.isfinite(E)
+    ok &= np.isfinite(dE)
     ext, qV, qE, qext = [], [], [], []
     for lo, hi in ((a, b), (c, d)):
         sel = ok & (V > lo) & (V < hi)
         if np.count_nonzero(sel) >= 3:
             order = np.argsort(V[sel])
             ext += locate_extrema(V[sel][order], E[sel][order], dE[sel][order])
-        gv, ge, ge_ext = _qc_interval(law, w_plus, lo, hi, int(qc_samples))
-        qV.append(gv)
-        qE.append(ge)
-        qext += ge_ext
+        if qc_samples:
+            gv, ge, ge_ext = _qc_interval(law, w_plus, lo, hi, int(qc_samples))
+            qV.append(gv)
+            qE.append(ge)
+            qext += ge_ext
     in_range = [x for x in qext if V.size and V.min() <= x[0] <= V.max()]
     may = bool(ext or (in_range if V.size else qext))
     n_bad = int(np.count_nonzero(~ok))
     msg = (f"{len(ext)} extremum(s) of the discrete E_ren, {len(qext)} of E_ren^QC; "
            f"{n_bad} wave(s) not converged")  # fmt: skip
     col = lambda xs, k: np.array([x[k] for x in xs], dtype=float)  # noqa: E731
+    cat = lambda xs: np.concatenate(xs) if xs else np.zeros(0)  # noqa: E731
     return EnergyCriterion(
         w_plus=w_plus,
         V=V,
@@ -210,8 +261,8 @@ def energy_criterion(
         extrema_V_error=col(ext, 1),
         extrema_energy=col(ext, 2),
         extrema_kind=tuple(x[3] for x in ext),
-        qc_V=np.concatenate(qV),
-        qc_energy=np.concatenate(qE),
+        qc_V=cat(qV),
+        qc_energy=cat(qE),
         qc_extrema_V=col(qext, 0),
         qc_extrema_V_error=col(qext, 1),
         qc_extrema_energy=col(qext, 2),
@@ -223,3 +274,55 @@ def energy_criterion(
         message=msg,
         family=family,
     )
+
+
+#: allowance on V (relative) when a QC extremum stands in for the discrete one: measured
+#: |V*_QC − V*_D| / V* ≈ 0.9 % on the soft family w₊ = −0.04 (tests/floquet/test_energy_criterion)
+QC_DISCRETE_ALLOWANCE = 0.02
+
+
+@dataclass(frozen=True)
+class StabilityChange:
+    """A change of the Floquet classification between two neighbouring velocities of one
+    velocity interval, across the stable/unstable line ("stable" and "finite_size" both mean
+    stable for the infinite chain).  explained : an extremum of E_ren lies in
+    [V_from, V_to] within its error bar (QC extrema also within QC_DISCRETE_ALLOWANCE·V*);
+    extremum_V : that extremum (NaN if none)."""
+
+    V_from: float
+    V_to: float
+    class_from: str
+    class_to: str
+    explained: bool
+    extremum_V: float
+
+
+def stability_changes(law, w_plus: float, V, classification, criterion: EnergyCriterion):
+    """Cross-check of a sweep's classifications (fpucore.floquet.sweep rows, any order) against
+    the energy criterion: every change across the stable/unstable line between neighbouring
+    classified velocities of one interval, and whether an extremum of E_ren explains it.  A
+    change no extremum explains is not a change of stability through the translation mode;
+    along a solitary family it is most likely a finite-size misclassification (paper §6: the
+    spurious oscillatory instabilities), to be checked at a larger N.  Returns a list of
+    :class:`StabilityChange`, in order of V."""
+    w_plus = require_finite("w_plus", w_plus)
+    V = np.atleast_1d(np.asarray(V, dtype=float))
+    cls = np.array([str(c) for c in classification])
+    if cls.size != V.size:
+        raise ParameterError("classification", cls.size, f"one class per velocity ({V.size})")
+    marks = [(v, dv) for v, dv in zip(criterion.extrema_V, criterion.extrema_V_error)]
+    marks += [(v, dv + QC_DISCRETE_ALLOWANCE * abs(v))
+              for v, dv in zip(criterion.qc_extrema_V, criterion.qc_extrema_V_error)]  # fmt: skip
+    out = []
+    for lo, hi in qc.solitary_intervals(law, w_plus):
+        sel = (V > lo) & (V < hi) & np.isin(cls, CLASSES)
+        order = np.argsort(V[sel])
+        v, c = V[sel][order], cls[sel][order]
+        for i in range(v.size - 1):
+            if (c[i] == "unstable") == (c[i + 1] == "unstable"):
+                continue
+            near = [x for x, dx in marks if v[i] - dx <= x <= v[i + 1] + dx]
+            x0 = float(near[0]) if near else math.nan
+            out.append(StabilityChange(float(v[i]), float(v[i + 1]), str(c[i]), str(c[i + 1]),
+                                       bool(near), x0))  # fmt: skip
+    return out

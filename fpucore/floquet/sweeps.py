@@ -5,7 +5,9 @@ task (``CHUNK`` = 1) on a worker of the execution layer (:mod:`fpucore.parallel`
 BLAS thread each): its wave solved from the QC guess and its spectrum computed.  One task per
 velocity keeps the workers balanced (spectra near the sonic end cost more: their finite-size test
 runs); continuation along V measured no gain (benchmarks/README.md, atlas part C).  One row per V
-is kept: V, max |μ|, max |μ| away from the trivial cluster, the error bar, the verdict.  Running
+is kept: V, max |μ|, max |μ| away from the trivial cluster, the error bar, the verdict, the
+three-way classification, and the wave's E_ren with its error bar (solitary families: the energy
+criterion, :func:`fpucore.floquet.criterion_from_samples`, reads them).  Running
 the same sweep at several N measures the N-dependence of the spurious oscillatory instabilities.
 
 Cache.  With ``use_cache`` the sweep is an atlas store in ``$FPU_CACHE_DIR/floquet`` (default
@@ -44,7 +46,7 @@ CHUNK = 1  # velocities per task (fixed: results must not depend on the number o
 _ROW_KEYS = (
     "V", "max_modulus", "max_modulus_away_from_1", "error", "symmetry_error", "integrator_error",
     "n_unstable", "n_trivial", "trivial_split", "verdict", "wave_converged", "wave_residual",
-    "converged", "elapsed_s", "message",
+    "converged", "elapsed_s", "message", "classification", "energy", "energy_error",
 )  # fmt: skip
 # sweep row key ← atlas record field
 _FROM_ATLAS = {
@@ -53,7 +55,8 @@ _FROM_ATLAS = {
     "integrator_error": "floquet_integrator_error", "n_unstable": "n_unstable",
     "n_trivial": "n_trivial", "trivial_split": "trivial_split", "verdict": "verdict",
     "wave_converged": "converged", "wave_residual": "residual", "converged": "floquet_converged",
-    "elapsed_s": "elapsed_s", "message": "message",
+    "elapsed_s": "elapsed_s", "message": "message", "classification": "classification",
+    "energy": "energy", "energy_error": "energy_error",
 }  # fmt: skip
 
 
@@ -90,7 +93,9 @@ def cache_path(key: dict) -> Path:
 class SweepResult:
     """max |μ| along a family.  Arrays (n,) in the order of V; error is each row's error bar
     (:attr:`fpucore.floquet.FloquetResult.error`); NaN where the wave did not converge.
-    cached : rows read from the cache store (computed by an earlier run)."""
+    cached : rows read from the cache store (computed by an earlier run).
+    energy, energy_error : (n,) the waves' E_ren and its bound (eq. Eren_D); classification :
+    (n,) "stable" | "finite_size" | "unstable" ("" where not computed)."""
 
     kind: str
     N: int
@@ -105,6 +110,9 @@ class SweepResult:
     rows: list = field(default_factory=list)
     elapsed_s: float = 0.0
     message: str = ""
+    energy: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    energy_error: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    classification: tuple = ()
 
     def as_dict(self) -> dict:
         return {"kind": self.kind, "N": self.N, "w_plus": self.w_plus, "rows": self.rows,
@@ -310,4 +318,7 @@ def sweep(
         rows=rows,
         elapsed_s=res.elapsed_s,
         message=res.message if res.stopped else f"{n} velocities, {int(cached.sum())} from cache",
+        energy=arr("energy"),
+        energy_error=arr("energy_error"),
+        classification=tuple(r["classification"] or "" for r in rows),
     )

@@ -24,13 +24,15 @@ def test_pool_sweep_equals_single_calls(tmp_path, monkeypatch):
     assert s.converged.all() and not s.cached.any() and len(s.rows) == len(V)
     columns = {"V", "max_modulus", "max_modulus_away_from_1", "error", "symmetry_error",
                "integrator_error", "n_unstable", "n_trivial", "trivial_split", "verdict",
-               "wave_converged", "wave_residual", "converged", "elapsed_s", "message"}  # fmt: skip
+               "wave_converged", "wave_residual", "converged", "elapsed_s", "message",
+               "classification", "energy", "energy_error"}  # fmt: skip
     assert all(set(r) == columns for r in s.rows)
     for j, v in enumerate(V):
         fr = fq.spectrum(wave.solve_superkink(LAW, v, N=64))
         # the wave's own error (residual <= 1e-12, conditioned ~1e3) on top of the two bars
         assert abs(s.max_modulus[j] - fr.max_modulus) <= s.error[j] + fr.error + 1e-9
         assert s.rows[j]["verdict"].split(":")[0] == fr.verdict.split(":")[0]
+        assert s.classification[j] == fr.classification
 
 
 @pytest.mark.parametrize(

@@ -279,6 +279,8 @@ def test_every_scene_renders_a_plot(page):
         wait_rendered(page, key, 240.0)  # Floquet is the slow one
         page.locator(f".scene-{key} canvas").first.wait_for()
         assert "Error:" in status_text(page, key), status_text(page, key)
+        if key == "diagram":  # the energy criterion's sentence (issue 12)
+            assert "Energy criterion" in status_text(page, key), status_text(page, key)
         print(f"[browser] {key}: {status_text(page, key)[:120]}")
     # simulation: runs on demand
     open_tab(page, "Simulation")
@@ -437,6 +439,16 @@ def url_message(page) -> str:
     return " ".join(page.locator(".url-message p").all_inner_texts())
 
 
+def wait_url(page, pred, timeout: float = 20.0) -> dict:
+    """Wait (bounded, no failure) until the URL query satisfies ``pred``; the query."""
+    t_end = time.monotonic() + timeout
+    q = query(page)
+    while not pred(q) and time.monotonic() < t_end:
+        page.wait_for_timeout(50)
+        q = query(page)
+    return q
+
+
 def settled(page, timeout: float = 90.0) -> tuple[str, str, dict]:
     """Wait (bounded) until the active scene shows a completed render — a plot or a message —
     of exactly the state in the URL; (status, message, query).  Fails if the scene is dead."""
@@ -516,6 +528,12 @@ def test_floquet_plot_follows_N_and_shows_the_sweep_without_reload(page):
     while not source(page, "floquet-sweep")["x"] and time.monotonic() < t_end:
         page.wait_for_timeout(200)
     assert len(source(page, "floquet-sweep")["x"]) >= 1  # panel (c) without a reload
+    # the energy criterion on (c) (issue 12): E_ren is monotone along w₊ = 1, so no mark
+    t_end = time.monotonic() + 60
+    while "Energy criterion" not in status_text(page, "floquet") and time.monotonic() < t_end:
+        page.wait_for_timeout(200)
+    assert "no minimum or maximum" in status_text(page, "floquet")
+    assert source(page, "floquet-energy-extremum")["x"] == []
     assert not app_tracebacks()
 
 
@@ -568,20 +586,31 @@ def test_state_walk(page):
         if r < 0.45:
             kind = "slider"
             name = rng.choice(["a", "b", "wplus", "V", "V", "N"])
+            before = query(page)
             page.locator(f".w-{name} .noUi-handle").first.focus()
             for _ in range(rng.randint(1, 3)):
                 page.keyboard.press(rng.choice(["ArrowLeft", "ArrowRight"]))
+            wait_url(page, lambda q, b=before: q != b, 3.0)  # unchanged at a slider's end
         elif r < 0.6:
             kind = "tab"
             key = rng.choice(["force", "phase", "profiles", "diagram", "floquet", "simulation"])
             open_tab(page, TAB_TITLES[key])
+            wait_url(page, lambda q, k=key: q.get("tab") == k)
         elif r < 0.7:
             kind = "mode"
-            page.locator(".w-mode button", has_text=rng.choice(["superkink", "solitary"])).click()
+            mode = rng.choice(["superkink", "solitary"])
+            page.locator(".w-mode button", has_text=mode).click()
+            wait_url(page, lambda q, m=mode: q.get("mode") == m)
+        elif r < 0.75:
+            # typed into the exact box: V_SK itself (invalid in solitary mode), out of range,
+            # or a valid V — the slider must show it without echoing another value back
+            kind = "typed V"
+            V = rng.choice(["5.374838498865699", "9", "4.1", "5.2", "5.45"])
+            inp = page.locator(".in-V input")
+            inp.fill(V)
+            inp.press("Enter")
+            wait_url(page, lambda q, v=V: q.get("V") in (v, repr(float(v))))
         elif r < 0.85:
-            # (typing V = V_SK in the exact box is left out: the V slider then echoes a stale
-            # value back and the existence diagram's current point can stay at V_SK — the open
-            # slider defect of issue 13, reproduced at step 17 of this walk; see the notes)
             kind = "invalid URL"
             bad = rng.choice(["N=-5", "N=101", "tol=0", "V=abc", "mode=bogus", "b=1e200"])
             tab = rng.choice(["force", "phase", "diagram", "profiles"])
@@ -591,7 +620,8 @@ def test_state_walk(page):
             V = rng.choice(["4.6", "5.1", "5.45"])
             tab = rng.choice(["force", "phase", "diagram", "profiles", "floquet"])
             page.goto(f"{page.server}/main?{base.replace('V=5', 'V=' + V)}&tab={tab}")
-        page.wait_for_timeout(150)  # let the URL catch up with the step
+        # (each step above waits until the URL shows it: a status that matches a URL still
+        # showing the previous step would pass `settled` and compare the wrong state)
         text, msg, q = settled(page)
         try:
             check_consistent(page, text, msg, q)
