@@ -126,7 +126,9 @@ def isotropic_arnoldi(bands, d0: int, N: int, rng) -> tuple[np.ndarray, np.ndarr
     Each step: one W product (Numba, O(N·K)), then classical Gram–Schmidt against V and J V,
     twice (CGS2; two BLAS calls per pass reading the basis), block means removed.  A breakdown
     (an invariant subspace: degenerate λ, e.g. a homogeneous ring) restarts with a random vector
-    orthogonal to V and J V.
+    orthogonal to V and J V.  Measured and not used (benchmarks/README.md, part E): a DGKS
+    "second pass only if needed" test (needed at every step here) and delayed CGS2 (OpenBLAS's
+    4-column product costs two 2-column ones, and its dropped J-term grows near convergence).
     """
     m = N - 1
     V = np.zeros((m, 2 * N))
