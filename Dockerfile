@@ -2,7 +2,7 @@
 # slim Python base, non-root user, writable NUMBA_CACHE_DIR, JIT warmed at build time and again
 # (from the cache) at start, EXPOSE 5006, panel serve on 0.0.0.0 with an allowed websocket
 # origin, --liveness and a HEALTHCHECK on it.
-# The steps are the README's (`make serve`): `pip install -e .[app]`, `fpu warm`, and the same
+# The steps are the README's (`make serve`): `pip install -e .[app]`, then the same
 # `panel serve` flags as the Makefile's serve target, which the browser tests run
 # (tests/test_browser.py checks that the flags agree).
 FROM python:3.11-slim

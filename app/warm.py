@@ -62,8 +62,9 @@ def warm(verbose: bool = True, scenes: str | None = None) -> dict[str, float]:
     times: dict[str, float] = {}
     t0 = time.perf_counter()
     try:
-        # loads what `fpu warm --essential` cached (make serve, Dockerfile) in ~0.5 s; the
-        # parallel path would spawn two processes only to load it again (7-8 s, measured)
+        # the essential kernels: compiled here on a fresh clone (make serve), loaded from the
+        # cache in ~0.5 s otherwise (container, restarts); one process, since the parallel path
+        # spawned two processes only to reload a warm cache (7-8 s) and compiled 2.7x slower
         warm_all(parallel=False, lazy=False)
     except Exception as exc:  # warm-up must never keep the server from starting
         log.warning("fpucore warm-up skipped: %s", exc)
