@@ -39,7 +39,7 @@ class AtlasScene(BokehScene):
         "max |μ| − 1 of their Floquet spectra, their amplitude or renormalized energy. Click a "
         "cell to open that wave. Paper: Figs. 8, 9 and 14 (one line of this map each)._"
     )
-    depends = ("a", "b")
+    depends = ("a", "b", "expression")
     plot_height = 480
 
     def build(self):

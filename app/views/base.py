@@ -111,12 +111,25 @@ def as_json(obj) -> io.StringIO:
     return buf
 
 
+def law_line(state: ExplorerState) -> str:
+    """The law in a data file's header: the cubic's a, b or the expression (exactly as given to
+    fpucore.law_from_expression) with its coefficients c_1, c_2, ... (f = Σ c_k w^k)."""
+    if not state.expression:
+        return f"law: f(w) = a w^3 + b w^2 + w with a={state.a!r}, b={state.b!r}"
+    line = f"law: f(w) = {state.expression} (law={state.expression!r}"
+    try:
+        line += f", coefficients c_1...={state.law().coeffs!r}"
+    except ParameterError as exc:
+        line += f", invalid: {exc}"
+    return line + ")"
+
+
 def provenance(state: ExplorerState, what: str, **extra) -> str:
     """Header of a data file: what it holds and everything needed to reproduce it."""
     lines = [
         what,
         f"fpu-explorer / fpucore {fpucore.__version__}",
-        f"law: f(w) = a w^3 + b w^2 + w with a={state.a!r}, b={state.b!r}",
+        law_line(state),
         f"mode={state.mode} w_plus={state.w_plus!r} V={state.V!r} N={state.N} tol={state.tol!r}",
     ]
     lines += [f"{k}={v!r}" for k, v in extra.items()]
@@ -126,21 +139,27 @@ def provenance(state: ExplorerState, what: str, **extra) -> str:
 def state_stamp(state: ExplorerState) -> str:
     """The parameters a render used, exactly as in the URL (shown under every status, so a
     reader — and the browser tests — can tell which state is on screen)."""
-    return (
+    stamp = (
         f"a={state.a!r} b={state.b!r} w_plus={state.w_plus!r} V={state.V!r} N={state.N} "
         f"tol={state.tol!r} mode={state.mode}"
     )
+    # the law only when it is an expression (the URL has law= only then); last, as it has spaces
+    return stamp + (f" law={state.expression}" if state.expression else "")
 
 
 def python_preamble(state: ExplorerState) -> str:
-    """First lines of every scene's "copy as Python" code."""
+    """First lines of every scene's "copy as Python" code: the imports and ``law``, built by the
+    same fpucore call as the app's (CubicLaw, or fpucore.law_from_expression of the text)."""
+    if state.expression:
+        make = f"law = fpucore.law_from_expression({state.expression!r})\n"
+    else:
+        make = f"law = CubicLaw(a={float(state.a)!r}, b={float(state.b)!r})\n"
     return (
         f"# reproduces the fpu-explorer view; generated with fpucore {fpucore.__version__}\n"
         "import fpucore\n"
         "from fpucore import floquet, qc, simulate, wave\n"
         "from fpucore.law import CubicLaw\n\n"
-        f"print(fpucore.__version__)  # {fpucore.__version__!r} when generated\n"
-        f"law = CubicLaw(a={float(state.a)!r}, b={float(state.b)!r})\n"
+        f"print(fpucore.__version__)  # {fpucore.__version__!r} when generated\n" + make
     )
 
 
@@ -156,7 +175,7 @@ class Scene(pn.viewable.Viewer):
     #: one line under the plot: what it shows in words and the paper's figure
     caption = ""
     #: state parameters whose change makes this scene stale
-    depends: tuple[str, ...] = ("a", "b", "w_plus", "V", "mode", "N", "tol")
+    depends: tuple[str, ...] = ("a", "b", "expression", "w_plus", "V", "mode", "N", "tol")
     plot_height = 560
     #: cheap enough (QC, cached) to render synchronously while the page is being built
     cheap = False
