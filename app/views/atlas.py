@@ -103,7 +103,7 @@ class AtlasScene(BokehScene):
     def run_small(self, info: Info) -> xr.Dataset:
         s = self.state
         law = s.law()
-        lo, hi = law.alpha, law.beta
+        lo, _, hi = s.w_plus_range()  # (alpha, beta) for the cubic; finite for any law
         pad = 0.02 * (hi - lo)
         rows = self._rows = f"{lo + pad}:{hi - pad}:{int(self.n_w.value)}"
         res = atlas.run(law, "solitary", rows=rows, V=int(self.n_V.value),
