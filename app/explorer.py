@@ -231,14 +231,15 @@ class Explorer:
                 lw = None
         if isinstance(lw, PolynomialLaw):
             coeffs = lw.coeffs
-            if (
-                self._coeff_anchor is None
-                or len(coeffs) != len(self._coeff_anchor)
-                or not getattr(self, "_from_slider", False)
-            ):
-                self._anchor_sliders(coeffs)
+            if self._from_slider and self._coeff_anchor:  # c_n → 0 drops a degree: keep c_n
+                coeffs += (0.0,) * (len(self._coeff_anchor) - len(coeffs))
+            if self._coeff_anchor is None or len(coeffs) != len(self._coeff_anchor):
+                self._anchor_sliders(coeffs)  # another degree: new sliders
+            elif not self._from_slider and coeffs != tuple(s.value for s in self.coeff_sliders):
+                self._coeff_anchor = tuple(coeffs)  # a typed law: ranges around it
             for sl, c, c0 in zip(self.coeff_sliders, coeffs, self._coeff_anchor):
-                self._put(sl, c, **widened(c, *coeff_range(c0)))
+                lo, hi = coeff_range(c0)
+                self._put(sl, c, step=(hi - lo) / 1000, **widened(c, lo, hi))
             self.coeff_box.visible = True
         else:
             # an invalid law: the sliders stay only if they made it (so they can move back)

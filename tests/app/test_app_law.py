@@ -363,3 +363,15 @@ def test_atlas_scene_runs_a_tiny_atlas_for_the_quartic():
     w = sc._ds["w_plus"].values
     lo, _, hi = st.w_plus_range()
     assert lo < w.min() and w.max() < hi  # rows inside the quartic's w₊ range
+
+
+def test_top_coefficient_to_zero_keeps_its_slider_and_other_state_changes_keep_the_sliders():
+    ex = Explorer(ExplorerState(expression=Q))
+    sliders = list(ex.coeff_sliders)
+    ex.state.w_plus = 1.2  # not a law change: the same slider widgets
+    assert ex.coeff_sliders == sliders
+    move(ex.coeff_sliders[3], 0.0)  # the cubic again, as a polynomial
+    assert ex.state.law().coeffs == (1.0, 10.0, -1.0)
+    assert ex.coeff_sliders == sliders and ex.coeff_sliders[3].value == 0.0
+    move(ex.coeff_sliders[3], -0.01)
+    assert ex.state.law().coeffs == (1.0, 10.0, -1.0, -0.01)
