@@ -43,6 +43,7 @@ from .state import (
     url_query,
 )
 from .views import SCENES
+from .views.base import md_escape
 
 #: at most this many coefficient sliders (a law of higher degree is edited as text only)
 MAX_COEFF_SLIDERS = 8
@@ -62,7 +63,7 @@ class Explorer:
         self._syncing = False
         self._build_widgets()
         self.url_alert = pn.pane.Alert(
-            "\n\n".join(url_errors or []),
+            "\n\n".join(md_escape(e) for e in url_errors or []),
             alert_type="warning",
             visible=bool(url_errors),
             css_classes=["url-message"],
@@ -321,7 +322,7 @@ class Explorer:
     def _ranges_text(self, s: dict) -> str:
         st = self.state
         if "alpha" not in s:
-            return f"**invalid law:** {st.problem()}"
+            return f"**invalid law:** {md_escape(st.problem() or '')}"
         if (s["w_lo"], s["w_hi"]) == (s["alpha"], s["beta"]):
             where = f"w₊ ∈ (α, β) = ({s['alpha']:.5g}, {s['beta']:.5g})"
         else:  # another law: w₋ must stay inside (α, β) too
@@ -339,7 +340,9 @@ class Explorer:
             lines.append(f"**V_SK = {s['V_SK']:.10g}** (superkink)")
             lines.append(f"superkink V bounds ({s['V_lo']:.6g}, {s['V_hi']:.6g})")
         kind = st.kind()
-        lines.append(f"current: **{kind}**" if kind != "invalid" else f"⚠ {st.problem()}")
+        lines.append(
+            f"current: **{kind}**" if kind != "invalid" else f"⚠ {md_escape(st.problem())}"
+        )
         if st.note:
             lines.append(f"_{st.note}_")
         return "\n\n".join(lines)

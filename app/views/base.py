@@ -147,6 +147,12 @@ def state_stamp(state: ExplorerState) -> str:
     return stamp + (f" law={state.expression}" if state.expression else "")
 
 
+def md_escape(text: str) -> str:
+    """Text shown verbatim in a Markdown pane: the ``*`` of a law's powers (w**2) would start
+    emphasis otherwise."""
+    return text.replace("\\", "\\\\").replace("*", "\\*")
+
+
 def python_preamble(state: ExplorerState) -> str:
     """First lines of every scene's "copy as Python" code: the imports and ``law``, built by the
     same fpucore call as the app's (CubicLaw, or fpucore.law_from_expression of the text)."""
@@ -388,7 +394,7 @@ class Scene(pn.viewable.Viewer):
         try:
             self.publish(obj)
             if info.warning:
-                self.alert.param.update(alert_type="warning", object=info.warning)
+                self.alert.param.update(alert_type="warning", object=md_escape(info.warning))
             self.alert.visible = bool(info.warning)
             self.last_message = None
             self.renders += 1
@@ -440,10 +446,10 @@ class Scene(pn.viewable.Viewer):
         self.last_message = text
         self.last_info = None
         try:
-            self.alert.param.update(alert_type=kind, object=text, visible=True)
+            self.alert.param.update(alert_type=kind, object=md_escape(text), visible=True)
             self.hide_plot()
             self.status.object = (
-                f"_no plot: see the message_\n\n<small>Parameters: {self._stamp}</small>"
+                f"_no plot: see the message_\n\n<small>Parameters: {md_escape(self._stamp)}</small>"
             )
             self.code.value = python_preamble(self.state) + f"# nothing shown: {text}\n"
         except Exception:  # noqa: BLE001
@@ -474,7 +480,7 @@ class Scene(pn.viewable.Viewer):
         lines.extend(f"_{n}_" for n in info.notes)
         if partial:
             lines.append("_computing the rest ..._")
-        lines.append(f"<small>Parameters: {self._stamp}</small>")
+        lines.append(f"<small>Parameters: {md_escape(self._stamp)}</small>")
         self.status.object = "\n\n".join(lines)
 
     def _download(self):
