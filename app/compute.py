@@ -155,6 +155,15 @@ def executor() -> Executor:
         return _EXECUTOR
 
 
+def shutdown_executor() -> None:
+    """Stop the worker pool (server shutdown); a later job starts a new one."""
+    global _EXECUTOR
+    with _EXECUTOR_LOCK:
+        ex, _EXECUTOR = _EXECUTOR, None
+    if ex is not None:
+        ex.shutdown()
+
+
 def jobs_in_flight() -> int:
     """Heavy jobs running or queued (for tests and the benchmark)."""
     with _INFLIGHT_LOCK:

@@ -11,6 +11,7 @@ connections, so no visitor waits for Numba compilation or for the default view.
 
 from __future__ import annotations
 
+import atexit
 import logging
 import os
 import subprocess
@@ -76,4 +77,7 @@ def warm(verbose: bool = True, scenes: str | None = None) -> dict[str, float]:
 
 if __name__ in ("__main__", "panel_setup_module"):
     serve_locally()
+    # On exit (Bokeh stops its loop on SIGTERM and Ctrl-C) the worker pool stops first: a worker
+    # start cut short by the exit would make the fork server print a traceback.
+    atexit.register(compute.shutdown_executor)
     warm()

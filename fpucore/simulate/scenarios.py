@@ -170,7 +170,7 @@ TrackedWave = tracking.TrackedWave
 def _require_L(L) -> int:
     try:
         Li = int(L)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):
         raise ParameterError("L", L, f"an integer in [16, {MAX_L}]") from None
     if Li != L or not (16 <= Li <= MAX_L):
         raise ParameterError("L", L, f"an integer in [16, {MAX_L}]")

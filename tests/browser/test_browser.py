@@ -438,6 +438,16 @@ def url_message(page) -> str:
     return " ".join(page.locator(".url-message p").all_inner_texts())
 
 
+def wait_url(page, pred, timeout: float = 20.0) -> dict:
+    """Wait (bounded, no failure) until the URL query satisfies ``pred``; the query."""
+    t_end = time.monotonic() + timeout
+    q = query(page)
+    while not pred(q) and time.monotonic() < t_end:
+        page.wait_for_timeout(50)
+        q = query(page)
+    return q
+
+
 def settled(page, timeout: float = 90.0) -> tuple[str, str, dict]:
     """Wait (bounded) until the active scene shows a completed render — a plot or a message —
     of exactly the state in the URL; (status, message, query).  Fails if the scene is dead."""
@@ -569,20 +579,31 @@ def test_state_walk(page):
         if r < 0.45:
             kind = "slider"
             name = rng.choice(["a", "b", "wplus", "V", "V", "N"])
+            before = query(page)
             page.locator(f".w-{name} .noUi-handle").first.focus()
             for _ in range(rng.randint(1, 3)):
                 page.keyboard.press(rng.choice(["ArrowLeft", "ArrowRight"]))
+            wait_url(page, lambda q, b=before: q != b, 3.0)  # unchanged at a slider's end
         elif r < 0.6:
             kind = "tab"
             key = rng.choice(["force", "phase", "profiles", "diagram", "floquet", "simulation"])
             open_tab(page, TAB_TITLES[key])
+            wait_url(page, lambda q, k=key: q.get("tab") == k)
         elif r < 0.7:
             kind = "mode"
-            page.locator(".w-mode button", has_text=rng.choice(["superkink", "solitary"])).click()
+            mode = rng.choice(["superkink", "solitary"])
+            page.locator(".w-mode button", has_text=mode).click()
+            wait_url(page, lambda q, m=mode: q.get("mode") == m)
+        elif r < 0.75:
+            # typed into the exact box: V_SK itself (invalid in solitary mode), out of range,
+            # or a valid V — the slider must show it without echoing another value back
+            kind = "typed V"
+            V = rng.choice(["5.374838498865699", "9", "4.1", "5.2", "5.45"])
+            inp = page.locator(".in-V input")
+            inp.fill(V)
+            inp.press("Enter")
+            wait_url(page, lambda q, v=V: q.get("V") in (v, repr(float(v))))
         elif r < 0.85:
-            # (typing V = V_SK in the exact box is left out: the V slider then echoes a stale
-            # value back and the existence diagram's current point can stay at V_SK — the open
-            # slider defect of issue 13, reproduced at step 17 of this walk; see the notes)
             kind = "invalid URL"
             bad = rng.choice(["N=-5", "N=101", "tol=0", "V=abc", "mode=bogus", "b=1e200"])
             tab = rng.choice(["force", "phase", "diagram", "profiles"])
@@ -592,7 +613,8 @@ def test_state_walk(page):
             V = rng.choice(["4.6", "5.1", "5.45"])
             tab = rng.choice(["force", "phase", "diagram", "profiles", "floquet"])
             page.goto(f"{page.server}/main?{base.replace('V=5', 'V=' + V)}&tab={tab}")
-        page.wait_for_timeout(150)  # let the URL catch up with the step
+        # (each step above waits until the URL shows it: a status that matches a URL still
+        # showing the previous step would pass `settled` and compare the wrong state)
         text, msg, q = settled(page)
         try:
             check_consistent(page, text, msg, q)

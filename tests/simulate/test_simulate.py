@@ -159,6 +159,8 @@ def test_budget_is_reported():
     [
         (dict(L=401), "L"),
         (dict(L=8), "L"),
+        (dict(L=float("inf")), "L"),
+        (dict(L=float("nan")), "L"),
         (dict(w_left=7.0), "w_left"),
         (dict(boundary="periodic"), "boundary"),
         (dict(method="euler"), "method"),
