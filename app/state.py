@@ -22,7 +22,6 @@ import param
 
 from fpucore import qc
 from fpucore.errors import ParameterError
-from fpucore.law import PolynomialLaw
 
 from . import compute
 
@@ -366,11 +365,3 @@ def url_query(state: ExplorerState) -> dict[str, str]:
             continue
         out[name] = url_value(value)
     return out
-
-
-def is_polynomial(state: ExplorerState) -> bool:
-    """Whether the state's law is an expression's PolynomialLaw (False if invalid or cubic)."""
-    try:
-        return isinstance(state.law(), PolynomialLaw)
-    except ParameterError:
-        return False
