@@ -159,7 +159,7 @@ class FloquetScene(BokehScene):
     def _sweep(self, info: Info, up: Updates) -> bool:
         s = self.state
         kind, wp, Vs, vsk, branch = self._sweep_values()
-        args = (s.a, s.b, kind, wp, Vs, s.N, branch)
+        args = (s.law(), kind, wp, Vs, s.N, branch)
         if not self._want_sweep and not compute.floquet_sweep_cached(*args):
             self._sweep_result = self._ec = None
             return False
@@ -253,7 +253,7 @@ class FloquetScene(BokehScene):
         self.require_valid()
         self._fr = self._r = None
         rc, fc = compute.floquet_spectrum(
-            s.a, s.b, s.mode, s.w_plus, s.V, s.N, s.tol, stop=self.superseded,
+            s.law(), s.mode, s.w_plus, s.V, s.N, s.tol, stop=self.superseded,
             progress=self.set_progress,
         )  # fmt: skip
         r = rc.value
@@ -272,7 +272,7 @@ class FloquetScene(BokehScene):
         up = Updates()
         mu = np.asarray(fr.multipliers)
         unstable = np.asarray(fr.unstable)
-        key = compute.floquet_key(s.a, s.b, s.mode, s.w_plus, s.V, s.N, s.tol)
+        key = compute.floquet_key(s.law(), s.mode, s.w_plus, s.V, s.N, s.tol)
         up.data(self.r_mu[1], key, x=mu.real, y=mu.imag)
         up.data(self.r_unst[1], key, x=unstable.real, y=unstable.imag)
         up.show(self.r_unst[0], self.legend_a[1], unstable.size > 0)
@@ -325,7 +325,7 @@ class FloquetScene(BokehScene):
 
     def python_code(self) -> str:
         s = self.state
-        name, args, kwargs = compute.wave_call(s.a, s.b, s.mode, s.w_plus, s.V, s.N, s.tol)
+        name, args, kwargs = compute.wave_call(s.law(), s.mode, s.w_plus, s.V, s.N, s.tol)
         pos = ", ".join(repr(float(x)) for x in args[1:])
         kw = ", ".join(f"{k}={v!r}" for k, v in kwargs.items())
         code = python_preamble(s) + (
