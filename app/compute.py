@@ -511,35 +511,39 @@ def n_needed(lw, mode, w_plus, V, tol: float) -> int:
 ENERGY_QC_SAMPLES = {True: fq.energy.QC_SAMPLES, False: 60}
 
 
-def energy_extrema_qc(a: float, b: float, w_plus: float) -> Computed:
+def energy_qc_samples(lw) -> int:
+    """QC samples per interval of the energy criterion's grid: closed forms (the cubic) are
+    cheap, a general law's quadrature is not."""
+    return ENERGY_QC_SAMPLES[bool(qc.is_closed_form(lw))]
+
+
+def energy_extrema_qc(lw, w_plus: float) -> Computed:
     """Extrema of E_ren^QC(V) (eq. Eren_QC) along the solitary family of w_plus, each with its
     error bar on V (fpucore.floquet.energy_criterion without discrete waves: QC closed forms on
     a grid, refined by a bounded minimisation; 1–10 ms for the cubic).  Cheap: in process."""
-    lw = law(a, b)
-    n = ENERGY_QC_SAMPLES[bool(qc.is_closed_form(lw))]
+    n = energy_qc_samples(lw)
     return CACHE.get(
-        ("energy_qc", exact(a), exact(b), exact(w_plus), n),
+        ("energy_qc", law_key(lw), exact(w_plus), n),
         lambda: fq.energy_criterion(lw, w_plus, qc_samples=n),
     )
 
 
-def sampled_energy_extrema(key: tuple, a: float, b: float, w_plus: float, V, E, dE, ok):
+def sampled_energy_extrema(key: tuple, lw, w_plus: float, V, E, dE, ok):
     """Extrema of the discrete E_ren (eq. Eren_D) from waves already computed (the dots of the
     diagram, the waves of a Floquet sweep): fpucore.floquet.criterion_from_samples without the
     QC part (parabola fits only: cheap).  ``key`` is the cache key of the computation that gave
-    the samples (so equal keys mean equal samples)."""
-    lw = law(a, b)
+    the samples (so equal keys mean equal samples; they include the law)."""
     return CACHE.get(
         ("energy_samples", key),
         lambda: fq.criterion_from_samples(lw, w_plus, V, E, dE, ok, qc_samples=0),
     )
 
 
-def family_energy_extrema(a, b, w_plus, V_values, N, tol) -> Computed:
+def family_energy_extrema(lw, w_plus, V_values, N, tol) -> Computed:
     """The discrete E_ren's extrema along a discrete family that is already cached (the
     diagram's dots): see :func:`sampled_energy_extrema`.  None if the family is not cached."""
     Vs = [float(v) for v in V_values]
-    key = family_key(a, b, w_plus, Vs, N, tol)
+    key = family_key(lw, w_plus, Vs, N, tol)
     rows = CACHE.peek(key)
     if rows is None:
         return None
@@ -548,22 +552,21 @@ def family_energy_extrema(a, b, w_plus, V_values, N, tol) -> Computed:
     E = [r.energy for r in rows]
     dE = [fq.energy.wave_energy_error(r) for r in rows]
     ok = [bool(r.converged) for r in rows]
-    return sampled_energy_extrema(key, a, b, w_plus, V, E, dE, ok)
+    return sampled_energy_extrema(key, lw, w_plus, V, E, dE, ok)
 
 
-def sweep_energy_check(a, b, w_plus, V_values, N) -> Computed | None:
+def sweep_energy_check(lw, w_plus, V_values, N) -> Computed | None:
     """The energy criterion on a cached solitary Floquet sweep (its rows carry each wave's
     E_ren, energy_error and classification): (EnergyCriterion with the discrete extrema from the
     sweep's waves and the QC extrema, list of fpucore.floquet.StabilityChange — the cross-check
     of the classifications against the extrema).  Parabola fits plus the QC grid (1–10 ms for
     the cubic); None if the sweep is not cached."""
     Vs = [float(v) for v in V_values]
-    key = sweep_key(a, b, "solitary", w_plus, Vs, N, "lower")
+    key = sweep_key(lw, "solitary", w_plus, Vs, N, "lower")
     sw = CACHE.peek(key)
     if sw is None:
         return None
-    lw = law(a, b)
-    n = ENERGY_QC_SAMPLES[bool(qc.is_closed_form(lw))]
+    n = energy_qc_samples(lw)
 
     def check():
         ok = np.asarray(sw.converged, bool)

@@ -305,7 +305,7 @@ class DiagramScene(BokehScene):
         s = self.state
         self._ec_qc = self._ec_d = None
         try:
-            c = compute.energy_extrema_qc(s.a, s.b, s.w_plus)
+            c = compute.energy_extrema_qc(s.law(), s.w_plus)
         except compute.ParameterError as exc:
             info.notes.append(f"energy criterion not shown: {exc}")
             self.ext_qc.update(up, [], [], (), *ylim, self.ext_legend[0])
@@ -378,7 +378,10 @@ class DiagramScene(BokehScene):
 
     def python_code(self) -> str:
         s = self.state
-        qc_n = compute.ENERGY_QC_SAMPLES[True]
+        try:
+            qc_n = compute.energy_qc_samples(s.law())
+        except compute.ParameterError:
+            qc_n = compute.ENERGY_QC_SAMPLES[True]
         code = python_preamble(s) + (
             "from fpucore.qc import diagram\n"
             f"fam = diagram.solitary_family(law, {float(s.w_plus)!r}, n=160)\n"

@@ -191,7 +191,7 @@ class FloquetScene(BokehScene):
         QC family) and the cross-check of the sweep's classifications against them."""
         s = self.state
         self._ec = None
-        c = compute.sweep_energy_check(s.a, s.b, wp, Vs, s.N) if kind == "solitary" else None
+        c = compute.sweep_energy_check(s.law(), wp, Vs, s.N) if kind == "solitary" else None
         if c is None:
             for marks, item in ((self.ext_d, self.sw_legend[1]), (self.ext_q, self.sw_legend[2])):
                 marks.update(up, [], [], (), *ylim, item)
