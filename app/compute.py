@@ -20,6 +20,7 @@ fpucore result.  Bad parameters surface as ``fpucore.errors.ParameterError``.
 
 from __future__ import annotations
 
+import functools
 import threading
 import time
 from collections import OrderedDict
@@ -34,7 +35,7 @@ from fpucore import floquet as fq
 from fpucore import qc, wave
 from fpucore import simulate as sim
 from fpucore.errors import ParameterError
-from fpucore.law import CubicLaw
+from fpucore.law import CubicLaw, HardeningSofteningLaw, PolynomialLaw, law_from_expression
 from fpucore.parallel import Executor
 from fpucore.qc import diagram, phase
 from fpucore.warm import warm_all
@@ -46,6 +47,8 @@ __all__ = [
     "Superseded",
     "CACHE",
     "law",
+    "make_law",
+    "law_key",
     "exact",
     "run_job",
 ]
@@ -230,66 +233,96 @@ def law(a: float, b: float) -> CubicLaw:
         ) from None
 
 
-def qc_wave(a: float, b: float, mode: str, w_plus: float, V: float) -> Computed:
+@functools.lru_cache(maxsize=64)
+def _parsed(expression: str) -> tuple[PolynomialLaw | None, ParameterError | None]:
+    try:
+        return law_from_expression(expression), None
+    except ParameterError as exc:
+        return None, exc
+
+
+def expression_law(expression: str) -> PolynomialLaw:
+    """fpucore.law_from_expression, memoised (laws are immutable; the state asks for its law on
+    every change and SymPy's parse costs milliseconds).  Raises its ParameterError."""
+    lw, exc = _parsed(expression)
+    if exc is not None:  # a fresh exception: re-raising the cached one would grow its traceback
+        raise ParameterError(exc.name, exc.value, exc.valid, exc.reason)
+    return lw
+
+
+def make_law(a: float, b: float, expression: str = "") -> HardeningSofteningLaw:
+    """The explorer's law: the cubic (a, b) when ``expression`` is empty, else the polynomial
+    law of the expression (fpucore.law_from_expression).  Raises ParameterError."""
+    if expression:
+        return expression_law(expression)
+    return law(a, b)
+
+
+def law_key(lw: HardeningSofteningLaw) -> tuple:
+    """Exact cache-key form of a law: its kind and coefficients (repr).  The cubic and the same
+    cubic as a PolynomialLaw are different keys: different routes (closed forms vs numerical)."""
+    if isinstance(lw, CubicLaw):
+        return ("cubic", exact(lw.a), exact(lw.b))
+    if isinstance(lw, PolynomialLaw):
+        return ("poly", *(exact(c) for c in lw.coeffs))
+    raise ParameterError("law", lw, "a CubicLaw or PolynomialLaw")
+
+
+def qc_wave(lw, mode: str, w_plus: float, V: float) -> Computed:
     """QC superkink (mode "superkink": from w_plus) or solitary wave (mode "solitary")."""
-    lw = law(a, b)
     if mode == "superkink":
         return CACHE.get(
-            ("qc_sk", exact(a), exact(b), exact(w_plus)),
+            ("qc_sk", law_key(lw), exact(w_plus)),
             lambda: qc.superkink_from_w_plus(lw, w_plus),
         )
     return CACHE.get(
-        ("qc_sw", exact(a), exact(b), exact(w_plus), exact(V)),
+        ("qc_sw", law_key(lw), exact(w_plus), exact(V)),
         lambda: qc.solitary(lw, w_plus, V),
     )
 
 
-def qc_family(a: float, b: float, w_plus: float, n: int = 160) -> Computed:
+def qc_family(lw, w_plus: float, n: int = 160) -> Computed:
     """fpucore.qc.diagram.solitary_family: amplitude (eq. SWQC_amp) and E_ren (eq. Eren_QC)
     of the QC solitary waves along both velocity intervals for fixed w_plus."""
-    lw = law(a, b)
     return CACHE.get(
-        ("qc_family", exact(a), exact(b), exact(w_plus), n),
+        ("qc_family", law_key(lw), exact(w_plus), n),
         lambda: diagram.solitary_family(lw, w_plus, n=n),
     )
 
 
-def phase_plane(a: float, b: float, w_plus: float, V: float, n_grid: int = 241) -> Computed:
+def phase_plane(lw, w_plus: float, V: float, n_grid: int = 241) -> Computed:
     """fpucore.qc.phase.phase_plane for the current parameters."""
-    lw = law(a, b)
     return CACHE.get(
-        ("phase", exact(a), exact(b), exact(w_plus), exact(V), n_grid),
+        ("phase", law_key(lw), exact(w_plus), exact(V), n_grid),
         lambda: phase.phase_plane(lw, w_plus, V, n_grid=n_grid),
     )
 
 
-def existence_diagram(a: float, b: float, n: int = 400) -> Computed:
+def existence_diagram(lw, n: int = 400) -> Computed:
     """fpucore.qc.diagram.existence_diagram: arrays w_plus, c_plus, V_SK, c_minus."""
-    lw = law(a, b)
-    return CACHE.get(("diagram", exact(a), exact(b), n), lambda: diagram.existence_diagram(lw, n=n))
+    return CACHE.get(("diagram", law_key(lw), n), lambda: diagram.existence_diagram(lw, n=n))
 
 
 # --------------------------------------------------------------------------- jobs (workers)
-def wave_call(a: float, b: float, mode: str, w_plus: float, V: float, N: int, tol: float):
+def wave_call(lw, mode: str, w_plus: float, V: float, N: int, tol: float):
     """(fpucore function name, positional args, keyword args) of a discrete wave — the exact
     call, used by the job, the cache key and "copy as Python".  Raises ParameterError."""
-    lw = law(a, b)
     if mode == "superkink":
         sk = qc.superkink_from_w_plus(lw, w_plus)  # validates w_plus, gives V_SK and branch
         return "solve_superkink", (lw, sk.V), {"branch": sk.branch, "N": int(N), "tol": tol}
     return "solve_solitary", (lw, float(w_plus), float(V)), {"N": int(N), "tol": float(tol)}
 
 
-def wave_job(a: float, b: float, mode: str, w_plus: float, V: float, N: int, tol: float):
+def wave_job(lw, mode: str, w_plus: float, V: float, N: int, tol: float):
     """Discrete traveling wave (fixed point of eq. nonlin_map): fpucore.wave.solve_superkink
     (branch of w_plus) or fpucore.wave.solve_solitary.  Returns the WaveResult."""
-    name, args, kwargs = wave_call(a, b, mode, w_plus, V, N, tol)
+    name, args, kwargs = wave_call(lw, mode, w_plus, V, N, tol)
     return getattr(wave, name)(*args, **kwargs)
 
 
-def floquet_job(a: float, b: float, mode: str, w_plus: float, V: float, N: int, tol: float):
+def floquet_job(lw, mode: str, w_plus: float, V: float, N: int, tol: float):
     """(WaveResult, FloquetResult or None if the wave did not converge)."""
-    r = wave_job(a, b, mode, w_plus, V, N, tol)
+    r = wave_job(lw, mode, w_plus, V, N, tol)
     return r, (fq.spectrum(r) if r.converged else None)
 
 
@@ -301,12 +334,12 @@ def fraction(progress):
     return lambda i, n, *rest: progress(i / max(n, 1))
 
 
-def sweep_job(a, b, kind, w_plus, V_values, N, branch, progress=None):
+def sweep_job(lw, kind, w_plus, V_values, N, branch, progress=None):
     """max |μ| against V for a family (fpucore.floquet.sweep), run inline in this worker: a pool
     worker is daemonic and may not start a pool of its own (the server's pool already spreads
     the sessions' jobs over the cores)."""
     return fq.sweep(
-        law(a, b),
+        lw,
         kind=kind,
         V_values=np.asarray(V_values, float),
         w_plus=w_plus,
@@ -317,19 +350,18 @@ def sweep_job(a, b, kind, w_plus, V_values, N, branch, progress=None):
     )
 
 
-def family_job(a, b, w_plus, V_values, N, tol, progress=None):
+def family_job(lw, w_plus, V_values, N, tol, progress=None):
     """Discrete solitary waves at the given velocities (fpucore.wave.solitary_family, each solve
     continued from its neighbour); the list of WaveResults."""
     fam = wave.solitary_family(
-        law(a, b), w_plus, np.asarray(V_values, float), N=N, tol=tol, progress=fraction(progress)
+        lw, w_plus, np.asarray(V_values, float), N=N, tol=tol, progress=fraction(progress)
     )
     return list(fam.results)
 
 
-def simulation_job(kind: str, a: float, b: float, params: dict, progress=None):
+def simulation_job(kind: str, lw, params: dict, progress=None):
     """Direct simulation via fpucore.simulate: kind "riemann" | "gaussian" | "seeded" (for
     "seeded", ``params`` also holds mode/w_plus/V/N/tol of the seeding wave)."""
-    lw = law(a, b)
     p = dict(params)
     extra = {} if progress is None else {"progress": progress}
     if kind == "riemann":
@@ -338,7 +370,7 @@ def simulation_job(kind: str, a: float, b: float, params: dict, progress=None):
         return sim.gaussian(lw, p.pop("w_B"), p.pop("A"), **p, **extra)
     if kind == "seeded":
         wave_args = [p.pop(k) for k in ("mode", "w_plus", "V", "N", "tol")]
-        r = wave_job(a, b, *wave_args)
+        r = wave_job(lw, *wave_args)
         if not r.converged:
             raise ParameterError(
                 "N", wave_args[3], "a converged seeding wave", f"did not converge: {r.message}"
@@ -348,56 +380,56 @@ def simulation_job(kind: str, a: float, b: float, params: dict, progress=None):
 
 
 # --------------------------------------------------------------------------- keys + front ends
-def wave_key(a, b, mode, w_plus, V, N, tol) -> tuple:
+def wave_key(lw, mode, w_plus, V, N, tol) -> tuple:
     """Exact key of a discrete wave: the solver's own inputs (raises ParameterError)."""
-    name, args, kwargs = wave_call(a, b, mode, w_plus, V, N, tol)
-    return ("wave", name, exact(a), exact(b), *(exact(x) for x in args[1:]), repr(kwargs))
+    name, args, kwargs = wave_call(lw, mode, w_plus, V, N, tol)
+    return ("wave", name, law_key(lw), *(exact(x) for x in args[1:]), repr(kwargs))
 
 
-def floquet_key(a, b, mode, w_plus, V, N, tol) -> tuple:
-    return ("floquet",) + wave_key(a, b, mode, w_plus, V, N, tol)
+def floquet_key(lw, mode, w_plus, V, N, tol) -> tuple:
+    return ("floquet",) + wave_key(lw, mode, w_plus, V, N, tol)
 
 
-def sweep_key(a, b, kind, w_plus, V_values, N, branch) -> tuple:
+def sweep_key(lw, kind, w_plus, V_values, N, branch) -> tuple:
     wp = None if w_plus is None else exact(w_plus)
     Vs = tuple(exact(v) for v in V_values)
-    return ("fsweep", exact(a), exact(b), kind, wp, Vs, int(N), branch)
+    return ("fsweep", law_key(lw), kind, wp, Vs, int(N), branch)
 
 
-def family_key(a, b, w_plus, V_values, N, tol) -> tuple:
+def family_key(lw, w_plus, V_values, N, tol) -> tuple:
     Vs = tuple(exact(v) for v in V_values)
-    return ("dfamily", exact(a), exact(b), exact(w_plus), Vs, int(N), exact(tol))
+    return ("dfamily", law_key(lw), exact(w_plus), Vs, int(N), exact(tol))
 
 
-def simulation_key(kind: str, a: float, b: float, params: dict) -> tuple:
+def simulation_key(kind: str, lw, params: dict) -> tuple:
     items = tuple(sorted((k, repr(v)) for k, v in params.items()))
-    return ("sim", kind, exact(a), exact(b), items)
+    return ("sim", kind, law_key(lw), items)
 
 
 def is_cached(key: Hashable) -> bool:
     return CACHE.peek(key) is not None
 
 
-def discrete_wave(a, b, mode, w_plus, V, N, tol, stop=None, progress=None) -> Computed:
+def discrete_wave(lw, mode, w_plus, V, N, tol, stop=None, progress=None) -> Computed:
     """Discrete traveling wave (see :func:`wave_job`) in a worker process, cached exactly."""
-    key = wave_key(a, b, mode, w_plus, V, N, tol)
-    return run_job(key, wave_job, (a, b, mode, w_plus, V, N, tol), stop, progress)
+    key = wave_key(lw, mode, w_plus, V, N, tol)
+    return run_job(key, wave_job, (lw, mode, w_plus, V, N, tol), stop, progress)
 
 
-def discrete_wave_cached(a, b, mode, w_plus, V, N, tol) -> bool:
+def discrete_wave_cached(lw, mode, w_plus, V, N, tol) -> bool:
     """Whether :func:`discrete_wave` would answer from the cache (no solve)."""
     try:
-        return is_cached(wave_key(a, b, mode, w_plus, V, N, tol))
+        return is_cached(wave_key(lw, mode, w_plus, V, N, tol))
     except ParameterError:
         return False
 
 
-def floquet_spectrum(a, b, mode, w_plus, V, N, tol, stop=None, progress=None):
+def floquet_spectrum(lw, mode, w_plus, V, N, tol, stop=None, progress=None):
     """(wave Computed, spectrum Computed or None): the wave from the shared cache if there,
     else wave and spectrum in one worker job."""
-    wk = wave_key(a, b, mode, w_plus, V, N, tol)
+    wk = wave_key(lw, mode, w_plus, V, N, tol)
     rc = CACHE.lookup(wk)
-    args = (a, b, mode, w_plus, V, N, tol)
+    args = (lw, mode, w_plus, V, N, tol)
     c = run_job(floquet_key(*args), floquet_job, args, stop, progress)
     r, fr = c.value
     if rc is None:
@@ -407,34 +439,33 @@ def floquet_spectrum(a, b, mode, w_plus, V, N, tol, stop=None, progress=None):
     return rc, spec
 
 
-def floquet_sweep(a, b, kind, w_plus, V_values, N, branch="lower", stop=None, progress=None):
+def floquet_sweep(lw, kind, w_plus, V_values, N, branch="lower", stop=None, progress=None):
     """max |μ| against V for the family (fpucore.floquet.sweep) in a worker process."""
     Vs = [float(v) for v in V_values]
-    key = sweep_key(a, b, kind, w_plus, Vs, N, branch)
-    return run_job(key, sweep_job, (a, b, kind, w_plus, Vs, int(N), branch), stop, progress)
+    key = sweep_key(lw, kind, w_plus, Vs, N, branch)
+    return run_job(key, sweep_job, (lw, kind, w_plus, Vs, int(N), branch), stop, progress)
 
 
-def floquet_sweep_cached(a, b, kind, w_plus, V_values, N, branch="lower") -> bool:
-    return is_cached(sweep_key(a, b, kind, w_plus, V_values, N, branch))
+def floquet_sweep_cached(lw, kind, w_plus, V_values, N, branch="lower") -> bool:
+    return is_cached(sweep_key(lw, kind, w_plus, V_values, N, branch))
 
 
-def discrete_family(a, b, w_plus, V_values, N, tol, stop=None, progress=None) -> Computed:
+def discrete_family(lw, w_plus, V_values, N, tol, stop=None, progress=None) -> Computed:
     """Discrete solitary waves at the given velocities (amplitude/energy dots of Figs.
     SWamp_cubic_DvsQC, SWenergy_cubic_DvsQC) in a worker process."""
     Vs = [float(v) for v in V_values]
-    key = family_key(a, b, w_plus, Vs, N, tol)
-    return run_job(key, family_job, (a, b, w_plus, Vs, N, tol), stop, progress)
+    key = family_key(lw, w_plus, Vs, N, tol)
+    return run_job(key, family_job, (lw, w_plus, Vs, N, tol), stop, progress)
 
 
-def discrete_family_cached(a, b, w_plus, V_values, N, tol) -> bool:
-    return is_cached(family_key(a, b, w_plus, V_values, N, tol))
+def discrete_family_cached(lw, w_plus, V_values, N, tol) -> bool:
+    return is_cached(family_key(lw, w_plus, V_values, N, tol))
 
 
-def simulation(kind: str, a: float, b: float, params: dict, stop=None, progress=None):
+def simulation(kind: str, lw, params: dict, stop=None, progress=None):
     """Direct simulation (see :func:`simulation_job`) in a worker process."""
-    law(a, b)  # validate here: the message comes without a worker round trip
-    key = simulation_key(kind, a, b, params)
-    return run_job(key, simulation_job, (kind, a, b, dict(params)), stop, progress)
+    key = simulation_key(kind, lw, params)
+    return run_job(key, simulation_job, (kind, lw, dict(params)), stop, progress)
 
 
 def warm_job() -> float:
@@ -456,20 +487,19 @@ def warm_workers() -> None:
             pass
 
 
-def spec_of(a, b, mode, w_plus, V):
+def spec_of(lw, mode, w_plus, V):
     """fpucore.wave's description (Spec) of the wave the parameters define."""
-    lw = law(a, b)
     if mode == "superkink":
         sk = qc.superkink_from_w_plus(lw, w_plus)
         return lw, wave.superkink_spec(lw, sk.V, sk.branch)
     return lw, wave.solitary_spec(lw, w_plus, V)
 
 
-def n_needed(a, b, mode, w_plus, V, tol: float) -> int:
+def n_needed(lw, mode, w_plus, V, tol: float) -> int:
     """The chain size fpucore would choose itself for this wave (``N=None``: tails resolved to
     0.1·tol·scale, eq. fixedBCs), at least the smallest N it accepts (tails cut at 1e-6 of the
     amplitude).  Closed-form QC tails only: cheap."""
-    lw, spec = spec_of(a, b, mode, w_plus, V)
+    lw, spec = spec_of(lw, mode, w_plus, V)
     scale = max(1.0, abs(spec.w_left), abs(spec.w_right))
     n_auto = wave.required_N(lw, spec, 0.1 * tol * scale)
     n_fit = wave.required_N(lw, spec, 1e-6 * spec.amplitude_qc)
@@ -483,35 +513,39 @@ def n_needed(a, b, mode, w_plus, V, tol: float) -> int:
 ENERGY_QC_SAMPLES = {True: fq.energy.QC_SAMPLES, False: 60}
 
 
-def energy_extrema_qc(a: float, b: float, w_plus: float) -> Computed:
+def energy_qc_samples(lw) -> int:
+    """QC samples per interval of the energy criterion's grid: closed forms (the cubic) are
+    cheap, a general law's quadrature is not."""
+    return ENERGY_QC_SAMPLES[bool(qc.is_closed_form(lw))]
+
+
+def energy_extrema_qc(lw, w_plus: float) -> Computed:
     """Extrema of E_ren^QC(V) (eq. Eren_QC) along the solitary family of w_plus, each with its
     error bar on V (fpucore.floquet.energy_criterion without discrete waves: QC closed forms on
     a grid, refined by a bounded minimisation; 1–10 ms for the cubic).  Cheap: in process."""
-    lw = law(a, b)
-    n = ENERGY_QC_SAMPLES[bool(qc.is_closed_form(lw))]
+    n = energy_qc_samples(lw)
     return CACHE.get(
-        ("energy_qc", exact(a), exact(b), exact(w_plus), n),
+        ("energy_qc", law_key(lw), exact(w_plus), n),
         lambda: fq.energy_criterion(lw, w_plus, qc_samples=n),
     )
 
 
-def sampled_energy_extrema(key: tuple, a: float, b: float, w_plus: float, V, E, dE, ok):
+def sampled_energy_extrema(key: tuple, lw, w_plus: float, V, E, dE, ok):
     """Extrema of the discrete E_ren (eq. Eren_D) from waves already computed (the dots of the
     diagram, the waves of a Floquet sweep): fpucore.floquet.criterion_from_samples without the
     QC part (parabola fits only: cheap).  ``key`` is the cache key of the computation that gave
-    the samples (so equal keys mean equal samples)."""
-    lw = law(a, b)
+    the samples (so equal keys mean equal samples; they include the law)."""
     return CACHE.get(
         ("energy_samples", key),
         lambda: fq.criterion_from_samples(lw, w_plus, V, E, dE, ok, qc_samples=0),
     )
 
 
-def family_energy_extrema(a, b, w_plus, V_values, N, tol) -> Computed:
+def family_energy_extrema(lw, w_plus, V_values, N, tol) -> Computed:
     """The discrete E_ren's extrema along a discrete family that is already cached (the
     diagram's dots): see :func:`sampled_energy_extrema`.  None if the family is not cached."""
     Vs = [float(v) for v in V_values]
-    key = family_key(a, b, w_plus, Vs, N, tol)
+    key = family_key(lw, w_plus, Vs, N, tol)
     rows = CACHE.peek(key)
     if rows is None:
         return None
@@ -520,22 +554,21 @@ def family_energy_extrema(a, b, w_plus, V_values, N, tol) -> Computed:
     E = [r.energy for r in rows]
     dE = [fq.energy.wave_energy_error(r) for r in rows]
     ok = [bool(r.converged) for r in rows]
-    return sampled_energy_extrema(key, a, b, w_plus, V, E, dE, ok)
+    return sampled_energy_extrema(key, lw, w_plus, V, E, dE, ok)
 
 
-def sweep_energy_check(a, b, w_plus, V_values, N) -> Computed | None:
+def sweep_energy_check(lw, w_plus, V_values, N) -> Computed | None:
     """The energy criterion on a cached solitary Floquet sweep (its rows carry each wave's
     E_ren, energy_error and classification): (EnergyCriterion with the discrete extrema from the
     sweep's waves and the QC extrema, list of fpucore.floquet.StabilityChange — the cross-check
     of the classifications against the extrema).  Parabola fits plus the QC grid (1–10 ms for
     the cubic); None if the sweep is not cached."""
     Vs = [float(v) for v in V_values]
-    key = sweep_key(a, b, "solitary", w_plus, Vs, N, "lower")
+    key = sweep_key(lw, "solitary", w_plus, Vs, N, "lower")
     sw = CACHE.peek(key)
     if sw is None:
         return None
-    lw = law(a, b)
-    n = ENERGY_QC_SAMPLES[bool(qc.is_closed_form(lw))]
+    n = energy_qc_samples(lw)
 
     def check():
         ok = np.asarray(sw.converged, bool)

@@ -7,7 +7,10 @@
 * Only the visible scene renders; a parameter change marks the others stale and they render
   when their tab is opened.  All tabs are in the browser from the start (Tabs(dynamic=False)):
   an update never races the lazy creation of a tab's figures (it was lost then).
-* (a, b, w_plus, V, mode, tab, N, tol) live in the URL query string.  A URL is validated like
+* The law: the cubic with its a, b sliders, or an expression (fpucore.law_from_expression, e.g.
+  ``w + 10*w**2 - w**3 - 0.01*w**4``) with one slider per coefficient; a coefficient slider
+  rewrites the expression (exact reprs), so the text, the URL and "copy as Python" follow it.
+* (a, b, law, w_plus, V, mode, tab, N, tol) live in the URL query string.  A URL is validated like
   any input (:func:`app.state.parse_url`): an invalid value is named with its valid range in
   the sidebar, every other value is kept, and the address bar is rewritten to what is shown.
 * Slider and exact box always show the state's value: a value outside a slider's theoretical
@@ -23,18 +26,27 @@ import urllib.parse
 import panel as pn
 import param
 
+from fpucore.errors import ParameterError
+from fpucore.law import PolynomialLaw
+
+from . import compute
 from .state import (
     A_RANGE,
     B_RANGE,
     N_RANGE,
+    STATE_PARAMS,
     TABS,
     TOL_OPTIONS,
     URL_PARAMS,
     ExplorerState,
     parse_url,
-    url_value,
+    url_query,
 )
 from .views import SCENES
+from .views.base import md_escape
+
+#: at most this many coefficient sliders (a law of higher degree is edited as text only)
+MAX_COEFF_SLIDERS = 8
 
 CSS = """
 .scene-status p { margin: 0.2em 0; font-size: 0.92em; }
@@ -51,7 +63,7 @@ class Explorer:
         self._syncing = False
         self._build_widgets()
         self.url_alert = pn.pane.Alert(
-            "\n\n".join(url_errors or []),
+            "\n\n".join(md_escape(e) for e in url_errors or []),
             alert_type="warning",
             visible=bool(url_errors),
             css_classes=["url-message"],
@@ -65,7 +77,7 @@ class Explorer:
         )
         self.tabs.active = TABS.index(self.state.tab)
         self.tabs.param.watch(self._on_tab, "active")
-        self.state.param.watch(self._on_state, list(URL_PARAMS) + ["note"])
+        self.state.param.watch(self._on_state, list(STATE_PARAMS) + ["note"])
         self._sync_widgets()
 
     # ------------------------------------------------------------------ widgets
@@ -99,6 +111,7 @@ class Explorer:
             format="0.00",
             **mk,
         )
+        self._build_law_widgets()
         self.w_plus = pn.widgets.FloatSlider(
             label="w₊",
             start=0.0,
@@ -151,6 +164,119 @@ class Explorer:
         self.w_plus_exact.param.watch(lambda e: self._set(w_plus=e.new), "value")
         self.V_exact.param.watch(lambda e: self._set(V=e.new), "value")
 
+    def _build_law_widgets(self) -> None:
+        """Law selector: cubic (a, b sliders) or an expression with its coefficient sliders."""
+        st = self.state
+        self.law_kind = pn.widgets.RadioButtonGroup(
+            options={"cubic (a, b)": "cubic", "expression": "expression"},
+            value="expression" if st.expression else "cubic",
+            css_classes=["w-law-kind"],
+        )
+        self.law_text = pn.widgets.TextInput(
+            label="f(w) = (polynomial in w, Enter to apply)",
+            value=st.expression,
+            placeholder="w + 10*w**2 - w**3 - 0.01*w**4",
+            css_classes=["in-law"],
+            sizing_mode="stretch_width",
+        )
+        self.coeff_box = pn.Column(sizing_mode="stretch_width", css_classes=["law-coeffs"])
+        self.coeff_sliders: list = []
+        self._coeff_anchor: tuple[float, ...] | None = None  # the coefficients the ranges follow
+        self._last_expression = st.expression
+        self._from_slider = False
+        self.law_kind.param.watch(self._on_law_kind, "value")
+        self.law_text.param.watch(lambda e: self._set(expression=(e.new or "").strip()), "value")
+
+    def _on_law_kind(self, event) -> None:
+        if self._syncing:
+            return
+        st = self.state
+        if event.new == "cubic":
+            self._last_expression = st.expression or self._last_expression
+            self._set(expression="")
+        elif not st.expression:
+            # start from the last expression, else from the current cubic as a polynomial
+            text = self._last_expression
+            if not text:
+                try:
+                    text = compute.law(st.a, st.b).as_polynomial().expression
+                except ParameterError:
+                    text = "w + 10*w**2 - w**3 - 0.01*w**4"
+            self._set(expression=text)
+
+    def _on_coeff(self, k: int, value) -> None:
+        """Coefficient slider k (c_{k+1}) moved: the expression is rewritten from the sliders."""
+        if self._syncing or value is None:
+            return
+        coeffs = [float(s.value) for s in self.coeff_sliders]
+        coeffs[k] = float(f"{float(value):.6g}")  # no 10.059999999999999 from the slider step
+        self._from_slider = True
+        try:
+            self._set(expression=expression_of(coeffs))
+        finally:
+            self._from_slider = False
+
+    def _sync_law(self) -> None:
+        """State → law widgets (called while syncing)."""
+        st = self.state
+        poly = bool(st.expression)
+        self.law_kind.value = "expression" if poly else "cubic"
+        self.a.visible = self.b.visible = not poly
+        self.law_text.visible = poly
+        self.law_text.value = st.expression
+        lw = None
+        if poly:
+            try:
+                lw = st.law()
+            except ParameterError:
+                lw = None
+        if isinstance(lw, PolynomialLaw):
+            coeffs = lw.coeffs
+            if self._from_slider and self._coeff_anchor:  # c_n → 0 drops a degree: keep c_n
+                coeffs += (0.0,) * (len(self._coeff_anchor) - len(coeffs))
+            if self._coeff_anchor is None or len(coeffs) != len(self._coeff_anchor):
+                self._anchor_sliders(coeffs)  # another degree: new sliders
+            elif not self._from_slider and coeffs != tuple(s.value for s in self.coeff_sliders):
+                self._coeff_anchor = tuple(coeffs)  # a typed law: ranges around it
+            for sl, c, c0 in zip(self.coeff_sliders, coeffs, self._coeff_anchor):
+                lo, hi = coeff_range(c0)
+                self._put(sl, c, step=(hi - lo) / 1000, **widened(c, lo, hi))
+            self.coeff_box.visible = True
+        else:
+            # an invalid law: the sliders stay only if they made it (so they can move back)
+            made = bool(self.coeff_sliders) and st.expression == expression_of(
+                [float(s.value) for s in self.coeff_sliders]
+            )
+            self.coeff_box.visible = poly and made
+
+    def _anchor_sliders(self, coeffs: tuple[float, ...]) -> None:
+        """(Re)build the coefficient sliders with ranges around ``coeffs``."""
+        self._coeff_anchor = tuple(coeffs)
+        if len(coeffs) > MAX_COEFF_SLIDERS:
+            self.coeff_sliders = []
+            self.coeff_box.objects = [
+                pn.pane.Markdown(f"_degree {len(coeffs)} > {MAX_COEFF_SLIDERS}: edit the text_")
+            ]
+            return
+        sliders = []
+        for k, c in enumerate(coeffs):
+            lo, hi = coeff_range(c)
+            sl = pn.widgets.FloatSlider(
+                label=f"c{k + 1} (w^{k + 1})" if k else "c1 (w) = f′(0)",
+                start=lo,
+                end=hi,
+                step=(hi - lo) / 1000,
+                value=c,
+                css_classes=[f"w-c{k + 1}"],
+                format="0.0[000]",
+                sizing_mode="stretch_width",
+                show_value=True,
+            )
+            sl.param.watch(lambda e, k=k: self._on_coeff(k, e.new), "value_throttled")
+            sliders.append(sl)
+        self.coeff_sliders = sliders
+        self.coeff_box.objects = sliders
+
     def _set(self, **kw):
         if self._syncing or any(v is None for v in kw.values()):
             return
@@ -173,11 +299,12 @@ class Explorer:
             self.mode.value = st.mode
             self._put(self.a, st.a, **widened(st.a, *A_RANGE))
             self._put(self.b, st.b, **widened(st.b, *B_RANGE))
+            self._sync_law()
             self._put(self.N, int(st.N), **widened(st.N, *N_RANGE))
             self._put(self.tol, nearest_tol(st.tol))
             summ = st.summary()
             if "alpha" in summ:
-                lo, hi = summ["alpha"], summ["beta"]
+                lo, hi = summ["w_lo"], summ["w_hi"]
                 span = hi - lo
                 lo, hi = lo + 1e-6 * span, hi - 1e-6 * span
                 self._put(self.w_plus, st.w_plus, step=span / 2000, **widened(st.w_plus, lo, hi))
@@ -195,11 +322,15 @@ class Explorer:
     def _ranges_text(self, s: dict) -> str:
         st = self.state
         if "alpha" not in s:
-            return f"**invalid law:** {st.problem()}"
-        lines = [
-            f"w₊ ∈ (α, β) = ({s['alpha']:.5g}, {s['beta']:.5g}), "
-            f"**w\\* = {s['w_star']:.6g}** excluded"
-        ]
+            return f"**invalid law:** {md_escape(st.problem() or '')}"
+        if (s["w_lo"], s["w_hi"]) == (s["alpha"], s["beta"]):
+            where = f"w₊ ∈ (α, β) = ({s['alpha']:.5g}, {s['beta']:.5g})"
+        else:  # another law: w₋ must stay inside (α, β) too
+            where = (
+                f"w₊ ∈ ({s['w_lo']:.5g}, {s['w_hi']:.5g}) (where w₋ stays inside (α, β) = "
+                f"({s['alpha']:.5g}, {s['beta']:.5g}))"
+            )
+        lines = [f"{where}, **w\\* = {s['w_star']:.6g}** excluded"]
         if "V_SK" in s:
             lines.append(
                 "solitary-wave velocities (tensile or compressive): "
@@ -209,7 +340,9 @@ class Explorer:
             lines.append(f"**V_SK = {s['V_SK']:.10g}** (superkink)")
             lines.append(f"superkink V bounds ({s['V_lo']:.6g}, {s['V_hi']:.6g})")
         kind = st.kind()
-        lines.append(f"current: **{kind}**" if kind != "invalid" else f"⚠ {st.problem()}")
+        lines.append(
+            f"current: **{kind}**" if kind != "invalid" else f"⚠ {md_escape(st.problem())}"
+        )
         if st.note:
             lines.append(f"_{st.note}_")
         return "\n\n".join(lines)
@@ -272,8 +405,12 @@ class Explorer:
         return [
             self.url_alert,
             self.mode,
+            pn.pane.Markdown("**force law**", margin=(0, 10)),
+            self.law_kind,
             self.a,
             self.b,
+            self.law_text,
+            self.coeff_box,
             self.w_plus,
             self.V,
             pn.Row(self.w_plus_exact, self.V_exact),
@@ -295,6 +432,29 @@ def nearest_tol(tol: float) -> float:
     """The tolerance option closest (in log) to tol."""
     t = float(tol) if math.isfinite(tol) and tol > 0 else 1e-10
     return min(TOL_OPTIONS, key=lambda o: abs(math.log10(o / t)))
+
+
+def coeff_range(c0: float) -> tuple[float, float]:
+    """Slider range of a law coefficient around the typed value c0: c0 ± 2|c0| (so its sign can
+    change), [−1, 1] for a zero coefficient."""
+    r = 2.0 * abs(c0) if c0 != 0.0 and math.isfinite(c0) else 1.0
+    return c0 - r, c0 + r
+
+
+def expression_of(coeffs) -> str:
+    """Text of f(w) = Σ c_k w^k (coeffs = (c_1, c_2, …)) that fpucore.law_from_expression
+    parses back to the same doubles (reprs) — also for coefficients outside the law class, for
+    which no PolynomialLaw (and so no ``PolynomialLaw.expression``) exists."""
+    out = ""
+    for k, c in enumerate(coeffs, start=1):
+        c = float(c)
+        if c == 0.0:
+            continue
+        mag = abs(c)
+        term = "w" if k == 1 else f"w**{k}"
+        term = term if mag == 1.0 else f"{mag!r}*{term}"
+        out += (" - " if c < 0 else " + ") + term if out else ("-" if c < 0 else "") + term
+    return out or "0"
 
 
 def widened(x: float, lo: float, hi: float) -> dict:
@@ -328,7 +488,7 @@ def from_url() -> Explorer:
         def wanted() -> str:
             # the whole query is rewritten (not Location.update_query, which parses the old
             # query — and raises on a 5000-digit value)
-            return "?" + urllib.parse.urlencode({k: url_value(getattr(st, k)) for k in URL_PARAMS})
+            return "?" + urllib.parse.urlencode(url_query(st))
 
         def push(*_):
             loc.search = wanted()
@@ -342,6 +502,6 @@ def from_url() -> Explorer:
 
         push()
         pn.state.onload(push)  # again once the browser's own location has been synced
-        st.param.watch(push, list(URL_PARAMS))
+        st.param.watch(push, list(STATE_PARAMS))
         loc.param.watch(reassert, ["search"])
     return explorer

@@ -1,9 +1,11 @@
 """The explorer's single state owner: parameters, slider ranges and validity.
 
-``ExplorerState`` holds what a link must reproduce (a, b, w_plus, V, mode, tab, N, tol) and
-derives from fpucore's closed forms the ranges the sliders may take:
+``ExplorerState`` holds what a link must reproduce (the law: cubic a, b or an expression; w_plus,
+V, mode, tab, N, tol) and derives from fpucore's QC functions (closed forms for the cubic, the
+numerical §3 theory for any other law) the ranges the sliders may take:
 
-* w_plus: the admissible interval (alpha, beta) with the degenerate point w* excluded;
+* w_plus: where superkinks (and so both solitary intervals) exist — (alpha, beta) for the cubic,
+  the union of both branches' w_plus ranges otherwise — with the degenerate point w* excluded;
 * V (solitary mode): (c_+, V_SK) ∪ (V_SK, c_-) (eq. wB), V_SK marked;
 * V (superkink mode): V = V_SK(w_plus) (eq. cubic_cond2), within eq. V_bounds_cubic.
 
@@ -30,9 +32,15 @@ A_RANGE = (-5.0, -0.1)
 B_RANGE = (1.0, 20.0)
 N_RANGE = (64, 4000)
 TOL_OPTIONS = (1e-4, 1e-6, 1e-8, 1e-10, 1e-12, 1e-13)
-#: longest URL value read (a 5000-digit value is refused before any conversion)
+#: longest URL value read (a 5000-digit value is refused before any conversion); a law's
+#: expression may be longer, but is bounded too
 MAX_URL_VALUE = 40
-URL_PARAMS = ("a", "b", "w_plus", "V", "mode", "tab", "N", "tol")
+MAX_URL_LAW = 200
+URL_PARAMS = ("a", "b", "law", "w_plus", "V", "mode", "tab", "N", "tol")
+#: URL name → state parameter where they differ (``law()`` is the state's law object)
+URL_ATTRS = {"law": "expression"}
+#: the state parameters a URL holds, in URL_PARAMS order
+STATE_PARAMS = tuple(URL_ATTRS.get(n, n) for n in URL_PARAMS)
 
 
 class ExplorerState(param.Parameterized):
@@ -40,6 +48,9 @@ class ExplorerState(param.Parameterized):
 
     a = param.Number(-1.0, doc="cubic coefficient a < 0 of f(w) = a w^3 + b w^2 + w")
     b = param.Number(10.0, doc="quadratic coefficient b > 0")
+    expression = param.String(
+        "", doc="the law as text for fpucore.law_from_expression; empty: the cubic (a, b)"
+    )
     w_plus = param.Number(1.0, doc="strain w_+ ahead of the superkink")
     V = param.Number(5.0, doc="velocity V > 0")
     mode = param.Selector(default="solitary", objects=list(MODES))
@@ -53,19 +64,33 @@ class ExplorerState(param.Parameterized):
         super().__init__(**params)
         self._tying = False
         self._solitary_V = self.V if self.mode == "solitary" else None
-        self.param.watch(self._tie, ["w_plus", "V", "mode", "a", "b"])
+        self.param.watch(self._tie, ["w_plus", "V", "mode", "a", "b", "expression"])
         if self.mode == "superkink":
             self._tie_superkink(from_V=False)
 
     # ------------------------------------------------------------------ derived quantities
     def law(self):
-        """CubicLaw(a, b); raises ParameterError for invalid a, b."""
-        return compute.law(self.a, self.b)
+        """CubicLaw(a, b), or the PolynomialLaw of ``expression`` when it is set; raises
+        ParameterError for invalid a, b or an expression outside the law class."""
+        return compute.make_law(self.a, self.b, self.expression)
+
+    def law_key(self) -> tuple:
+        """The exact cache-key form of the law (app.compute.law_key)."""
+        return compute.law_key(self.law())
 
     def w_plus_range(self) -> tuple[float, float, float]:
-        """(alpha, w*, beta): w_plus ranges over (alpha, beta) without w* (eq. cubic_more)."""
+        """(lo, w*, hi): w_plus ranges over (lo, hi) without w*, where superkinks of the lower
+        and upper branch exist — (alpha, beta) for the cubic (eq. cubic_more); for another law
+        the equal-area partner w₋ must stay inside (alpha, beta).  An infinite end (alpha = −∞)
+        is replaced by a finite window, as in fpucore.qc.diagram.existence_diagram."""
         lw = self.law()
-        return lw.alpha, lw.w_star, lw.beta
+        lo = qc.superkink_w_plus_range(lw, "lower")[0]
+        hi = qc.superkink_w_plus_range(lw, "upper")[1]
+        if not math.isfinite(lo):
+            lo = lw.w_star - 4.0 * (hi - lw.w_star)
+        if not math.isfinite(hi):
+            hi = lw.w_star + 4.0 * (lw.w_star - lo)
+        return lo, lw.w_star, hi
 
     def speeds(self) -> tuple[float, float, float]:
         """(c_+, V_SK, c_-) for the current w_plus (eqs. cplus, cubic_cond2, cminus_cubic)."""
@@ -104,8 +129,9 @@ class ExplorerState(param.Parameterized):
         """The numbers the sidebar shows (NaN-free: invalid parts are left out)."""
         out: dict = {}
         try:
-            alpha, ws, beta = self.w_plus_range()
-            out.update(alpha=alpha, w_star=ws, beta=beta)
+            lw = self.law()
+            lo, ws, hi = self.w_plus_range()
+            out.update(alpha=lw.alpha, w_star=ws, beta=lw.beta, w_lo=lo, w_hi=hi)
             cp, vsk, cm = self.speeds()
             out.update(c_plus=cp, V_SK=vsk, c_minus=cm)
             out["V_lo"], out["V_hi"] = qc.superkink_velocity_bounds(self.law())
@@ -127,6 +153,8 @@ class ExplorerState(param.Parameterized):
             return
         names = {e.name for e in events}
         self.note = ""
+        if "expression" in names and not names & {"w_plus", "V"}:
+            self._fit_to_law()
         if "mode" in names and self.mode == "solitary":
             self._back_to_solitary()
         if self.mode == "superkink":
@@ -136,6 +164,37 @@ class ExplorerState(param.Parameterized):
             self._tie_superkink(from_V=names == {"V"})
         elif "w_plus" in names and "V" not in names and len(events) == 1:
             self._remap_V(events[0].old)
+
+    def _fit_to_law(self) -> None:
+        """A new law: a w_plus outside its w_plus range (or at w*) moves into the middle of the
+        lower branch's range, and a solitary V outside the new intervals to the middle of
+        (c₊, V_SK); ``note`` says so.  (The superkink tie then follows in _tie.)"""
+        try:
+            lo, ws, hi = self.w_plus_range()
+        except ParameterError:
+            return  # an invalid law: problem() explains it
+        moved = []
+        new: dict = {}
+        if not (lo < self.w_plus < hi) or abs(self.w_plus - ws) <= 1e-9 * max(1.0, abs(ws)):
+            new["w_plus"] = lo + 0.5 * (ws - lo)
+            moved.append(f"w₊ from {self.w_plus:.8g} to {new['w_plus']:.8g}")
+        wp = new.get("w_plus", self.w_plus)
+        if self.mode == "solitary":
+            try:
+                (cp, vsk), (_, cm) = qc.solitary_intervals(self.law(), wp)
+            except ParameterError:
+                cp = vsk = cm = math.nan
+            if math.isfinite(vsk) and not (cp < self.V < vsk or vsk < self.V < cm):
+                new["V"] = 0.5 * (cp + vsk)
+                moved.append(f"V from {self.V:.8g} to {new['V']:.8g}")
+        if not new:
+            return
+        self._tying = True
+        try:
+            self.param.update(**new)
+        finally:
+            self._tying = False
+        self.note = "new law: " + " and ".join(moved) + " (outside the new law's ranges)"
 
     def _back_to_solitary(self) -> None:
         """Superkink → solitary: V = V_SK is no solitary wave.  Return to the solitary V used
@@ -233,8 +292,18 @@ def _float(name: str, raw: str, valid: str, lo: float | None = None, hi: float |
 def parse_url_value(name: str, raw: str):
     """One URL query value → the state's value (raises ParameterError naming the value and
     the valid range; the same ranges the sliders have)."""
-    if len(raw) > MAX_URL_VALUE:
-        raise ParameterError(name, raw[:12] + "…", f"at most {MAX_URL_VALUE} characters")
+    limit = MAX_URL_LAW if name == "law" else MAX_URL_VALUE
+    if len(raw) > limit:
+        raise ParameterError(name, raw[:12] + "…", f"at most {limit} characters")
+    if name == "law":
+        text = raw.strip()
+        if not text or text == "cubic":
+            return ""  # the cubic (a, b)
+        try:
+            compute.expression_law(text)
+        except ParameterError as exc:  # fpucore names it "expression"; the URL calls it law
+            raise ParameterError(name, text, exc.valid, exc.reason) from None
+        return text
     if name == "a":
         return _float(name, raw, f"[{A_RANGE[0]:g}, {A_RANGE[1]:g}]", *A_RANGE)
     if name == "b":
@@ -275,7 +344,7 @@ def parse_url(query: dict[str, str]) -> tuple[dict, list[str]]:
         if name not in query:
             continue
         try:
-            values[name] = parse_url_value(name, str(query[name]))
+            values[URL_ATTRS.get(name, name)] = parse_url_value(name, str(query[name]))
         except ParameterError as exc:
             errors.append(f"URL value ignored: {exc}")
     return values, errors
@@ -284,3 +353,15 @@ def parse_url(query: dict[str, str]) -> tuple[dict, list[str]]:
 def url_value(x) -> str:
     """The URL form of a state value (floats exact: repr)."""
     return repr(x) if isinstance(x, float) else str(x)
+
+
+def url_query(state: ExplorerState) -> dict[str, str]:
+    """The URL query of the state, {URL name: value} in URL_PARAMS order; ``law`` only when it
+    is an expression (a cubic link stays as it was: a, b)."""
+    out = {}
+    for name, attr in zip(URL_PARAMS, STATE_PARAMS):
+        value = getattr(state, attr)
+        if name == "law" and not value:
+            continue
+        out[name] = url_value(value)
+    return out

@@ -39,7 +39,7 @@ class AtlasScene(BokehScene):
         "max |μ| − 1 of their Floquet spectra, their amplitude or renormalized energy. Click a "
         "cell to open that wave. Paper: Figs. 8, 9 and 14 (one line of this map each)._"
     )
-    depends = ("a", "b")
+    depends = ("a", "b", "expression")
     plot_height = 480
 
     def build(self):
@@ -103,7 +103,7 @@ class AtlasScene(BokehScene):
     def run_small(self, info: Info) -> xr.Dataset:
         s = self.state
         law = s.law()
-        lo, hi = law.alpha, law.beta
+        lo, _, hi = s.w_plus_range()  # (alpha, beta) for the cubic; finite for any law
         pad = 0.02 * (hi - lo)
         rows = self._rows = f"{lo + pad}:{hi - pad}:{int(self.n_w.value)}"
         res = atlas.run(law, "solitary", rows=rows, V=int(self.n_V.value),

@@ -111,12 +111,25 @@ def as_json(obj) -> io.StringIO:
     return buf
 
 
+def law_line(state: ExplorerState) -> str:
+    """The law in a data file's header: the cubic's a, b or the expression (exactly as given to
+    fpucore.law_from_expression) with its coefficients c_1, c_2, ... (f = Σ c_k w^k)."""
+    if not state.expression:
+        return f"law: f(w) = a w^3 + b w^2 + w with a={state.a!r}, b={state.b!r}"
+    line = f"law: f(w) = {state.expression} (law={state.expression!r}"
+    try:
+        line += f", coefficients c_1...={state.law().coeffs!r}"
+    except ParameterError as exc:
+        line += f", invalid: {exc}"
+    return line + ")"
+
+
 def provenance(state: ExplorerState, what: str, **extra) -> str:
     """Header of a data file: what it holds and everything needed to reproduce it."""
     lines = [
         what,
         f"fpu-explorer / fpucore {fpucore.__version__}",
-        f"law: f(w) = a w^3 + b w^2 + w with a={state.a!r}, b={state.b!r}",
+        law_line(state),
         f"mode={state.mode} w_plus={state.w_plus!r} V={state.V!r} N={state.N} tol={state.tol!r}",
     ]
     lines += [f"{k}={v!r}" for k, v in extra.items()]
@@ -126,21 +139,33 @@ def provenance(state: ExplorerState, what: str, **extra) -> str:
 def state_stamp(state: ExplorerState) -> str:
     """The parameters a render used, exactly as in the URL (shown under every status, so a
     reader — and the browser tests — can tell which state is on screen)."""
-    return (
+    stamp = (
         f"a={state.a!r} b={state.b!r} w_plus={state.w_plus!r} V={state.V!r} N={state.N} "
         f"tol={state.tol!r} mode={state.mode}"
     )
+    # the law only when it is an expression (the URL has law= only then); last, as it has spaces
+    return stamp + (f" law={state.expression}" if state.expression else "")
+
+
+def md_escape(text: str) -> str:
+    """Text shown verbatim in a Markdown pane: the ``*`` of a law's powers (w**2) would start
+    emphasis otherwise."""
+    return text.replace("\\", "\\\\").replace("*", "\\*")
 
 
 def python_preamble(state: ExplorerState) -> str:
-    """First lines of every scene's "copy as Python" code."""
+    """First lines of every scene's "copy as Python" code: the imports and ``law``, built by the
+    same fpucore call as the app's (CubicLaw, or fpucore.law_from_expression of the text)."""
+    if state.expression:
+        make = f"law = fpucore.law_from_expression({state.expression!r})\n"
+    else:
+        make = f"law = CubicLaw(a={float(state.a)!r}, b={float(state.b)!r})\n"
     return (
         f"# reproduces the fpu-explorer view; generated with fpucore {fpucore.__version__}\n"
         "import fpucore\n"
         "from fpucore import floquet, qc, simulate, wave\n"
         "from fpucore.law import CubicLaw\n\n"
-        f"print(fpucore.__version__)  # {fpucore.__version__!r} when generated\n"
-        f"law = CubicLaw(a={float(state.a)!r}, b={float(state.b)!r})\n"
+        f"print(fpucore.__version__)  # {fpucore.__version__!r} when generated\n" + make
     )
 
 
@@ -156,7 +181,7 @@ class Scene(pn.viewable.Viewer):
     #: one line under the plot: what it shows in words and the paper's figure
     caption = ""
     #: state parameters whose change makes this scene stale
-    depends: tuple[str, ...] = ("a", "b", "w_plus", "V", "mode", "N", "tol")
+    depends: tuple[str, ...] = ("a", "b", "expression", "w_plus", "V", "mode", "N", "tol")
     plot_height = 560
     #: cheap enough (QC, cached) to render synchronously while the page is being built
     cheap = False
@@ -369,7 +394,7 @@ class Scene(pn.viewable.Viewer):
         try:
             self.publish(obj)
             if info.warning:
-                self.alert.param.update(alert_type="warning", object=info.warning)
+                self.alert.param.update(alert_type="warning", object=md_escape(info.warning))
             self.alert.visible = bool(info.warning)
             self.last_message = None
             self.renders += 1
@@ -421,10 +446,10 @@ class Scene(pn.viewable.Viewer):
         self.last_message = text
         self.last_info = None
         try:
-            self.alert.param.update(alert_type=kind, object=text, visible=True)
+            self.alert.param.update(alert_type=kind, object=md_escape(text), visible=True)
             self.hide_plot()
             self.status.object = (
-                f"_no plot: see the message_\n\n<small>Parameters: {self._stamp}</small>"
+                f"_no plot: see the message_\n\n<small>Parameters: {md_escape(self._stamp)}</small>"
             )
             self.code.value = python_preamble(self.state) + f"# nothing shown: {text}\n"
         except Exception:  # noqa: BLE001
@@ -455,7 +480,7 @@ class Scene(pn.viewable.Viewer):
         lines.extend(f"_{n}_" for n in info.notes)
         if partial:
             lines.append("_computing the rest ..._")
-        lines.append(f"<small>Parameters: {self._stamp}</small>")
+        lines.append(f"<small>Parameters: {md_escape(self._stamp)}</small>")
         self.status.object = "\n\n".join(lines)
 
     def _download(self):

@@ -176,10 +176,11 @@ class DiagramScene(BokehScene):
 
     def _existence(self, info: Info, up: Updates) -> None:
         s = self.state
-        c = compute.existence_diagram(s.a, s.b)
+        lw = s.law()
+        c = compute.existence_diagram(lw)
         d = c.value
         info.time("existence diagram", c)
-        key = (exact(s.a), exact(s.b))
+        key = compute.law_key(lw)
         k = 0
         for side in (d.w_plus < d.w_star, d.w_plus > d.w_star):
             x = d.w_plus[side]
@@ -206,7 +207,7 @@ class DiagramScene(BokehScene):
         for lo, hi in ((fam.c_plus, fam.V_SK), (fam.V_SK, fam.c_minus)):
             t = (np.arange(k) + 0.5) / k
             Vs += list(lo + (hi - lo) * t)
-        key_args = (s.a, s.b, s.w_plus, Vs, s.N, s.tol)
+        key_args = (s.law(), s.w_plus, Vs, s.N, s.tol)
         if not self._want_discrete and not compute.discrete_family_cached(*key_args):
             info.notes.append("discrete dots: press 'Add discrete points'")
             return None
@@ -234,7 +235,7 @@ class DiagramScene(BokehScene):
             raise SceneMessage(str(exc)) from None
         problem = s.problem() if s.mode == "solitary" else None
         try:
-            c = compute.qc_family(s.a, s.b, s.w_plus)
+            c = compute.qc_family(s.law(), s.w_plus)
         except compute.ParameterError as exc:
             info.warning = str(exc)
             info.shown = "existence diagram only (w₊ invalid)"
@@ -243,12 +244,12 @@ class DiagramScene(BokehScene):
         self._family_shown = True
         fam = c.value
         info.time("QC family", c)
-        key = (exact(s.a), exact(s.b), exact(s.w_plus))
+        key = (s.law_key(), exact(s.w_plus))
         kinds = (fam.kind_below, fam.kind_above)
         colors = [TSW if kind == "tensile" else CSW_LINE for kind in kinds]
         cur = None
         if s.mode == "solitary" and problem is None:
-            q = compute.qc_wave(s.a, s.b, "solitary", s.w_plus, s.V)
+            q = compute.qc_wave(s.law(), "solitary", s.w_plus, s.V)
             info.error("QC first-integral residual", q.value.first_integral_residual)
             info.error("QC energy round-off", q.value.energy_error)
             cur = q.value
@@ -304,7 +305,7 @@ class DiagramScene(BokehScene):
         s = self.state
         self._ec_qc = self._ec_d = None
         try:
-            c = compute.energy_extrema_qc(s.a, s.b, s.w_plus)
+            c = compute.energy_extrema_qc(s.law(), s.w_plus)
         except compute.ParameterError as exc:
             info.notes.append(f"energy criterion not shown: {exc}")
             self.ext_qc.update(up, [], [], (), *ylim, self.ext_legend[0])
@@ -377,7 +378,10 @@ class DiagramScene(BokehScene):
 
     def python_code(self) -> str:
         s = self.state
-        qc_n = compute.ENERGY_QC_SAMPLES[True]
+        try:
+            qc_n = compute.energy_qc_samples(s.law())
+        except compute.ParameterError:
+            qc_n = compute.ENERGY_QC_SAMPLES[True]
         code = python_preamble(s) + (
             "from fpucore.qc import diagram\n"
             f"fam = diagram.solitary_family(law, {float(s.w_plus)!r}, n=160)\n"

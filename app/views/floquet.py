@@ -159,7 +159,7 @@ class FloquetScene(BokehScene):
     def _sweep(self, info: Info, up: Updates) -> bool:
         s = self.state
         kind, wp, Vs, vsk, branch = self._sweep_values()
-        args = (s.a, s.b, kind, wp, Vs, s.N, branch)
+        args = (s.law(), kind, wp, Vs, s.N, branch)
         if not self._want_sweep and not compute.floquet_sweep_cached(*args):
             self._sweep_result = self._ec = None
             return False
@@ -191,7 +191,7 @@ class FloquetScene(BokehScene):
         QC family) and the cross-check of the sweep's classifications against them."""
         s = self.state
         self._ec = None
-        c = compute.sweep_energy_check(s.a, s.b, wp, Vs, s.N) if kind == "solitary" else None
+        c = compute.sweep_energy_check(s.law(), wp, Vs, s.N) if kind == "solitary" else None
         if c is None:
             for marks, item in ((self.ext_d, self.sw_legend[1]), (self.ext_q, self.sw_legend[2])):
                 marks.update(up, [], [], (), *ylim, item)
@@ -253,7 +253,7 @@ class FloquetScene(BokehScene):
         self.require_valid()
         self._fr = self._r = None
         rc, fc = compute.floquet_spectrum(
-            s.a, s.b, s.mode, s.w_plus, s.V, s.N, s.tol, stop=self.superseded,
+            s.law(), s.mode, s.w_plus, s.V, s.N, s.tol, stop=self.superseded,
             progress=self.set_progress,
         )  # fmt: skip
         r = rc.value
@@ -272,7 +272,7 @@ class FloquetScene(BokehScene):
         up = Updates()
         mu = np.asarray(fr.multipliers)
         unstable = np.asarray(fr.unstable)
-        key = compute.floquet_key(s.a, s.b, s.mode, s.w_plus, s.V, s.N, s.tol)
+        key = compute.floquet_key(s.law(), s.mode, s.w_plus, s.V, s.N, s.tol)
         up.data(self.r_mu[1], key, x=mu.real, y=mu.imag)
         up.data(self.r_unst[1], key, x=unstable.real, y=unstable.imag)
         up.show(self.r_unst[0], self.legend_a[1], unstable.size > 0)
@@ -325,7 +325,7 @@ class FloquetScene(BokehScene):
 
     def python_code(self) -> str:
         s = self.state
-        name, args, kwargs = compute.wave_call(s.a, s.b, s.mode, s.w_plus, s.V, s.N, s.tol)
+        name, args, kwargs = compute.wave_call(s.law(), s.mode, s.w_plus, s.V, s.N, s.tol)
         pos = ", ".join(repr(float(x)) for x in args[1:])
         kw = ", ".join(f"{k}={v!r}" for k, v in kwargs.items())
         code = python_preamble(s) + (

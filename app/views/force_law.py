@@ -88,7 +88,7 @@ class ForceLawScene(BokehScene):
         lw = s.law()
         alpha, ws, beta = lw.alpha, lw.w_star, lw.beta
         try:
-            sk_c = compute.qc_wave(s.a, s.b, "superkink", s.w_plus, s.V)
+            sk_c = compute.qc_wave(lw, "superkink", s.w_plus, s.V)
         except compute.ParameterError as exc:
             raise SceneMessage(str(exc)) from None
         sk = sk_c.value
@@ -96,11 +96,13 @@ class ForceLawScene(BokehScene):
         info.error("Rayleigh residual", sk.rayleigh_residual)
         info.error("equal-area residual |G|", sk.driving_force)
         up = Updates()
-        law_key = (exact(s.a), exact(s.b))
+        law_key = compute.law_key(lw)
         wp_key = law_key + (exact(sk.w_plus),)
 
-        span = beta - alpha
-        w = np.linspace(alpha - 0.06 * span, beta + 0.06 * span, 801)
+        # alpha = −inf (a law hardening for every w < 0): the w₊ window's end instead
+        left = alpha if np.isfinite(alpha) else s.w_plus_range()[0]
+        span = beta - left
+        w = np.linspace(left - 0.06 * span, beta + 0.06 * span, 801)
         fw = lw.f(w)
         up.data(self.r_f[1], law_key, x=w, y=fw)
         wp, wm = sk.w_plus, sk.w_minus
@@ -160,8 +162,9 @@ class ForceLawScene(BokehScene):
         ymin, ymax = float(np.min(fw)), float(np.max(fw))
         pad = 0.08 * (ymax - ymin)
         for sp, lab, x0, text in zip(self.spans, self.labels, (ws, alpha, beta), ("w*", "α", "β")):
-            up.set(sp, location=float(x0))
-            up.set(lab, x=float(x0), y=ymax + 0.5 * pad, text=text)
+            x0 = float(x0) if np.isfinite(x0) else float(w[0])  # alpha = −inf: at the edge
+            up.set(sp, location=x0)
+            up.set(lab, x=x0, y=ymax + 0.5 * pad, text=text if x0 != w[0] else "α = −∞ ←")
         up.range(self.fig.x_range, w[0], w[-1])
         up.range(self.fig.y_range, ymin - pad, ymax + pad)
         info.shown = shown

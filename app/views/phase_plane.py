@@ -75,14 +75,15 @@ class PhasePlaneScene(BokehScene):
     def render(self, info: Info):
         s = self.state
         self.require_valid()
-        c = compute.phase_plane(s.a, s.b, s.w_plus, s.V)
+        lw = s.law()
+        c = compute.phase_plane(lw, s.w_plus, s.V)
         pp = c.value
         info.time("phase plane (QC)", c)
         info.error("H on orbit / H range", pp.orbit_residual)
         if not np.all(np.isfinite(pp.H)):
             raise SceneMessage("the first integral is not finite on this grid")
         up = Updates()
-        key = (exact(s.a), exact(s.b), exact(s.w_plus), exact(s.V))
+        key = (compute.law_key(lw), exact(s.w_plus), exact(s.V))
 
         qs = np.quantile(pp.H, np.linspace(0.02, 0.6, 12))
         levels = sorted(set(np.round(np.concatenate([qs, pp.separatrix_levels]), 14)))

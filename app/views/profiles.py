@@ -84,7 +84,8 @@ class ProfilesScene(BokehScene):
 
     def _qc_part(self, info: Info, up: Updates):
         s = self.state
-        c = compute.qc_wave(s.a, s.b, s.mode, s.w_plus, s.V)
+        lw = s.law()
+        c = compute.qc_wave(lw, s.mode, s.w_plus, s.V)
         qcw = c.value
         info.time("QC closed form", c)
         if s.mode == "superkink":
@@ -104,7 +105,7 @@ class ProfilesScene(BokehScene):
         half = min(half, 0.5 * self.state.N) if self.show_discrete.value else half
         xi = np.linspace(-half, half, 1601)
         wq = qcw.profile(xi)
-        key = (s.mode, exact(s.a), exact(s.b), exact(s.w_plus), exact(s.V), exact(half))
+        key = (s.mode, compute.law_key(lw), exact(s.w_plus), exact(s.V), exact(half))
         up.data(self.r_qc[1], key, x=xi, y=wq)
         self._cols = {"xi": xi, "w_qc": wq}
         fronts = []
@@ -121,7 +122,7 @@ class ProfilesScene(BokehScene):
         """Kink and antikink (QC superkinks of the same w₊) placed at the bundle's layers,
         shown when the solitary wave has a plateau (amplitude within 5% of |w₋ − w₊|)."""
         s = self.state
-        sk = compute.qc_wave(s.a, s.b, "superkink", s.w_plus, s.V).value
+        sk = compute.qc_wave(s.law(), "superkink", s.w_plus, s.V).value
         if abs(sw.amplitude - sk.amplitude) > 0.05 * sk.amplitude:
             return []
         w = sw.profile(xi)
@@ -158,20 +159,21 @@ class ProfilesScene(BokehScene):
         if not self.show_discrete.value:
             info.notes.append("discrete wave off: QC only")
             return self._frame(up, half, ys)
-        if not compute.discrete_wave_cached(s.a, s.b, s.mode, s.w_plus, s.V, s.N, s.tol):
+        lw = s.law()
+        if not compute.discrete_wave_cached(lw, s.mode, s.w_plus, s.V, s.N, s.tol):
             # the QC curve now, the dots when the solve is done
             self.show_intermediate(self._frame(up, half, ys), info)
             up = Updates()
         try:
             c = compute.discrete_wave(
-                s.a, s.b, s.mode, s.w_plus, s.V, s.N, s.tol, stop=self.superseded,
+                lw, s.mode, s.w_plus, s.V, s.N, s.tol, stop=self.superseded,
                 progress=self.set_progress,
             )  # fmt: skip
         except compute.ParameterError as exc:
             if exc.name != "N":
                 raise
             # N too small for the wave's tails (near c₊): keep the QC curve, advise an N
-            need = compute.n_needed(s.a, s.b, s.mode, s.w_plus, s.V, s.tol)
+            need = compute.n_needed(lw, s.mode, s.w_plus, s.V, s.tol)
             info.warning = (
                 f"No discrete wave at N = {s.N}: the wave's tails need {exc.valid}. "
                 + n_advice(need, s.N)
@@ -188,7 +190,7 @@ class ProfilesScene(BokehScene):
         info.error("amplitude error bound", r.amplitude_error)
         if not r.converged:
             # an unconverged profile is never drawn as if it were a wave
-            need = compute.n_needed(s.a, s.b, s.mode, s.w_plus, s.V, s.tol)
+            need = compute.n_needed(lw, s.mode, s.w_plus, s.V, s.tol)
             info.warning = (
                 f"The discrete solve did not converge at N = {r.N}, so its points are not drawn. "
                 f"{n_advice(need, r.N)} (fpucore: {r.message.split(':')[0]})"
@@ -209,7 +211,7 @@ class ProfilesScene(BokehScene):
             code += f"q = qc.solitary(law, {float(s.w_plus)!r}, {float(s.V)!r})  # QC wave\n"
         code += "print(q.V, q.amplitude)\n"
         if self.show_discrete.value:
-            name, args, kwargs = compute.wave_call(s.a, s.b, s.mode, s.w_plus, s.V, s.N, s.tol)
+            name, args, kwargs = compute.wave_call(s.law(), s.mode, s.w_plus, s.V, s.N, s.tol)
             pos = ", ".join(repr(float(x)) for x in args[1:])
             kw = ", ".join(f"{k}={v!r}" for k, v in kwargs.items())
             code += (
@@ -223,7 +225,7 @@ class ProfilesScene(BokehScene):
         r = getattr(self, "_discrete", None)
         if r is not None:
             s = self.state
-            qcw = compute.qc_wave(s.a, s.b, s.mode, s.w_plus, s.V).value
+            qcw = compute.qc_wave(s.law(), s.mode, s.w_plus, s.V).value
             hdr = provenance(
                 self.state,
                 f"discrete {r.kind} wave w_n(0), wdot_n(0) (fixed ends w_left={r.w_left!r}, "

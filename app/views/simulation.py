@@ -145,7 +145,7 @@ class SimulationScene(BokehScene):
             raise SceneMessage("Choose the initial data and press 'Run simulation'.", "info")
         kind, p = self._params
         s = self.state
-        c = compute.simulation(kind, s.a, s.b, p, stop=self.superseded, progress=self.set_progress)
+        c = compute.simulation(kind, s.law(), p, stop=self.superseded, progress=self.set_progress)
         sim = c.value
         info.time(f"simulation ({kind})", c)
         info.error("energy drift", sim.energy_drift)
@@ -223,7 +223,7 @@ class SimulationScene(BokehScene):
         q = dict(p)
         if kind == "seeded":
             wave_args = [q.pop(k) for k in ("mode", "w_plus", "V", "N", "tol")]
-            name, args, kwargs = compute.wave_call(self.state.a, self.state.b, *wave_args)
+            name, args, kwargs = compute.wave_call(self.state.law(), *wave_args)
             pos = ", ".join(repr(float(x)) for x in args[1:])
             kw = ", ".join(f"{k}={v!r}" for k, v in kwargs.items())
             code += f"r = wave.{name}(law, {pos}, {kw})\n"

@@ -5,9 +5,11 @@ through these three functions, so adding a law means one branch here and a Pytho
 this subpackage; nothing downstream changes.
 
 Laws: ``LAW_CUBIC`` (p = [a, b], eq. cubic) and the polynomials f = Σ_{k≥1} c_k w^k with
-p[k−1] = c_k, one compiled kernel for every polynomial: ``LAW_POLY3/4/5`` for degrees 3–5 (unrolled
-Horner, selected by the law id alone so the branch is as cheap as the cubic's) and ``LAW_POLY``
-for any degree (Horner loop over p; 1.5–2.5× the cubic in-jit — benchmarks/README.md).
+p[k−1] = c_k, one compiled kernel for every polynomial: ``LAW_POLY3`` … ``LAW_POLY8`` for degrees
+3–8 (unrolled Horner, selected by the law id alone so the branch is as cheap as the cubic's; the
+same operations in the same order as the loop, so bit-identical to it) and ``LAW_POLY`` for any
+degree (Horner loop over p, used beyond degree 8; 1.5–1.9× the cubic in-jit —
+benchmarks/README.md).
 """
 
 from __future__ import annotations
@@ -19,8 +21,8 @@ from numba import njit
 
 LAW_CUBIC = 0
 LAW_POLY = 1  # any degree (loop)
-LAW_POLY3, LAW_POLY4, LAW_POLY5 = 3, 4, 5  # unrolled: the id is the degree
-POLY_IDS = (LAW_POLY, LAW_POLY3, LAW_POLY4, LAW_POLY5)
+LAW_POLY3, LAW_POLY4, LAW_POLY5, LAW_POLY6, LAW_POLY7, LAW_POLY8 = 3, 4, 5, 6, 7, 8  # id = degree
+POLY_IDS = (LAW_POLY, LAW_POLY3, LAW_POLY4, LAW_POLY5, LAW_POLY6, LAW_POLY7, LAW_POLY8)
 
 
 @njit(cache=True, nogil=True)
@@ -34,6 +36,17 @@ def force(law_id: int, p: np.ndarray, w: float) -> float:
         return (((p[3] * w + p[2]) * w + p[1]) * w + p[0]) * w
     if law_id == LAW_POLY5:
         return ((((p[4] * w + p[3]) * w + p[2]) * w + p[1]) * w + p[0]) * w
+    if law_id == LAW_POLY6:
+        return (((((p[5] * w + p[4]) * w + p[3]) * w + p[2]) * w + p[1]) * w + p[0]) * w
+    if law_id == LAW_POLY7:
+        return (
+            (((((p[6] * w + p[5]) * w + p[4]) * w + p[3]) * w + p[2]) * w + p[1]) * w + p[0]
+        ) * w
+    if law_id == LAW_POLY8:
+        return (
+            ((((((p[7] * w + p[6]) * w + p[5]) * w + p[4]) * w + p[3]) * w + p[2]) * w + p[1]) * w
+            + p[0]
+        ) * w
     if law_id == LAW_POLY:
         acc = 0.0
         for k in range(p.shape[0] - 1, -1, -1):
@@ -53,6 +66,29 @@ def dforce(law_id: int, p: np.ndarray, w: float) -> float:
         return ((4.0 * p[3] * w + 3.0 * p[2]) * w + 2.0 * p[1]) * w + p[0]
     if law_id == LAW_POLY5:
         return (((5.0 * p[4] * w + 4.0 * p[3]) * w + 3.0 * p[2]) * w + 2.0 * p[1]) * w + p[0]
+    if law_id == LAW_POLY6:
+        return (
+            ((((6.0 * p[5]) * w + 5.0 * p[4]) * w + 4.0 * p[3]) * w + 3.0 * p[2]) * w + 2.0 * p[1]
+        ) * w + p[0]
+    if law_id == LAW_POLY7:
+        return (
+            (((((7.0 * p[6]) * w + 6.0 * p[5]) * w + 5.0 * p[4]) * w + 4.0 * p[3]) * w + 3.0 * p[2])
+            * w
+            + 2.0 * p[1]
+        ) * w + p[0]
+    if law_id == LAW_POLY8:
+        return (
+            (
+                (
+                    ((((8.0 * p[7]) * w + 7.0 * p[6]) * w + 6.0 * p[5]) * w + 5.0 * p[4]) * w
+                    + 4.0 * p[3]
+                )
+                * w
+                + 3.0 * p[2]
+            )
+            * w
+            + 2.0 * p[1]
+        ) * w + p[0]
     if law_id == LAW_POLY:
         acc = 0.0
         for k in range(p.shape[0] - 1, -1, -1):
@@ -72,6 +108,24 @@ def ddforce(law_id: int, p: np.ndarray, w: float) -> float:
         return (12.0 * p[3] * w + 6.0 * p[2]) * w + 2.0 * p[1]
     if law_id == LAW_POLY5:
         return ((20.0 * p[4] * w + 12.0 * p[3]) * w + 6.0 * p[2]) * w + 2.0 * p[1]
+    if law_id == LAW_POLY6:
+        return (
+            (((30.0 * p[5]) * w + 20.0 * p[4]) * w + 12.0 * p[3]) * w + 6.0 * p[2]
+        ) * w + 2.0 * p[1]
+    if law_id == LAW_POLY7:
+        return (
+            ((((42.0 * p[6]) * w + 30.0 * p[5]) * w + 20.0 * p[4]) * w + 12.0 * p[3]) * w
+            + 6.0 * p[2]
+        ) * w + 2.0 * p[1]
+    if law_id == LAW_POLY8:
+        return (
+            (
+                ((((56.0 * p[7]) * w + 42.0 * p[6]) * w + 30.0 * p[5]) * w + 20.0 * p[4]) * w
+                + 12.0 * p[3]
+            )
+            * w
+            + 6.0 * p[2]
+        ) * w + 2.0 * p[1]
     if law_id == LAW_POLY:
         acc = 0.0
         for k in range(p.shape[0] - 1, 0, -1):

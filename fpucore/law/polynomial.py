@@ -33,10 +33,10 @@ import numpy as np
 
 from fpucore.errors import ParameterError, require_finite
 from fpucore.law.base import HardeningSofteningLaw
-from fpucore.law.kernels import LAW_POLY, LAW_POLY3, LAW_POLY4, LAW_POLY5
+from fpucore.law.kernels import LAW_POLY, POLY_IDS
 
 EPS = float(np.finfo(float).eps)
-_FAST_IDS = {3: LAW_POLY3, 4: LAW_POLY4, 5: LAW_POLY5}  # unrolled kernels by degree
+_FAST_IDS = {k: k for k in POLY_IDS if k != LAW_POLY}  # unrolled kernels: the id is the degree
 
 
 # =============================================================================== real roots

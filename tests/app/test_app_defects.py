@@ -32,6 +32,7 @@ from app.views import SCENES  # noqa: E402
 ROOT = Path(__file__).resolve().parents[2]
 BY_KEY = {cls.key: cls for cls in SCENES}
 V_SK1 = 2 * math.sqrt(65) / 3
+CUBIC = compute.law(-1.0, 10.0)  # the paper's law, a = -1, b = 10
 
 
 def attached(key: str, **params):
@@ -104,13 +105,13 @@ def test_3_heavy_work_runs_in_another_process_and_a_superseded_job_is_killed():
     def stop():
         # meanwhile the server answers QC requests (another "session")
         t = time.perf_counter()
-        compute.qc_wave(-1.0, 10.0, "solitary", 1.0, 4.3 + 1e-3 * len(latencies))
+        compute.qc_wave(CUBIC, "solitary", 1.0, 4.3 + 1e-3 * len(latencies))
         latencies.append(time.perf_counter() - t)
         return time.monotonic() - t0 > 1.5  # a newer slider value arrives
 
     cancelled = compute.CANCELLED[0]
     with pytest.raises(compute.Superseded):
-        compute.floquet_spectrum(-1.0, 10.0, "solitary", 1.0, 5.1, 1400, 1e-10, stop=stop)
+        compute.floquet_spectrum(CUBIC, "solitary", 1.0, 5.1, 1400, 1e-10, stop=stop)
     assert time.monotonic() - t0 < 10  # left at once, not after the spectrum
     assert compute.CANCELLED[0] == cancelled + 1  # the job was cancelled, not left queued
     assert compute.jobs_in_flight() == 0
@@ -125,7 +126,7 @@ def test_4_near_c_plus_the_qc_curve_stays_and_an_N_the_dashboard_can_set_is_advi
     assert len(sc.r_qc[1].data["x"]) > 0 and len(sc.r_dots[1].data["x"]) == 0
     text = sc.alert.object
     assert sc.alert.visible and "N=None" not in text
-    need = compute.n_needed(-1.0, 10.0, "solitary", 1.0, 4.245, 1e-10)
+    need = compute.n_needed(CUBIC, "solitary", 1.0, 4.245, 1e-10)
     assert N_RANGE[0] <= need <= N_RANGE[1] and need % 2 == 0 and need > 200
     assert f"N = {need}" in text
 
@@ -134,7 +135,7 @@ def test_4_an_unconverged_profile_is_not_drawn():
     """README's flat-top example (w₊ = 6, V 1e-11 below 7√5/3) at the default N = 500."""
     st, sc = attached("profiles", w_plus=6.0, V=5.21749194749, N=500, tol=1e-10)
     sc.refresh()
-    r = compute.discrete_wave(-1.0, 10.0, "solitary", 6.0, 5.21749194749, 500, 1e-10).value
+    r = compute.discrete_wave(CUBIC, "solitary", 6.0, 5.21749194749, 500, 1e-10).value
     if r.converged:  # pragma: no cover - fpucore got better: then the dots must be drawn
         assert len(sc.r_dots[1].data["x"]) > 0
         return
@@ -254,11 +255,11 @@ def test_9_cache_never_returns_a_result_for_different_inputs():
     """The issue's two velocities, 2e-13 apart on either side of V_SK (w₊ = 1)."""
     V1, V2 = 5.374838498865599, 5.3748384988658
     assert V1 < V_SK1 < V2 or V2 < V_SK1 < V1 or True  # V_SK = 5.3748384988657 (closed form)
-    k1 = compute.wave_key(-1.0, 10.0, "solitary", 1.0, V1, 400, 1e-10)
-    k2 = compute.wave_key(-1.0, 10.0, "solitary", 1.0, V2, 400, 1e-10)
+    k1 = compute.wave_key(CUBIC, "solitary", 1.0, V1, 400, 1e-10)
+    k2 = compute.wave_key(CUBIC, "solitary", 1.0, V2, 400, 1e-10)
     assert k1 != k2
-    q1 = compute.qc_wave(-1.0, 10.0, "solitary", 1.0, V1)
-    q2 = compute.qc_wave(-1.0, 10.0, "solitary", 1.0, V2)
+    q1 = compute.qc_wave(CUBIC, "solitary", 1.0, V1)
+    q2 = compute.qc_wave(CUBIC, "solitary", 1.0, V2)
     assert q1.value is not q2.value
     kinds = {q1.value.kind, q2.value.kind}
     assert kinds == {"tensile", "compressive"}  # below / above V_SK (Fig. 4)

@@ -20,6 +20,7 @@ from app.state import ExplorerState, parse_url  # noqa: E402
 
 C2 = 1.0 + 100.0 / 3.0  # c_max² = 1 + b²/(3|a|)
 W_STAR = 10.0 / 3.0
+CUBIC = compute.law(-1.0, 10.0)  # the paper's law, a = -1, b = 10
 
 
 def test_defaults_are_valid_and_ranges_follow_the_theory():
@@ -123,9 +124,9 @@ def test_cache_deduplicates_inflight_work_and_keys_are_exact():
 
 def test_qc_results_are_shared_only_for_identical_inputs():
     compute.CACHE.clear()
-    a = compute.qc_wave(-1, 10, "solitary", 1.0, 5.0)
-    b = compute.qc_wave(-1, 10, "solitary", 1.0, 5.0)
-    c = compute.qc_wave(-1, 10, "solitary", 1.0 + 1e-15, 5.0)
+    a = compute.qc_wave(CUBIC, "solitary", 1.0, 5.0)
+    b = compute.qc_wave(CUBIC, "solitary", 1.0, 5.0)
+    c = compute.qc_wave(CUBIC, "solitary", 1.0 + 1e-15, 5.0)
     assert not a.cached and b.cached and a.value is b.value
     assert not c.cached and c.value is not a.value
     assert a.value.amplitude > 0

@@ -423,10 +423,11 @@ URL_KEYS = {"a", "b", "w_plus", "V", "N", "tol", "mode", "tab"}
 
 
 def stamp(q: dict) -> str:
-    """The parameters line a scene writes under its status, from the URL query."""
+    """The parameters line a scene writes under its status, from the URL query (the law only
+    when the URL has one: an expression; the cubic is a, b)."""
     return (
         f"Parameters: a={q['a']} b={q['b']} w_plus={q['w_plus']} V={q['V']} N={q['N']} "
-        f"tol={q['tol']} mode={q['mode']}"
+        f"tol={q['tol']} mode={q['mode']}" + (f" law={q['law']}" if q.get("law") else "")
     )
 
 
@@ -703,3 +704,61 @@ def test_ten_sessions_without_cross_talk(browser, server):
         for pg in pages:
             pg.close()
     assert not app_tracebacks()
+
+
+# ----------------------------------------------------------------------------- issue 16
+QUARTIC = "w + 10*w**2 - w**3 - 0.01*w**4"
+
+
+def test_typed_law_reaches_every_scene_and_the_url(page):
+    """Issue 16: choose "expression", type the quartic, and every scene renders for it — its
+    status has "Time:" and the law in its parameters line, the URL carries law=…, a coefficient
+    slider rewrites the law, and the server log has no traceback."""
+    open_app(page, FAST)
+    page.locator(".w-law-kind button", has_text="expression").click()
+    box = page.locator(".in-law input")
+    box.wait_for()
+    box.fill(QUARTIC)
+    box.press("Enter")
+    t_end = time.monotonic() + TIMEOUT_MS / 1000
+    while time.monotonic() < t_end and query(page).get("law") != QUARTIC:
+        page.wait_for_timeout(100)
+    assert query(page).get("law") == QUARTIC, query(page)
+    text, msg, q = settled(page, 120)
+    assert f"law={QUARTIC}" in text and "Time:" in text, (text, msg)
+    assert "V_SK = 5.284298946" in " ".join(page.locator(".ranges p").all_inner_texts())
+    for title, key in SCENES:
+        open_tab(page, title)
+        text = wait_rendered(page, key, 240.0)
+        page.locator(f".scene-{key} canvas").first.wait_for()
+        assert f"law={QUARTIC}" in text, (key, text)
+        assert not message_text(page, key), (key, message_text(page, key))
+        print(f"[browser] quartic {key}: {text[:110]}")
+        assert not app_tracebacks(), app_tracebacks()[-1][-2000:]
+    open_tab(page, "Simulation")
+    page.locator(".scene-simulation .bk-btn-group button", has_text="Riemann").click()
+    for label, value in (("L (sites)", "300"), ("t_end", "5")):
+        field = page.locator(".scene-simulation .bk-input-group", has_text=label).locator("input")
+        field.fill(value)
+        field.press("Enter")
+    page.locator(".simulation-run button").click()
+    text = wait_rendered(page, "simulation", 240.0)
+    assert f"law={QUARTIC}" in text, text
+    # a coefficient slider (c₄) rewrites the law: status, URL and text box follow
+    open_tab(page, "Force law")
+    before = wait_rendered(page, "force")
+    page.locator(".w-c4 .noUi-handle").first.focus()
+    page.keyboard.press("ArrowRight")
+    after = wait_status_change(page, "force", before)
+    law = query(page).get("law", "")
+    assert law != QUARTIC and "w**4" in law and f"law={law}" in after, (law, after)
+    assert page.locator(".in-law input").input_value() == law
+    assert not app_tracebacks(), app_tracebacks()[-1][-2000:]
+
+
+def test_invalid_law_in_the_url_is_named_and_the_rest_kept(page):
+    page.goto(f"{page.server}/main?law=w%2Bw**2&V=5.1&tab=phase")
+    page.locator(".url-message").get_by_text("law=").wait_for()
+    assert "no softening" in url_message(page), url_message(page)
+    text = wait_rendered(page, "phase")
+    assert "V = 5.1" in text and "law=" not in text  # the cubic, with the URL's V

@@ -331,10 +331,12 @@ def test_qc_general_refusals():
 
 # =============================================================================== (d) kernels
 def test_poly_kernels_match_polyval():
-    """Every polynomial kernel (generic loop and the unrolled ones of degree 3–5) against
-    numpy.polyval; PolynomialLaw picks the unrolled id by degree."""
+    """Every polynomial kernel (generic loop and the unrolled ones of degree 3–8) against
+    numpy.polyval, and each unrolled kernel bit-identical to the loop (same operations in the
+    same order); PolynomialLaw picks the unrolled id by degree, the loop beyond degree 8."""
     rng = np.random.default_rng(7)
-    cases = [tuple(rng.normal(size=n)) for n in (3, 4, 5, 7)] + [(1.0, 10.0, -1.0, -0.01)]
+    cases = [tuple(rng.normal(size=n)) for n in (3, 4, 5, 6, 7, 8, 9)]
+    cases += [(1.0, 10.0, -1.0, -0.01)]
     for coeffs in cases:
         p = np.array(coeffs)
         ids = (LAW_POLY,) + ((p.size,) if p.size in POLY_IDS else ())
@@ -346,8 +348,23 @@ def test_poly_kernels_match_polyval():
                 assert abs(force(law_id, p, w) - np.polyval(c, w)) <= 1e-14 * s
                 assert abs(dforce(law_id, p, w) - np.polyval(dc, w)) <= 1e-14 * (1 + abs(w)) * s
                 assert abs(ddforce(law_id, p, w) - np.polyval(ddc, w)) <= 1e-13 * (1 + w * w) * s
+                for k in (force, dforce, ddforce):
+                    assert k(law_id, p, w) == k(LAW_POLY, p, w)
+    # the generic kernel (degree > 8) is the plain Horner loop in this order, bit for bit
+    for n in (9, 12):
+        p = rng.normal(size=n)
+        for w in rng.uniform(-3, 8, 10):
+            f = df = ddf = 0.0
+            for k in range(n - 1, -1, -1):
+                f = f * w + p[k]
+                df = df * w + (k + 1) * p[k]
+                ddf = ddf * w + (k + 1) * k * p[k] if k else ddf
+            assert (force(LAW_POLY, p, w), dforce(LAW_POLY, p, w)) == (f * w, df)
+            assert ddforce(LAW_POLY, p, w) == ddf
     deg7 = PolynomialLaw((1.0, 10.0, -1.0, -0.01, 1e-4, -1e-5, 1e-7))
-    assert law_from_expression(QUARTIC).law_id == 4 and deg7.law_id == LAW_POLY
+    assert law_from_expression(QUARTIC).law_id == 4 and deg7.law_id == 7
+    deg9 = PolynomialLaw((1.0, 10.0, -1.0, -0.01, 1e-4, -1e-5, 1e-7, 0.0, -1e-9))
+    assert deg9.law_id == LAW_POLY
 
 
 def test_cubic_as_polynomial_kernels_agree():
