@@ -98,7 +98,7 @@ def warm_all(parallel: bool = True, lazy: bool = True) -> list[str]:
     """Compile (or load) every route on the paper's law; returns the names of the routes warmed.
 
     parallel : compile the :data:`GROUPS` in spawned processes at once, then load in this one.
-    lazy : include the rarely used integrators of :data:`LAZY` (False: leave them to
+    lazy : include the chain simulation's integrators, :data:`LAZY` (False: leave them to
     :func:`warm_lazy`).
     """
     groups = [tuple(n for n in g if lazy or n not in LAZY) for g in GROUPS]
@@ -113,5 +113,5 @@ def warm_all(parallel: bool = True, lazy: bool = True) -> list[str]:
 
 
 def warm_lazy() -> None:
-    """Compile the rarely used integrators (for a background thread or process)."""
+    """Compile the chain simulation's integrators, :data:`LAZY` (background thread or process)."""
     warm_routes(LAZY)

@@ -12,8 +12,8 @@ def register(sub) -> None:
     p.add_argument(
         "--essential",
         action="store_true",
-        help=f"leave out the rarely used integrators ({', '.join(LAZY)}): the server compiles "
-        "them in the background after it is up",
+        help=f"leave out the chain simulation's integrators ({', '.join(LAZY)}): the server "
+        "compiles them in the background after it is up",
     )
     p.add_argument("--serial", action="store_true", help="one process (default: in parallel)")
     p.set_defaults(func=run)
