@@ -118,7 +118,9 @@ def heavy_in_background() -> threading.Thread:
     """Another session: a Floquet spectrum at N = 1400 in a worker process (not cached)."""
     V = 5.15 + 1e-6 * (time.time() % 1)  # a new V each run: never answered from the cache
     th = threading.Thread(
-        target=lambda: compute.floquet_spectrum(-1.0, 10.0, "solitary", 1.0, V, 1400, 1e-10),
+        target=lambda: compute.floquet_spectrum(
+            compute.law(-1.0, 10.0), "solitary", 1.0, V, 1400, 1e-10
+        ),
         daemon=True,
     )
     th.start()
@@ -216,8 +218,10 @@ def bench_browser(loads: int, concurrent: bool = False, n: int = 9) -> None:
                 pg.locator(".scene-force canvas").first.wait_for(timeout=60_000)
                 ts.append(time.monotonic() - t)
                 pg.close()
+            print(f"  first load {ts[0]:.2f} s; then median {statistics.median(ts[1:]):.2f} s")
+            if concurrent:
+                bench_browser_concurrent(url, b, n)
             b.close()
-        print(f"  first load {ts[0]:.2f} s; then median {statistics.median(ts[1:]):.2f} s")
     finally:
         proc.terminate()
         proc.wait(15)
