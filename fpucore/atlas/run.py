@@ -19,10 +19,9 @@ import queue
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import ClassVar
+from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
-import xarray as xr
 
 from fpucore.atlas.grid import Grid, make_grid
 from fpucore.atlas.point import FIELDS, empty_record, failure_text, solve_chunk
@@ -39,6 +38,9 @@ from fpucore.atlas.store import (
 from fpucore.errors import ParameterError, require_finite
 from fpucore.floquet.monodromy import MAX_N
 from fpucore.law import HardeningSofteningLaw
+
+if TYPE_CHECKING:
+    import xarray as xr
 from fpucore.parallel import Cancelled, Executor, WorkerDied, cores
 from fpucore.result import Result, status_of
 

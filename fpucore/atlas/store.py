@@ -26,16 +26,35 @@ import socket
 import time
 from importlib import metadata
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
-import xarray as xr
-import zarr
 
 from fpucore.atlas.grid import Grid
 from fpucore.atlas.point import FIELDS
 from fpucore.errors import ParameterError
 from fpucore.jit_cache import source_hash
 from fpucore.law import CubicLaw
+
+if TYPE_CHECKING:
+    import xarray as xr
+
+
+def xarray_module():
+    """xarray, imported on first use: with zarr and pandas it is ~0.4 s that every
+    ``import fpucore`` (each CLI call, the server, each worker pool) would pay for stores only
+    atlases and sweeps write."""
+    import xarray
+
+    return xarray
+
+
+def zarr_module():
+    """zarr, imported on first use (see :func:`xarray_module`)."""
+    import zarr
+
+    return zarr
+
 
 # attributes that must match for a store to be resumed
 IDENTITY = ("kind", "law", "params", "N", "tol", "floquet", "finite_size", "m", "chunk",
@@ -99,6 +118,7 @@ def skeleton(grid: Grid, attrs: dict) -> xr.Dataset:
     data = {k: (dims, np.full(grid.shape, fill, dtype=dt)) for k, (dt, fill) in FIELDS.items()}
     data["done"] = (dims, np.zeros(grid.shape, np.int8))
     rows = np.array(grid.rows, dtype=float if grid.row_dim == "w_plus" else "<U8")
+    xr = xarray_module()
     return xr.Dataset(data, coords={grid.row_dim: rows, "V": grid.V}, attrs=attrs)
 
 
@@ -133,7 +153,7 @@ def create(path: Path, grid: Grid, attrs: dict) -> None:
 def open_existing(path: Path, grid: Grid, attrs: dict) -> xr.Dataset:
     """The stored Dataset, after checking it is this grid with these parameters."""
     try:
-        ds = xr.open_zarr(path, consolidated=False)
+        ds = xarray_module().open_zarr(path, consolidated=False)
     except Exception as exc:  # noqa: BLE001
         raise ParameterError("out", str(path), "an atlas store", f"cannot open: {exc}") from None
     diff = [k for k in IDENTITY if _plain(ds.attrs.get(k)) != _plain(attrs[k])]
@@ -159,7 +179,7 @@ def skeleton_rows(grid: Grid) -> np.ndarray:
 
 def read_done(path: Path, grid: Grid) -> np.ndarray:
     """(n_rows, n_V) bool: points whose final record is stored (unreadable chunks: False)."""
-    arr = zarr.open_array(path / "done", mode="r", zarr_format=2)
+    arr = zarr_module().open_array(path / "done", mode="r", zarr_format=2)
     done = np.zeros(grid.shape, bool)
     for i, j0, j1 in grid.chunks():
         try:
@@ -174,7 +194,7 @@ class Writer:
 
     def __init__(self, path: Path):
         self.path = path
-        self.group = zarr.open_group(path, mode="r+", zarr_format=2)
+        self.group = zarr_module().open_group(path, mode="r+", zarr_format=2)
         self.arrays = {k: self.group[k] for k in [*FIELDS, "done"]}
 
     def write(self, i: int, j0: int, j1: int, records: list[dict], final: bool = True) -> None:

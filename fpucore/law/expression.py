@@ -13,14 +13,6 @@ import io
 import math
 import tokenize
 
-import sympy
-from sympy.parsing.sympy_parser import (
-    convert_xor,
-    implicit_multiplication,
-    parse_expr,
-    standard_transformations,
-)
-
 from fpucore.errors import ParameterError
 from fpucore.law.polynomial import PolynomialLaw
 
@@ -69,6 +61,16 @@ def law_from_expression(expression: str) -> PolynomialLaw:
         raise ParameterError(
             "expression", expression, _VALID, f"could not parse: unexpected '{t.string}'"
         )
+    # SymPy (~0.3 s) is imported on first use, not by every `import fpucore`: the CLI, the
+    # server and each worker pool start without it unless a law is typed
+    import sympy
+    from sympy.parsing.sympy_parser import (
+        convert_xor,
+        implicit_multiplication,
+        parse_expr,
+        standard_transformations,
+    )
+
     w = sympy.Symbol("w", real=True)
     names = {"w": w, "pi": sympy.pi, "E": sympy.E, "abs": sympy.Abs}
     names.update({n: getattr(sympy, n) for n in _FUNCS if n != "abs"})

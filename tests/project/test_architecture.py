@@ -22,6 +22,16 @@ STAGES = ("law", "qc", "tableaux", "wave", "floquet", "simulate", "parallel", "a
 LATE_OK: set[tuple[str, str]] = {
     # distributed's ~1 s import kept out of every `import fpucore` (only the dask backend needs it)
     ("fpucore/parallel/executor.py", "from fpucore.parallel.dask_backend import DaskBackend"),
+    # SymPy (~0.3 s) only when a law is typed; xarray + zarr (~0.4 s) only when a store is
+    # written: not paid by every CLI call, server start and worker pool
+    ("fpucore/law/expression.py", "import sympy"),
+    (
+        "fpucore/law/expression.py",
+        "from sympy.parsing.sympy_parser import convert_xor, implicit_multiplication, "
+        "parse_expr, standard_transformations",
+    ),
+    ("fpucore/atlas/store.py", "import xarray"),
+    ("fpucore/atlas/store.py", "import zarr"),
 }
 
 
