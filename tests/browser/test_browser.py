@@ -624,6 +624,12 @@ def test_state_walk(page):
         # (each step above waits until the URL shows it: a status that matches a URL still
         # showing the previous step would pass `settled` and compare the wrong state)
         text, msg, q = settled(page)
+        if kind == "typed V":
+            # the state keeps the typed value: no slider echo moved it (a late echo would
+            # arrive within a few hundred ms of the slider update)
+            page.wait_for_timeout(300)
+            V_now = query(page).get("V")
+            assert float(V_now) == float(V), f"step {steps}: typed V={V}, URL V={V_now}"
         try:
             check_consistent(page, text, msg, q)
         except AssertionError as exc:
