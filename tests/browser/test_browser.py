@@ -258,6 +258,13 @@ def query(page) -> dict:
     return dict(urllib.parse.parse_qsl(urllib.parse.urlparse(page.url).query))
 
 
+def inputs_reach_the_server(page) -> None:
+    """Pause between typing values and clicking a button that uses them: the server handles
+    events on 2 threads (--num-threads 2), so a click sent right after the values can be handled
+    before them (a person takes longer than this between the two)."""
+    page.wait_for_timeout(500)
+
+
 def open_tab(page, title: str):
     page.locator(".bk-tab", has_text=title).first.click()
 
@@ -290,6 +297,7 @@ def test_every_scene_renders_a_plot(page):
         field = page.locator(".scene-simulation .bk-input-group", has_text=label).locator("input")
         field.fill(value)
         field.press("Enter")
+    inputs_reach_the_server(page)
     page.locator(".simulation-run button").click()
     wait_rendered(page, "simulation", 240.0)
     page.locator(".scene-simulation canvas").first.wait_for()
@@ -400,6 +408,7 @@ def test_atlas_scene_runs_a_small_atlas_through_the_executor(page):
         field = page.locator(".scene-atlas .bk-input-group", has_text=label).locator("input")
         field.fill(value)
         field.press("Enter")
+    inputs_reach_the_server(page)
     page.locator(".scene-atlas button", has_text="Run a small atlas").click()
     text = wait_rendered(page, "atlas", 400.0)  # a process pool starts in the server
     page.locator(".scene-atlas canvas").first.wait_for()
@@ -524,6 +533,7 @@ def test_floquet_plot_follows_N_and_shows_the_sweep_without_reload(page):
     field = page.locator(".scene-floquet .bk-input-group", has_text="velocities").locator("input")
     field.fill("3")
     field.press("Enter")
+    inputs_reach_the_server(page)
     page.locator(".floquet-sweep button").click()
     t_end = time.monotonic() + 240
     while not source(page, "floquet-sweep")["x"] and time.monotonic() < t_end:
@@ -747,6 +757,7 @@ def test_typed_law_reaches_every_scene_and_the_url(page):
         field = page.locator(".scene-simulation .bk-input-group", has_text=label).locator("input")
         field.fill(value)
         field.press("Enter")
+    inputs_reach_the_server(page)
     page.locator(".simulation-run button").click()
     text = wait_rendered(page, "simulation", 240.0)
     assert f"law={QUARTIC}" in text, text
