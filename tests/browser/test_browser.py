@@ -259,9 +259,10 @@ def query(page) -> dict:
 
 
 def inputs_reach_the_server(page) -> None:
-    """Pause between typing values and clicking a button that uses them: the server handles
-    events on 2 threads (--num-threads 2), so a click sent right after the values can be handled
-    before them (a person takes longer than this between the two)."""
+    """Pause between typing values and clicking a button that uses them: Panel applies a
+    widget's value change after a 50 ms debounce (``Syncable._debounce``; holoviz/panel#6155)
+    and the server handles events on 2 threads (--num-threads 2), so a click sent right after
+    the values can be handled before them (a person takes longer than this between the two)."""
     page.wait_for_timeout(500)
 
 
