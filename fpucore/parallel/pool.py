@@ -13,10 +13,12 @@ process that forks workers has never run an OpenMP kernel), ``spawn`` where fork
 
 from __future__ import annotations
 
+import atexit
 import itertools
 import multiprocessing as mp
 import signal
 import threading
+import weakref
 from collections import deque
 from multiprocessing.connection import wait
 
@@ -69,6 +71,15 @@ def describe_exit(exitcode: int | None) -> str:
     return f"exit code {exitcode}"
 
 
+def shutdown_at_exit(ref: weakref.ref) -> None:
+    """Interpreter exit with a pool still open: stop its manager thread and workers before the
+    modules are torn down (the daemon thread, still replacing a cancelled job's worker, printed
+    a traceback)."""
+    pool = ref()
+    if pool is not None:
+        pool.shutdown()
+
+
 class ProcessPool:
     """``workers`` processes with ``n_threads`` BLAS/Numba threads each (the policy: 1)."""
 
@@ -86,6 +97,7 @@ class ProcessPool:
         self.replaced = 0  # workers started to replace a dead or cancelled one
         self._thread = threading.Thread(target=self._loop, name="fpucore-pool", daemon=True)
         self._thread.start()
+        atexit.register(shutdown_at_exit, weakref.ref(self))
 
     # -- caller's side --------------------------------------------------------------------------
     def submit(self, fn, args: tuple, kwargs: dict, index: int = 0) -> Job:
@@ -150,6 +162,10 @@ class ProcessPool:
                 return
             self._reap_cancelled()
             self._dispatch()
+            if self._closed:
+                # shutdown() began while a cancelled job's worker was stopped: that worker was
+                # not replaced and its pipe is closed (waiting on it raised "handle is closed")
+                return
             watch = [self._wake_r]
             for w in self._workers:
                 watch += [w.conn, w.process.sentinel]
