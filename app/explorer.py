@@ -27,7 +27,7 @@ import panel as pn
 import param
 
 from fpucore.errors import ParameterError
-from fpucore.law import PolynomialLaw
+from fpucore.law import PolynomialLaw, expression_of
 
 from . import compute
 from .state import (
@@ -439,22 +439,6 @@ def coeff_range(c0: float) -> tuple[float, float]:
     change), [−1, 1] for a zero coefficient."""
     r = 2.0 * abs(c0) if c0 != 0.0 and math.isfinite(c0) else 1.0
     return c0 - r, c0 + r
-
-
-def expression_of(coeffs) -> str:
-    """Text of f(w) = Σ c_k w^k (coeffs = (c_1, c_2, …)) that fpucore.law_from_expression
-    parses back to the same doubles (reprs) — also for coefficients outside the law class, for
-    which no PolynomialLaw (and so no ``PolynomialLaw.expression``) exists."""
-    out = ""
-    for k, c in enumerate(coeffs, start=1):
-        c = float(c)
-        if c == 0.0:
-            continue
-        mag = abs(c)
-        term = "w" if k == 1 else f"w**{k}"
-        term = term if mag == 1.0 else f"{mag!r}*{term}"
-        out += (" - " if c < 0 else " + ") + term if out else ("-" if c < 0 else "") + term
-    return out or "0"
 
 
 def widened(x: float, lo: float, hi: float) -> dict:

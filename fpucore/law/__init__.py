@@ -11,9 +11,10 @@ from .base import HardeningSofteningLaw, require_law
 from .cubic import CubicLaw
 from .expression import law_from_expression
 from .kernels import LAW_CUBIC, LAW_POLY, POLY_IDS, ddforce, dforce, force
-from .polynomial import PolynomialLaw, real_roots
+from .polynomial import PolynomialLaw, expression_of, real_roots
 
 __all__ = [
+    "expression_of",
     "HardeningSofteningLaw",
     "require_law",
     "CubicLaw",

@@ -95,6 +95,23 @@ def real_roots(c: Sequence[float], lo: float = -math.inf, hi: float = math.inf):
     return merged
 
 
+def expression_of(coeffs) -> str:
+    """Text of f(w) = Σ c_k w^k (coeffs = (c_1, c_2, …)) that
+    :func:`fpucore.law.law_from_expression` parses back to the same doubles (coefficients by
+    ``repr``) — also for coefficients outside the law class (e.g. a dashboard slider's state),
+    for which no :class:`PolynomialLaw` exists; ``"0"`` when every coefficient is zero."""
+    out = ""
+    for k, c in enumerate(coeffs, start=1):
+        c = float(c)
+        if c == 0.0:
+            continue
+        mag = abs(c)
+        term = "w" if k == 1 else f"w**{k}"
+        term = term if mag == 1.0 else f"{mag!r}*{term}"
+        out += (" - " if c < 0 else " + ") + term if out else ("-" if c < 0 else "") + term
+    return out or "0"
+
+
 # =============================================================================== the law
 @dataclass(frozen=True)
 class PolynomialLaw(HardeningSofteningLaw):
@@ -271,15 +288,7 @@ class PolynomialLaw(HardeningSofteningLaw):
     def expression(self) -> str:
         """The law as text that :func:`fpucore.law.law_from_expression` parses back exactly
         (coefficients by ``repr``, so the round trip is lossless), e.g. ``"w + 10*w**2 - w**3"``."""
-        out = ""
-        for k, c in enumerate(self.coeffs, start=1):
-            if c == 0.0:
-                continue
-            mag = abs(c)
-            term = "w" if k == 1 else f"w**{k}"
-            term = term if mag == 1.0 else f"{mag!r}*{term}"
-            out += (" - " if c < 0 else " + ") + term if out else ("-" if c < 0 else "") + term
-        return out
+        return expression_of(self.coeffs)
 
     def describe(self) -> str:
         terms = [f"{c:+g} w^{k}" if k > 1 else f"{c:+g} w" for k, c in enumerate(self.coeffs, 1)]

@@ -27,7 +27,7 @@ pytest.importorskip("panel")
 from bokeh.document import Document  # noqa: E402
 
 from app import compute  # noqa: E402
-from app.explorer import Explorer, expression_of  # noqa: E402
+from app.explorer import Explorer  # noqa: E402
 from app.state import (  # noqa: E402
     MAX_URL_LAW,
     STATE_PARAMS,
@@ -37,7 +37,12 @@ from app.state import (  # noqa: E402
 )
 from app.views import SCENES  # noqa: E402
 from app.views.base import md_escape, state_stamp  # noqa: E402
-from fpucore.law import CubicLaw, PolynomialLaw, law_from_expression  # noqa: E402
+from fpucore.law import (  # noqa: E402
+    CubicLaw,
+    PolynomialLaw,
+    expression_of,  # noqa: E402
+    law_from_expression,
+)
 
 ROOT = Path(__file__).resolve().parents[2]
 BY_KEY = {cls.key: cls for cls in SCENES}

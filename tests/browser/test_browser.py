@@ -266,6 +266,18 @@ def inputs_reach_the_server(page) -> None:
     page.wait_for_timeout(500)
 
 
+def run_riemann(page, t_end: str, L: str = "300") -> str:
+    """On the open Simulation tab: a Riemann run of L sites to t_end; its status once shown."""
+    page.locator(".scene-simulation .bk-btn-group button", has_text="Riemann").click()
+    for label, value in (("L (sites)", L), ("t_end", t_end)):
+        field = page.locator(".scene-simulation .bk-input-group", has_text=label).locator("input")
+        field.fill(value)
+        field.press("Enter")
+    inputs_reach_the_server(page)
+    page.locator(".simulation-run button").click()
+    return wait_rendered(page, "simulation", 240.0)
+
+
 def open_tab(page, title: str):
     page.locator(".bk-tab", has_text=title).first.click()
 
@@ -293,14 +305,7 @@ def test_every_scene_renders_a_plot(page):
     # simulation: runs on demand
     open_tab(page, "Simulation")
     page.locator(".scene-simulation .scene-message").get_by_text("Run simulation").wait_for()
-    page.locator(".scene-simulation .bk-btn-group button", has_text="Riemann").click()
-    for label, value in (("L (sites)", "300"), ("t_end", "10")):
-        field = page.locator(".scene-simulation .bk-input-group", has_text=label).locator("input")
-        field.fill(value)
-        field.press("Enter")
-    inputs_reach_the_server(page)
-    page.locator(".simulation-run button").click()
-    wait_rendered(page, "simulation", 240.0)
+    run_riemann(page, t_end="10")
     page.locator(".scene-simulation canvas").first.wait_for()
     print(f"[browser] simulation: {status_text(page, 'simulation')[:220]}")
 
@@ -753,14 +758,7 @@ def test_typed_law_reaches_every_scene_and_the_url(page):
         print(f"[browser] quartic {key}: {text[:110]}")
         assert not app_tracebacks(), app_tracebacks()[-1][-2000:]
     open_tab(page, "Simulation")
-    page.locator(".scene-simulation .bk-btn-group button", has_text="Riemann").click()
-    for label, value in (("L (sites)", "300"), ("t_end", "5")):
-        field = page.locator(".scene-simulation .bk-input-group", has_text=label).locator("input")
-        field.fill(value)
-        field.press("Enter")
-    inputs_reach_the_server(page)
-    page.locator(".simulation-run button").click()
-    text = wait_rendered(page, "simulation", 240.0)
+    text = run_riemann(page, t_end="5")
     assert f"law={QUARTIC}" in text, text
     # a coefficient slider (c₄) rewrites the law: status, URL and text box follow
     open_tab(page, "Force law")
