@@ -17,8 +17,9 @@ The dense route (:func:`fpucore.floquet.multipliers_of`) calls LAPACK ``dgeev`` 
    twice, the second pass delayed by one step so that each step reads the basis twice instead
    of four times, :mod:`fpucore.floquet.arnoldi_kernels`) gives an n×n Hessenberg H with
    W V = V H + J V G; G = 0 in exact arithmetic, ‖G‖ is measured (the backward error of W),
-   plus a bound of the round-off-sized terms the delayed pass leaves out.  One LAPACK ``dhseqr`` on H (n×n instead of 2n×2n; called
-   directly, :mod:`fpucore.floquet.hessenberg`, since H is Hessenberg already).
+   plus a bound of the round-off-sized terms the delayed pass leaves out.  One LAPACK
+   ``dhseqr`` on H (n×n instead of 2n×2n; called directly, :mod:`fpucore.floquet.hessenberg`,
+   since H is Hessenberg already).
    𝓜 is periodic-banded (tangent windows of ±K sites), so a product with W costs O(N·K).
 3. μ solves μ² − λμ + 1 = 0.  Real λ ∈ [−2, 2] gives μ = e^{±iθ} exactly on the unit circle
    (no round-off quartet splitting), complex λ the quartet.
