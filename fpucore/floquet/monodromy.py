@@ -189,11 +189,19 @@ def multipliers_of(mat: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray, flo
     call on the (2N−2)-block.  conservation_defect is the largest coupling of the sum rows to the
     rest (exactly 0 for an exact ring integration; round-off level here).
     """
+    a, b, defect = deflate(mat, n)
+    mu_rest = scipy.linalg.eigvals(b, overwrite_a=True, check_finite=False)
+    mu_sums = np.array([a[n - 1, n - 1], a[2 * n - 1, 2 * n - 1]], dtype=complex)
+    return mu_rest, mu_sums, float(defect)
+
+
+def deflate(mat: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray, float]:
+    """(a, b, defect): a = 𝓜 after the exact Householder deflation of the two sums, (2N, 2N);
+    b its (2N−2)² block without them (Fortran order, what dgeev gets); defect the sum rows'
+    coupling to the rest (see :func:`multipliers_of`)."""
     a = np.array(mat, dtype=np.float64, order="C", copy=True)
     u, beta = _householder(n)
     deflate_sums(a, n, u, beta)
     b = np.empty((2 * n - 2, 2 * n - 2), order="F")
     defect = extract_deflated(a, n, b)
-    mu_rest = scipy.linalg.eigvals(b, overwrite_a=True, check_finite=False)
-    mu_sums = np.array([a[n - 1, n - 1], a[2 * n - 1, 2 * n - 1]], dtype=complex)
-    return mu_rest, mu_sums, float(defect)
+    return a, b, float(defect)
