@@ -73,6 +73,19 @@ def coefficients(V: np.ndarray, k: int, x0: np.ndarray, x1: np.ndarray, n: int, 
         c[i, 0], c[i, 1], c[i, 2], c[i, 3] = s0, s1, s2, s3
 
 
+@njit(fastmath=_SUM, cache=True, nogil=True)
+def step_sums(u: np.ndarray, w: np.ndarray, n: int) -> tuple[float, float, float, float]:
+    """(w·w, u·u, u·w, (J u)·w) in one vectorised pass."""
+    ww = uu = uw = juw = 0.0
+    for j in range(n):
+        a, b, x, y = u[j], u[n + j], w[j], w[n + j]
+        ww += x * x + y * y
+        uu += a * a + b * b
+        uw += a * x + b * y
+        juw += b * x - a * y
+    return ww, uu, uw, juw
+
+
 @njit(cache=True, nogil=True)
 def project_out(V: np.ndarray, k: int, c: np.ndarray, n: int, x0: np.ndarray, x1: np.ndarray):
     """x0 −= Σ_i c[i,0] V_i + c[i,1] J V_i ;  x1 −= Σ_i c[i,2] V_i + c[i,3] J V_i  (i < k);
@@ -191,16 +204,7 @@ def dcgs2_steps(
     m = V.shape[0]
     for k in range(k0, m):
         w_apply(bands, d0, n, u, w, t1, t2, t3, t4)
-        wn0 = 0.0
-        uu = 0.0
-        uw = 0.0
-        juw = 0.0
-        for j in range(2 * n):
-            wn0 += w[j] * w[j]
-            uu += u[j] * u[j]
-            uw += u[j] * w[j]
-        for j in range(n):
-            juw += u[n + j] * w[j] - u[j] * w[n + j]  # (J u)·w
+        wn0, uu, uw, juw = step_sums(u, w, n)
         wn0 = math.sqrt(wn0)
         coefficients(V, k, u, w, n, C)
         aa = 0.0
@@ -270,10 +274,7 @@ def dcgs2_steps(
             scal[1] += (aa - aj) / (beta * beta)
         remove_means(w, n)
         if k + 1 < m:
-            nr = 0.0
-            for j in range(2 * n):
-                nr += w[j] * w[j]
-            nr = math.sqrt(nr)
+            nr = math.sqrt(step_sums(w, w, n)[0])
             if nr <= tol * max(wn0, 1.0):
                 HT[k, k + 1] = 0.0
                 return k + 1
