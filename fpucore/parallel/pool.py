@@ -7,6 +7,11 @@ process sentinel and a wake-up pipe at once (``multiprocessing.connection.wait``
 jobs to idle workers, forwards progress, and when a worker dies or its job is cancelled it
 terminates / reaps that process, fails or cancels only that job, and starts a replacement.
 
+A caller that computes too (``Executor(..., caller_runs=True)``) takes jobs not yet handed to a
+worker with :meth:`ProcessPool.steal` (atomic with the manager's dispatch: every job runs once),
+and such a pool starts its workers in the manager thread (``background_start``), so that the
+caller computes while the forkserver imports fpucore (~0.7 s) instead of waiting for it.
+
 Start method: ``forkserver`` with fpucore preloaded (see :mod:`fpucore.parallel.threads`: the
 process that forks workers has never run an OpenMP kernel), ``spawn`` where forkserver is missing.
 """
@@ -16,6 +21,7 @@ from __future__ import annotations
 import atexit
 import itertools
 import multiprocessing as mp
+import os
 import signal
 import threading
 import weakref
@@ -81,9 +87,12 @@ def shutdown_at_exit(ref: weakref.ref) -> None:
 
 
 class ProcessPool:
-    """``workers`` processes with ``n_threads`` BLAS/Numba threads each (the policy: 1)."""
+    """``workers`` processes with ``n_threads`` BLAS/Numba threads each (the policy: 1).
+    background_start : start the workers in the manager thread (the constructor returns at
+    once; jobs wait in the queue until a worker is up, or are stolen by the caller)."""
 
-    def __init__(self, workers: int, n_threads: int = 1, start_method: str = START_METHOD):
+    def __init__(self, workers: int, n_threads: int = 1, start_method: str = START_METHOD,
+                 background_start: bool = False):  # fmt: skip
         self.n_workers, self.n_threads = int(workers), int(n_threads)
         self.start_method = start_method
         self._ctx = context(start_method)
@@ -93,8 +102,12 @@ class ProcessPool:
         self._ids = itertools.count()
         self._closed = False
         self._wake_r, self._wake_w = self._ctx.Pipe(duplex=False)
-        self._workers = [_Worker(self._ctx, self.n_threads) for _ in range(self.n_workers)]
+        self._workers: list[_Worker] = []
+        self._to_start = self.n_workers if background_start else 0
+        if not background_start:
+            self._workers = [_Worker(self._ctx, self.n_threads) for _ in range(self.n_workers)]
         self.replaced = 0  # workers started to replace a dead or cancelled one
+        self.start_error: Exception | None = None  # background_start: a worker failed to start
         self._thread = threading.Thread(target=self._loop, name="fpucore-pool", daemon=True)
         self._thread.start()
         atexit.register(shutdown_at_exit, weakref.ref(self))
@@ -105,11 +118,27 @@ class ProcessPool:
         if self._closed:
             job.set_exception(Cancelled("the executor is shut down"))
             return job
+        if self.start_error is not None and not self._workers:
+            job.set_exception(WorkerDied(f"no worker process could start: {self.start_error!r}"))
+            return job
         job.cancel_hook = self._on_cancel
         with self._lock:
             self._queue.append((next(self._ids), job, (fn, args, kwargs, accepts_progress(fn))))
         self._wake()
         return job
+
+    def steal(self) -> tuple | None:
+        """Take the oldest job not yet handed to a worker, for the caller to run itself:
+        ``(job, fn, args, kwargs, wants_progress)`` with the job marked running in this process,
+        or None if none is waiting.  Atomic with the manager's dispatch (the same lock), so a job
+        runs exactly once; a cancelled job still in the queue is skipped."""
+        with self._lock:
+            while self._queue:
+                _, job, (fn, args, kwargs, wants_progress) = self._queue.popleft()
+                if not job.done():
+                    job.state, job.worker = "running", os.getpid()
+                    return job, fn, args, kwargs, wants_progress
+        return None
 
     def _on_cancel(self, job: Job) -> None:
         with self._lock:
@@ -156,7 +185,26 @@ class ProcessPool:
         self._wake_w.close()
 
     # -- manager thread -------------------------------------------------------------------------
+    def _start_workers(self) -> None:
+        """background_start: start the workers one by one (the first start also starts the
+        forkserver); each takes a job as soon as it is up."""
+        while self._to_start and not self._closed:
+            try:
+                self._workers.append(_Worker(self._ctx, self.n_threads))
+            except Exception as exc:  # noqa: BLE001  (no worker: jobs must fail, not wait forever)
+                self.start_error, self._to_start = exc, 0
+                if not self._workers:
+                    with self._lock:
+                        pending = [job for _, job, _ in self._queue]
+                        self._queue.clear()
+                    for job in pending:
+                        job.set_exception(WorkerDied(f"no worker process could start: {exc!r}"))
+                return
+            self._to_start -= 1
+            self._dispatch()
+
     def _loop(self) -> None:
+        self._start_workers()
         while True:
             if self._closed:
                 return

@@ -58,6 +58,12 @@ def thread_budget() -> dict:
     }
 
 
+def where(x):
+    """``(x, pid, Numba threads, [threads of each BLAS/OpenMP library])`` of the process that ran
+    it (which process computed an item, under which thread budget)."""
+    return x, os.getpid(), numba.get_num_threads(), [d["num_threads"] for d in threadpool_info()]
+
+
 def superkink(V: float, N: int = 64) -> dict:
     """A discrete superkink solved in this process (runs Numba's parallel period map):
     residual, amplitude-like summary and the threading layer used."""
