@@ -64,6 +64,20 @@ def where(x):
     return x, os.getpid(), numba.get_num_threads(), [d["num_threads"] for d in threadpool_info()]
 
 
+def fail_where(seconds: float) -> None:
+    """Sleep ``seconds``, then raise ValueError(pid): which process ran a failing item."""
+    time.sleep(seconds)
+    raise ValueError(os.getpid())
+
+
+def sleep_in_workers(caller_pid: int, seconds: float = 30.0) -> int:
+    """Return the pid at once in the process ``caller_pid``, sleep ``seconds`` first anywhere
+    else (a pool worker is busy while the caller's items are done: early exit, cancel)."""
+    if os.getpid() != caller_pid:
+        time.sleep(seconds)
+    return os.getpid()
+
+
 def superkink(V: float, N: int = 64) -> dict:
     """A discrete superkink solved in this process (runs Numba's parallel period map):
     residual, amplitude-like summary and the threading layer used."""
