@@ -11,7 +11,8 @@ tests and debugging).  Every worker runs one BLAS/OpenMP/Numba thread
 passes a callable ``progress(frac)`` whose values appear as ``Job.progress`` in the caller.
 
 ``caller_runs=True`` (process backend): the calling process computes too.  ``workers`` then
-counts it: the pool has ``workers - 1`` processes (at least 1), started in the background, and
+counts it: the pool has ``workers - 1`` processes (at least 1), started in the background and
+each given its next job ahead (``lookahead``, see :mod:`fpucore.parallel.pool`), and
 while the caller waits for a result (:meth:`Executor.map`, :meth:`Executor.next_done`) it takes
 jobs no worker has taken yet (:meth:`ProcessPool.steal`) and runs them itself, one at a time, with
 the workers' thread policy (1 thread, :func:`fpucore.parallel.threads.thread_policy`).  For a
@@ -92,7 +93,7 @@ class Executor:
         self.caller_runs = caller_runs and backend == "process"
         n = cores() if workers is None else workers
         if self.caller_runs:  # this process is one of the n; its workers start in the background
-            self._impl = ProcessPool(max(1, n - 1), background_start=True)
+            self._impl = ProcessPool(max(1, n - 1), background_start=True, lookahead=True)
         elif backend == "process":
             self._impl = ProcessPool(n)
         elif backend == "dask":

@@ -11,6 +11,7 @@ from __future__ import annotations
 import functools
 import os
 import queue
+import signal
 import time
 
 import numba
@@ -21,7 +22,14 @@ from threadpoolctl import threadpool_info
 from fpucore import floquet as fq
 from fpucore.errors import ParameterError
 from fpucore.law import CubicLaw
-from fpucore.parallel import Executor, apply_thread_policy, cores, probes
+from fpucore.parallel import (
+    Cancelled,
+    Executor,
+    WorkerDied,
+    apply_thread_policy,
+    cores,
+    probes,
+)
 
 T = 180  # s: generous (a cold Numba cache compiles in the workers), never reached when healthy
 
@@ -91,6 +99,7 @@ def test_leaving_the_loop_cancels_the_rest_and_leaves_no_live_worker():
         t0 = time.monotonic()
         for _, pid in e.map(fn, [os.getpid()] * 8):
             assert pid == os.getpid()  # the worker is asleep on its item: the caller's is first
+            time.sleep(0.5)  # the idle worker surely took an item meanwhile
             break
         assert time.monotonic() - t0 < 20
         deadline = time.monotonic() + 30
@@ -127,3 +136,53 @@ def test_sweep_on_its_own_execution_equals_inline():
     assert own.message == ref.message and own.converged.all()
     np.testing.assert_array_equal(own.max_modulus, ref.max_modulus)
     np.testing.assert_array_equal(own.error, ref.error)
+
+
+# -- lookahead: a caller_runs pool sends a busy worker its next job ahead ----------------------
+def test_a_cancelled_job_waiting_in_a_busy_workers_pipe():
+    """A runs on the worker, B waits in its pipe (C, the last one queued, stays in the queue):
+    cancelling B leaves A's value, B raises Cancelled, C still runs, and the worker that
+    started B is replaced."""
+    e = Executor("process", workers=2, caller_runs=True)
+    try:
+        worker = worker_up(e)
+        a = e.submit(probes.sleep, 1.5)
+        b = e.submit(probes.square, 2.0)
+        c = e.submit(probes.square, 3.0)
+        wait_state(a, "running")
+        time.sleep(0.3)  # the manager sends B ahead at once
+        assert b.cancel()
+        assert a.result(timeout=T) >= 1.5
+        with pytest.raises(Cancelled):
+            b.result(timeout=1)
+        assert c.result(timeout=T) == 9.0
+        deadline = time.monotonic() + 30
+        while e.impl.replaced < 1 or worker in e.impl.pids():
+            assert time.monotonic() < deadline, "the worker that started B was not replaced"
+            time.sleep(0.05)
+        assert e.submit(probes.square, 4.0).result(timeout=T) == 16.0
+    finally:
+        e.shutdown()
+
+
+def test_a_job_waiting_in_a_killed_workers_pipe_runs_elsewhere():
+    e = Executor("process", workers=2, caller_runs=True)
+    try:
+        worker_up(e)
+        a = e.submit(probes.spin, 600.0)
+        wait_state(a, "running")
+        b, c = e.submit(probes.square, 5.0), e.submit(probes.square, 6.0)
+        time.sleep(0.3)
+        os.kill(a.worker, signal.SIGKILL)  # as an OOM killer would
+        with pytest.raises(WorkerDied):
+            a.result(timeout=T)
+        assert b.result(timeout=T) == 25.0 and c.result(timeout=T) == 36.0  # B never started
+    finally:
+        e.shutdown()
+
+
+def wait_state(job, state: str, timeout: float = T) -> None:
+    t0 = time.monotonic()
+    while job.state != state:
+        assert time.monotonic() - t0 < timeout, f"job never {state}"
+        time.sleep(0.01)
