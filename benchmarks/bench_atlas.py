@@ -156,32 +156,45 @@ def run_cold_sweep(N: int, nV: int, caller_runs: bool) -> dict:
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 
+def sequential_spectra(V, N: int) -> tuple[list, float, float]:
+    """max |μ| of one spectrum per velocity, one after the other in this process: (values, wall
+    s, CPU s)."""
+    c0, t0 = time.process_time(), time.perf_counter()
+    mu = [floquet.spectrum(wave.solve_superkink(LAW, v, N=N)).max_modulus for v in V]
+    return mu, time.perf_counter() - t0, time.process_time() - c0
+
+
 def part_d(N: int = 500, nV: int = 12) -> None:
     """The sweep as a user meets it (a fresh process: forkserver, worker start-up and pool
-    start all timed) against 12 sequential spectra in this process, both with a warm JIT in the
-    calling process; then the same on a running, warm pool (the dashboard's case).  CPU seconds
-    of every side — caller, forkserver and workers — tell load from serialisation: with two
-    free cores the wall is about (total CPU) / 2."""
+    start all timed) against 12 sequential spectra in this process (before and after the
+    sweeps: their mean, as the machine's speed drifts), both with a warm JIT in the calling
+    process; then the same on a running, warm pool (the dashboard's case).  CPU seconds of every
+    side — caller, forkserver and workers — tell load from serialisation: with two free cores
+    the wall is about (total CPU) / 2."""
     V = np.linspace(4.9, 5.8, nV)
     print(f"D. {nV}-velocity max|mu| sweep at N={N} on 2 cores vs sequential "
           f"(load average {os.getloadavg()[0]:.1f})")  # fmt: skip
     apply_thread_policy(1)
     floquet.spectrum(wave.solve_superkink(LAW, 5.5, N=64))  # the caller's JIT, as in cold_sweep
-    c0, t0 = time.process_time(), time.perf_counter()
-    seq = [floquet.spectrum(wave.solve_superkink(LAW, v, N=N)).max_modulus for v in V]
-    t_seq, c_seq = time.perf_counter() - t0, time.process_time() - c0
+    seq, t_seq, c_seq = sequential_spectra(V, N)
     print(f"   sequential {t_seq:.1f} s (CPU {c_seq:.1f} s, CPU/wall {c_seq / t_seq:.2f})")
-    for caller_runs, name in ((True, "caller + 1 worker (fpu floquet sweep)"),
-                              (False, "2 workers, caller idle (before)")):  # fmt: skip
-        r = run_cold_sweep(N, nV, caller_runs)
+    names = {
+        True: "caller + 1 worker (fpu floquet sweep)",
+        False: "2 workers, caller idle (before)",
+    }
+    runs = {cr: run_cold_sweep(N, nV, cr) for cr in names}
+    _, t_seq2, c_seq2 = sequential_spectra(V, N)
+    t_seq, c_seq = (t_seq + t_seq2) / 2, (c_seq + c_seq2) / 2
+    print(f"   sequential again after the sweeps {t_seq2:.1f} s (CPU {c_seq2:.1f} s); ratios "
+          f"against the mean {t_seq:.1f} s (CPU {c_seq:.1f} s)")  # fmt: skip
+    for cr, r in runs.items():
         diff = float(np.max(np.abs(np.array(seq) - r["max_modulus"]) - r["error"]))
         cpu = r["caller_cpu"] + r["pool_cpu"]
         print(
-            f"   cold sweep, {name}: {r['wall']:.1f} s -> wall ratio {r['wall'] / t_seq:.2f} "
-            f"(target <= 0.6); CPU caller {r['caller_cpu']:.1f} s + forkserver and workers "
-            f"{r['pool_cpu']:.1f} s = {cpu:.1f} s (sequential {c_seq:.1f} s); load-free "
-            f"estimate (CPU / 2) / sequential = {cpu / 2 / c_seq:.2f}; "
-            f"max(|d max|mu|| - error bar) = {diff:.1e}"
+            f"   cold sweep, {names[cr]}: {r['wall']:.1f} s -> wall ratio {r['wall'] / t_seq:.2f}"
+            f" (target <= 0.6); CPU caller {r['caller_cpu']:.1f} s + forkserver and workers "
+            f"{r['pool_cpu']:.1f} s = {cpu:.1f} s; load-free estimate (CPU / 2) / sequential "
+            f"CPU = {cpu / 2 / c_seq:.2f}; max(|d max|mu|| - error bar) = {diff:.1e}"
         )
     with Executor(workers=2) as ex:  # the dashboard's case: pool started and JIT loaded
         warm(ex, 64)
