@@ -139,12 +139,11 @@ def provenance(state: ExplorerState, what: str, **extra) -> str:
 def state_stamp(state: ExplorerState) -> str:
     """The parameters a render used, exactly as in the URL (shown under every status, so a
     reader — and the browser tests — can tell which state is on screen)."""
-    stamp = (
-        f"a={state.a!r} b={state.b!r} w_plus={state.w_plus!r} V={state.V!r} N={state.N} "
-        f"tol={state.tol!r} mode={state.mode}"
-    )
-    # the law only when it is an expression (the URL has law= only then); last, as it has spaces
-    return stamp + (f" law={state.expression}" if state.expression else "")
+    rest = f"w_plus={state.w_plus!r} V={state.V!r} N={state.N} tol={state.tol!r} mode={state.mode}"
+    # an expression law replaces a, b (which it does not use); last, as it has spaces
+    if state.expression:
+        return f"{rest} law={state.expression}"
+    return f"a={state.a!r} b={state.b!r} {rest}"
 
 
 def md_escape(text: str) -> str:

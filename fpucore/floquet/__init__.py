@@ -1,7 +1,8 @@
 """Floquet stability of discrete traveling waves (paper §6, eqs. linear, linear_map).
 
 kernels (Numba: shifted rows, exact deflation)  →  monodromy (𝓜 from the tangent flow,
-its multipliers)  →  structured_kernels → structured (the half-size symplectic route)
+its multipliers)  →  structured_kernels → arnoldi_kernels → structured (the half-size
+symplectic route)
 →  multipliers (FloquetResult: spectrum, error bars, verdict)
 →  checks (quartet symmetry, homogeneous closed form, phonon gap)  →  finite_size (is an
 excess |μ| − 1 an artefact of the finite ring? the three-way classification)  →  energy (extrema

@@ -13,10 +13,13 @@ The dense route (:func:`fpucore.floquet.multipliers_of`) calls LAPACK ``dgeev`` 
    destroy the basis after a few hundred steps).
 2. Half size.  W = S − J Sᵀ J (= S + S⁻¹ for symplectic S) is skew-Hamiltonian; its eigenvalues
    λ = μ + 1/μ are double, and every Krylov space of one vector is isotropic.  A full-length
-   isotropic Arnoldi process (SHIRA-type: Gram–Schmidt against V and J V, two passes) gives an
-   n×n Hessenberg H with W V = V H + J V G; G = 0 in exact arithmetic, ‖G‖ is measured
-   (the backward error of W).  One LAPACK ``dhseqr`` on H (n×n instead of 2n×2n; called
-   directly, :mod:`fpucore.floquet.hessenberg`, since H is Hessenberg already).
+   isotropic Arnoldi process (SHIRA-type: Gram–Schmidt against V and J V, every vector projected
+   twice, the second pass delayed by one step so that each step reads the basis twice instead
+   of four times, :mod:`fpucore.floquet.arnoldi_kernels`) gives an n×n Hessenberg H with
+   W V = V H + J V G; G = 0 in exact arithmetic, ‖G‖ is measured (the backward error of W),
+   plus a bound of the round-off-sized terms the delayed pass leaves out.  One LAPACK
+   ``dhseqr`` on H (n×n instead of 2n×2n; called directly, :mod:`fpucore.floquet.hessenberg`,
+   since H is Hessenberg already).
    𝓜 is periodic-banded (tangent windows of ±K sites), so a product with W costs O(N·K).
 3. μ solves μ² − λμ + 1 = 0.  Real λ ∈ [−2, 2] gives μ = e^{±iθ} exactly on the unit circle
    (no round-off quartet splitting), complex λ the quartet.
@@ -27,7 +30,9 @@ J-part ‖G‖ and the Hessenberg round-off give a bound δλ = ‖G‖ + (64ε 
 each μ is δλ/max(|μ − 1/μ|, √δλ) (``mu_error``; large only next to μ = ±1).
 
 Prototype and its measured table: research report r17 (max|μ| within 8e-14 of dense eigvals in
-20 cases, same unstable counts).  Timings: benchmarks/bench_floquet.py part E.
+20 cases, same unstable counts).  Timings: benchmarks/bench_floquet.py part E (at N = 500 the
+Arnoldi process is ~2/3 of the time, bound by memory bandwidth: the 4 MB basis outgrows L2;
+``dhseqr`` on H the other third).
 """
 
 from __future__ import annotations
@@ -37,6 +42,7 @@ import time
 
 import numpy as np
 
+from fpucore.floquet.arnoldi_kernels import dcgs2_steps
 from fpucore.floquet.hessenberg import hessenberg_eigvals
 from fpucore.floquet.structured_kernels import (
     extract_bands,
@@ -44,10 +50,12 @@ from fpucore.floquet.structured_kernels import (
     remove_means,
     s_apply,
     st_apply,
-    w_apply,
 )
 
 _RESTART_TRIES = 8
+# |a_J| above which the delayed pass's J-part is pushed through W (arnoldi_kernels.dcgs2_steps);
+# below it, ‖W‖·|a_J| is round-off and is added to the bound instead
+_TOL_J = 1e-14
 
 
 def band_of(mat: np.ndarray, n: int, K: int | None = None) -> tuple[int, np.ndarray]:
@@ -121,48 +129,35 @@ def symplectic_defect(bands, d0: int, N: int, probes: int = 4, seed: int = 7) ->
 
 def isotropic_arnoldi(bands, d0: int, N: int, rng) -> tuple[np.ndarray, np.ndarray, float, int]:
     """Full-length isotropic Arnoldi on W (module doc): V (N−1, 2N) orthonormal isotropic rows,
-    H (N−1, N−1) upper Hessenberg with W Vᵀ = Vᵀ H + J Vᵀ G, ‖G‖ (dropped), restarts.
+    H (N−1, N−1) upper Hessenberg (Fortran order) with W Vᵀ = Vᵀ H + J Vᵀ G, ‖G‖_F plus the
+    bound of the J-parts below _TOL_J left out of W products (the dropped part), restarts.
 
-    Each step: one W product (Numba, O(N·K)), then classical Gram–Schmidt against V and J V,
-    twice (CGS2; two BLAS calls per pass reading the basis), block means removed.  A breakdown
-    (an invariant subspace: degenerate λ, e.g. a homogeneous ring) restarts with a random vector
-    orthogonal to V and J V.  Measured and not used (benchmarks/README.md, part E): a DGKS
-    "second pass only if needed" test (needed at every step here) and delayed CGS2 (OpenBLAS's
-    4-column product costs two 2-column ones, and its dropped J-term grows near convergence).
+    Gram–Schmidt against V and J V with delayed reorthogonalisation (DCGS2,
+    :mod:`fpucore.floquet.arnoldi_kernels`): two sweeps over the basis per step instead of
+    CGS2's four; every vector still gets two projections.  A breakdown (an invariant subspace:
+    degenerate λ, e.g. a homogeneous ring) restarts with a random vector orthogonal to V and
+    J V.  Measured and not used (benchmarks/README.md, part E): CGS2 through BLAS (the previous
+    route, 1.3–1.6× slower here), a DGKS "second pass only if needed" test (needed at every step).
     """
     m = N - 1
     V = np.zeros((m, 2 * N))
-    H = np.zeros((m, m))
-    t = [np.empty(2 * N) for _ in range(4)]
-    w = np.empty(2 * N)
-    two = np.empty((2 * N, 2))
-    g2, restarts = 0.0, 0
-    V[0] = _fresh(V, 0, N, rng)
-    for k in range(m):
-        w_apply(bands, d0, N, V[k], w, t[0], t[1], t[2], t[3])
-        wn0 = float(np.linalg.norm(w))
-        Vk = V[: k + 1]
-        for _pass in range(2):
-            two[:, 0] = w
-            two[:N, 1] = -w[N:]  # Jᵀ w = (−w_p, w_u): (J v)·w = v·Jᵀw
-            two[N:, 1] = w[:N]
-            c = Vk @ two  # (k+1, 2): coefficients along V and along J V
-            upd = Vk.T @ c
-            w -= upd[:, 0]
-            w[:N] -= upd[N:, 1]  # J (V g) = ((V g)_p, −(V g)_u)
-            w[N:] += upd[:N, 1]
-            H[: k + 1, k] += c[:, 0]
-            g2 += float(c[:, 1] @ c[:, 1])
-        remove_means(w, N)
-        if k + 1 < m:
-            nr = float(np.linalg.norm(w))
-            if nr <= 1e-10 * max(wn0, 1.0):
-                restarts += 1
-                V[k + 1] = _fresh(V, k + 1, N, rng)
-            else:
-                H[k + 1, k] = nr
-                V[k + 1] = w / nr
-    return V, H, math.sqrt(g2), restarts
+    HT = np.zeros((m, m))
+    GT = np.zeros((m, m))
+    C = np.zeros((m, 4))
+    u, w, z, wz, t1, t2, t3, t4 = (np.empty(2 * N) for _ in range(8))
+    scal = np.zeros(2)
+    restarts, k = 0, 0
+    u[:] = _fresh(V, 0, N, rng)
+    while k < m:
+        k = dcgs2_steps(
+            bands, d0, N, V, HT, GT, C, u, w, z, wz, t1, t2, t3, t4, k, 1e-10, _TOL_J, scal
+        )
+        if k < m:  # breakdown: W V[:k] ⊂ span(V, JV) to round-off
+            restarts += 1
+            u[:] = _fresh(V, k, N, rng)
+    H = HT.T
+    dropped = float(np.abs(H).max()) * math.sqrt(m) * math.sqrt(scal[1])  # ‖W‖·(Σ|a_J|²/β²)^½
+    return V, H, float(np.linalg.norm(GT)) + dropped, restarts
 
 
 def structured_multipliers(
@@ -185,7 +180,7 @@ def structured_multipliers(
     V, H, g_norm, restarts = isotropic_arnoldi(bands, d0, N, rng)
     t2 = time.perf_counter()
     hnorm = float(np.abs(H).max()) * math.sqrt(m)
-    lam = hessenberg_eigvals(H)  # LAPACK dhseqr: H is Hessenberg already
+    lam = hessenberg_eigvals(H)  # LAPACK dhseqr: H is Hessenberg already (overwritten)
     t3 = time.perf_counter()
     mu_sums = np.array([mat[:N, :N].sum() / N, mat[N:, N:].sum() / N], dtype=complex)
     # coupling of the sums to the rest: column sums of each block must be constant

@@ -260,6 +260,7 @@ def test_download_header_and_stamp_name_the_law():
     assert any(f"law={Q!r}" in ln and "(1.0, 10.0, -1.0, -0.01)" in ln for ln in head), head
     assert any(f"law = fpucore.law_from_expression({Q!r})" in ln for ln in head)
     assert state_stamp(st).endswith(f"mode=solitary law={Q}")
+    assert "a=" not in state_stamp(st) and "b=" not in state_stamp(st)  # unused by the law
     assert "law=" not in state_stamp(ExplorerState())
 
 

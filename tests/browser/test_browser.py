@@ -439,11 +439,11 @@ URL_KEYS = {"a", "b", "w_plus", "V", "N", "tol", "mode", "tab"}
 
 def stamp(q: dict) -> str:
     """The parameters line a scene writes under its status, from the URL query (the law only
-    when the URL has one: an expression; the cubic is a, b)."""
-    return (
-        f"Parameters: a={q['a']} b={q['b']} w_plus={q['w_plus']} V={q['V']} N={q['N']} "
-        f"tol={q['tol']} mode={q['mode']}" + (f" law={q['law']}" if q.get("law") else "")
-    )
+    when the URL has one: an expression, which replaces a, b)."""
+    rest = f"w_plus={q['w_plus']} V={q['V']} N={q['N']} tol={q['tol']} mode={q['mode']}"
+    if q.get("law"):
+        return f"Parameters: {rest} law={q['law']}"
+    return f"Parameters: a={q['a']} b={q['b']} {rest}"
 
 
 def message_text(page, scene: str) -> str:

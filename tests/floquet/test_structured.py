@@ -113,3 +113,65 @@ def test_hessenberg_eigvals_closed_form():
     ev = np.sort(fq.hessenberg.hessenberg_eigvals(h.copy()).real)
     exact = np.sort(2.0 + 2.0 * np.cos(np.arange(1, n + 1) * np.pi / (n + 1)))
     assert np.max(np.abs(ev - exact)) < 1e-13
+
+
+@pytest.mark.parametrize("V", [5.2, 5.85])
+def test_arnoldi_relation_and_reported_dropped_part(V):
+    """The delayed-reorthogonalisation Arnoldi (arnoldi_kernels.dcgs2_steps) against its own
+    definition, checked with W applied anew: V orthonormal and isotropic to round-off, the
+    relation W Vᵀ = Vᵀ H + J Vᵀ G with G = (J V) W Vᵀ, and the reported ‖G‖ (the part the
+    half-size problem drops) at least the true one.  V = 5.85 is next to V_SK, where the
+    one-pass projections cancel most (|a| up to 1e-9 at N = 500) and the J-part is pushed
+    through W."""
+    r = wave.solve_superkink(LAW, V, N=160)
+    N = r.N
+    mono = fq.monodromy(r)
+    d0, bands = fq.structured.band_of(mono.matrix, N, mono.K)
+    Vb, H, g_norm, _ = fq.structured.isotropic_arnoldi(bands, d0, N, np.random.default_rng(3))
+    m = N - 1
+    JV = np.concatenate([Vb[:, N:], -Vb[:, :N]], axis=1)
+    WV = np.empty_like(Vb)
+    t = [np.empty(2 * N) for _ in range(4)]
+    for i in range(m):
+        fq.structured_kernels.w_apply(bands, d0, N, Vb[i], WV[i], *t)
+    G = JV @ WV.T
+    scale = np.linalg.norm(WV, 2)
+    assert np.abs(Vb @ Vb.T - np.eye(m)).max() < 1e-13
+    assert np.abs(Vb @ JV.T).max() < 1e-13
+    assert np.allclose(np.tril(H, -2), 0.0)  # Hessenberg
+    assert np.linalg.norm(WV.T - Vb.T @ H - JV.T @ G, 2) < 1e-12 * scale
+    assert np.linalg.norm(G) <= g_norm < 1e-10 * scale
+
+
+def test_sweep_kernels_against_numpy():
+    """coefficients / project_out / project_out_z / hessenberg products (arnoldi_kernels) against
+    the same quantities written with numpy, for odd and even row counts."""
+    from fpucore.floquet import arnoldi_kernels as ak
+
+    rng = np.random.default_rng(5)
+    n, m = 37, 11
+    V = rng.standard_normal((m, 2 * n))
+    JV = np.concatenate([V[:, n:], -V[:, :n]], axis=1)
+    x0, x1 = rng.standard_normal(2 * n), rng.standard_normal(2 * n)
+    HT = np.triu(rng.standard_normal((m, m)), -1).T.copy()  # HT = Hᵀ, H upper Hessenberg
+    for k in (m - 1, m - 2):  # the process calls them for k < m
+        c = np.zeros((m, 4))
+        ak.coefficients(V, k, x0, x1, n, c)
+        ref = np.stack([V[:k] @ x0, JV[:k] @ x0, V[:k] @ x1, JV[:k] @ x1], axis=1)
+        assert np.abs(c[:k] - ref).max() < 1e-12
+        y0, y1, z0, z1, z = x0.copy(), x1.copy(), x0.copy(), x1.copy(), np.empty(2 * n)
+        ak.project_out(V, k, c, n, y0, y1)
+        ak.project_out_z(V, k, c, n, z0, z1, z)
+        e0 = x0 - V[:k].T @ c[:k, 0] - JV[:k].T @ c[:k, 1]
+        e1 = x1 - V[:k].T @ c[:k, 2] - JV[:k].T @ c[:k, 3]
+        for got in (y0, z0):
+            assert np.abs(got - e0).max() < 1e-12
+        for got in (y1, z1):
+            assert np.abs(got - e1).max() < 1e-12
+        assert np.abs(z - V[:k].T @ c[:k, 1]).max() < 1e-12
+        out = np.empty(2 * n)
+        ak.hessenberg_times(HT, k, c, 0, out)
+        assert np.abs(out[: k + 1] - HT.T[: k + 1, :k] @ c[:k, 0]).max() < 1e-12
+        c2 = c.copy()
+        ak.hessenberg_t_times(HT, k, np.ascontiguousarray(c[:, 1]), c2, 3)
+        assert np.abs(c2[:k, 3] - (c[:k, 3] - HT.T[:k, :k].T @ c[:k, 1])).max() < 1e-12
