@@ -78,6 +78,15 @@ def sleep_in_workers(caller_pid: int, seconds: float = 30.0) -> int:
     return os.getpid()
 
 
+def interrupt_in(caller_pid: int) -> int:
+    """Raise KeyboardInterrupt in the process ``caller_pid`` (Ctrl-C while the caller computes),
+    sleep 60 s anywhere else; returns the pid."""
+    if os.getpid() == caller_pid:
+        raise KeyboardInterrupt
+    time.sleep(60.0)
+    return os.getpid()
+
+
 def superkink(V: float, N: int = 64) -> dict:
     """A discrete superkink solved in this process (runs Numba's parallel period map):
     residual, amplitude-like summary and the threading layer used."""

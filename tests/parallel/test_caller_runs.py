@@ -115,6 +115,21 @@ def test_leaving_the_loop_cancels_the_rest_and_leaves_no_live_worker():
             os.kill(pid, 0)
 
 
+def test_ctrl_c_in_an_item_run_by_the_caller_propagates_and_cancels_the_rest():
+    e = Executor("process", workers=2, caller_runs=True)
+    try:
+        worker_up(e)
+        t0 = time.monotonic()
+        with pytest.raises(KeyboardInterrupt):
+            for _ in e.map(probes.interrupt_in, [os.getpid()] * 6):
+                pass
+        assert time.monotonic() - t0 < 20  # the workers' 60 s items were cancelled, not awaited
+        # a worker still asleep on an item (not cancelled) would keep this job waiting 60 s
+        assert e.submit(probes.square, 2.0).result(timeout=20) == 4.0
+    finally:
+        e.shutdown()
+
+
 def test_next_done_times_out_when_nothing_is_waiting(ex):
     with pytest.raises(queue.Empty):
         ex.next_done(queue.Queue(), timeout=0.05)
