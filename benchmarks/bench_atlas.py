@@ -10,16 +10,21 @@ B. Per-point overhead of the layer — scheduling, serialization, the Zarr write
    point, against a point's cost; process pool and Dask LocalCluster, 1 worker each.  Target ≤ 5%.
 C. Continuation: one solitary-wave line (w₊ = 1, 16 velocities, N = 300, waves only, inline)
    with continuation against cold starts from the QC guess.
-D. ``floquet.sweep`` of 12 superkink velocities at N = 500 on 2 worker processes (pool start
-   included, no cache) against 12 sequential spectra in this process, one thread (the
-   baseline of the sweep before: a loop in one process).  Target ≤ 0.6×.  Also the CPU seconds of
-   both sides (workers' from /proc) and the per-task CPU/wall, to tell load from serialisation.
+D. ``floquet.sweep`` of 12 superkink velocities at N = 500 on 2 cores as ``fpu floquet sweep``
+   runs it — a fresh process, the sweep making its own execution (the caller and 1 worker,
+   ``caller_runs``), forkserver and worker start-up timed, no cache — against 12 sequential
+   spectra in this process, one thread (the sweep before: a loop in one process).  Target ≤ 0.6×.
+   Also the old way (2 workers, caller idle) cold, the same sweep on a running warm pool, and the
+   CPU seconds of every side (caller, forkserver, workers), to tell load from serialisation.
 """
 
 from __future__ import annotations
 
 import argparse
+import json
 import os
+import subprocess
+import sys
 import time
 
 import numpy as np
@@ -102,51 +107,114 @@ def cpu_seconds(pids: list[int]) -> float:
     return total
 
 
-def part_d(N: int = 500, nV: int = 12) -> None:
-    """Wall ratio (pool start included) and, to judge it independently of the machine's load, the
-    CPU seconds of each side: if the workers' CPU is about the sequential CPU and their CPU/wall
-    is far below 1, they waited for a core (load), not for each other (serialisation)."""
+def descendants_cpu() -> float:
+    """CPU seconds of this process's live children and of every process they waited for: the
+    forkserver (our child) and the pool workers it forked, once they exited (Linux /proc:
+    utime + stime + cutime + cstime of each child).  Differences over a run count the workers of
+    a pool started and shut down inside it, which ``cpu_seconds(pids)`` cannot reach."""
+    tick = os.sysconf("SC_CLK_TCK")
+    me, total = str(os.getpid()), 0.0
+    for entry in os.listdir("/proc"):
+        if not entry.isdigit():
+            continue
+        try:
+            with open(f"/proc/{entry}/stat") as f:
+                fields = f.read().rsplit(")", 1)[1].split()
+        except OSError:
+            continue  # ended meanwhile
+        if fields[1] == me:
+            total += sum(int(x) for x in fields[11:15]) / tick
+    return total
+
+
+def cold_sweep(N: int, nV: int, caller_runs: bool) -> dict:
+    """In a fresh process (``--cold-sweep``), what ``fpu floquet sweep`` meets: no forkserver yet,
+    workers to start, the caller's own JIT cache loaded first (one small point, untimed, as the
+    sequential side has it).  caller_runs: the sweep makes its own execution (this process + 1
+    worker on 2 cores); else the old way: a 2-worker pool, the caller idle (pool start timed)."""
     V = np.linspace(4.9, 5.8, nV)
-    print(f"D. {nV}-velocity max|mu| sweep at N={N}: 2 workers vs sequential, same run "
+    apply_thread_policy(1)
+    solve_chunk({"law": LAW, "kind": "superkink", "row": "lower", "V": [5.5], "N": 64,
+                 "tol": 1e-12, "floquet": True, "m": None, "continuation": True})  # fmt: skip
+    d0, c0, t0 = descendants_cpu(), time.process_time(), time.perf_counter()
+    if caller_runs:
+        s = floquet.sweep(LAW, "superkink", V, N=N, use_cache=False, workers=2)
+    else:
+        with Executor(workers=2) as ex:
+            s = floquet.sweep(LAW, "superkink", V, N=N, use_cache=False, executor=ex)
+    wall = time.perf_counter() - t0
+    return {"wall": wall, "caller_cpu": time.process_time() - c0,
+            "pool_cpu": descendants_cpu() - d0, "max_modulus": s.max_modulus.tolist(),
+            "error": s.error.tolist()}  # fmt: skip
+
+
+def run_cold_sweep(N: int, nV: int, caller_runs: bool) -> dict:
+    """:func:`cold_sweep` in a new interpreter (its JSON on the last line of stdout)."""
+    cmd = [sys.executable, "-m", "benchmarks.bench_atlas", "--cold-sweep", str(N), str(nV),
+           "1" if caller_runs else "0"]  # fmt: skip
+    out = subprocess.run(cmd, capture_output=True, text=True, check=True, timeout=900)
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+def sequential_spectra(V, N: int) -> tuple[list, float, float]:
+    """max |μ| of one spectrum per velocity, one after the other in this process: (values, wall
+    s, CPU s)."""
+    c0, t0 = time.process_time(), time.perf_counter()
+    mu = [floquet.spectrum(wave.solve_superkink(LAW, v, N=N)).max_modulus for v in V]
+    return mu, time.perf_counter() - t0, time.process_time() - c0
+
+
+def part_d(N: int = 500, nV: int = 12) -> None:
+    """The sweep as a user meets it (a fresh process: forkserver, worker start-up and pool
+    start all timed) against 12 sequential spectra in this process (before and after the
+    sweeps: their mean, as the machine's speed drifts), both with a warm JIT in the calling
+    process; then the same on a running, warm pool (the dashboard's case).  CPU seconds of every
+    side — caller, forkserver and workers — tell load from serialisation: with two free cores
+    the wall is about (total CPU) / 2."""
+    V = np.linspace(4.9, 5.8, nV)
+    print(f"D. {nV}-velocity max|mu| sweep at N={N} on 2 cores vs sequential "
           f"(load average {os.getloadavg()[0]:.1f})")  # fmt: skip
     apply_thread_policy(1)
-    c0, t0 = time.process_time(), time.perf_counter()
-    seq = [floquet.spectrum(wave.solve_superkink(LAW, v, N=N)).max_modulus for v in V]
-    t_seq, c_seq = time.perf_counter() - t0, time.process_time() - c0
-    t0 = time.perf_counter()
-    ex = Executor(workers=2)
-    t_pool = time.perf_counter() - t0
-    c1 = time.process_time()
-    s = floquet.sweep(LAW, "superkink", V, N=N, use_cache=False, executor=ex)
-    t_par = time.perf_counter() - t0
-    c_parent = time.process_time() - c1
-    c_workers = cpu_seconds(ex.impl.pids())
-    t1 = time.perf_counter()  # the same sweep again on the running, warm pool (the dashboard's)
-    floquet.sweep(LAW, "superkink", V, N=N, use_cache=False, executor=ex)
-    t_warm = time.perf_counter() - t1
-    ex.shutdown()
-    diff = float(np.max(np.abs(np.array(seq) - s.max_modulus) - s.error))
-    task_wall = sum(r["elapsed_s"] for r in s.rows)
-    ideal = t_pool + c_workers / 2  # two free cores, perfectly balanced
-    print(
-        f"   sequential {t_seq:.1f} s (CPU {c_seq:.1f} s, CPU/wall {c_seq / t_seq:.2f}); "
-        f"sweep on 2 workers {t_par:.1f} s incl. pool start {t_pool:.1f} s -> wall ratio "
-        f"{t_par / t_seq:.2f} (target <= 0.6); max(|d max|mu|| - error bar) = {diff:.1e}"
-    )
-    print(
-        f"   workers' CPU {c_workers:.1f} s (sequential {c_seq:.1f} s), parent CPU "
-        f"{c_parent:.2f} s; tasks' wall {task_wall:.1f} s -> per-task CPU/wall "
-        f"{c_workers / task_wall:.2f}; load-free estimate (pool start + workers' CPU / 2) / "
-        f"sequential CPU = {ideal / c_seq:.2f}; load average {os.getloadavg()[0]:.1f}"
-    )
-    print(f"   again on the running pool (started, JIT loaded: the dashboard's case) {t_warm:.1f} s"
-          f" -> ratio {t_warm / t_seq:.2f}")  # fmt: skip
+    floquet.spectrum(wave.solve_superkink(LAW, 5.5, N=64))  # the caller's JIT, as in cold_sweep
+    seq, t_seq, c_seq = sequential_spectra(V, N)
+    print(f"   sequential {t_seq:.1f} s (CPU {c_seq:.1f} s, CPU/wall {c_seq / t_seq:.2f})")
+    names = {
+        True: "caller + 1 worker (fpu floquet sweep)",
+        False: "2 workers, caller idle (before)",
+    }
+    runs = {cr: run_cold_sweep(N, nV, cr) for cr in names}
+    _, t_seq2, c_seq2 = sequential_spectra(V, N)
+    t_seq, c_seq = (t_seq + t_seq2) / 2, (c_seq + c_seq2) / 2
+    print(f"   sequential again after the sweeps {t_seq2:.1f} s (CPU {c_seq2:.1f} s); ratios "
+          f"against the mean {t_seq:.1f} s (CPU {c_seq:.1f} s)")  # fmt: skip
+    for cr, r in runs.items():
+        diff = float(np.max(np.abs(np.array(seq) - r["max_modulus"]) - r["error"]))
+        cpu = r["caller_cpu"] + r["pool_cpu"]
+        print(
+            f"   cold sweep, {names[cr]}: {r['wall']:.1f} s -> wall ratio {r['wall'] / t_seq:.2f}"
+            f" (target <= 0.6); CPU caller {r['caller_cpu']:.1f} s + forkserver and workers "
+            f"{r['pool_cpu']:.1f} s = {cpu:.1f} s; load-free estimate (CPU / 2) / sequential "
+            f"CPU = {cpu / 2 / c_seq:.2f}; max(|d max|mu|| - error bar) = {diff:.1e}"
+        )
+    with Executor(workers=2) as ex:  # the dashboard's case: pool started and JIT loaded
+        warm(ex, 64)
+        t1 = time.perf_counter()
+        floquet.sweep(LAW, "superkink", V, N=N, use_cache=False, executor=ex)
+        t_warm = time.perf_counter() - t1
+    print(f"   again on a running pool (started, JIT loaded: the dashboard's case) {t_warm:.1f} s"
+          f" -> ratio {t_warm / t_seq:.2f}; load average {os.getloadavg()[0]:.1f}")  # fmt: skip
 
 
 def main(argv: list[str] | None = None) -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--quick", action="store_true")
+    ap.add_argument("--cold-sweep", nargs=3, type=int, metavar=("N", "NV", "CALLER_RUNS"),
+                    help="(internal) one cold sweep for part D; prints its JSON")  # fmt: skip
     a = ap.parse_args(argv)
+    if a.cold_sweep:
+        N, nV, caller_runs = a.cold_sweep
+        print(json.dumps(cold_sweep(N, nV, bool(caller_runs))))
+        return
     apply_thread_policy(1)
     if a.quick:
         part_a(200, 6), part_b(200, 4), part_c(200, 8)

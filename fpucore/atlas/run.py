@@ -138,6 +138,7 @@ def run(
     progress: Callable[[int, int, int], None] | None = None,
     on_points: Callable[[list[tuple[int, int, dict]]], None] | None = None,
     time_budget_s: float | None = None,
+    caller_runs: bool = False,
 ) -> AtlasResult:
     """Compute (or resume) an atlas over the grid (rows × V) — see :mod:`fpucore.atlas`.
 
@@ -151,7 +152,10 @@ def run(
     executor : an Executor to use (else one is made from backend / workers / address and shut
     down at the end).  progress(done, total, failed) after each chunk; on_points([(i, j,
     record), ...]) with the records of each chunk.  time_budget_s : stop submitting and cancel
-    what runs once exceeded (points left pending, status "stopped").
+    what runs once exceeded (points left pending, status "stopped").  caller_runs : when the
+    run starts its own process pool, this process computes chunks too and the pool has one
+    process fewer (``Executor(caller_runs=True)``; sweeps use it); the time budget is then
+    checked between two of its chunks.
     """
     t0 = time.perf_counter()
     if not isinstance(law, HardeningSofteningLaw):
@@ -182,7 +186,7 @@ def run(
             writer = Writer(path)
         res = _execute(
             grid, table, law, N, tol, (floquet, finite_size), m, continuation, writer, executor,
-            backend, workers, address, progress, on_points, time_budget_s, t0,
+            backend, workers, address, progress, on_points, time_budget_s, t0, caller_runs,
         )  # fmt: skip
         n_computed, used_backend, n_workers, stopped, msg = res
         if writer is not None:
@@ -212,7 +216,7 @@ def run(
 
 
 def _execute(grid, table, law, N, tol, floquet, m, continuation, writer, executor, backend,
-             workers, address, progress, on_points, time_budget_s, t0):  # fmt: skip
+             workers, address, progress, on_points, time_budget_s, t0, caller_runs):  # fmt: skip
     """Submit the chunks not yet done, gather and store them; (n_computed, backend, workers,
     stopped, message)."""
     done = table.cols["done"] == 1
@@ -229,7 +233,8 @@ def _execute(grid, table, law, N, tol, floquet, m, continuation, writer, executo
         if backend == "process" and len(todo) == 1 and workers is None:
             backend = "inline"  # one chunk: no pool to start
         n = min(cores(), len(todo)) if (workers is None and backend == "process") else workers
-        executor = Executor(backend, workers=n, address=address)
+        executor = Executor(backend, workers=n, address=address,
+                            caller_runs=caller_runs and backend == "process")  # fmt: skip
     total, failed = grid.size, int(np.sum(table.cols["status"] == "failed"))
     n_done = int(done.sum())
     if progress is not None:
@@ -254,7 +259,7 @@ def _execute(grid, table, law, N, tol, floquet, m, continuation, writer, executo
                 msg = f"time budget {time_budget_s:g} s exhausted: {len(jobs)} chunks not done"
                 break
             try:
-                job = finished.get(timeout=0.2)
+                job = executor.next_done(finished, timeout=0.2)  # caller_runs: computes here
             except queue.Empty:
                 continue
             key = jobs.pop(job)

@@ -2,13 +2,15 @@
 
 A sweep is a one-row atlas (:func:`fpucore.atlas.run` with ``floquet=True``): every velocity is one
 task (``CHUNK`` = 1) on a worker of the execution layer (:mod:`fpucore.parallel`; all cores, one
-BLAS thread each): its wave solved from the QC guess and its spectrum computed.  One task per
-velocity keeps the workers balanced (spectra near the sonic end cost more: their finite-size test
-runs); continuation along V measured no gain (benchmarks/README.md, atlas part C).  One row per V
-is kept: V, max |μ|, max |μ| away from the trivial cluster, the error bar, the verdict, the
-three-way classification, and the wave's E_ren with its error bar (solitary families: the energy
-criterion, :func:`fpucore.floquet.criterion_from_samples`, reads them).  Running
-the same sweep at several N measures the N-dependence of the spurious oscillatory instabilities.
+BLAS thread each): its wave solved from the QC guess and its spectrum computed.  A sweep that
+starts its own pool computes in the calling process too (``caller_runs``: K cores = the caller
+and K - 1 workers, so only K - 1 processes pay the worker start-up and none is oversubscribed).
+One task per velocity keeps the workers balanced (spectra near the sonic end cost more: their
+finite-size test runs); continuation along V measured no gain (benchmarks/README.md, atlas part C).
+One row per V is kept: V, max |μ|, max |μ| away from the trivial cluster, the error bar, the
+verdict, the three-way classification, and the wave's E_ren with its error bar (solitary families:
+the energy criterion, :func:`fpucore.floquet.criterion_from_samples`, reads them). Running the same
+sweep at several N measures the N-dependence of the spurious oscillatory instabilities.
 
 Cache.  With ``use_cache`` the sweep is an atlas store in ``$FPU_CACHE_DIR/floquet`` (default
 ``./.fpu_cache/floquet``) named by the SHA-256 of its key: the inputs (kind, law parameters,
@@ -244,9 +246,10 @@ def sweep(
     (one task each).  N : even chain size.
     progress : callback ``progress(i, n, V, row)`` (True: a tqdm bar on stderr).  Rows whose
     wave does not converge are kept with NaN moduli and the solver's message.  time_budget_s :
-    the sweep stops (remaining rows NaN, message says so) once exceeded.  executor : an
-    :class:`fpucore.parallel.Executor` to run on (default: a process pool of ``workers``
-    processes, all cores, started for this sweep).
+    the sweep stops (remaining rows NaN, message says so) once exceeded (checked between
+    velocities).  executor : an :class:`fpucore.parallel.Executor` to run on (default: one
+    started for this sweep with ``workers`` computing processes, all cores: this process and a
+    pool of ``workers - 1``, ``caller_runs=True``).
     """
     w_plus, Vs, N, m, tol, time_budget_s = check_sweep_args(
         law, kind, V_values, w_plus, N, branch, m, tol, time_budget_s
@@ -274,7 +277,7 @@ def sweep(
 
     kw = dict(rows=[row], V=Vs, N=int(N), tol=tol, floquet=True, m=m, chunk=CHUNK,
               executor=executor, workers=workers, progress=first, on_points=on_points,
-              time_budget_s=time_budget_s)  # fmt: skip
+              time_budget_s=time_budget_s, caller_runs=True)  # fmt: skip
     res = None
     if use_cache:
         path = cache_path(cache_key(law, kind, Vs, N, w_plus, branch, m, tol))

@@ -58,6 +58,35 @@ def thread_budget() -> dict:
     }
 
 
+def where(x):
+    """``(x, pid, Numba threads, [threads of each BLAS/OpenMP library])`` of the process that ran
+    it (which process computed an item, under which thread budget)."""
+    return x, os.getpid(), numba.get_num_threads(), [d["num_threads"] for d in threadpool_info()]
+
+
+def fail_where(seconds: float) -> None:
+    """Sleep ``seconds``, then raise ValueError(pid): which process ran a failing item."""
+    time.sleep(seconds)
+    raise ValueError(os.getpid())
+
+
+def sleep_in_workers(caller_pid: int, seconds: float = 30.0) -> int:
+    """Return the pid at once in the process ``caller_pid``, sleep ``seconds`` first anywhere
+    else (a pool worker is busy while the caller's items are done: early exit, cancel)."""
+    if os.getpid() != caller_pid:
+        time.sleep(seconds)
+    return os.getpid()
+
+
+def interrupt_in(caller_pid: int) -> int:
+    """Raise KeyboardInterrupt in the process ``caller_pid`` (Ctrl-C while the caller computes),
+    sleep 60 s anywhere else; returns the pid."""
+    if os.getpid() == caller_pid:
+        raise KeyboardInterrupt
+    time.sleep(60.0)
+    return os.getpid()
+
+
 def superkink(V: float, N: int = 64) -> dict:
     """A discrete superkink solved in this process (runs Numba's parallel period map):
     residual, amplitude-like summary and the threading layer used."""

@@ -14,7 +14,9 @@ The policy
   :class:`fpucore.parallel.Executor` (process pool or Dask worker), the atlas's workers, the CLI
   while it drives a sweep, the dashboard server (several sessions compute at once) — uses
   **one thread**: ``apply_thread_policy(1)``.  K jobs then run on K cores without
-  oversubscription, and the throughput scales with the number of processes.
+  oversubscription, and the throughput scales with the number of processes.  A caller that
+  computes jobs of its own pool (``Executor(caller_runs=True)``: ``fpu floquet sweep``) is one
+  of them while it runs a job: :func:`thread_policy` gives it one thread for that job only.
 * Limits are set with threadpoolctl on every BLAS (OpenBLAS/MKL, numpy's and scipy's own copies:
   both are imported here first so that both are loaded when the limit is applied) and OpenMP
   library in the process, and with ``numba.set_num_threads`` for Numba's parallel kernels
@@ -33,6 +35,8 @@ The policy
 from __future__ import annotations
 
 import os
+from collections.abc import Iterator
+from contextlib import contextmanager
 
 import numba
 import numpy  # noqa: F401  (numpy's OpenBLAS is loaded before the limit is applied)
@@ -85,3 +89,21 @@ def apply_thread_policy(n_threads: int | None = 1) -> dict:
         "layer": numba.config.THREADING_LAYER,
         "pid": os.getpid(),
     }
+
+
+@contextmanager
+def thread_policy(n_threads: int | None = 1) -> Iterator[None]:
+    """``apply_thread_policy(n_threads)`` for the block only, then the limits in force before it.
+
+    For a process that computes a pool's jobs itself between other work (``Executor(...,
+    caller_runs=True)``): while it runs a job it is one of several concurrent jobs, so it runs
+    one thread like a worker; afterwards it is back to its own budget (the ``fpu`` CLI: all
+    cores).  Costs ~1.5 ms (threadpoolctl scans the loaded libraries)."""
+    n = cores() if n_threads is None else max(1, int(n_threads))
+    old = numba.get_num_threads()
+    numba.set_num_threads(min(n, numba.config.NUMBA_NUM_THREADS))
+    try:
+        with threadpool_limits(limits=n):
+            yield
+    finally:
+        numba.set_num_threads(old)
