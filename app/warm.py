@@ -71,7 +71,7 @@ def warm(verbose: bool = True, scenes: str | None = None) -> dict[str, float]:
     times["jit"] = time.perf_counter() - t0
     # the worker processes start and load the cache while the server starts serving (they were
     # ~10 s of the wait for /liveness); a heavy job submitted meanwhile queues behind their
-    # warm-up.  Then the simulation's integrators (fpucore.warm.LAZY) compile on one core.
+    # warm-up.  Then the lazy routes (fpucore.warm.LAZY) compile on one core.
     threading.Thread(target=_warm_background, name="fpu-warm-workers", daemon=True).start()
 
     explorer = Explorer()

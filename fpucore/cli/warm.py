@@ -12,7 +12,7 @@ def register(sub) -> None:
     p.add_argument(
         "--essential",
         action="store_true",
-        help=f"leave out the chain simulation's integrators ({', '.join(LAZY)}): the server "
+        help=f"leave out the routes no first page needs ({', '.join(LAZY)}): the server "
         "compiles them in the background after it is up",
     )
     p.add_argument("--serial", action="store_true", help="one process (default: in parallel)")
