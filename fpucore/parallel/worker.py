@@ -8,6 +8,7 @@ Protocol on the worker's duplex pipe.  Parent → worker:
 
 from __future__ import annotations
 
+import multiprocessing as mp
 import pickle
 import signal
 import time
@@ -49,6 +50,11 @@ def worker_main(conn, n_threads: int = 1) -> None:
     parent's business (it cancels or shuts down): a worker ignores SIGINT, so an interrupted
     sweep never records a point as failed with KeyboardInterrupt."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    # Numba guards the start of its threading layer with a multiprocessing RLock (a named
+    # semaphore) whenever the start method has "fork" in it.  A worker never starts processes,
+    # and one terminated at shutdown left that semaphore to the resource tracker, which printed a
+    # "leaked semaphore" warning after Ctrl-C on `fpu floquet sweep`.
+    mp.set_start_method("spawn", force=True)
     apply_thread_policy(n_threads)
     while True:
         try:

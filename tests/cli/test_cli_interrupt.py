@@ -24,3 +24,48 @@ def test_ctrl_c_during_jit_compilation_exits_130_with_one_line(tmp_path):
     assert p.returncode == 130, (p.returncode, err)
     assert "Traceback" not in err, err
     assert err.strip().splitlines() == ["fpu: interrupted"], err
+
+
+def _grandchildren(pid: int) -> list[int]:
+    """Pids of the children of ``pid``'s children (the pool's workers under its forkserver)."""
+    out = []
+    for child in _children(pid):
+        out += _children(child)
+    return out
+
+
+def _children(pid: int) -> list[int]:
+    out = []
+    for d in os.listdir("/proc"):
+        if d.isdigit():
+            try:
+                with open(f"/proc/{d}/stat") as f:
+                    ppid = int(f.read().rsplit(")", 1)[1].split()[1])
+            except (OSError, IndexError, ValueError):
+                continue
+            if ppid == pid:
+                out.append(int(d))
+    return out
+
+
+def test_ctrl_c_during_a_sweep_exits_130_with_one_line():
+    """`fpu floquet sweep` computes in this process and a worker (Executor caller_runs): Ctrl-C
+    once the worker runs gives one line and exit 130 — no "leaked semaphore" warning from the
+    resource tracker (Numba's threading-layer lock in a terminated worker, fixed in
+    fpucore/parallel/worker.py)."""
+    p = subprocess.Popen(
+        [sys.executable, "-m", "fpucore", "floquet", "sweep", "superkink", "--V-min", "4.9",
+         "--V-max", "5.8", "--n", "12", "--N", "500", "--no-cache", "--no-progress"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )  # fmt: skip
+    t0 = time.monotonic()
+    while not _grandchildren(p.pid) and time.monotonic() - t0 < 60 and p.poll() is None:
+        time.sleep(0.05)
+    time.sleep(2.0)  # the worker has started its threading layer and is computing
+    assert p.poll() is None, "the sweep finished before it could be interrupted"
+    p.send_signal(signal.SIGINT)
+    out, err = p.communicate(timeout=60)
+    assert p.returncode == 130, (p.returncode, err)
+    assert err.strip().splitlines() == ["fpu: interrupted"], err
