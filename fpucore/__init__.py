@@ -17,7 +17,28 @@ f(w) = a w³ + b w² + w (Vainchtein & Truskinovsky), or any hardening–softeni
 nothing back.  Every result object carries its error estimate, ``status`` and ``elapsed_s``.
 """
 
-from fpucore.jit_cache import key_cache_dir
+import os
+import signal
+import sys
+
+# The `fpu` command (console script, or `python -m fpucore`: argv[0] is still "-m" while runpy
+# imports the package) cannot catch Ctrl-C before its main() runs, and importing this package
+# takes ~1 s: Python would print a KeyboardInterrupt traceback.  For the import only, Ctrl-C
+# gives the CLI's own one line and exit 130 (issue 14 item 7); the previous handler comes back
+# at the end of this file.  A library import (any other argv[0]) is left alone.
+_CLI_IMPORT = bool(sys.argv) and (os.path.basename(sys.argv[0]) == "fpu" or sys.argv[0] == "-m")
+
+
+def _interrupted_during_import(signum, frame):  # pragma: no cover (a subprocess test)
+    sys.stderr.write("fpu: interrupted\n")
+    sys.stderr.flush()
+    os._exit(130)
+
+
+if _CLI_IMPORT:
+    _PREVIOUS_SIGINT = signal.signal(signal.SIGINT, _interrupted_during_import)
+
+from fpucore.jit_cache import key_cache_dir  # noqa: E402
 
 key_cache_dir()  # before any kernel is compiled: see fpucore/jit_cache.py
 
@@ -47,3 +68,6 @@ __all__ = [
     "simulate",
 ]
 __version__ = "0.1.0"
+
+if _CLI_IMPORT:
+    signal.signal(signal.SIGINT, _PREVIOUS_SIGINT)

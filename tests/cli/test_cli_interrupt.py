@@ -69,3 +69,39 @@ def test_ctrl_c_during_a_sweep_exits_130_with_one_line():
     out, err = p.communicate(timeout=60)
     assert p.returncode == 130, (p.returncode, err)
     assert err.strip().splitlines() == ["fpu: interrupted"], err
+
+
+def _maps(pid: int) -> str:
+    try:
+        with open(f"/proc/{pid}/maps") as f:
+            return f.read()
+    except OSError:
+        return ""
+
+
+def test_ctrl_c_while_the_package_imports_exits_130_with_one_line():
+    """Ctrl-C in the first second of `fpu …`, while `import fpucore` runs (before main() can
+    catch it): the same one line and exit 130, no KeyboardInterrupt traceback.  The signal is
+    sent as soon as the child has mapped NumPy's extension (early in the import); should the
+    import already be over, main() answers the same way."""
+    interrupted = 0
+    for _ in range(3):
+        p = subprocess.Popen(
+            [sys.executable, "-m", "fpucore", "qc", "superkink", "--w-plus", "1"],
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+        )
+        t0 = time.monotonic()
+        while "_multiarray_umath" not in _maps(p.pid) and time.monotonic() - t0 < 30:
+            if p.poll() is not None:
+                break
+            time.sleep(0.005)
+        p.send_signal(signal.SIGINT)
+        out, err = p.communicate(timeout=60)
+        if p.returncode == 0:  # finished before the signal: nothing to test this time
+            continue
+        interrupted += 1
+        assert p.returncode == 130, (p.returncode, err)
+        assert err.strip().splitlines() == ["fpu: interrupted"], err
+    assert interrupted, "every run finished before the signal"
