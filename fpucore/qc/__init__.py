@@ -3,7 +3,10 @@ numerically for any hardening–softening law, the phase plane and the existence
 velocity–amplitude diagrams.
 
     closed_forms (eqs. Rline, zero_G, cubic_cond1/2, SKsoln_cubic, SWsoln_cubic, E_ren)
-    → general (§3 for any law: roots + quadrature, with error bars)
+    → general_roots (quadrature rules, cancellation-free integrals, bracketed roots)
+    → general_speeds (c₊, V_SK, c₋, partner states, existence ranges)
+    → general_map (the substituted profile map ξ(s))
+    → general (§3 for any law: superkinks and solitary waves with error bars)
     → dispatch (the public functions: closed forms for the cubic, general otherwise)
     → phase (phase plane of eq. TW_QC_gen2)  → diagram (existence region, families)
 """
