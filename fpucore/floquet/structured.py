@@ -145,7 +145,7 @@ def isotropic_arnoldi(bands, d0: int, N: int, rng) -> tuple[np.ndarray, np.ndarr
     GT = np.zeros((m, m))
     C = np.zeros((m, 4))
     u, w, z, wz, t1, t2, t3, t4 = (np.empty(2 * N) for _ in range(8))
-    scal = np.zeros(2)
+    scal = np.zeros(1)
     restarts, k = 0, 0
     u[:] = _fresh(V, 0, N, rng)
     while k < m:
@@ -156,7 +156,7 @@ def isotropic_arnoldi(bands, d0: int, N: int, rng) -> tuple[np.ndarray, np.ndarr
             restarts += 1
             u[:] = _fresh(V, k, N, rng)
     H = HT.T
-    dropped = float(np.abs(H).max()) * math.sqrt(m) * math.sqrt(scal[1])  # ‖W‖·(Σ|a_J|²/β²)^½
+    dropped = float(np.abs(H).max()) * math.sqrt(m) * math.sqrt(scal[0])  # ‖W‖·(Σ|a_J|²/β²)^½
     return V, H, float(np.linalg.norm(GT)) + dropped, restarts
 
 

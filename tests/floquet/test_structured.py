@@ -15,6 +15,7 @@ import pytest
 from fpucore import floquet as fq
 from fpucore import wave
 from fpucore.errors import ParameterError
+from fpucore.floquet import arnoldi_kernels as ak
 from fpucore.law import CubicLaw
 
 LAW = CubicLaw(-1.0, 10.0)
@@ -144,10 +145,8 @@ def test_arnoldi_relation_and_reported_dropped_part(V):
 
 
 def test_sweep_kernels_against_numpy():
-    """coefficients / project_out / project_out_z / hessenberg products (arnoldi_kernels) against
-    the same quantities written with numpy, for odd and even row counts."""
-    from fpucore.floquet import arnoldi_kernels as ak
-
+    """coefficients / project_out / project_out_z / hessenberg products (arnoldi_kernels)
+    against the same quantities written with numpy, for odd and even row counts."""
     rng = np.random.default_rng(5)
     n, m = 37, 11
     V = rng.standard_normal((m, 2 * n))
