@@ -150,7 +150,9 @@ def part_d(N: int = 500, repeat: int = 3) -> None:
 
 
 def part_e(N: int = 500, repeat: int = 3) -> None:
-    """Structured route vs dense eigvals on the same monodromy, single-threaded, interleaved."""
+    """Structured route vs dense eigvals on the same monodromy, single-threaded, interleaved:
+    the reversible (quarter-size) route these waves take, and the isotropic Arnoldi route that
+    every non-reversible wave takes (forced with reversor=None)."""
     print(f"E. structured vs dense multipliers at N={N} (threadpool_limits(1), best of {repeat})")
     cases = [
         ("superkink V=5.2", wave.solve_superkink(LAW, 5.2, N=N)),
@@ -160,25 +162,34 @@ def part_e(N: int = 500, repeat: int = 3) -> None:
     with threadpool_limits(1):
         for name, r in cases:
             mono = fq.monodromy(r, max(r.m, fq.default_steps(LAW, r.V)))
-            fq.structured_multipliers(mono.matrix, N, mono.K)  # compile
+            c = fq.reversor_of(LAW, r.w, r.wdot)
+            routes = {"reversible": c, "arnoldi": None}
+            for rv in routes.values():
+                fq.structured_multipliers(mono.matrix, N, mono.K, reversor=rv)  # compile
             _, deflated, _ = deflate(mono.matrix, N)  # the issue's reference matrix
-            t_d, t_s, t_e = float("inf"), float("inf"), float("inf")
+            t_d, t_e = float("inf"), float("inf")
+            t_s = dict.fromkeys(routes, float("inf"))
             for _ in range(repeat):
                 t_d = min(t_d, _best(lambda m=mono: fq.multipliers_of(m.matrix, N), 1))
-                t_s = min(t_s, _best(lambda m=mono: fq.structured_multipliers(m.matrix, N, m.K), 1))
+                for k, rv in routes.items():
+                    t_s[k] = min(t_s[k], _best(lambda m=mono, rv=rv: fq.structured_multipliers(
+                        m.matrix, N, m.K, reversor=rv), 1))  # fmt: skip
                 t_e = min(t_e, _best(lambda b=deflated: scipy.linalg.eigvals(b.copy(order="F"),
                           overwrite_a=True, check_finite=False), 1))  # fmt: skip
-            _, _, _, info = fq.structured_multipliers(mono.matrix, N, mono.K)
             a = fq.spectrum(r, finite_size=False)
             b = fq.spectrum(r, finite_size=False, method="structured")
-            ratio = t_s / t_d
-            print(f"   {name:<20} dense {t_d:6.3f} s (eigvals alone {t_e:.3f}, ratio to it "
-                  f"{t_s / t_e:.2f})  structured {t_s:6.3f} s (Arnoldi "
-                  f"{info['arnoldi_s']:.3f}, eig(H) {info['eig_s']:.3f})  ratio {ratio:5.2f} "
-                  f"target <= 0.33: {'PASS' if ratio <= 0.33 else 'FAIL'};  max|mu|-1 "
-                  f"{a.max_modulus - 1:.3e} / {b.max_modulus - 1:.3e} (diff "
-                  f"{b.max_modulus - a.max_modulus:.1e}, error {max(a.error, b.error):.1e}), "
-                  f"unstable {a.n_unstable}/{b.n_unstable}")  # fmt: skip
+            print(f"   {name:<20} dense {t_d:6.3f} s (eigvals alone {t_e:.3f});  structured route "
+                  f"taken: {b.route} (reversor c = {c});  max|mu|-1 {a.max_modulus - 1:.3e} / "
+                  f"{b.max_modulus - 1:.3e} (diff {b.max_modulus - a.max_modulus:.1e}, error "
+                  f"{max(a.error, b.error):.1e}), unstable {a.n_unstable}/"
+                  f"{b.n_unstable}")  # fmt: skip
+            for k, rv in routes.items():
+                _, _, _, info = fq.structured_multipliers(mono.matrix, N, mono.K, reversor=rv)
+                ratio = t_s[k] / t_d
+                print(f"      {info['route']:<10} {t_s[k]:6.3f} s (reduce {info['reduce_s']:.3f}, "
+                      f"Arnoldi {info['arnoldi_s']:.3f}, eig {info['eig_s']:.3f})  ratio "
+                      f"{ratio:5.2f} (to eigvals alone {t_s[k] / t_e:.2f})  target <= 0.33: "
+                      f"{'PASS' if ratio <= 0.33 else 'FAIL'}")  # fmt: skip
 
 
 def main(argv=None) -> int:

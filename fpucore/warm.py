@@ -45,8 +45,12 @@ def _floquet(law) -> None:
 
 
 def _floquet_structured(law) -> None:
-    # the half-size route: the finite-size test's shorter rings use it
-    floquet.spectrum(floquet.HomogeneousState(law, 1.0, 5.0, 16), method="structured")
+    # the structured routes: the finite-size test's shorter rings use them — the reversible one
+    # (the constant state is reversible) and the isotropic Arnoldi one (forced: reversor None)
+    state = floquet.HomogeneousState(law, 1.0, 5.0, 16)
+    floquet.spectrum(state, method="structured")
+    mono = floquet.monodromy(state)
+    floquet.structured_multipliers(mono.matrix, 16, mono.K, reversor=None)
 
 
 def _riemann(law, **kw) -> None:

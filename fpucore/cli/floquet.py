@@ -39,8 +39,9 @@ def register(sub) -> None:
             help="skip the finite-size test (spectra at 0.4N, 0.6N; about +20-40%% time)",
         )
         q.add_argument("--method", choices=("dense", "structured"), default="dense",
-                       help="eigenvalue route: dense LAPACK (reference) or the half-size "
-                       "structure-preserving one")  # fmt: skip
+                       help="eigenvalue route: dense LAPACK (reference) or the structure-"
+                       "preserving one (quarter size for reversible waves, else half size)",
+                       )  # fmt: skip
         q.add_argument("--json", action="store_true", help="print one JSON object")
         q.set_defaults(func=run_one, kind=name)
 
@@ -93,7 +94,8 @@ def run_one(args) -> int:
     print(f"max |mu| away from mu=1  = {fr.max_modulus_away_from_1:.12f}   "
           f"(|mu|-1 = {fr.excess:.3e})")  # fmt: skip
     print(f"error bar                = {fr.error:.1e}  (quartet symmetry {fr.symmetry_error:.1e},"
-          f" integrator {fr.integrator_error:.1e})")  # fmt: skip
+          f" integrator {fr.integrator_error:.1e}; route {fr.route}, "
+          f"eig {fr.eig_s:.3f} s)")  # fmt: skip
     print(f"trivial cluster at 1     : {fr.n_trivial} multipliers, split {fr.trivial_split:.1e} "
           f"(radius {fr.trivial_radius:.0e}, phonon gap {fr.phonon_gap:.1e})")  # fmt: skip
     print(f"classification           : {fr.classification} ({fr.n_unstable} multipliers beyond "

@@ -1,8 +1,8 @@
 """Floquet stability of discrete traveling waves (paper §6, eqs. linear, linear_map).
 
 kernels (Numba: shifted rows, exact deflation)  →  monodromy (𝓜 from the tangent flow,
-its multipliers)  →  structured_kernels → arnoldi_kernels → structured (the half-size
-symplectic route)
+its multipliers)  →  reversible_kernels → reversible (the quarter-size route of reversible
+waves)  →  structured_kernels → arnoldi_kernels → structured (the half-size symplectic route)
 →  multipliers (FloquetResult: spectrum, error bars, verdict)
 →  checks (quartet symmetry, homogeneous closed form, phonon gap)  →  finite_size (is an
 excess |μ| − 1 an artefact of the finite ring? the three-way classification)  →  energy (extrema
@@ -25,6 +25,7 @@ from fpucore.floquet.energy import (
 from fpucore.floquet.finite_size import CLASSES, chain_lengths
 from fpucore.floquet.monodromy import MAX_N, Monodromy, default_steps, monodromy, multipliers_of
 from fpucore.floquet.multipliers import METHODS, FloquetResult, spectrum
+from fpucore.floquet.reversible import reversor_of
 from fpucore.floquet.structured import structured_multipliers
 from fpucore.floquet.sweeps import SweepResult, sweep
 
@@ -47,6 +48,7 @@ __all__ = [
     "chain_lengths",
     "METHODS",
     "structured_multipliers",
+    "reversor_of",
     "FloquetResult",
     "spectrum",
     "SweepResult",

@@ -22,6 +22,7 @@ from fpucore.floquet.finite_size import (
     verdict_text,
 )
 from fpucore.floquet.monodromy import base_state, default_steps, monodromy, multipliers_of
+from fpucore.floquet.reversible import reversor_of
 from fpucore.floquet.structured import structured_multipliers
 from fpucore.result import Result, status_of
 
@@ -43,6 +44,8 @@ class FloquetResult(Result):
     (method "structured": also structure_error, and the largest multiplier's own bound).
     method : "dense" | "structured"; structure_error : the structured route's bound δλ on
     λ = μ + 1/μ (NaN for dense), see :mod:`fpucore.floquet.structured`.
+    route : the eigenvalue route taken, "dense", or for method "structured" "reversible"
+    ((N−1)² eigenvalue call, :mod:`fpucore.floquet.reversible`) or "arnoldi" (isotropic Arnoldi).
     excess : max_modulus_away_from_1 − 1; excess_significant : excess > error.
     unstable : multipliers (away from 1) with |μ| − 1 > error.
     growth_rate : V·ln(max_modulus_away_from_1), the growth rate Re λ per unit time (μ = e^{λ/V}).
@@ -100,6 +103,7 @@ class FloquetResult(Result):
     converged: bool
     message: str
     wave: dict = field(default_factory=dict)
+    route: str = "dense"
 
     # finite_size_exponent_error, extrapolated_excess_error, structure_error are NaN where not
     # applicable, so they are not protocol error fields (those are always finite)
@@ -171,7 +175,9 @@ def spectrum(
     "structured" (half-size structure-preserving route, :mod:`fpucore.floquet.structured`:
     elliptic multipliers exactly on the circle; its error bar comes from the measured
     non-symplecticity and the dropped isotropy defect, ``structure_error``, instead of the
-    quartet symmetry).  The finite-size spectra at 0.4N, 0.6N always use "structured".
+    quartet symmetry; a base state with a centre of reflection, :func:`reversor_of`, takes
+    the quarter-size reversible route, :mod:`fpucore.floquet.reversible`).  The finite-size
+    spectra at 0.4N, 0.6N always use "structured".
     """
     t0 = time.perf_counter()
     if method not in METHODS:
@@ -192,10 +198,11 @@ def spectrum(
     te = time.perf_counter()
     if method == "dense":
         mu_rest, mu_sums, defect = multipliers_of(mono.matrix, N)
-        mu_err, struct = np.zeros(2 * N - 2), math.nan
+        mu_err, struct, route = np.zeros(2 * N - 2), math.nan, "dense"
     else:
-        mu_rest, mu_sums, defect, info = structured_multipliers(mono.matrix, N, mono.K)
-        mu_err, struct = info["mu_error"], float(info["lam_error"])
+        c = reversor_of(law, w, wd)
+        mu_rest, mu_sums, defect, info = structured_multipliers(mono.matrix, N, mono.K, reversor=c)
+        mu_err, struct, route = info["mu_error"], float(info["lam_error"]), info["route"]
     eig_s = time.perf_counter() - te
     if not np.all(np.isfinite(mu_rest)):
         raise ParameterError("r", "non-finite monodromy", "a bounded base trajectory")
@@ -319,4 +326,5 @@ def spectrum(
         converged=converged,
         message="; ".join(msgs),
         wave=_wave_summary(r),
+        route=route,
     )

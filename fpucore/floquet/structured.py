@@ -29,6 +29,10 @@ instead: η = measured non-symplecticity of S (random probes, ‖x + S J Sᵀ J 
 J-part ‖G‖ and the Hessenberg round-off give a bound δλ = ‖G‖ + (64ε + η)‖H‖ on λ; the bound on
 each μ is δλ/max(|μ − 1/μ|, √δλ) (``mu_error``; large only next to μ = ±1).
 
+Reversible waves (every solitary wave, the cubic law's superkinks) take a shorter route first:
+:mod:`fpucore.floquet.reversible` (one (N−1)² eigenvalue call, ~0.2× dense at N = 500); this
+isotropic Arnoldi process is the route for every other base state.
+
 Prototype and its measured table: research report r17 (max|μ| within 8e-14 of dense eigvals in
 20 cases, same unstable counts).  Timings: benchmarks/bench_floquet.py part E (at N = 500 the
 Arnoldi process is ~2/3 of the time, bound by memory bandwidth: the 4 MB basis outgrows L2;
@@ -44,6 +48,7 @@ import numpy as np
 
 from fpucore.floquet.arnoldi_kernels import dcgs2_steps
 from fpucore.floquet.hessenberg import hessenberg_eigvals
+from fpucore.floquet.reversible import reversible_lambdas
 from fpucore.floquet.structured_kernels import (
     extract_bands,
     j_apply,
@@ -160,48 +165,64 @@ def isotropic_arnoldi(bands, d0: int, N: int, rng) -> tuple[np.ndarray, np.ndarr
     return V, H, float(np.linalg.norm(GT)) + dropped, restarts
 
 
+def sums_and_defect(mat: np.ndarray, N: int) -> tuple[np.ndarray, float]:
+    """The two conservation multipliers (sum of y, sum of ẏ) and their coupling to the rest: the
+    column sums of each N-block of 𝓜 must be constant (defect = largest deviation / √N)."""
+    mu_sums = np.array([mat[:N, :N].sum() / N, mat[N:, N:].sum() / N], dtype=complex)
+    cs = [mat[:N, :N].sum(0), mat[:N, N:].sum(0), mat[N:, :N].sum(0), mat[N:, N:].sum(0)]
+    defect = max(float(np.abs(c - c.mean()).max()) for c in cs) / math.sqrt(N)
+    return mu_sums, defect
+
+
 def structured_multipliers(
-    mat: np.ndarray, n: int, K: int | None = None, seed: int = 12345
+    mat: np.ndarray, n: int, K: int | None = None, seed: int = 12345, reversor: int | None = None
 ) -> tuple[np.ndarray, np.ndarray, float, dict]:
     """All 2N multipliers of the shifted monodromy 𝓜 (the *full* 2N×2N matrix, not the deflated
-    block: the deflation destroys the band) by the half-size route (module doc).
+    block: the deflation destroys the band) by the half-size route (module doc), or — when
+    ``reversor`` (the centre c of a reflection i → c − i of the base wave,
+    :func:`fpucore.floquet.reversible.reversor_of`) is given and 𝓜 is reversible about it — by
+    the quarter-size route of :mod:`fpucore.floquet.reversible` (one (N−1)² eigenvalue call).
 
     Returns (mu_rest (2N−2,), mu_sums (2,), conservation_defect, info) like
-    :func:`fpucore.floquet.multipliers_of` plus info: lam (N−1,) λ = μ + 1/μ; G_norm (dropped
-    J-part); symplectic_defect η; lam_error δλ; mu_error (2N−2,) per-multiplier bound; restarts;
-    width (band); band_s / arnoldi_s / eig_s (wall times, s).
+    :func:`fpucore.floquet.multipliers_of` plus info: route ("reversible" | "arnoldi");
+    reversor (c or None); lam (N−1,) λ = μ + 1/μ; lam_error δλ (largest over λ); mu_error
+    (2N−2,) per-multiplier bound; symplectic_defect η; irreversibility ‖G‖+‖F‖ (reversible
+    route) or G_norm (dropped J-part, Arnoldi route); restarts; width (band); band_s /
+    reduce_s / arnoldi_s / eig_s / elapsed_s (wall times, s).
     """
     t0 = time.perf_counter()
     N = int(n)
     m = N - 1
-    d0, bands = band_of(mat, N, K)
-    t1 = time.perf_counter()
-    rng = np.random.default_rng(seed)
-    V, H, g_norm, restarts = isotropic_arnoldi(bands, d0, N, rng)
-    t2 = time.perf_counter()
-    hnorm = float(np.abs(H).max()) * math.sqrt(m)
-    lam = hessenberg_eigvals(H)  # LAPACK dhseqr: H is Hessenberg already (overwritten)
-    t3 = time.perf_counter()
-    mu_sums = np.array([mat[:N, :N].sum() / N, mat[N:, N:].sum() / N], dtype=complex)
-    # coupling of the sums to the rest: column sums of each block must be constant
-    cs = [mat[:N, :N].sum(0), mat[:N, N:].sum(0), mat[N:, :N].sum(0), mat[N:, N:].sum(0)]
-    defect = max(float(np.abs(c - c.mean()).max()) for c in cs) / math.sqrt(N)
+    mu_sums, defect = sums_and_defect(mat, N)
+    info: dict = {"route": "arnoldi", "reversor": None, "band_s": 0.0, "reduce_s": 0.0,
+                  "arnoldi_s": 0.0, "G_norm": math.nan, "irreversibility": math.nan,
+                  "restarts": 0, "width": 0}  # fmt: skip
+    rev = reversible_lambdas(mat, N, reversor) if reversor is not None else None
+    if rev is not None:
+        lam, lam_err_k, rinfo = rev
+        info.update(rinfo, route="reversible", reversor=int(reversor))
+    else:
+        t1 = time.perf_counter()
+        d0, bands = band_of(mat, N, K)
+        t2 = time.perf_counter()
+        rng = np.random.default_rng(seed)
+        V, H, g_norm, restarts = isotropic_arnoldi(bands, d0, N, rng)
+        t3 = time.perf_counter()
+        hnorm = float(np.abs(H).max()) * math.sqrt(m)
+        lam = hessenberg_eigvals(H)  # LAPACK dhseqr: H is Hessenberg already (overwritten)
+        t4 = time.perf_counter()
+        eta = symplectic_defect(bands, d0, N)
+        lam_err_k = np.full(lam.size, g_norm + (64.0 * np.finfo(float).eps + eta) * hnorm)
+        info.update(G_norm=g_norm, symplectic_defect=eta, restarts=restarts,
+                    width=int(bands.shape[1]), band_s=t2 - t1, arnoldi_s=t3 - t2,
+                    eig_s=t4 - t3)  # fmt: skip
     mu = mu_from_lambda(lam)
-    eta = symplectic_defect(bands, d0, N)
-    lam_err = g_norm + (64.0 * np.finfo(float).eps + eta) * hnorm
+    err2 = np.concatenate([lam_err_k, lam_err_k])  # mu_from_lambda's order: big roots, then small
     sep = np.abs(mu - 1.0 / mu)
-    mu_err = lam_err / np.maximum(sep, math.sqrt(lam_err))
-    info = {
-        "lam": lam,
-        "G_norm": g_norm,
-        "symplectic_defect": eta,
-        "lam_error": lam_err,
-        "mu_error": mu_err,
-        "restarts": restarts,
-        "width": int(bands.shape[1]),
-        "band_s": t1 - t0,
-        "arnoldi_s": t2 - t1,
-        "eig_s": t3 - t2,
-        "elapsed_s": time.perf_counter() - t0,
-    }
+    info.update(
+        lam=lam,
+        lam_error=float(lam_err_k.max(initial=0.0)),
+        mu_error=err2 / np.maximum(sep, np.sqrt(err2)),
+        elapsed_s=time.perf_counter() - t0,
+    )
     return mu, mu_sums, defect, info

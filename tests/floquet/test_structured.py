@@ -26,9 +26,18 @@ def _set_distance(a: np.ndarray, b: np.ndarray) -> float:
     return float(max(d.min(axis=0).max(), d.min(axis=1).max()))
 
 
+@pytest.fixture(params=["reversible", "arnoldi"])
+def route(request, monkeypatch):
+    """Both structured routes: the reversible one the waves below take, and the isotropic
+    Arnoldi one (every non-reversible wave's), forced by hiding the reversor."""
+    if request.param == "arnoldi":
+        monkeypatch.setattr(fq.multipliers, "reversor_of", lambda *a: None)
+    return request.param
+
+
 @pytest.mark.parametrize("w0, V, N, convex", [(1.0, 5.0, 40, True), (0.3, 4.0, 64, True),
                                               (7.0, 5.0, 40, False)])  # fmt: skip
-def test_constant_state_closed_form(w0, V, N, convex):
+def test_constant_state_closed_form(w0, V, N, convex, route):
     """μ = e^{ik} e^{±iωT} (f′ > 0) or e^{ik} e^{±σT} (f′ < 0), k = 2πj/N, derived here.  The
     homogeneous ring has degenerate λ (k and −k), so the Arnoldi process restarts."""
     c2 = float(LAW.df(w0))
@@ -37,7 +46,7 @@ def test_constant_state_closed_form(w0, V, N, convex):
     ph = 1j * s if c2 > 0 else s
     exact = np.concatenate([np.exp(1j * k + ph), np.exp(1j * k - ph)])
     fr = fq.spectrum(fq.HomogeneousState(LAW, w0, V, N, convex=convex), method="structured")
-    assert fr.method == "structured" and fr.converged, fr.message
+    assert fr.method == "structured" and fr.route == route and fr.converged, fr.message
     assert _set_distance(fr.multipliers, exact) < 1e-7 * np.abs(exact).max()
     if convex:  # elliptic multipliers exactly on the unit circle (the structure is kept)
         assert np.max(np.abs(np.abs(fr.multipliers[2:]) - 1.0)) < 1e-15
@@ -60,7 +69,7 @@ CASES = [
 
 
 @pytest.mark.parametrize("kind, V, w_plus", CASES)
-def test_agrees_with_dense_over_the_paper_families(kind, V, w_plus):
+def test_agrees_with_dense_over_the_paper_families(kind, V, w_plus, route):
     N = 200
     if kind == "superkink":
         r = wave.solve_superkink(LAW, V, N=N)
@@ -68,7 +77,7 @@ def test_agrees_with_dense_over_the_paper_families(kind, V, w_plus):
         r = wave.solve_solitary(LAW, w_plus, V, N=N)
     a = fq.spectrum(r, finite_size=False)
     b = fq.spectrum(r, finite_size=False, method="structured")
-    assert b.converged, b.message
+    assert b.converged and b.route == route, b.message
     assert abs(a.max_modulus_away_from_1 - b.max_modulus_away_from_1) <= max(a.error, b.error)
     assert a.n_unstable == b.n_unstable and a.n_trivial == b.n_trivial
     assert a.excess_significant == b.excess_significant
@@ -79,7 +88,7 @@ def test_agrees_with_dense_over_the_paper_families(kind, V, w_plus):
     assert np.max(np.abs(b.multipliers[:2] - a.multipliers[:2])) < 1e-13  # conservation pair
 
 
-def test_same_classification_with_finite_size_test():
+def test_same_classification_with_finite_size_test(route):
     r = wave.solve_solitary(LAW, 1.0, 5.3, N=200)
     a = fq.spectrum(r)
     b = fq.spectrum(r, method="structured")
