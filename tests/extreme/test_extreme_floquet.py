@@ -84,15 +84,20 @@ def test_huge_chain_is_refused_before_any_work():
         floquet.spectrum(floquet.HomogeneousState(CubicLaw(), 1.0, 5.0, 2600))
 
 
+@pytest.mark.parametrize("route", ["reversible", "arnoldi"])
 @pytest.mark.parametrize("law,frac", [(STIFF, 0.2), (STIFF, 0.6), (TINY_A, 0.5),
                                       (CubicLaw(-1, 10), 0.02)])  # fmt: skip
-def test_structured_route_agrees_with_dense_on_extreme_laws(law, frac):
-    """Issue 17: the half-size route against dense eigvals on the same 𝓜 — max|μ| within the
-    error bar, the same unstable multipliers and the same classification."""
+def test_structured_route_agrees_with_dense_on_extreme_laws(law, frac, route, monkeypatch):
+    """Issue 17: both structured routes (the quarter-size reversible one these superkinks take,
+    and the half-size Arnoldi one, forced by hiding the reversor) against dense eigvals on the
+    same 𝓜 — max|μ| within the error bar, the same unstable multipliers and classification."""
+    if route == "arnoldi":
+        monkeypatch.setattr(floquet.multipliers, "reversor_of", lambda *a: None)
     lo, hi = qc.superkink_velocity_bounds(law)
     r = wave.solve_superkink(law, lo + frac * (hi - lo), N=96)
     a = floquet.spectrum(r)
     b = floquet.spectrum(r, method="structured")
+    assert b.route == route
     assert b.converged == a.converged, b.message
     assert abs(a.max_modulus_away_from_1 - b.max_modulus_away_from_1) <= max(a.error, b.error)
     assert a.n_unstable == b.n_unstable
