@@ -40,7 +40,8 @@ LAW = CubicLaw(-1.0, 10.0)
 def warm(ex: Executor, N: int) -> None:
     """Load the JIT cache in every worker (one small point each), so timings are steady."""
     task = {"law": LAW, "kind": "superkink", "row": "lower", "V": [5.5], "N": N,
-            "tol": 1e-12, "floquet": True, "m": None, "continuation": True}  # fmt: skip
+            "tol": 1e-12, "floquet": True, "m": None, "continuation": True,
+            "floquet_method": "structured"}  # fmt: skip
     jobs = [ex.submit(solve_chunk, task) for _ in range(max(1, ex.workers))]
     for j in jobs:
         j.result(timeout=600)
@@ -127,93 +128,104 @@ def descendants_cpu() -> float:
     return total
 
 
-def cold_sweep(N: int, nV: int, caller_runs: bool) -> dict:
+def cold_sweep(N: int, nV: int, caller_runs: bool, method: str = "structured") -> dict:
     """In a fresh process (``--cold-sweep``), what ``fpu floquet sweep`` meets: no forkserver yet,
     workers to start, the caller's own JIT cache loaded first (one small point, untimed, as the
     sequential side has it).  caller_runs: the sweep makes its own execution (this process + 1
-    worker on 2 cores); else the old way: a 2-worker pool, the caller idle (pool start timed)."""
+    worker on 2 cores); else the old way: a 2-worker pool, the caller idle (pool start timed).
+    method: the spectra's eigenvalue route (the sweep's default "structured", or "dense")."""
     V = np.linspace(4.9, 5.8, nV)
     apply_thread_policy(1)
     solve_chunk({"law": LAW, "kind": "superkink", "row": "lower", "V": [5.5], "N": 64,
-                 "tol": 1e-12, "floquet": True, "m": None, "continuation": True})  # fmt: skip
+                 "tol": 1e-12, "floquet": True, "m": None, "continuation": True,
+                 "floquet_method": method})  # fmt: skip
     d0, c0, t0 = descendants_cpu(), time.process_time(), time.perf_counter()
+    kw = dict(N=N, use_cache=False, method=method)
     if caller_runs:
-        s = floquet.sweep(LAW, "superkink", V, N=N, use_cache=False, workers=2)
+        s = floquet.sweep(LAW, "superkink", V, workers=2, **kw)
     else:
         with Executor(workers=2) as ex:
-            s = floquet.sweep(LAW, "superkink", V, N=N, use_cache=False, executor=ex)
+            s = floquet.sweep(LAW, "superkink", V, executor=ex, **kw)
     wall = time.perf_counter() - t0
     return {"wall": wall, "caller_cpu": time.process_time() - c0,
             "pool_cpu": descendants_cpu() - d0, "max_modulus": s.max_modulus.tolist(),
-            "error": s.error.tolist()}  # fmt: skip
+            "error": s.error.tolist(), "classification": list(s.classification)}  # fmt: skip
 
 
-def run_cold_sweep(N: int, nV: int, caller_runs: bool) -> dict:
+def run_cold_sweep(N: int, nV: int, caller_runs: bool, method: str = "structured") -> dict:
     """:func:`cold_sweep` in a new interpreter (its JSON on the last line of stdout)."""
     cmd = [sys.executable, "-m", "benchmarks.bench_atlas", "--cold-sweep", str(N), str(nV),
-           "1" if caller_runs else "0"]  # fmt: skip
+           "1" if caller_runs else "0", method]  # fmt: skip
     out = subprocess.run(cmd, capture_output=True, text=True, check=True, timeout=900)
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 
-def sequential_spectra(V, N: int) -> tuple[list, float, float]:
-    """max |μ| of one spectrum per velocity, one after the other in this process: (values, wall
-    s, CPU s)."""
+def sequential_spectra(V, N: int, method: str = "dense") -> tuple[list, float, float, list]:
+    """One spectrum per velocity, one after the other in this process, as a user calls
+    ``floquet.spectrum`` (default route dense): (max|μ|, wall s, CPU s, (error, class) pairs)."""
     c0, t0 = time.process_time(), time.perf_counter()
-    mu = [floquet.spectrum(wave.solve_superkink(LAW, v, N=N)).max_modulus for v in V]
-    return mu, time.perf_counter() - t0, time.process_time() - c0
+    fr = [floquet.spectrum(wave.solve_superkink(LAW, v, N=N), method=method) for v in V]
+    wall, cpu = time.perf_counter() - t0, time.process_time() - c0
+    return [f.max_modulus for f in fr], wall, cpu, [(f.error, f.classification) for f in fr]
 
 
 def part_d(N: int = 500, nV: int = 12) -> None:
     """The sweep as a user meets it (a fresh process: forkserver, worker start-up and pool
-    start all timed) against 12 sequential spectra in this process (before and after the
-    sweeps: their mean, as the machine's speed drifts), both with a warm JIT in the calling
-    process; then the same on a running, warm pool (the dashboard's case).  CPU seconds of every
-    side — caller, forkserver and workers — tell load from serialisation: with two free cores
-    the wall is about (total CPU) / 2."""
+    start all timed; the sweep's default structured route) against 12 sequential spectra in this
+    process as a user calls them (``spectrum(r)``, dense; before and after the sweeps: their mean,
+    as the machine's speed drifts), both with a warm JIT in the calling process.  For the
+    parallel efficiency alone, each route also against its own sequential time; then the sweep
+    on a running, warm pool (the dashboard's case).  CPU seconds of every side — caller,
+    forkserver and workers — tell load from serialisation: with two free cores the wall is about
+    (total CPU) / 2."""
     V = np.linspace(4.9, 5.8, nV)
     print(f"D. {nV}-velocity max|mu| sweep at N={N} on 2 cores vs sequential "
           f"(load average {os.getloadavg()[0]:.1f})")  # fmt: skip
     apply_thread_policy(1)
-    floquet.spectrum(wave.solve_superkink(LAW, 5.5, N=64))  # the caller's JIT, as in cold_sweep
-    seq, t_seq, c_seq = sequential_spectra(V, N)
-    print(f"   sequential {t_seq:.1f} s (CPU {c_seq:.1f} s, CPU/wall {c_seq / t_seq:.2f})")
-    names = {
-        True: "caller + 1 worker (fpu floquet sweep)",
-        False: "2 workers, caller idle (before)",
-    }
-    runs = {cr: run_cold_sweep(N, nV, cr) for cr in names}
-    _, t_seq2, c_seq2 = sequential_spectra(V, N)
-    t_seq, c_seq = (t_seq + t_seq2) / 2, (c_seq + c_seq2) / 2
-    print(f"   sequential again after the sweeps {t_seq2:.1f} s (CPU {c_seq2:.1f} s); ratios "
-          f"against the mean {t_seq:.1f} s (CPU {c_seq:.1f} s)")  # fmt: skip
-    for cr, r in runs.items():
-        diff = float(np.max(np.abs(np.array(seq) - r["max_modulus"]) - r["error"]))
+    for method in ("dense", "structured"):  # the caller's JIT, as in cold_sweep
+        floquet.spectrum(wave.solve_superkink(LAW, 5.5, N=64), method=method)
+    seq = {m: sequential_spectra(V, N, m) for m in ("dense", "structured")}
+    for m, (_, t, c, _) in seq.items():
+        print(f"   sequential, {m:<10} {t:5.1f} s (CPU {c:.1f} s)")
+    runs = {m: run_cold_sweep(N, nV, True, m) for m in ("structured", "dense")}
+    t_seq = {}
+    for m in ("dense", "structured"):
+        _, t2, c2, _ = sequential_spectra(V, N, m)
+        t_seq[m] = ((seq[m][1] + t2) / 2, (seq[m][2] + c2) / 2)
+        print(f"   sequential, {m:<10} again after the sweeps {t2:.1f} s (CPU {c2:.1f} s); "
+              f"mean {t_seq[m][0]:.1f} s")  # fmt: skip
+    mu_d, _, _, ec_d = seq["dense"]
+    for m, r in runs.items():
         cpu = r["caller_cpu"] + r["pool_cpu"]
-        print(
-            f"   cold sweep, {names[cr]}: {r['wall']:.1f} s -> wall ratio {r['wall'] / t_seq:.2f}"
-            f" (target <= 0.6); CPU caller {r['caller_cpu']:.1f} s + forkserver and workers "
-            f"{r['pool_cpu']:.1f} s = {cpu:.1f} s; load-free estimate (CPU / 2) / sequential "
-            f"CPU = {cpu / 2 / c_seq:.2f}; max(|d max|mu|| - error bar) = {diff:.1e}"
-        )
+        diff = float(np.max(np.abs(np.array(mu_d) - r["max_modulus"])
+                            - np.maximum(r["error"], [e for e, _ in ec_d])))  # fmt: skip
+        same = r["classification"] == [c for _, c in ec_d]
+        print(f"   cold sweep ({m}, caller + 1 worker, as `fpu floquet sweep`"
+              f"{' --method dense' if m == 'dense' else ''}): {r['wall']:.1f} s -> ratio to "
+              f"12 sequential spectra {r['wall'] / t_seq['dense'][0]:.2f} (target <= 0.6); to "
+              f"its own route's sequential time {r['wall'] / t_seq[m][0]:.2f} (parallel "
+              f"efficiency); CPU {r['caller_cpu']:.1f} + {r['pool_cpu']:.1f} s = {cpu:.1f} s, "
+              f"(CPU / 2) / sequential CPU {cpu / 2 / t_seq[m][1]:.2f}; max(|d max|mu|| - "
+              f"error bar) vs dense {diff:.1e}, classifications equal: {same}")  # fmt: skip
     with Executor(workers=2) as ex:  # the dashboard's case: pool started and JIT loaded
         warm(ex, 64)
         t1 = time.perf_counter()
         floquet.sweep(LAW, "superkink", V, N=N, use_cache=False, executor=ex)
         t_warm = time.perf_counter() - t1
     print(f"   again on a running pool (started, JIT loaded: the dashboard's case) {t_warm:.1f} s"
-          f" -> ratio {t_warm / t_seq:.2f}; load average {os.getloadavg()[0]:.1f}")  # fmt: skip
+          f" -> ratio {t_warm / t_seq['dense'][0]:.2f}; load average "
+          f"{os.getloadavg()[0]:.1f}")  # fmt: skip
 
 
 def main(argv: list[str] | None = None) -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--quick", action="store_true")
-    ap.add_argument("--cold-sweep", nargs=3, type=int, metavar=("N", "NV", "CALLER_RUNS"),
+    ap.add_argument("--cold-sweep", nargs=4, metavar=("N", "NV", "CALLER_RUNS", "METHOD"),
                     help="(internal) one cold sweep for part D; prints its JSON")  # fmt: skip
     a = ap.parse_args(argv)
     if a.cold_sweep:
-        N, nV, caller_runs = a.cold_sweep
-        print(json.dumps(cold_sweep(N, nV, bool(caller_runs))))
+        N, nV, caller_runs, method = a.cold_sweep
+        print(json.dumps(cold_sweep(int(N), int(nV), bool(int(caller_runs)), method)))
         return
     apply_thread_policy(1)
     if a.quick:

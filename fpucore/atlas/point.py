@@ -143,7 +143,8 @@ def solve_chunk(task: dict, progress=None) -> list[dict]:
     """Records of the points ``task["V"]`` along one row, in order.  task: law (a force-law
     object), kind, row, V (list), N (int or None: automatic), tol, floquet (bool), m (RK steps or
     None), finite_size (bool: the spectrum's finite-size test, which gives the classification),
-    continuation (bool).  ``progress(frac)`` after each point."""
+    floquet_method ("dense" | "structured", default "dense"), continuation (bool).
+    ``progress(frac)`` after each point."""
     law = task["law"]
     kind, row, N, tol = task["kind"], task["row"], task["N"], task["tol"]
     out, prev = [], None
@@ -164,7 +165,8 @@ def solve_chunk(task: dict, progress=None) -> list[dict]:
             prev = (r, sp) if (r.converged and task.get("continuation", True)) else None
             if r.converged and task["floquet"]:
                 fs = task.get("finite_size", True)
-                add_floquet(rec, spectrum(r, m=task.get("m"), finite_size=fs))
+                method = task.get("floquet_method", "dense")
+                add_floquet(rec, spectrum(r, m=task.get("m"), finite_size=fs, method=method))
         except ParameterError as exc:  # the wave exists, the settings do not suit it (N, ...)
             rec, prev = empty_record("failed", str(exc)), None
         except Exception as exc:  # noqa: BLE001  (recorded with its reason; the sweep goes on)

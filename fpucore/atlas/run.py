@@ -37,6 +37,7 @@ from fpucore.atlas.store import (
 )
 from fpucore.errors import ParameterError, require_finite
 from fpucore.floquet.monodromy import MAX_N
+from fpucore.floquet.multipliers import METHODS
 from fpucore.law import HardeningSofteningLaw
 
 if TYPE_CHECKING:
@@ -126,6 +127,7 @@ def run(
     tol: float = 1e-12,
     floquet: bool = False,
     finite_size: bool = True,
+    floquet_method: str = "dense",
     m: int | None = None,
     chunk: int | None = None,
     continuation: bool = True,
@@ -146,7 +148,9 @@ def run(
     values) | "superkink" (rows = branches).
     V : ``"LO:HI:K"``, a list, or a count K spanning the existence intervals.  N : chain size
     (None: automatic per point).  floquet : also compute spectra; finite_size : with the
-    spectrum's finite-size test (spectra at 0.4N, 0.6N), which gives the classification.
+    spectrum's finite-size test (spectra at 0.4N, 0.6N), which gives the classification;
+    floquet_method : the spectrum's eigenvalue route, "dense" (reference) | "structured"
+    (:func:`fpucore.floquet.spectrum`).
     chunk : points per chunk.
     out : Zarr store path (None: in memory only).  resume : continue an existing store.
     executor : an Executor to use (else one is made from backend / workers / address and shut
@@ -161,8 +165,11 @@ def run(
     if not isinstance(law, HardeningSofteningLaw):
         raise ParameterError("law", law, "a force law (CubicLaw, PolynomialLaw, ...)")
     check_args(N, tol, time_budget_s)
+    if floquet_method not in METHODS:
+        raise ParameterError("floquet_method", floquet_method, " | ".join(map(repr, METHODS)))
     grid = make_grid(law, kind, rows, V, chunk)
-    attrs = identity_attrs(grid, law, N, tol, floquet, finite_size, m, continuation)
+    attrs = identity_attrs(grid, law, N, tol, floquet, finite_size, m, continuation,
+                           floquet_method)  # fmt: skip
     table = Table(grid, attrs)
     lock = writer = None
     path = None
@@ -185,7 +192,8 @@ def run(
                 create(path, grid, attrs)
             writer = Writer(path)
         res = _execute(
-            grid, table, law, N, tol, (floquet, finite_size), m, continuation, writer, executor,
+            grid, table, law, N, tol, (floquet, finite_size, floquet_method), m, continuation,
+            writer, executor,
             backend, workers, address, progress, on_points, time_budget_s, t0, caller_runs,
         )  # fmt: skip
         n_computed, used_backend, n_workers, stopped, msg = res
@@ -226,7 +234,8 @@ def _execute(grid, table, law, N, tol, floquet, m, continuation, writer, executo
         return {"law": law, "kind": grid.kind, "row": grid.rows[i],
                 "V": [float(v) for v in grid.V[j0:j1]], "N": None if N is None else int(N),
                 "tol": float(tol), "floquet": bool(floquet[0]), "finite_size": bool(floquet[1]),
-                "m": m, "continuation": bool(continuation)}  # fmt: skip
+                "floquet_method": floquet[2], "m": m,
+                "continuation": bool(continuation)}  # fmt: skip
 
     own = executor is None and bool(todo)
     if own:

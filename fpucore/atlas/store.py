@@ -57,8 +57,8 @@ def zarr_module():
 
 
 # attributes that must match for a store to be resumed
-IDENTITY = ("kind", "law", "params", "N", "tol", "floquet", "finite_size", "m", "chunk",
-            "continuation", "fpucore_source")  # fmt: skip
+IDENTITY = ("kind", "law", "params", "N", "tol", "floquet", "finite_size", "floquet_method", "m",
+            "chunk", "continuation", "fpucore_source")  # fmt: skip
 
 
 def fpucore_version() -> str:
@@ -123,13 +123,14 @@ def skeleton(grid: Grid, attrs: dict) -> xr.Dataset:
 
 
 def identity_attrs(grid: Grid, law, N, tol: float, floquet: bool, finite_size: bool, m,
-                   continuation: bool) -> dict:  # fmt: skip
+                   continuation: bool, floquet_method: str = "dense") -> dict:  # fmt: skip
     """The store's attributes: everything that determines its records (see IDENTITY), plus a
     and b for the cubic law."""
     attrs = {
         "kind": grid.kind, "law": law.describe(), "params": [float(x) for x in law.params],
         "N": -1 if N is None else int(N), "tol": float(tol), "floquet": int(bool(floquet)),
-        "finite_size": int(bool(finite_size)), "m": -1 if m is None else int(m),
+        "finite_size": int(bool(finite_size)), "floquet_method": str(floquet_method),
+        "m": -1 if m is None else int(m),
         "chunk": int(grid.chunk), "continuation": int(bool(continuation)),
         "fpucore_source": source_hash(), "fpucore_version": fpucore_version(),
     }  # fmt: skip

@@ -5,6 +5,8 @@ task (``CHUNK`` = 1) on a worker of the execution layer (:mod:`fpucore.parallel`
 BLAS thread each): its wave solved from the QC guess and its spectrum computed.  A sweep that
 starts its own pool computes in the calling process too (``caller_runs``: K cores = the caller
 and K - 1 workers, so only K - 1 processes pay the worker start-up and none is oversubscribed).
+Each spectrum takes the structured route by default (``method``; the quarter-size reversible one
+for the paper's families, max|μ| and classification equal to dense within the error bar).
 One task per velocity keeps the workers balanced (spectra near the sonic end cost more: their
 finite-size test runs); continuation along V measured no gain (benchmarks/README.md, atlas part C).
 One row per V is kept: V, max |μ|, max |μ| away from the trivial cluster, the error bar, the
@@ -39,6 +41,7 @@ from fpucore.atlas.run import run as run_atlas
 from fpucore.atlas.store import fpucore_version
 from fpucore.errors import ParameterError, require_finite, require_int
 from fpucore.floquet.monodromy import MAX_N
+from fpucore.floquet.multipliers import METHODS
 from fpucore.jit_cache import source_hash
 from fpucore.law import require_law
 from fpucore.parallel import Executor
@@ -68,9 +71,11 @@ def cache_dir() -> Path:
     return Path(root) / "floquet"
 
 
-def cache_key(law, kind: str, V_values, N: int, w_plus, branch: str, m, tol: float) -> dict:
+def cache_key(law, kind: str, V_values, N: int, w_plus, branch: str, m, tol: float,
+              method: str = "structured") -> dict:  # fmt: skip
     """The inputs and the code that determine a sweep's rows (see module doc)."""
     return {
+        "method": method,
         "kind": kind,
         "law_id": int(law.law_id),
         "params": [repr(float(x)) for x in law.params],
@@ -97,7 +102,8 @@ class SweepResult:
     (:attr:`fpucore.floquet.FloquetResult.error`); NaN where the wave did not converge.
     cached : rows read from the cache store (computed by an earlier run).
     energy, energy_error : (n,) the waves' E_ren and its bound (eq. Eren_D); classification :
-    (n,) "stable" | "finite_size" | "unstable" ("" where not computed)."""
+    (n,) "stable" | "finite_size" | "unstable" ("" where not computed).  method : the spectra's
+    eigenvalue route ("structured" | "dense")."""
 
     kind: str
     N: int
@@ -115,10 +121,12 @@ class SweepResult:
     energy: np.ndarray = field(default_factory=lambda: np.zeros(0))
     energy_error: np.ndarray = field(default_factory=lambda: np.zeros(0))
     classification: tuple = ()
+    method: str = "structured"
 
     def as_dict(self) -> dict:
-        return {"kind": self.kind, "N": self.N, "w_plus": self.w_plus, "rows": self.rows,
-                "elapsed_s": self.elapsed_s, "message": self.message}  # fmt: skip
+        return {"kind": self.kind, "N": self.N, "w_plus": self.w_plus, "method": self.method,
+                "rows": self.rows, "elapsed_s": self.elapsed_s,
+                "message": self.message}  # fmt: skip
 
     def to_csv(self, path_or_file) -> None:
         cols = ["N", *_ROW_KEYS, "cached"]
@@ -189,7 +197,8 @@ def _row(V: float, rec: dict) -> dict:
     return row
 
 
-def check_sweep_args(law, kind, V_values, w_plus, N, branch, m, tol, time_budget_s):
+def check_sweep_args(law, kind, V_values, w_plus, N, branch, m, tol, time_budget_s,
+                     method="structured"):  # fmt: skip
     """Validate a sweep's arguments before anything is computed (issue 14: tol=0, N=10**6 and
     time_budget_s=-1 used to return NaN rows).  Returns (w_plus, Vs, N, m, tol, time_budget_s)."""
     require_law(law)
@@ -219,6 +228,8 @@ def check_sweep_args(law, kind, V_values, w_plus, N, branch, m, tol, time_budget
     tol = require_finite("tol", tol)
     if not 1e-15 <= tol <= 1e-3:
         raise ParameterError("tol", tol, "[1e-15, 1e-3]", "wave residual tolerance")
+    if not isinstance(method, str) or method not in METHODS:
+        raise ParameterError("method", method, " | ".join(repr(x) for x in METHODS))
     time_budget_s = require_finite("time_budget_s", time_budget_s)
     if time_budget_s <= 0:
         raise ParameterError("time_budget_s", time_budget_s, "> 0 seconds")
@@ -239,6 +250,7 @@ def sweep(
     time_budget_s: float = 3600.0,
     executor: Executor | None = None,
     workers: int | None = None,
+    method: str = "structured",
 ) -> SweepResult:
     """max |μ| against V along a family of discrete waves (Figs. floquet_SK, floquet_cubicSW).
 
@@ -249,10 +261,13 @@ def sweep(
     the sweep stops (remaining rows NaN, message says so) once exceeded (checked between
     velocities).  executor : an :class:`fpucore.parallel.Executor` to run on (default: one
     started for this sweep with ``workers`` computing processes, all cores: this process and a
-    pool of ``workers - 1``, ``caller_runs=True``).
+    pool of ``workers - 1``, ``caller_runs=True``).  method : each spectrum's eigenvalue route
+    (:func:`fpucore.floquet.spectrum`): "structured" (default: the quarter-size reversible
+    route for the paper's families, ~0.2× the dense call at N = 500, max|μ| and classification
+    equal within the error bar, tests/floquet/test_sweep_method.py) or "dense" (the reference).
     """
     w_plus, Vs, N, m, tol, time_budget_s = check_sweep_args(
-        law, kind, V_values, w_plus, N, branch, m, tol, time_budget_s
+        law, kind, V_values, w_plus, N, branch, m, tol, time_budget_s, method
     )
     row = w_plus if kind == "solitary" else branch
     for v in Vs:  # every velocity must lie on the family before anything is computed
@@ -275,12 +290,13 @@ def sweep(
         if count[0] == 0:
             count[0] = done  # rows already in the cache store
 
-    kw = dict(rows=[row], V=Vs, N=int(N), tol=tol, floquet=True, m=m, chunk=CHUNK,
+    kw = dict(rows=[row], V=Vs, N=int(N), tol=tol, floquet=True, floquet_method=method, m=m,
+              chunk=CHUNK,
               executor=executor, workers=workers, progress=first, on_points=on_points,
               time_budget_s=time_budget_s, caller_runs=True)  # fmt: skip
     res = None
     if use_cache:
-        path = cache_path(cache_key(law, kind, Vs, N, w_plus, branch, m, tol))
+        path = cache_path(cache_key(law, kind, Vs, N, w_plus, branch, m, tol, method))
         try:
             path.parent.mkdir(parents=True, exist_ok=True)
             res = run_atlas(law, kind, out=path, resume=True, **kw)
@@ -324,4 +340,5 @@ def sweep(
         energy=arr("energy"),
         energy_error=arr("energy_error"),
         classification=tuple(r["classification"] or "" for r in rows),
+        method=method,
     )

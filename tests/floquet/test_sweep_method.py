@@ -1,0 +1,45 @@
+"""Sweeps take the structured route by default (issue 17): the same rows as the dense reference
+route within the error bars, the same classification, and their own cache entries."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from fpucore import atlas
+from fpucore import floquet as fq
+from fpucore.errors import ParameterError
+from fpucore.floquet import sweeps
+from fpucore.law import CubicLaw
+from fpucore.parallel import Executor
+
+LAW = CubicLaw(-1.0, 10.0)
+
+
+@pytest.mark.parametrize("kind, V, w_plus", [
+    ("superkink", [4.85, 5.1, 5.4, 5.6, 5.8], None),
+    ("solitary", [4.6, 5.0, 5.3], 6.0),
+])  # fmt: skip
+def test_structured_sweep_equals_the_dense_sweep(kind, V, w_plus, tmp_path, monkeypatch):
+    monkeypatch.setenv("FPU_CACHE_DIR", str(tmp_path))
+    run = lambda method: fq.sweep(LAW, kind, V, w_plus=w_plus, N=160, method=method,  # noqa: E731
+                                  executor=Executor(backend="inline"))  # fmt: skip
+    s, d = run("structured"), run("dense")
+    assert s.method == "structured" and d.method == "dense"
+    assert s.converged.all() and d.converged.all()
+    assert np.all(np.abs(s.max_modulus - d.max_modulus) <= np.maximum(s.error, d.error))
+    assert s.classification == d.classification
+    assert np.array_equal(s.n_unstable, d.n_unstable)
+    assert any(c != "stable" for c in s.classification)  # the families' unstable part is in
+    assert np.all(d.error < s.error)  # a λ-route bar is wider than the quartet-symmetry bar
+
+
+def test_the_method_is_part_of_the_cache_key_and_checked():
+    args = (LAW, "superkink", [5.5], 64, None, "lower", None, 1e-12)
+    assert sweeps.cache_key(*args, "dense") != sweeps.cache_key(*args, "structured")
+    with pytest.raises(ParameterError) as e:
+        fq.sweep(LAW, "superkink", [5.5], N=64, method="eig")
+    assert e.value.name == "method"
+    with pytest.raises(ParameterError) as e:
+        atlas.run(LAW, "superkink", V=[5.5], N=64, floquet=True, floquet_method="eig")
+    assert e.value.name == "floquet_method"
