@@ -55,7 +55,8 @@ def test_ctrl_c_during_a_sweep_exits_130_with_one_line():
     fpucore/parallel/worker.py)."""
     p = subprocess.Popen(
         [sys.executable, "-m", "fpucore", "floquet", "sweep", "superkink", "--V-min", "4.9",
-         "--V-max", "5.8", "--n", "12", "--N", "500", "--no-cache", "--no-progress"],
+         "--V-max", "5.8", "--n", "12", "--N", "500", "--no-cache", "--no-progress",
+         "--method", "dense"],  # the dense route: ~6 s, so the interrupt lands mid-sweep
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,
