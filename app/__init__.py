@@ -2,5 +2,5 @@
 
 state.py (the single state owner) → views/<scene>.py (one thin view per tab) → explorer.py
 (sidebar, tabs, URL sync, laziness) → main.py (the servable template).  All numbers come from
-fpucore through compute.py (cached, timed).
+fpucore through compute/ (cached, timed).
 """

@@ -1,8 +1,9 @@
 """The package layout is the flow of the paper, and stays clean (checked with the standard
 library's ``ast``, nothing imported):
 
-* the import graph of fpucore's modules has no cycles (an edge goes to the module named, not to
-  its parent package's ``__init__``, which is how Python resolves a submodule import);
+* the import graph of fpucore's and app's modules has no cycles (an edge goes to the module
+  named, not to its parent package's ``__init__``, which is how Python resolves a submodule
+  import);
 * no import inside a function, except the allow-listed optional dependencies;
 * no private name (``_x``) of one module is used by another, in fpucore, app or the tests;
 * fpucore never imports a UI package.
@@ -47,7 +48,7 @@ def _modules(root: Path) -> dict[str, Path]:
     return {_modname(p): p for p in sorted(root.rglob("*.py")) if "__pycache__" not in p.parts}
 
 
-MODULES = _modules(PKG)
+MODULES = _modules(PKG) | _modules(ROOT / "app")
 
 
 def _resolve(mod: str, node: ast.ImportFrom) -> str:

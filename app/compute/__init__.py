@@ -1,0 +1,139 @@
+"""Thin adapter between the dashboard and fpucore: cached, exact, off the server process.
+
+The app computes nothing itself: every number shown comes from fpucore's public API through the
+functions re-exported here (the views' single entry point: ``from app import compute``).  They
+add what the views need:
+
+* a process-wide cache shared by all scenes and sessions, keyed on the **exact** inputs
+  (``repr`` of each float, the law's coefficients, N, tol): a cached result is only ever
+  returned for the very same inputs.  Keys are built here only; views ask ``*_cached(...)``
+  instead of rebuilding them;
+* heavy computations (discrete waves, Floquet spectra, sweeps, discrete families, simulations)
+  run in worker processes (the project's execution layer, :mod:`fpucore.parallel`) through
+  :func:`run_job`: progress is forwarded, a caller that no longer wants the result (a newer
+  slider value, the Cancel button) leaves, and the job is killed once nobody waits for it;
+  two sessions asking for the same key share one job;
+* wall time of the computation (``Computed.elapsed_s``) and whether it was cached.
+
+    cache (exact keys, Computed, the LRU ResultCache CACHE) → laws (the app's laws, law_key)
+    → workers (the process pool, run_job, Superseded, worker warm-up)
+    → qc_calls (QC waves, families, phase plane, existence diagram, n_needed: in process)
+    → jobs (the functions run in workers and their cache keys)
+    → heavy (discrete_wave, floquet_spectrum, floquet_sweep, discrete_family, simulation)
+    → energy (the energy criterion's extrema, from QC and from cached waves)
+
+Bad parameters surface as ``fpucore.errors.ParameterError`` (re-exported).
+"""
+
+from concurrent.futures import CancelledError
+
+from fpucore.errors import ParameterError
+
+from .cache import CACHE, Computed, ResultCache, exact
+from .energy import (
+    ENERGY_QC_SAMPLES,
+    energy_extrema_qc,
+    energy_qc_samples,
+    family_energy_extrema,
+    sampled_energy_extrema,
+    sweep_energy_check,
+)
+from .heavy import (
+    discrete_family,
+    discrete_family_cached,
+    discrete_wave,
+    discrete_wave_cached,
+    floquet_spectrum,
+    floquet_sweep,
+    floquet_sweep_cached,
+    is_cached,
+    simulation,
+)
+from .jobs import (
+    family_job,
+    family_key,
+    floquet_job,
+    floquet_key,
+    fraction,
+    simulation_job,
+    simulation_key,
+    sweep_job,
+    sweep_key,
+    wave_call,
+    wave_job,
+    wave_key,
+)
+from .laws import expression_law, law, law_key, make_law
+from .qc_calls import existence_diagram, n_needed, phase_plane, qc_family, qc_wave, spec_of
+from .workers import (
+    CANCELLED,
+    Superseded,
+    executor,
+    jobs_in_flight,
+    run_job,
+    shutdown_executor,
+    warm_job,
+    warm_workers,
+)
+
+__all__ = [
+    # errors
+    "ParameterError",
+    "CancelledError",
+    # cache
+    "CACHE",
+    "Computed",
+    "ResultCache",
+    "exact",
+    # laws
+    "law",
+    "expression_law",
+    "make_law",
+    "law_key",
+    # workers
+    "CANCELLED",
+    "Superseded",
+    "executor",
+    "shutdown_executor",
+    "jobs_in_flight",
+    "run_job",
+    "warm_job",
+    "warm_workers",
+    # QC
+    "qc_wave",
+    "qc_family",
+    "phase_plane",
+    "existence_diagram",
+    "spec_of",
+    "n_needed",
+    # jobs and keys
+    "wave_call",
+    "wave_job",
+    "floquet_job",
+    "fraction",
+    "sweep_job",
+    "family_job",
+    "simulation_job",
+    "wave_key",
+    "floquet_key",
+    "sweep_key",
+    "family_key",
+    "simulation_key",
+    # heavy computations
+    "is_cached",
+    "discrete_wave",
+    "discrete_wave_cached",
+    "floquet_spectrum",
+    "floquet_sweep",
+    "floquet_sweep_cached",
+    "discrete_family",
+    "discrete_family_cached",
+    "simulation",
+    # energy criterion
+    "ENERGY_QC_SAMPLES",
+    "energy_qc_samples",
+    "energy_extrema_qc",
+    "sampled_energy_extrema",
+    "family_energy_extrema",
+    "sweep_energy_check",
+]

@@ -1,0 +1,70 @@
+"""Quasicontinuum (QC) results for the scenes: cheap closed forms or quadratures, computed in
+the server process and cached exactly (:mod:`app.compute.cache`).
+
+The QC superkink or solitary wave, the QC solitary family and the existence diagram (§3–4), the
+phase plane, and the chain size a discrete wave needs (from the QC tails).
+"""
+
+from __future__ import annotations
+
+from fpucore import qc, wave
+from fpucore.qc import diagram, phase
+
+from .cache import CACHE, Computed, exact
+from .laws import law_key
+
+__all__ = ["qc_wave", "qc_family", "phase_plane", "existence_diagram", "spec_of", "n_needed"]
+
+
+def qc_wave(lw, mode: str, w_plus: float, V: float) -> Computed:
+    """QC superkink (mode "superkink": from w_plus) or solitary wave (mode "solitary")."""
+    if mode == "superkink":
+        return CACHE.get(
+            ("qc_sk", law_key(lw), exact(w_plus)),
+            lambda: qc.superkink_from_w_plus(lw, w_plus),
+        )
+    return CACHE.get(
+        ("qc_sw", law_key(lw), exact(w_plus), exact(V)),
+        lambda: qc.solitary(lw, w_plus, V),
+    )
+
+
+def qc_family(lw, w_plus: float, n: int = 160) -> Computed:
+    """fpucore.qc.diagram.solitary_family: amplitude (eq. SWQC_amp) and E_ren (eq. Eren_QC)
+    of the QC solitary waves along both velocity intervals for fixed w_plus."""
+    return CACHE.get(
+        ("qc_family", law_key(lw), exact(w_plus), n),
+        lambda: diagram.solitary_family(lw, w_plus, n=n),
+    )
+
+
+def phase_plane(lw, w_plus: float, V: float, n_grid: int = 241) -> Computed:
+    """fpucore.qc.phase.phase_plane for the current parameters."""
+    return CACHE.get(
+        ("phase", law_key(lw), exact(w_plus), exact(V), n_grid),
+        lambda: phase.phase_plane(lw, w_plus, V, n_grid=n_grid),
+    )
+
+
+def existence_diagram(lw, n: int = 400) -> Computed:
+    """fpucore.qc.diagram.existence_diagram: arrays w_plus, c_plus, V_SK, c_minus."""
+    return CACHE.get(("diagram", law_key(lw), n), lambda: diagram.existence_diagram(lw, n=n))
+
+
+def spec_of(lw, mode, w_plus, V):
+    """fpucore.wave's description (Spec) of the wave the parameters define."""
+    if mode == "superkink":
+        sk = qc.superkink_from_w_plus(lw, w_plus)
+        return lw, wave.superkink_spec(lw, sk.V, sk.branch)
+    return lw, wave.solitary_spec(lw, w_plus, V)
+
+
+def n_needed(lw, mode, w_plus, V, tol: float) -> int:
+    """The chain size fpucore would choose itself for this wave (``N=None``: tails resolved to
+    0.1·tol·scale, eq. fixedBCs), at least the smallest N it accepts (tails cut at 1e-6 of the
+    amplitude).  Closed-form QC tails only: cheap."""
+    lw, spec = spec_of(lw, mode, w_plus, V)
+    scale = max(1.0, abs(spec.w_left), abs(spec.w_right))
+    n_auto = wave.required_N(lw, spec, 0.1 * tol * scale)
+    n_fit = wave.required_N(lw, spec, 1e-6 * spec.amplitude_qc)
+    return int(max(n_auto, n_fit))
