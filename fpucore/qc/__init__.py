@@ -2,7 +2,8 @@
 numerically for any hardening–softening law, the phase plane and the existence /
 velocity–amplitude diagrams.
 
-    closed_forms (eqs. Rline, zero_G, cubic_cond1/2, SKsoln_cubic, SWsoln_cubic, E_ren)
+    cubic_speeds (eqs. cplus, cubic_cond2, cminus_cubic, V_bounds_cubic, Rline, wS)
+    → closed_forms (eqs. zero_G, cubic_cond1/2, SKsoln_cubic, SWsoln_cubic, E_ren)
     → general_roots (quadrature rules, cancellation-free integrals, bracketed roots)
     → general_speeds (c₊, V_SK, c₋, partner states, existence ranges)
     → general_map (the substituted profile map ξ(s))
