@@ -38,7 +38,7 @@ def register(sub) -> None:
             action="store_true",
             help="skip the finite-size test (spectra at 0.4N, 0.6N; about +20-40%% time)",
         )
-        q.add_argument("--method", choices=("dense", "structured"), default="dense",
+        q.add_argument("--method", choices=floquet.METHODS, default="dense",
                        help="eigenvalue route: dense LAPACK (reference) or the structure-"
                        "preserving one (quarter size for reversible waves, else half size)",
                        )  # fmt: skip
@@ -56,7 +56,7 @@ def register(sub) -> None:
     s.add_argument("--n", type=int, default=12, help="number of velocities in [V-min, V-max]")
     s.add_argument("--N", type=int, nargs="+", default=[500], help="chain size(s), one sweep each")
     s.add_argument("--out", default=None, help="write the table to this .csv or .json file")
-    s.add_argument("--method", choices=("dense", "structured"), default="structured",
+    s.add_argument("--method", choices=floquet.METHODS, default="structured",
                    help="each spectrum's eigenvalue route (default structured: ~0.2x the dense "
                    "call for the paper's families; dense: the reference)")  # fmt: skip
     s.add_argument("--no-cache", action="store_true", help="ignore and do not write the cache")

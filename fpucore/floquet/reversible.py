@@ -159,8 +159,9 @@ def reversible_lambdas(
     d = np.abs(lam[:, None] - lam[None, :])
     np.fill_diagonal(d, np.inf)
     dk = d.min(axis=1) if lam.size > 1 else np.full(lam.size, np.inf)
-    lam_err = (64.0 * np.finfo(float).eps + eta) * a_norm + dropped
-    lam_err = lam_err + g * f / np.maximum(dk, g + f) if g * f > 0 else np.full(lam.size, lam_err)
+    lam_err = np.full(lam.size, (64.0 * np.finfo(float).eps + eta) * a_norm + dropped)
+    if g * f > 0:
+        lam_err += g * f / np.maximum(dk, g + f)
     info = {
         "irreversibility": g + f,
         "symplectic_defect": eta,
@@ -168,4 +169,4 @@ def reversible_lambdas(
         "reduce_s": t1 - t0,
         "eig_s": t2 - t1,
     }
-    return lam, np.asarray(lam_err, dtype=float), info
+    return lam, lam_err, info

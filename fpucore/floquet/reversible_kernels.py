@@ -8,6 +8,7 @@ Qᵀ S Q = Qᵀ R⁺ 𝓜 R Q costs three streaming passes over (2N)² arrays in
 from __future__ import annotations
 
 from numba import njit
+from numba.extending import register_jitable
 
 
 @njit(cache=True, nogil=True)
@@ -27,6 +28,21 @@ def m_times_rq(mat, n, blk, ia, ib, ca, cb, out) -> None:
             o[k] = ca[k] * (row[b + i1] - row[b + i]) + cb[k] * (row[b + j1] - row[b + j])
 
 
+@register_jitable
+def block_column_means(y, o, n, mean) -> None:
+    """mean[k] = the mean of y[o : o + n, k] (one N-block of every column), row by row; a helper
+    compiled into the kernels that call it (register_jitable: no dispatcher of its own)."""
+    m2 = y.shape[1]
+    for k in range(m2):
+        mean[k] = 0.0
+    for r in range(n):
+        yr = y[o + r]
+        for k in range(m2):
+            mean[k] += yr[k]
+    for k in range(m2):
+        mean[k] /= n
+
+
 @njit(cache=True, nogil=True)
 def rpinv_rows(y, n, mean, run) -> None:
     """y ← R⁺ y column-wise, in place (R⁺: block mean removed, exclusive cumulative sum, block
@@ -35,29 +51,16 @@ def rpinv_rows(y, n, mean, run) -> None:
     m2 = y.shape[1]
     for blk in range(2):
         o = blk * n
+        block_column_means(y, o, n, mean)
         for k in range(m2):
-            mean[k] = 0.0
             run[k] = 0.0
-        for r in range(n):
-            yr = y[o + r]
-            for k in range(m2):
-                mean[k] += yr[k]
-        for k in range(m2):
-            mean[k] /= n
         for r in range(n):  # out_r = Σ_{l<r} (y_l − mean)
             yr = y[o + r]
             for k in range(m2):
                 v = yr[k] - mean[k]
                 yr[k] = run[k]
                 run[k] += v
-        for k in range(m2):
-            mean[k] = 0.0
-        for r in range(n):
-            yr = y[o + r]
-            for k in range(m2):
-                mean[k] += yr[k]
-        for k in range(m2):
-            mean[k] /= n
+        block_column_means(y, o, n, mean)
         for r in range(n):
             yr = y[o + r]
             for k in range(m2):
