@@ -46,6 +46,7 @@ import time
 
 import numpy as np
 
+from fpucore.errors import ParameterError
 from fpucore.floquet.arnoldi_kernels import dcgs2_steps
 from fpucore.floquet.hessenberg import hessenberg_eigvals
 from fpucore.floquet.reversible import reversible_lambdas
@@ -197,6 +198,11 @@ def structured_multipliers(
     info: dict = {"route": "arnoldi", "reversor": None, "band_s": 0.0, "reduce_s": 0.0,
                   "arnoldi_s": 0.0, "G_norm": math.nan, "irreversibility": math.nan,
                   "restarts": 0, "width": 0}  # fmt: skip
+    if reversor is not None and (
+        isinstance(reversor, (bool, np.bool_)) or not isinstance(reversor, (int, np.integer))
+    ):
+        raise ParameterError("reversor", reversor, "None or an integer site index",
+                             "the centre c of the reflection i -> c - i (reversor_of)")  # fmt: skip
     rev = reversible_lambdas(mat, N, reversor) if reversor is not None else None
     if rev is not None:
         lam, lam_err_k, rinfo = rev

@@ -15,6 +15,7 @@ import pytest
 
 from fpucore import floquet as fq
 from fpucore import wave
+from fpucore.errors import ParameterError
 from fpucore.floquet import reversible as rv
 from fpucore.floquet import reversible_kernels as rk
 from fpucore.floquet.structured import mu_from_lambda
@@ -176,3 +177,11 @@ def test_the_non_reversible_quartic_superkink_takes_the_arnoldi_route():
     assert b.route == "arnoldi" and a.route == "dense"
     assert abs(a.max_modulus - b.max_modulus) <= max(a.error, b.error)
     assert a.n_unstable == b.n_unstable
+
+
+@pytest.mark.parametrize("bad", [2.5, "0", True])
+def test_a_reversor_that_is_no_site_index_is_refused(bad):
+    mono = fq.monodromy(fq.HomogeneousState(LAW, 1.0, 5.0, 16))
+    with pytest.raises(ParameterError) as e:
+        fq.structured_multipliers(mono.matrix, 16, mono.K, reversor=bad)
+    assert e.value.name == "reversor" and "integer" in str(e.value)
