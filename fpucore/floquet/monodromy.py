@@ -45,6 +45,7 @@ import scipy.linalg
 from fpucore.errors import ParameterError
 from fpucore.floquet.kernels import deflate_sums, extract_deflated, scatter_shifted
 from fpucore.law import require_law
+from fpucore.parallel.threads import on_budget
 from fpucore.wave import period_map as pm
 
 _HW_DEFAULT = 0.12  # h·ω_max of the tangent integration (DOP853): quartets to ~1e-13, see bench
@@ -148,6 +149,7 @@ def default_steps(law, V: float) -> int:
     return pm.rk_steps_for(V, law.c_max, hw=_HW_DEFAULT)
 
 
+@on_budget
 def monodromy(r, m: int | None = None) -> Monodromy:
     """𝓜 of eq. linear_map for the base state r (wave result or :class:`HomogeneousState`).
 
@@ -181,6 +183,7 @@ def _householder(n: int) -> tuple[np.ndarray, float]:
     return u, 2.0 / float(u @ u)
 
 
+@on_budget
 def multipliers_of(mat: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray, float]:
     """All 2N eigenvalues of 𝓜 with the conservation block deflated exactly.
 

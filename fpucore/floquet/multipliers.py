@@ -24,6 +24,7 @@ from fpucore.floquet.finite_size import (
 from fpucore.floquet.monodromy import base_state, default_steps, monodromy, multipliers_of
 from fpucore.floquet.reversible import reversor_of
 from fpucore.floquet.structured import structured_multipliers
+from fpucore.parallel.threads import on_budget
 from fpucore.result import Result, status_of
 
 METHODS = ("dense", "structured")
@@ -149,6 +150,7 @@ def _background_states(r, law) -> list[float]:
     return [float(w[0]), float(w[-1])]
 
 
+@on_budget
 def spectrum(
     r,
     m: int | None = None,

@@ -57,6 +57,7 @@ from fpucore.floquet.structured_kernels import (
     s_apply,
     st_apply,
 )
+from fpucore.parallel.threads import on_budget
 
 _RESTART_TRIES = 8
 # |a_J| above which the delayed pass's J-part is pushed through W (arnoldi_kernels.dcgs2_steps);
@@ -175,6 +176,7 @@ def sums_and_defect(mat: np.ndarray, N: int) -> tuple[np.ndarray, float]:
     return mu_sums, defect
 
 
+@on_budget
 def structured_multipliers(
     mat: np.ndarray, n: int, K: int | None = None, seed: int = 12345, reversor: int | None = None
 ) -> tuple[np.ndarray, np.ndarray, float, dict]:

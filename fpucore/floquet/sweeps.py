@@ -45,6 +45,7 @@ from fpucore.floquet.multipliers import METHODS
 from fpucore.jit_cache import source_hash
 from fpucore.law import require_law
 from fpucore.parallel import Executor
+from fpucore.parallel.threads import on_budget
 
 SWEEP_MAX_V = 10_000  # velocities per sweep
 CHUNK = 1  # velocities per task (fixed: results must not depend on the number of workers)
@@ -236,6 +237,7 @@ def check_sweep_args(law, kind, V_values, w_plus, N, branch, m, tol, time_budget
     return w_plus, Vs, N, m, tol, time_budget_s
 
 
+@on_budget
 def sweep(
     law,
     kind: str,

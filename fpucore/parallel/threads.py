@@ -7,16 +7,25 @@ never left at a library's default, and parallelism across jobs comes from *proce
 
 The policy
 ----------
-* A process that runs **one heavy job at a time** (the ``fpu`` CLI computing one wave or one
-  spectrum) may use every core for it: ``apply_thread_policy(None)`` → BLAS/OpenMP/Numba threads =
-  ``os.cpu_count()``.
+* **fpucore's own calls run on a thread budget, in every process** — a script, a notebook, the
+  ``fpu`` CLI as well as the workers.  Every public entry point that does heavy work
+  (``floquet.spectrum``, ``wave.solve_*``, ``simulate.*`` ...) runs under :func:`budgeted`: for
+  the call only, BLAS/OpenMP (threadpoolctl) and Numba (``set_num_threads``, calling thread) are
+  limited to :func:`thread_budget` threads, then restored — the caller's own numpy keeps its
+  settings.  The budget is **one thread** unless the user says otherwise: measured on the 2-core
+  machine, ``floquet.spectrum`` of the superkink V = 5.2, N = 500 took 0.55 s with one thread and
+  2.5 s with OpenBLAS's default two on an idle-looking machine (load 2), 20 s under load 5–9
+  (issue 24): ``dgeev`` gains little from a second thread and loses everything when a core is
+  busy.  Override: the environment variable ``FPU_THREADS`` (a positive integer, or ``all`` for
+  :func:`cores`), or ``apply_thread_policy(n)`` in a script (the process's budget from then on).
 * A process that runs **one of several concurrent jobs** — every worker of
   :class:`fpucore.parallel.Executor` (process pool or Dask worker), the atlas's workers, the CLI
   while it drives a sweep, the dashboard server (several sessions compute at once) — uses
-  **one thread**: ``apply_thread_policy(1)``.  K jobs then run on K cores without
-  oversubscription, and the throughput scales with the number of processes.  A caller that
-  computes jobs of its own pool (``Executor(caller_runs=True)``: ``fpu floquet sweep``) is one
-  of them while it runs a job: :func:`thread_policy` gives it one thread for that job only.
+  **one thread** whatever ``FPU_THREADS`` says: ``apply_thread_policy(1)``.  K jobs then run on
+  K cores without oversubscription, and the throughput scales with the number of processes.  A
+  caller that computes jobs of its own pool (``Executor(caller_runs=True)``: ``fpu floquet
+  sweep``) is one of them while it runs a job: :func:`thread_policy` gives it one thread for that
+  job only.
 * Limits are set with threadpoolctl on every BLAS (OpenBLAS/MKL, numpy's and scipy's own copies:
   both are imported here first so that both are loaded when the limit is applied) and OpenMP
   library in the process, and with ``numba.set_num_threads`` for Numba's parallel kernels
@@ -34,17 +43,28 @@ The policy
 
 from __future__ import annotations
 
+import functools
 import os
+import threading
 from collections.abc import Iterator
 from contextlib import contextmanager
 
 import numba
 import numpy  # noqa: F401  (numpy's OpenBLAS is loaded before the limit is applied)
 import scipy.linalg  # noqa: F401  (load scipy's own OpenBLAS so the limit reaches it)
-from threadpoolctl import threadpool_info, threadpool_limits
+from threadpoolctl import ThreadpoolController, threadpool_info, threadpool_limits
+
+from fpucore.errors import ParameterError
 
 THREADING_LAYER = "omp"
+ENV_VAR = "FPU_THREADS"  # the user's override of the budget (a positive integer or "all")
 _limiter = None  # the active threadpoolctl limiter (kept alive: the limit holds while it lives)
+_process_budget: int | None = None  # set by apply_thread_policy / thread_policy
+_in_force: int | None = None  # the BLAS/OpenMP limit this module last applied process-wide
+_controller: ThreadpoolController | None = None  # libraries scanned once (a scan costs ~1.5 ms)
+_scope_lock = threading.Lock()
+_scope_depth = 0  # calls inside budgeted() in this process (all threads): the limit is shared
+_scope_limiter = None
 
 
 def configure_threading_layer(layer: str = THREADING_LAYER) -> str:
@@ -65,21 +85,50 @@ def cores() -> int:
         return os.cpu_count() or 1
 
 
+def default_threads() -> int:
+    """The budget the user asked for: ``FPU_THREADS`` (a positive integer, or ``all`` for every
+    core), else 1.  A malformed value is refused with a ParameterError naming the variable."""
+    raw = os.environ.get(ENV_VAR, "").strip()
+    if not raw:
+        return 1
+    if raw.lower() == "all":
+        return cores()
+    try:
+        n = int(raw)
+    except ValueError:
+        n = 0
+    if n < 1:
+        raise ParameterError(ENV_VAR, raw, "a positive integer or 'all'", "environment variable")
+    return n
+
+
+def thread_budget() -> int:
+    """Threads fpucore's own calls use in this process now: the budget set by
+    :func:`apply_thread_policy` / :func:`thread_policy`, else :func:`default_threads`."""
+    return default_threads() if _process_budget is None else _process_budget
+
+
+def _numba_threads(n: int) -> int:
+    return min(n, numba.config.NUMBA_NUM_THREADS)
+
+
 def apply_thread_policy(n_threads: int | None = 1) -> dict:
-    """Limit BLAS, OpenMP and Numba threads of this process (Numba: of the calling thread).
+    """Set this process's thread budget and apply it at once to BLAS, OpenMP and Numba (Numba: of
+    the calling thread); fpucore's calls keep to it from then on.
 
     n_threads : 1 for a process running one of several concurrent jobs (the default: workers,
-    server); None for a process running a single heavy job (all :func:`cores`).
+    server); None for all :func:`cores`; any other count (a script's choice).
     Returns {"threads": n, "blas": [...], "openmp": [...], "numba": n, "layer": ...}: the
     libraries found and the limits now in force.
     """
-    global _limiter
+    global _limiter, _process_budget, _in_force
     n = cores() if n_threads is None else max(1, int(n_threads))
     # Numba first: it launches its layer (loading libgomp), which threadpoolctl then limits too
-    numba.set_num_threads(min(n, numba.config.NUMBA_NUM_THREADS))
+    numba.set_num_threads(_numba_threads(n))
     if _limiter is not None:
         _limiter.restore_original_limits()
     _limiter = threadpool_limits(limits=n)
+    _process_budget = _in_force = n
     info = threadpool_info()
     return {
         "threads": n,
@@ -97,13 +146,63 @@ def thread_policy(n_threads: int | None = 1) -> Iterator[None]:
 
     For a process that computes a pool's jobs itself between other work (``Executor(...,
     caller_runs=True)``): while it runs a job it is one of several concurrent jobs, so it runs
-    one thread like a worker; afterwards it is back to its own budget (the ``fpu`` CLI: all
-    cores).  Costs ~1.5 ms (threadpoolctl scans the loaded libraries)."""
+    one thread like a worker; afterwards it is back to its own budget.  Costs ~1.5 ms
+    (threadpoolctl scans the loaded libraries)."""
+    global _process_budget, _in_force
     n = cores() if n_threads is None else max(1, int(n_threads))
     old = numba.get_num_threads()
-    numba.set_num_threads(min(n, numba.config.NUMBA_NUM_THREADS))
+    saved = _process_budget, _in_force
+    numba.set_num_threads(_numba_threads(n))
     try:
         with threadpool_limits(limits=n):
+            _process_budget = _in_force = n
             yield
     finally:
+        _process_budget, _in_force = saved
         numba.set_num_threads(old)
+
+
+@contextmanager
+def budgeted() -> Iterator[int]:
+    """Run the block (one of fpucore's own calls) on :func:`thread_budget` threads; yields it.
+
+    Free when the process's policy is already in force (workers, server, CLI: nothing to do but
+    compare two integers); otherwise (a script, a notebook) the BLAS/OpenMP limit is set for the
+    outermost call in progress in the process (the limit is process-wide: concurrent calls from
+    several threads share it, the last one out restores the caller's settings) and Numba's count
+    of the calling thread for this call."""
+    global _controller, _scope_depth, _scope_limiter
+    n = thread_budget()
+    old = numba.get_num_threads()
+    if old != _numba_threads(n):
+        numba.set_num_threads(_numba_threads(n))
+    scoped = _in_force != n
+    if scoped:
+        with _scope_lock:
+            if _scope_depth == 0:
+                if _controller is None:
+                    _controller = ThreadpoolController()
+                _scope_limiter = _controller.limit(limits=n)
+            _scope_depth += 1
+    try:
+        yield n
+    finally:
+        if scoped:
+            with _scope_lock:
+                _scope_depth -= 1
+                if _scope_depth == 0:
+                    _scope_limiter.restore_original_limits()
+                    _scope_limiter = None
+        if old != numba.get_num_threads():
+            numba.set_num_threads(old)
+
+
+def on_budget(fn):
+    """Decorator: ``fn`` (a public entry point of fpucore) runs under :func:`budgeted`."""
+
+    @functools.wraps(fn)
+    def wrapper(*args, **kwargs):
+        with budgeted():
+            return fn(*args, **kwargs)
+
+    return wrapper

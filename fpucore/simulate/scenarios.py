@@ -63,6 +63,7 @@ import numpy as np
 
 from fpucore.errors import ParameterError, require_finite
 from fpucore.law import HardeningSofteningLaw
+from fpucore.parallel.threads import on_budget
 from fpucore.result import Result, status_of
 from fpucore.simulate import tracking
 from fpucore.simulate.config import (
@@ -202,6 +203,7 @@ def _split_kwargs(kw: dict) -> tuple[dict, dict]:
     return kw, run
 
 
+@on_budget
 def riemann(
     law: HardeningSofteningLaw,
     w_left: float,
@@ -256,6 +258,7 @@ def riemann(
     return SimulationResult(**res)
 
 
+@on_budget
 def gaussian(
     law: HardeningSofteningLaw,
     w_B: float,
@@ -343,6 +346,7 @@ def whole_periods(t_end: float, T: float) -> tuple[int, float]:
     return K, K * T
 
 
+@on_budget
 def seeded(
     r,
     L: int | None = None,

@@ -26,6 +26,7 @@ import numpy as np
 from fpucore import qc
 from fpucore.errors import ParameterError, require_finite, require_int
 from fpucore.law import require_law
+from fpucore.parallel.threads import on_budget
 from fpucore.result import Result, status_of
 from fpucore.wave import bounds as wb
 from fpucore.wave import period_map as pm
@@ -257,6 +258,7 @@ def _check_common(law, tol, jacobian, max_iter, time_budget_s, predictor):
 
 
 # =============================================================================== public API
+@on_budget
 def solve_superkink(
     law,
     V: float,
@@ -287,6 +289,7 @@ def solve_superkink(
     return _solve(law, spec, N, tol, jacobian, max_iter, time_budget_s, predictor)
 
 
+@on_budget
 def solve_solitary(
     law,
     w_plus: float,
