@@ -10,7 +10,7 @@ handle ``(law_id, params)`` that the Numba kernels in :mod:`.kernels` take.
 from .base import HardeningSofteningLaw, require_law
 from .cubic import CubicLaw
 from .expression import law_from_expression
-from .kernels import LAW_CUBIC, LAW_POLY, POLY_IDS, ddforce, dforce, force
+from .kernels import LAW_CUBIC, LAW_POLY, POLY_IDS, ddforce, dforce, force, forces_into
 from .polynomial import PolynomialLaw, expression_of, real_roots
 
 __all__ = [
@@ -25,6 +25,7 @@ __all__ = [
     "LAW_POLY",
     "POLY_IDS",
     "force",
+    "forces_into",
     "dforce",
     "ddforce",
 ]

@@ -37,8 +37,7 @@ def forces(y, L, law_id, p, fL, fR, g):
     """g[0] = fL, g[1..L] = f(w_1..w_L), g[L+1] = fR.  g: (L+2,)."""
     g[0] = fL
     g[L + 1] = fR
-    for n in range(L):
-        g[n + 1] = _law.force(law_id, p, y[n])
+    _law.forces_into(law_id, p, y[:L], g[1 : L + 1])
 
 
 @njit(cache=True, nogil=True)

@@ -44,8 +44,7 @@ from fpucore.simulate.observer import check_convex, observe
 def accel(q, L, law_id, p, bc, fL, fR, g, out):
     """out = F(q): out[n] = ẅ_{n+1} = (g_{n+2} − g_{n+1}) − (g_{n+1} − g_n), out[L] = ü_0.
     g : (L+2,) work, left holding the forces (ghosts included)."""
-    for n in range(L):
-        g[n + 1] = _law.force(law_id, p, q[n])
+    _law.forces_into(law_id, p, q[:L], g[1 : L + 1])
     if bc == BC_FIXED_PARTICLES:
         g[0] = g[1]
         g[L + 1] = g[L]
