@@ -17,6 +17,7 @@ f(w) = a w³ + b w² + w (Vainchtein & Truskinovsky), or any hardening–softeni
 nothing back.  Every result object carries its error estimate, ``status`` and ``elapsed_s``.
 """
 
+import importlib
 import os
 import signal
 import sys
@@ -42,18 +43,28 @@ from fpucore.jit_cache import key_cache_dir  # noqa: E402
 
 key_cache_dir()  # before any kernel is compiled: see fpucore/jit_cache.py
 
-from fpucore.parallel.threads import configure_threading_layer  # noqa: E402
+# Numba's "omp" threading layer (fpucore/parallel/threads.py), chosen before any kernel runs.  Set
+# in the environment, read by Numba when it is imported (and inherited by child processes), so
+# that importing fpucore does not import Numba; if Numba is in already, its config is set.
+THREADING_LAYER = "omp"
+os.environ["NUMBA_THREADING_LAYER"] = THREADING_LAYER
+if "numba" in sys.modules:
+    importlib.import_module("fpucore.parallel.threads").configure_threading_layer(THREADING_LAYER)
 
-configure_threading_layer()  # Numba's "omp" layer, chosen before any kernel runs
-
-from fpucore import floquet, qc, simulate, wave  # noqa: E402
-from fpucore.errors import ConvergenceError, ParameterError  # noqa: E402
-from fpucore.law import (  # noqa: E402
-    CubicLaw,
-    HardeningSofteningLaw,
-    PolynomialLaw,
-    law_from_expression,
-)
+# The subpackages and names below load on first use (PEP 562): ``import fpucore`` costs a few
+# milliseconds, and the ``fpu`` CLI prints its help without importing NumPy, SciPy or Numba.
+_LAZY = {
+    "floquet": ("fpucore.floquet", None),
+    "qc": ("fpucore.qc", None),
+    "simulate": ("fpucore.simulate", None),
+    "wave": ("fpucore.wave", None),
+    "CubicLaw": ("fpucore.law", "CubicLaw"),
+    "HardeningSofteningLaw": ("fpucore.law", "HardeningSofteningLaw"),
+    "PolynomialLaw": ("fpucore.law", "PolynomialLaw"),
+    "law_from_expression": ("fpucore.law", "law_from_expression"),
+    "ParameterError": ("fpucore.errors", "ParameterError"),
+    "ConvergenceError": ("fpucore.errors", "ConvergenceError"),
+}
 
 __all__ = [
     "CubicLaw",
@@ -68,6 +79,22 @@ __all__ = [
     "simulate",
 ]
 __version__ = "0.1.0"
+
+
+def __getattr__(name: str):
+    if name not in _LAZY:
+        raise AttributeError(f"module 'fpucore' has no attribute {name!r}")
+    module, attr = _LAZY[name]
+    value = importlib.import_module(module)
+    if attr is not None:
+        value = getattr(value, attr)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_LAZY))
+
 
 if _CLI_IMPORT:
     signal.signal(signal.SIGINT, _PREVIOUS_SIGINT)

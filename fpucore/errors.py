@@ -7,8 +7,7 @@ same text can be shown verbatim by the CLI and the dashboard.
 from __future__ import annotations
 
 import math
-
-import numpy as np
+import numbers
 
 
 class ParameterError(ValueError):
@@ -41,12 +40,18 @@ class ConvergenceError(RuntimeError):
     ``converged=False``, ``status`` and ``message`` instead of raising)."""
 
 
+def _is_numpy_bool(value) -> bool:
+    """numpy.bool_ without importing NumPy here (errors is imported by the CLI's help)."""
+    t = type(value)
+    return t.__module__ == "numpy" and t.__name__ in ("bool_", "bool")
+
+
 def require_finite(name: str, value: float) -> float:
     """Return ``float(value)`` or raise ParameterError if it is not a finite real number.
 
     Strings and bools are refused even though ``float()`` would take them: ``CubicLaw(a="-1")`` or
     ``b=True`` is a caller's mistake, not a number."""
-    if isinstance(value, (str, bytes, bool, np.bool_)):
+    if isinstance(value, (str, bytes, bool)) or _is_numpy_bool(value):
         raise ParameterError(name, value, "a finite real number", "not a number")
     try:
         x = float(value)
@@ -59,7 +64,8 @@ def require_finite(name: str, value: float) -> float:
 
 def require_int(name: str, value, lo: int, hi: int) -> int:
     """Return ``int(value)`` for an integer (Python or NumPy, not bool) in [lo, hi], else raise."""
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
+    # numbers.Integral: Python and NumPy integers (numpy.bool_ is not one)
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
         raise ParameterError(name, value, f"an integer in [{lo}, {hi}]")
     if not lo <= int(value) <= hi:
         raise ParameterError(name, int(value), f"an integer in [{lo}, {hi}]")

@@ -13,13 +13,8 @@ from __future__ import annotations
 
 import sys
 
-from tqdm import tqdm
-
-from fpucore import atlas
-from fpucore.atlas.store import check_out
 from fpucore.cli.common import add_law_args, law_from_args, print_json
 from fpucore.errors import ParameterError
-from fpucore.parallel import apply_thread_policy
 
 
 def register(sub) -> None:
@@ -64,6 +59,12 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
+    from tqdm import tqdm
+
+    from fpucore import atlas
+    from fpucore.atlas.store import check_out
+    from fpucore.parallel import apply_thread_policy
+
     law = law_from_args(args)
     check_out(args.out)  # before anything is computed
     if args.scheduler is not None and args.backend not in (None, "dask"):

@@ -8,15 +8,20 @@ import math
 import os
 import re
 import sys
-
-import numpy as np
+from typing import TYPE_CHECKING
 
 from fpucore.errors import ParameterError
-from fpucore.law import CubicLaw, HardeningSofteningLaw, law_from_expression
+
+if TYPE_CHECKING:
+    from fpucore.law import HardeningSofteningLaw
+
+# Imports of NumPy and of fpucore's subpackages sit inside the functions of fpucore/cli: the
+# parser is built (and ``--help`` printed) without them, a command pays them when it runs.
 
 
 def jsonable(obj):
     """Recursively convert numpy scalars/arrays and non-finite floats for json.dumps."""
+    import numpy as np
     if isinstance(obj, dict):
         return {str(k): jsonable(v) for k, v in obj.items()}
     if isinstance(obj, (list, tuple)):
@@ -90,6 +95,8 @@ def add_law_args(p: argparse.ArgumentParser) -> None:
 
 def law_from_args(args) -> HardeningSofteningLaw:
     """The law of the command line: ``--law`` parsed by SymPy if given, else CubicLaw(a, b)."""
+    from fpucore.law import CubicLaw, law_from_expression
+
     if getattr(args, "law", None) is not None:
         return law_from_expression(args.law)
     return CubicLaw(args.a, args.b)
@@ -97,6 +104,8 @@ def law_from_args(args) -> HardeningSofteningLaw:
 
 def law_fields(law: HardeningSofteningLaw) -> dict:
     """The law in JSON output: a, b for the cubic; the expression and coefficients otherwise."""
+    from fpucore.law import CubicLaw
+
     if isinstance(law, CubicLaw):
         return {"a": law.a, "b": law.b, "law": law.describe()}
     return {"law": law.expression, "coeffs": list(law.coeffs)}

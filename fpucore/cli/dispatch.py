@@ -12,7 +12,6 @@ import sys
 from fpucore.cli import atlas, floquet, qc, simulate, warm, wave
 from fpucore.cli.common import Parser, check_out_path
 from fpucore.errors import ParameterError
-from fpucore.parallel.threads import apply_thread_policy
 
 COMMANDS = (qc, warm, wave, floquet, simulate, atlas)
 
@@ -27,10 +26,14 @@ def build_parser() -> Parser:
 
 def main(argv: list[str] | None = None) -> int:
     try:
-        args = build_parser().parse_args(argv)
-        # the thread budget (fpucore/parallel/threads.py): a command computing one job uses every
-        # core for it; commands that fan out (sweeps, atlas) run their jobs in 1-thread workers
-        apply_thread_policy(getattr(args, "threads", None))
+        args = build_parser().parse_args(argv)  # --help exits here: no NumPy/Numba imported
+        # the scientific stack from here on (inside the try: Ctrl-C while it loads is one line)
+        from fpucore.parallel.threads import apply_thread_policy, default_threads
+
+        # the thread budget (fpucore/parallel/threads.py): FPU_THREADS threads (default 1) for a
+        # command computing one job; commands that fan out (atlas) set threads=1 for the parent
+        threads = getattr(args, "threads", None)
+        apply_thread_policy(default_threads() if threads is None else threads)
         if getattr(args, "out", None) is not None:  # an unwritable output fails before the work
             check_out_path(args.out, store=getattr(args, "out_is_store", False))
         return int(args.func(args) or 0)

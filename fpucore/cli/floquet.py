@@ -12,9 +12,7 @@ import argparse
 import json
 import sys
 
-import numpy as np
-
-from fpucore import floquet, wave
+from fpucore.cli.choices import FLOQUET_METHODS
 from fpucore.cli.common import add_law_args, jsonable, law_fields, law_from_args, print_json
 from fpucore.errors import ParameterError
 
@@ -38,7 +36,7 @@ def register(sub) -> None:
             action="store_true",
             help="skip the finite-size test (spectra at 0.4N, 0.6N; about +20-40%% time)",
         )
-        q.add_argument("--method", choices=floquet.METHODS, default="dense",
+        q.add_argument("--method", choices=FLOQUET_METHODS, default="dense",
                        help="eigenvalue route: dense LAPACK (reference) or the structure-"
                        "preserving one (quarter size for reversible waves, else half size)",
                        )  # fmt: skip
@@ -56,7 +54,7 @@ def register(sub) -> None:
     s.add_argument("--n", type=int, default=12, help="number of velocities in [V-min, V-max]")
     s.add_argument("--N", type=int, nargs="+", default=[500], help="chain size(s), one sweep each")
     s.add_argument("--out", default=None, help="write the table to this .csv or .json file")
-    s.add_argument("--method", choices=floquet.METHODS, default="structured",
+    s.add_argument("--method", choices=FLOQUET_METHODS, default="structured",
                    help="each spectrum's eigenvalue route (default structured: ~0.2x the dense "
                    "call for the paper's families; dense: the reference)")  # fmt: skip
     s.add_argument("--no-cache", action="store_true", help="ignore and do not write the cache")
@@ -66,6 +64,8 @@ def register(sub) -> None:
 
 
 def _wave(args, law):
+    from fpucore import wave
+
     if args.kind == "superkink":
         return wave.solve_superkink(law, args.V, branch=args.branch, N=args.N)
     return wave.solve_solitary(law, args.w_plus, args.V, N=args.N)
@@ -77,6 +77,10 @@ def _check_N(N: int) -> None:
 
 
 def run_one(args) -> int:
+    import numpy as np
+
+    from fpucore import floquet
+
     _check_N(args.N)
     law = law_from_args(args)
     r = _wave(args, law)
@@ -123,7 +127,9 @@ def run_one(args) -> int:
     return 0
 
 
-def _velocities(args) -> np.ndarray:
+def _velocities(args):
+    import numpy as np
+
     if args.V is not None:
         return np.asarray(args.V, float)
     if args.V_min is None or args.V_max is None:
@@ -134,6 +140,8 @@ def _velocities(args) -> np.ndarray:
 
 
 def run_sweep(args) -> int:
+    from fpucore import floquet
+
     law = law_from_args(args)
     Vs = _velocities(args)
     for N in args.N:

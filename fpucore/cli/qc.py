@@ -4,10 +4,12 @@
 from __future__ import annotations
 
 import time
+from typing import TYPE_CHECKING
 
-from fpucore import qc
 from fpucore.cli.common import add_law_args, law_fields, law_from_args, print_json
-from fpucore.law import HardeningSofteningLaw
+
+if TYPE_CHECKING:
+    from fpucore.law import HardeningSofteningLaw
 
 
 def register(sub) -> None:
@@ -20,6 +22,8 @@ def register(sub) -> None:
 
 
 def compute(law: HardeningSofteningLaw, w_plus: float, V: float | None) -> dict:
+    from fpucore import qc
+
     t0 = time.perf_counter()
     sk = qc.superkink_from_w_plus(law, w_plus)
     cp, vsk, cm = qc.sound_speeds(law, w_plus)

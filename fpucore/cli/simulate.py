@@ -21,10 +21,8 @@ from __future__ import annotations
 
 import sys
 
-from tqdm import tqdm
-
-from fpucore import simulate, wave
 from fpucore.budget import parse_size, require_time_budget
+from fpucore.cli.choices import BOUNDARIES, GUARDS, SIMULATE_METHODS
 from fpucore.cli.common import add_law_args, law_from_args, print_json
 from fpucore.errors import ParameterError, require_finite
 
@@ -41,6 +39,8 @@ class _Bar:
 
     def __call__(self, frac: float) -> None:
         if self.bar is None:
+            from tqdm import tqdm
+
             self.bar = tqdm(
                 total=100, desc=self.label, unit="%", file=sys.stderr, dynamic_ncols=True
             )
@@ -53,6 +53,8 @@ class _Bar:
 
 def _progress(args, law, L: float, t_end: float, method: str, rtol: float):
     """A progress bar when asked, or on a terminal when the run is estimated at ≥ 2 s."""
+    from fpucore import simulate
+
     mode = args.progress
     if mode == "never":
         return None
@@ -69,13 +71,13 @@ def _progress(args, law, L: float, t_end: float, method: str, rtol: float):
 
 def _add_run_args(p, t_end_default=None) -> None:
     add_law_args(p)
-    p.add_argument("--method", choices=simulate.METHODS, default="rkn12")
+    p.add_argument("--method", choices=SIMULATE_METHODS, default="rkn12")
     p.add_argument("--rtol", type=float, default=None, help="adaptive tolerance (default 1e-10)")
     p.add_argument("--dt", type=float, default=None, help="symplectic step (default 0.02)")
-    p.add_argument("--boundary", choices=simulate.BOUNDARIES, default=None)
+    p.add_argument("--boundary", choices=BOUNDARIES, default=None)
     p.add_argument(
         "--guard",
-        choices=simulate.GUARDS,
+        choices=GUARDS,
         default="convex",
         help="stop when a strain leaves (alpha, beta) [convex] or the zeros of f [bounded]",
     )
@@ -177,6 +179,8 @@ def _emit(args, s, extra: dict | None = None) -> int:
 
 
 def run_riemann(args) -> int:
+    from fpucore import simulate
+
     law = law_from_args(args)
     kw = _common(args, "fixed_particles", 1e-10)
     prog = _progress(args, law, args.L, args.t_end, kw["method"], kw["rtol"])
@@ -185,6 +189,8 @@ def run_riemann(args) -> int:
 
 
 def run_gaussian(args) -> int:
+    from fpucore import simulate
+
     law = law_from_args(args)
     kw = _common(args, "fixed_particles", 1e-10)
     prog = _progress(args, law, args.L, args.t_end, kw["method"], kw["rtol"])
@@ -193,6 +199,8 @@ def run_gaussian(args) -> int:
 
 
 def run_wave(args) -> int:
+    from fpucore import simulate, wave
+
     law = law_from_args(args)
     # checked before the wave is solved, and named as typed (not as the t_end it implies)
     periods = require_finite("periods", args.periods)

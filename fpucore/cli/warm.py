@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import time
 
-from fpucore.warm import LAZY, warm_all
+from fpucore.cli.choices import LAZY_WARM
 
 
 def register(sub) -> None:
@@ -12,7 +12,7 @@ def register(sub) -> None:
     p.add_argument(
         "--essential",
         action="store_true",
-        help=f"leave out the routes no first page needs ({', '.join(LAZY)}): the server "
+        help=f"leave out the routes no first page needs ({', '.join(LAZY_WARM)}): the server "
         "compiles them in the background after it is up",
     )
     p.add_argument("--serial", action="store_true", help="one process (default: in parallel)")
@@ -20,6 +20,8 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
+    from fpucore.warm import warm_all
+
     t0 = time.perf_counter()
     done = warm_all(parallel=not args.serial, lazy=not args.essential)
     print(f"warmed {', '.join(done) or 'nothing'} in {time.perf_counter() - t0:.1f} s")

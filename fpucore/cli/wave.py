@@ -6,7 +6,6 @@ fpu wave solitary --w-plus 1 --V 5.0 [--N N] [--json]
 
 from __future__ import annotations
 
-from fpucore import wave
 from fpucore.cli.common import add_law_args, law_fields, law_from_args, print_json
 
 
@@ -38,6 +37,8 @@ def register(sub) -> None:
 
 
 def compute(args):
+    from fpucore import wave
+
     law = law_from_args(args)
     jac = "fd" if args.fd else "exact"
     if args.wave_kind == "superkink":

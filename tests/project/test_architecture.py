@@ -34,6 +34,9 @@ LATE_OK: set[tuple[str, str]] = {
     ("fpucore/atlas/store.py", "import xarray"),
     ("fpucore/atlas/store.py", "import zarr"),
 }
+# the CLI's commands import the scientific stack when they run: `fpu ... --help` stays < 0.3 s
+# (tests/cli/test_cli_startup.py checks that NumPy, SciPy and Numba stay out of it)
+LATE_OK_DIR = "fpucore/cli/"
 
 
 def _modname(path: Path) -> str:
@@ -153,7 +156,7 @@ def test_no_imports_inside_functions():
             for node in ast.walk(fn):
                 if isinstance(node, (ast.Import, ast.ImportFrom)):
                     key = (path.relative_to(ROOT).as_posix(), ast.unparse(node))
-                    if key not in LATE_OK:
+                    if key not in LATE_OK and not key[0].startswith(LATE_OK_DIR):
                         bad.append(f"{key[0]}:{node.lineno}: {key[1]}")
     assert not bad, "imports inside functions:\n" + "\n".join(bad)
 
