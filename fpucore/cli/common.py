@@ -22,6 +22,7 @@ if TYPE_CHECKING:
 def jsonable(obj):
     """Recursively convert numpy scalars/arrays and non-finite floats for json.dumps."""
     import numpy as np
+
     if isinstance(obj, dict):
         return {str(k): jsonable(v) for k, v in obj.items()}
     if isinstance(obj, (list, tuple)):
