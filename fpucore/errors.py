@@ -1,7 +1,9 @@
 """Exceptions raised by fpucore.
 
 Every refusal names the argument, the value it got and the valid range (or the reason), so the
-same text can be shown verbatim by the CLI and the dashboard.
+same text can be shown verbatim by the CLI and the dashboard.  The wording fits the value: a
+number outside its range "is out of range: valid ..."; anything else (a path, an expression, a
+name, NaN, a missing value) "is not valid: expected ...".
 """
 
 from __future__ import annotations
@@ -23,7 +25,10 @@ class ParameterError(ValueError):
     def __init__(self, name: str, value: object, valid: str, reason: str = ""):
         self.name, self.value, self.valid, self.reason = name, value, valid, reason
         v = f"{value:.10g}" if isinstance(value, float) else repr(value)
-        msg = f"{name}={v} is out of range: valid {valid}"
+        if _is_ordered_number(value):  # a number outside the range where the object exists
+            msg = f"{name}={v} is out of range: valid {valid}"
+        else:  # not a matter of range: a path, an expression, a name, NaN, a missing value
+            msg = f"{name}={v} is not valid: expected {valid}"
         if reason:
             msg += f" ({reason})"
         super().__init__(msg)
@@ -38,6 +43,13 @@ class ConvergenceError(RuntimeError):
     """A result that did not converge, raised only on request by
     :meth:`fpucore.result.Result.require_converged` (solvers return a result with
     ``converged=False``, ``status`` and ``message`` instead of raising)."""
+
+
+def _is_ordered_number(value) -> bool:
+    """A real number that lies somewhere on the line (not NaN, not a bool, not a string)."""
+    if isinstance(value, bool) or _is_numpy_bool(value) or not isinstance(value, numbers.Real):
+        return False
+    return not math.isnan(value)
 
 
 def _is_numpy_bool(value) -> bool:

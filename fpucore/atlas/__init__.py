@@ -10,6 +10,11 @@ AtlasResult)
                     floquet=True, out="atlas.zarr")
 """
 
+# floquet first: its sweeps are atlas runs (floquet.sweeps imports atlas.point and atlas.run),
+# and atlas.point imports floquet.multipliers — loaded in this order, ``import fpucore.atlas`` as
+# a process's first import (the ``fpu atlas`` command; fpucore/__init__ no longer imports the
+# subpackages) finds every name it needs
+import fpucore.floquet  # noqa: F401, I001
 from fpucore.atlas.grid import Grid, make_grid, parse_values, velocity_span
 from fpucore.atlas.point import FIELDS, solve_chunk
 from fpucore.atlas.run import AtlasResult, run

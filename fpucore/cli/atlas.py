@@ -110,9 +110,13 @@ def run(args) -> int:
               f"wave, {res.n_failed} failed, {res.n_pending} pending")  # fmt: skip
         print(f"errors   max residual {res.max_residual:.2g}, max |mu| error "
               f"{res.max_modulus_error:.2g}")  # fmt: skip
-        print(f"run      {res.n_computed} computed, {res.n_loaded} from the store, "
-              f"{res.elapsed_s:.1f} s, {res.points_per_s:.3g} points/s on {res.workers} "
-              f"{res.backend} workers")  # fmt: skip
+        if res.n_computed:
+            print(f"run      {res.n_computed} computed, {res.n_loaded} from the store, "
+                  f"{res.elapsed_s:.1f} s, {res.points_per_s:.3g} points/s on {res.workers} "
+                  f"{res.backend} workers")  # fmt: skip
+        else:  # --resume of a finished store: no pool was started, there is no rate to give
+            print(f"run      nothing left to compute: all {res.n_loaded} points from the store "
+                  f"({res.elapsed_s:.1f} s)")  # fmt: skip
         if res.stopped:
             print(f"stopped  {res.message}")
     return 0 if res.n_failed == 0 else 1

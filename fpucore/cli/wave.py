@@ -6,6 +6,8 @@ fpu wave solitary --w-plus 1 --V 5.0 [--N N] [--json]
 
 from __future__ import annotations
 
+import math
+
 from fpucore.cli.common import add_law_args, law_fields, law_from_args, print_json
 
 
@@ -46,6 +48,11 @@ def compute(args):
     return wave.solve_solitary(law, args.w_plus, args.V, args.N, args.tol, jacobian=jac)
 
 
+def _or_na(x: float, spec: str) -> str:
+    """x formatted, or "n/a" for a quantity the wave does not have (NaN)."""
+    return "n/a" if math.isnan(x) else format(x, spec)
+
+
 def run(args) -> int:
     r = compute(args)
     if args.json:
@@ -53,6 +60,10 @@ def run(args) -> int:
         d.update(law_fields(r.law))
         print_json(d)
         return 0 if r.converged else 1
+    if r.kind == "superkink":  # |w_left - w_right|, both given: no error; E_ren: solitary only
+        amp_bound, energy = "0 (exact by construction)", "n/a (defined for solitary waves)"
+    else:
+        amp_bound, energy = f"{r.amplitude_error:.3g}", _or_na(r.energy, ".10g")
     lines = [
         f"{r.kind} V={r.V:.10g}  N={r.N}  w_left={r.w_left:.10g}  w_right={r.w_right:.10g}",
         f"status      {r.message}",
@@ -60,9 +71,9 @@ def run(args) -> int:
         f"iterations {r.iterations}",
         f"errors      tail {r.tail_error:.3g}   integrator {r.integrator_error:.3g} (m={r.m})   "
         f"Jacobian truncation {r.jacobian_truncation:.3g}",
-        f"bounds      profile {r.profile_error:.3g}   amplitude {r.amplitude_error:.3g}   "
-        f"energy {r.energy_error:.3g}   (vs the infinite chain's exact wave)",
-        f"amplitude   {r.amplitude:.10g}   energy E_ren^D {r.energy:.10g}",
+        f"bounds      profile {r.profile_error:.3g}   amplitude {amp_bound}   "
+        f"energy {_or_na(r.energy_error, '.3g')}   (vs the infinite chain's exact wave)",
+        f"amplitude   {r.amplitude:.10g}   energy E_ren^D {energy}",
         f"QC max dev  {r.qc_max_deviation:.3g}   w(0) = {r.w[r.N // 2]:.10g}",
         f"elapsed     {r.elapsed_s:.3f} s   ({r.route})",
     ]

@@ -178,6 +178,15 @@ def _bounds(spec: Spec, done: Solved):
     return wb.error_bounds(S, out.x, out.factorization, solitary)
 
 
+def newton_count(iterations: int) -> str:
+    """How the residual was reached: "in 3 iterations", "in 1 iteration", or, when the start
+    wave (the route's construction: QC guess, continuation, plateau) met the tolerance as it
+    was, "with no Newton step: the start wave met the tolerance"."""
+    if iterations == 0:
+        return "with no Newton step: the start wave met the tolerance"
+    return f"in {iterations} iteration" + ("" if iterations == 1 else "s")
+
+
 def _result(law, spec: Spec, done: Solved, jacobian: str, tol: float, t0: float) -> WaveResult:
     out, N, hist, route = done.out, done.N, done.history, done.route
     bd = _bounds(spec, done)
@@ -193,7 +202,7 @@ def _result(law, spec: Spec, done: Solved, jacobian: str, tol: float, t0: float)
     v = particle_velocities(w, wd, spec.V, spec.w_left)
     msg = out.message
     if out.converged:
-        msg = f"converged: residual {out.residual:.3g} in {len(hist) - 1} iterations ({route})"
+        msg = f"converged: residual {out.residual:.3g} {newton_count(len(hist) - 1)} ({route})"
         if done.residual_floor > Tolerances.of(spec, tol).res_tol:
             msg += (
                 f"; the requested tol is below the round-off floor of this law: residual "
