@@ -5,6 +5,7 @@ w_l = 4.6, w_r = 0, L = 3600, t = 300 (Fig. Riemann1), rtol = 1e-10.
     .venv/bin/python -m benchmarks.bench_simulate --quick    # skip the scipy baseline
     .venv/bin/python -m benchmarks.bench_simulate --large    # + L = 100 000 run
     .venv/bin/python -m benchmarks.bench_simulate --against /tmp/old   # + speed against a tree
+    .venv/bin/python -m benchmarks.bench_simulate --cli      # + the run from the `fpu` command
 
 1. Headline: ``simulate.riemann`` with its default method (Numba RKN12(10) on the second-order
    strain form, error control, observers, tracking), warm JIT, median of 3; wall and process-CPU
@@ -23,6 +24,9 @@ w_l = 4.6, w_r = 0, L = 3600, t = 300 (Fig. Riemann1), rtol = 1e-10.
    falls on both alike); ratio of the median CPU times (this tree / DIR) and a check that the
    final strains are bitwise identical.  Used to show that a refactor of the kernels kept their
    in-jit speed.
+7. ``--cli``: ``fpu simulate riemann`` (the headline run) in fresh processes: its reported
+   ``elapsed_s`` (the first simulation of a process) and the ratio of the scipy baseline to it
+   (target ≥ 4×).
 """
 
 from __future__ import annotations
@@ -132,6 +136,7 @@ def main(argv=None) -> int:
     ap.add_argument("--large", action="store_true", help="+ an L = 100 000 run")
     ap.add_argument("--against", type=Path, default=None, help="another source tree to compare")
     ap.add_argument("--only-against", action="store_true", help="run section 6 only")
+    ap.add_argument("--cli", action="store_true", help="+ section 7: the run from the CLI")
     args = ap.parse_args(argv)
     if args.against is not None and args.only_against:
         against(args.against)
@@ -202,7 +207,27 @@ def main(argv=None) -> int:
         )
     if args.against is not None:
         against(args.against)
+    if args.cli:
+        cli_runs(None if args.quick else bw)
     return 0
+
+
+def cli_runs(baseline_s: float | None, rounds: int = 3) -> None:
+    """Section 7: ``fpu simulate riemann`` in fresh processes: the ``elapsed_s`` it reports (the
+    first simulation of a process, kernels loaded from Numba's cache) and the process's wall
+    time, medians; ratio of the scipy baseline (section 3) to ``elapsed_s``."""
+    cmd = [sys.executable, "-m", "fpucore", "simulate", "riemann", "--w-left", str(WL),
+           "--w-right", str(WR), "--L", str(L), "--t-end", str(T), "--json"]  # fmt: skip
+    elapsed, walls = [], []
+    for _ in range(rounds):
+        w0 = time.perf_counter()
+        out = subprocess.run(cmd, capture_output=True, text=True, check=True)
+        walls.append(time.perf_counter() - w0)
+        elapsed.append(json.loads(out.stdout.strip().splitlines()[-1])["elapsed_s"])
+    e, w = statistics.median(elapsed), statistics.median(walls)
+    ratio = f"; scipy DOP853 / CLI elapsed_s = {baseline_s / e:.1f}x" if baseline_s else ""
+    print(f"7. CLI (fresh process, median of {rounds}): elapsed_s {e:.3f} s, process wall "
+          f"{w:.3f} s{ratio}")  # fmt: skip
 
 
 if __name__ == "__main__":
