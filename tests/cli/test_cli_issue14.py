@@ -5,8 +5,8 @@ an interrupt gives exit 130 and one line."""
 import pytest
 
 from fpucore import floquet
+from fpucore import warm as core_warm
 from fpucore.cli import main
-from fpucore.cli import warm as cli_warm
 
 
 def one_line_refusal(capsys, argv, needle):
@@ -53,6 +53,6 @@ def test_interrupt_exit_130_one_line(capsys, monkeypatch):
     def interrupted(*args, **kwargs):
         raise KeyboardInterrupt
 
-    monkeypatch.setattr(cli_warm, "warm_all", interrupted)
+    monkeypatch.setattr(core_warm, "warm_all", interrupted)  # imported by `fpu warm` as it runs
     assert main(["warm"]) == 130
     assert capsys.readouterr().err == "fpu: interrupted\n"
