@@ -23,10 +23,11 @@ import signal
 import sys
 
 # The `fpu` command (console script, or `python -m fpucore`: argv[0] is still "-m" while runpy
-# imports the package) cannot catch Ctrl-C before its main() runs, and importing this package
-# takes ~1 s: Python would print a KeyboardInterrupt traceback.  For the import only, Ctrl-C
-# gives the CLI's own one line and exit 130 (issue 14 item 7); the previous handler comes back
-# at the end of this file.  A library import (any other argv[0]) is left alone.
+# imports the package) cannot catch Ctrl-C before its main() runs: Python would print a
+# KeyboardInterrupt traceback.  For the import only, Ctrl-C gives the CLI's own one line and
+# exit 130 (issue 14 item 7); the previous handler comes back at the end of this file, and the
+# scientific stack is imported later, inside main()'s own handler.  A library import (any other
+# argv[0]) is left alone.
 _CLI_IMPORT = bool(sys.argv) and (os.path.basename(sys.argv[0]) == "fpu" or sys.argv[0] == "-m")
 
 

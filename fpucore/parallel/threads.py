@@ -56,7 +56,7 @@ from threadpoolctl import ThreadpoolController, threadpool_info, threadpool_limi
 
 from fpucore.errors import ParameterError
 
-THREADING_LAYER = "omp"
+THREADING_LAYER = "omp"  # the layer fpucore/__init__ also puts in the environment
 ENV_VAR = "FPU_THREADS"  # the user's override of the budget (a positive integer or "all")
 _limiter = None  # the active threadpoolctl limiter (kept alive: the limit holds while it lives)
 _process_budget: int | None = None  # set by apply_thread_policy / thread_policy
