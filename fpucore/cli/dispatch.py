@@ -7,13 +7,40 @@ one-line message on stderr.
 
 from __future__ import annotations
 
+import importlib
+import os
+import signal
 import sys
+import threading
 
 from fpucore.cli import atlas, floquet, qc, simulate, warm, wave
 from fpucore.cli.common import Parser, check_out_path
 from fpucore.errors import ParameterError
 
 COMMANDS = (qc, warm, wave, floquet, simulate, atlas)
+# what every computing command needs (the old eager ``import fpucore``): loaded after parsing
+STACK = ("fpucore.parallel.threads", "fpucore.qc", "fpucore.wave", "fpucore.floquet",
+         "fpucore.simulate")  # fmt: skip
+
+
+def _interrupted(signum, frame):  # pragma: no cover (subprocess tests)
+    sys.stderr.write("fpu: interrupted\n")
+    sys.stderr.flush()
+    os._exit(130)
+
+
+def load_stack() -> None:
+    """Import :data:`STACK`; Ctrl-C meanwhile gives one line and exit 130 at once.  Not left to
+    ``except KeyboardInterrupt``: an interrupt inside an extension module's initialisation
+    (NumPy's) surfaces as an ImportError with a traceback, not as KeyboardInterrupt."""
+    main_thread = threading.current_thread() is threading.main_thread()
+    previous = signal.signal(signal.SIGINT, _interrupted) if main_thread else None
+    try:
+        for name in STACK:
+            importlib.import_module(name)
+    finally:
+        if main_thread:
+            signal.signal(signal.SIGINT, previous)
 
 
 def build_parser() -> Parser:
@@ -27,7 +54,7 @@ def build_parser() -> Parser:
 def main(argv: list[str] | None = None) -> int:
     try:
         args = build_parser().parse_args(argv)  # --help exits here: no NumPy/Numba imported
-        # the scientific stack from here on (inside the try: Ctrl-C while it loads is one line)
+        load_stack()
         from fpucore.parallel.threads import apply_thread_policy, default_threads
 
         # the thread budget (fpucore/parallel/threads.py): FPU_THREADS threads (default 1) for a
