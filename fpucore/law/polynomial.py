@@ -37,11 +37,11 @@ from fpucore.law.kernels import LAW_POLY, POLY_IDS
 from fpucore.law.scale import require_coefficient, require_computable
 
 EPS = float(np.finfo(float).eps)
-# The largest degree of a law (text or coefficients).  benchmarks/law_degree.py: a family with
-# known convex interval keeps beta, w* and the QC superkink within their error bars and the
-# discrete wave and Floquet spectrum converged at every degree tried up to 41, but the monomial
-# basis loses accuracy with the degree (beta to 3e-11 from degree 25, against 1e-16 up to 17)
-# and every kernel evaluation costs O(degree): 16 keeps full accuracy and bounds the work.
+# The largest degree of a law (text or coefficients).  benchmarks/law_degree.py (families with a
+# known convex interval, references by mpmath): beta, w*, the QC w- and the discrete wave and its
+# Floquet spectrum stay accurate and converged at every degree tried up to 41 — accuracy follows
+# the monomial basis' cancellation, not the degree — so the limit bounds the work instead: SymPy's
+# exact expansion of the text and the kernels' O(degree) evaluation, far above the paper's laws.
 MAX_DEGREE = 16
 _FAST_IDS = {k: k for k in POLY_IDS if k != LAW_POLY}  # unrolled kernels: the id is the degree
 
