@@ -108,3 +108,29 @@ def test_real_roots_of_far_out_polynomials_stay_finite():
     roots = real_roots([-1.0, 0.0, 0.0, 0.0, 1e-150])  # x⁴ = 1e150: x = ±1e37.5
     assert [x for x, _ in roots] == pytest.approx([-(10**37.5), 10**37.5], rel=1e-12)
     assert all(math.isfinite(x) for x, _ in roots)
+
+
+def test_the_cubic_and_its_polynomial_accept_the_same_laws():
+    """(a, b) log-uniform over |a| in [1e-80, 1e80], b in [1e-160, 1e80] (fixed seed): CubicLaw
+    (closed-form α, β, w*) and PolynomialLaw((1, b, a)) (roots by numpy, the shared range) accept
+    exactly the same laws — about 40 % of the sample — and refuse the rest by name."""
+    import random
+
+    rng = random.Random(1)
+    accepted = 0
+    for _ in range(600):
+        a, b = -(10 ** rng.uniform(-80, 80)), 10 ** rng.uniform(-160, 80)
+        try:
+            CubicLaw(a, b)
+            cubic = True
+        except ParameterError:
+            cubic = False
+        try:
+            PolynomialLaw((1.0, b, a))
+            poly = True
+        except ParameterError as e:
+            poly = False
+            assert e.name in ("coeffs", "c_2", "c_3", "w_star"), str(e)
+        assert cubic == poly, (a, b, cubic, poly)
+        accepted += cubic
+    assert 150 < accepted < 450
