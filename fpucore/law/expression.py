@@ -55,8 +55,10 @@ def law_from_expression(expression: str) -> PolynomialLaw:
             "expression", abbreviate(expression), _VALID,
             f"{len(expression)} characters exceed the maximum {MAX_LENGTH}",
         )  # fmt: skip
+    # one line, single spaces: a leading space or a line break is not Python indentation here
+    text = " ".join(expression.split())
     try:
-        toks = list(tokenize.generate_tokens(io.StringIO(expression).readline))
+        toks = list(tokenize.generate_tokens(io.StringIO(text).readline))
     except (tokenize.TokenError, SyntaxError, IndentationError) as exc:
         raise ParameterError("expression", expression, _VALID, f"could not parse: {exc}") from None
     for t in toks:
@@ -103,7 +105,7 @@ def law_from_expression(expression: str) -> PolynomialLaw:
     glob["__builtins__"] = {}
     try:
         expr = parse_expr(
-            expression,
+            text,
             local_dict=names,
             global_dict=glob,
             transformations=standard_transformations + (convert_xor, implicit_multiplication),

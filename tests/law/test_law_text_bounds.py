@@ -189,6 +189,7 @@ GOOD = [
     "w + sqrt(2)*w**2 - w**3/3 - pi*w**4/1000",
     "w*(1 + 10*w - w**2)",
     "w + 10*w**2 - w**3 - 1e-20*w**16",  # the largest degree
+    " w + 10*w**2 -\n\tw**3 ",  # surrounding spaces and line breaks are not indentation
 ]
 
 
