@@ -385,22 +385,18 @@ def _refine(f, V0, x0, t_a, t_b, ev_t, ev_w, ev_s, cr_t, cr_s, L):
     else:
         tt, ss, want = ev_t, ev_s, f.sign
     tol = 0.3 / abs(V0)
-    ns, ts, vals = [], [], []
-    for n in n_sites:
-        tp = (n - x0) / V0
-        row = tt[n]
-        ok = (ss[n] == want) & np.isfinite(row)
-        if not ok.any():
-            continue
-        cand = row[ok]
-        j = int(np.argmin(np.abs(cand - tp)))
-        if abs(cand[j] - tp) < tol:
-            ns.append(n)
-            ts.append(cand[j])
-            if f.kind != "superkink":
-                vals.append(ev_w[n][ok][j])
+    # per site, the recorded time of the wanted sign nearest the coarse ray (all sites at once)
+    rows = tt[n_sites]
+    tp = (n_sites - x0) / V0
+    with np.errstate(invalid="ignore"):
+        d = np.where((ss[n_sites] == want) & np.isfinite(rows), np.abs(rows - tp[:, None]), np.inf)
+    j = np.argmin(d, axis=1) if n_sites.size else np.zeros(0, dtype=np.int64)
+    k = np.arange(n_sites.size)
+    hit = d[k, j] < tol if n_sites.size else np.zeros(0, dtype=bool)
+    ns, ts = n_sites[hit], rows[k[hit], j[hit]]
+    vals = ev_w[n_sites[hit], j[hit]] if f.kind != "superkink" else np.zeros(0)
     if len(ns) < 8:
         return np.nan, np.nan, len(ns), "", np.nan
     V, dV, cnt = fit_passage(ns, ts)
-    crest = float(np.median(vals)) if vals else np.nan
+    crest = float(np.median(vals)) if vals.size else np.nan
     return V, dV, cnt, "passage_times", crest
