@@ -248,10 +248,13 @@ class WaveSolve:
         if not sub.out.converged or sub.out.factorization is None:
             return None
         x = self.resized(sub.out.x, N_w, self.N)
+        kept = (self.m, self.K, self.system)
         self.m, self.K = sub.m, sub.K
         self.system = self.build(self.N)
         out = self.newton(self.system, x, max(1.0, self.left()))
         if not out.converged or not np.array_equal(out.x, x):
+            self.m, self.K, self.system = kept  # the caller's route starts as it would have
+            self.routes.append(f"padding the N = {N_w} solution moved it on N = {self.N}")
             return None
         xs = sub.out.x
         b = wb.error_bounds(sub.system, xs, sub.out.factorization, True)
