@@ -36,6 +36,24 @@ def test_critical_points_are_rayleigh_intersections():
             assert (c.kind == "saddle") == (V**2 > float(LAW.df(c.w)))
 
 
+@pytest.mark.parametrize("V", [4.3, 5.0, VSK1, 5.3, 5.37])
+def test_window_holds_every_critical_point(V):
+    """For c+^2 < V^2 < c-^2 the paper counts three critical points (two saddles and a centre);
+    the plotted window holds all three, the second saddle w_S too when it lies beyond beta
+    (w+ = 1, V = 5: w_S = 6.79 > beta = 6.72).  w_S is checked against the largest real root of
+    the Rayleigh condition f(w) - f(w+) = V^2 (w - w+) found by numpy's companion matrix."""
+    cp, _, cm = qc.sound_speeds(LAW, 1.0)
+    assert cp < V < cm
+    pp = phase_plane(LAW, 1.0, V)
+    assert [c.kind for c in pp.critical_points] == ["saddle", "center", "saddle"]
+    for c in pp.critical_points:
+        assert pp.w[0] <= c.w <= pp.w[-1]
+    # the roots of the cubic f(w) - f(w+) - V^2 (w - w+) by numpy's companion matrix
+    roots = np.roots([-1.0, 10.0, 1.0 - V**2, V**2 - float(LAW.f(1.0))])
+    w_S = max(r.real for r in roots if abs(r.imag) < 1e-9)
+    assert pp.critical_points[2].w == pytest.approx(w_S, rel=1e-10)
+
+
 def test_level_set_through_saddle_contains_orbit():
     """The homoclinic orbit lies on the H = 0 level of the gridded first integral: linear
     interpolation of H at the orbit points is bounded by the grid's interpolation error."""
