@@ -254,6 +254,7 @@ class Scene(pn.viewable.Viewer):
         # the session's document: worker threads render in its context, so Panel resolves
         # resources (server-relative, not CDN) and schedules model updates on its event loop
         self._doc = pn.state.curdoc
+        self._served = self._doc is not None and self._doc.session_context is not None
         self._lock = threading.Lock()
         self._pending = False
         self._running = False
@@ -304,8 +305,17 @@ class Scene(pn.viewable.Viewer):
         self._write_status(info, time.perf_counter(), partial=True)
 
     def superseded(self) -> bool:
-        """True once the running render is no longer wanted (a newer request or Cancel)."""
-        return self._pending or self._cancel
+        """True once the running render is no longer wanted (a newer request, Cancel, or the
+        browser closed the session)."""
+        return self._pending or self._cancel or self.session_closed
+
+    @property
+    def session_closed(self) -> bool:
+        """True once Bokeh has destroyed the served session's document (the browser left).
+        Bokeh then clears every model's properties, so they read as class defaults (a figure's
+        Range1d becomes a DataRange1d, a renderer loses its glyph): a render still running for
+        that session must neither read nor write them, and nobody is left to see a message."""
+        return self._served and self._doc.session_context is None
 
     def cancel(self) -> None:
         """The Cancel button: stop waiting for the running job (killed if nobody else waits)."""
@@ -332,8 +342,8 @@ class Scene(pn.viewable.Viewer):
             with set_curdoc(self._doc):
                 while True:
                     with self._lock:
-                        if not self._pending:
-                            self._running = False
+                        if not self._pending or self.session_closed:
+                            self._running = self._pending = False
                             return
                         self._pending = False
                         self._cancel = False
@@ -361,6 +371,8 @@ class Scene(pn.viewable.Viewer):
         ``building``: called while the page itself is being built (on the session's thread,
         before the models reach the browser) — no spinner timer runs then (a timer thread could
         switch the spinner on after this render has finished and leave it on)."""
+        if self.session_closed:
+            return None
         t0 = time.perf_counter()
         info = Info()
         self.stale = False
@@ -385,10 +397,14 @@ class Scene(pn.viewable.Viewer):
             self._show_message(str(exc), "warning")
             return None
         except Exception as exc:  # the server keeps serving; the log keeps the traceback
+            if self.session_closed:  # the models were emptied under the render: not a failure
+                return None
             log.exception("scene %s failed", self.key)
             self._show_message(
                 f"computation failed: {type(exc).__name__}: {exc}".splitlines()[0], "danger"
             )
+            return None
+        if self.session_closed:
             return None
         try:
             self.publish(obj)
@@ -401,6 +417,8 @@ class Scene(pn.viewable.Viewer):
             self._write_status(info, t0)
             self.code.value = self.python_code()
         except Exception as exc:
+            if self.session_closed:
+                return None
             log.exception("scene %s: plot update failed", self.key)
             self._show_message(f"plot update failed: {type(exc).__name__}: {exc}", "danger")
             return None
