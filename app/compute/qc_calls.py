@@ -13,7 +13,21 @@ from fpucore.qc import diagram, phase
 from .cache import CACHE, Computed, exact
 from .laws import law_key
 
-__all__ = ["qc_wave", "qc_family", "phase_plane", "existence_diagram", "spec_of", "n_needed"]
+__all__ = [
+    "qc_method",
+    "qc_wave",
+    "qc_family",
+    "phase_plane",
+    "existence_diagram",
+    "spec_of",
+    "n_needed",
+]
+
+
+def qc_method(lw) -> str:
+    """How fpucore computes this law's QC waves: "closed form" (the cubic, paper §4) or
+    "quadrature" (any other law, §3) — for the timing labels."""
+    return "closed form" if qc.is_closed_form(lw) else "quadrature"
 
 
 def qc_wave(lw, mode: str, w_plus: float, V: float) -> Computed:

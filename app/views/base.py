@@ -59,6 +59,8 @@ class Info:
 
     shown: str = ""
     errors: list[tuple[str, float]] = field(default_factory=list)
+    #: differences between two models (e.g. max |discrete − QC|): physics, not numerical error
+    differences: list[tuple[str, float]] = field(default_factory=list)
     timings: list[tuple[str, Computed | float]] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
     warning: str | None = None  # shown above the plot (e.g. "current V out of range")
@@ -67,12 +69,30 @@ class Info:
         self.timings.append((label, c))
 
     def error(self, label: str, value) -> None:
-        try:
-            v = float(value)
-        except (TypeError, ValueError):
-            return
-        if math.isfinite(v):
-            self.errors.append((label, v))
+        _append_finite(self.errors, label, value)
+
+    def difference(self, label: str, value) -> None:
+        """A model difference (shown on its own line, never under "Error")."""
+        _append_finite(self.differences, label, value)
+
+
+def _append_finite(rows: list[tuple[str, float]], label: str, value) -> None:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        return
+    if math.isfinite(v):
+        rows.append((label, v))
+
+
+def fmt_timing(label: str, c: Computed | float) -> str:
+    """'discrete N=500 1.20 s'; a cached result keeps the cost of its computation:
+    'discrete N=500 1.20 s (computed earlier, now from the cache)'."""
+    if isinstance(c, Computed):
+        return f"{label} {fmt_time(c.elapsed_s)}" + (
+            " (computed earlier, now from the cache)" if c.cached else ""
+        )
+    return f"{label} {fmt_time(float(c))}"
 
 
 def fmt_time(s: float) -> str:
@@ -484,14 +504,10 @@ class Scene(pn.viewable.Viewer):
         if info.errors:
             errs = " · ".join(f"{k} {v:.2e}" for k, v in info.errors)
             lines.append(f"**Error:** {errs}")
-        tparts = []
-        for label, c in info.timings:
-            if isinstance(c, Computed):
-                tparts.append(
-                    f"{label} {fmt_time(c.elapsed_s)}" + (" (cached)" if c.cached else "")
-                )
-            else:
-                tparts.append(f"{label} {fmt_time(float(c))}")
+        if info.differences:
+            diffs = " · ".join(f"{k} {v:.2e}" for k, v in info.differences)
+            lines.append(f"**Model difference:** {diffs}")
+        tparts = [fmt_timing(label, c) for label, c in info.timings]
         tparts.append(f"server {fmt_time(time.perf_counter() - t0)}")
         lines.append("**Time:** " + " · ".join(tparts))
         lines.extend(f"_{n}_" for n in info.notes)
