@@ -148,8 +148,14 @@ class SimulationScene(BokehScene):
         c = compute.simulation(kind, s.law(), p, stop=self.superseded, progress=self.set_progress)
         sim = c.value
         info.time(f"simulation ({kind})", c)
-        info.error("energy drift", sim.energy_drift)
-        info.error("error estimate", sim.error_estimate)
+        info.error("relative energy drift", sim.energy_drift)
+        # what the integrator's own estimate bounds depends on the method (SimulationResult)
+        what = (
+            "strain step-doubling error max|w_h − w_2h|/15"
+            if sim.method == "symplectic"
+            else "accumulated local error (RMS over the state)"
+        )
+        info.error(what, sim.error_estimate)
         info.notes.append(
             f"{sim.method}, {sim.n_steps} steps ({sim.n_rejected} rejected), rtol {sim.rtol:g}"
             if sim.method != "symplectic"

@@ -79,3 +79,18 @@ def test_a_cached_result_keeps_the_cost_of_its_computation():
     cached = dict(again.timings)["discrete N=204"]
     assert cached.cached and cached.elapsed_s == computed.elapsed_s
     assert "(computed earlier, now from the cache)" in line(sc.status.object, "Time")
+
+
+def test_simulation_status_names_what_its_error_estimate_estimates():
+    st = ExplorerState()
+    sc = BY_KEY["simulation"](st)
+    sc.kind.value = "gaussian"
+    for name, value in dict(L=400, t_end=5.0, w_B=1.0, A=1.0).items():
+        getattr(sc, name).value = value
+    sc._want_run = True  # what the "Run simulation" button sets
+    info = sc.refresh()
+    assert sc.last_message is None, sc.last_message
+    labels = [k for k, _ in info.errors]
+    assert "error estimate" not in labels
+    assert "relative energy drift" in labels
+    assert "accumulated local error (RMS over the state)" in labels  # rkn12: adaptive
