@@ -67,6 +67,7 @@ from .laws import expression_law, law, law_key, make_law
 from .qc_calls import (
     existence_diagram,
     n_needed,
+    phase_orbit,
     phase_plane,
     qc_family,
     qc_method,
@@ -112,6 +113,7 @@ __all__ = [
     "qc_wave",
     "qc_family",
     "phase_plane",
+    "phase_orbit",
     "existence_diagram",
     "spec_of",
     "n_needed",

@@ -18,6 +18,7 @@ __all__ = [
     "qc_wave",
     "qc_family",
     "phase_plane",
+    "phase_orbit",
     "existence_diagram",
     "spec_of",
     "n_needed",
@@ -58,6 +59,16 @@ def phase_plane(lw, w_plus: float, V: float, n_grid: int = 241) -> Computed:
         ("phase", law_key(lw), exact(w_plus), exact(V), n_grid),
         lambda: phase.phase_plane(lw, w_plus, V, n_grid=n_grid),
     )
+
+
+def phase_orbit(lw, w_plus: float, V: float, w0: float, wp0: float, window) -> Computed:
+    """fpucore.qc.phase.orbit_through: the orbit through a clicked point (w0, w0′)."""
+    lo, hi = (float(x) for x in window)
+    return CACHE.get(
+        ("phase_orbit", law_key(lw), exact(w_plus), exact(V), exact(w0), exact(wp0),
+         exact(lo), exact(hi)),
+        lambda: phase.orbit_through(lw, w_plus, V, w0, wp0, (lo, hi)),
+    )  # fmt: skip
 
 
 def existence_diagram(lw, n: int = 400) -> Computed:
