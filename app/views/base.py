@@ -95,6 +95,42 @@ def fmt_timing(label: str, c: Computed | float) -> str:
     return f"{label} {fmt_time(float(c))}"
 
 
+#: the code box: monospace, no soft wrap (a long call scrolls instead of breaking)
+CODE_CSS = (
+    "textarea { font-family: ui-monospace, SFMono-Regular, Menlo, Consolas, monospace; "
+    "font-size: 12px; white-space: pre; overflow-wrap: normal; overflow: auto; }"
+)
+
+#: "Copy as Python": the Clipboard API where the page has it (https or localhost); else (plain
+#: http on another host: navigator.clipboard is undefined) a hidden textarea and the legacy copy
+#: command; if that fails too, the code card opens so the user can select the code.  The button
+#: says which happened for two seconds.
+COPY_JS = """
+const say = (text) => {
+  btn.label = text;
+  setTimeout(() => { btn.label = "Copy as Python"; }, 2000);
+};
+const legacy = () => {
+  const ta = document.createElement("textarea");
+  ta.value = code.value;
+  ta.setAttribute("readonly", "");
+  ta.style.position = "fixed";
+  ta.style.opacity = "0";
+  document.body.appendChild(ta);
+  ta.select();
+  let ok = false;
+  try { ok = document.execCommand("copy"); } catch (e) { ok = false; }
+  document.body.removeChild(ta);
+  if (ok) { say("Copied ✓"); } else { card.collapsed = false; say("Select the code below"); }
+};
+if (navigator.clipboard && window.isSecureContext) {
+  navigator.clipboard.writeText(code.value).then(() => say("Copied ✓"), legacy);
+} else {
+  legacy();
+}
+"""
+
+
 def fmt_time(s: float) -> str:
     return f"{s * 1e3:.1f} ms" if s < 1.0 else f"{s:.2f} s"
 
@@ -230,15 +266,21 @@ class Scene(pn.viewable.Viewer):
             css_classes=["scene-download"],
         )
         self.code = pn.widgets.TextAreaInput(
-            value="", height=200, sizing_mode="stretch_width", css_classes=["scene-code"]
+            value="",
+            height=220,
+            sizing_mode="stretch_width",
+            css_classes=["scene-code"],
+            stylesheets=[CODE_CSS],
         )
         self.copy_btn = pn.widgets.Button(
             label="Copy as Python", color="light", css_classes=["scene-copy"]
         )
+        self.code_card = pn.Card(
+            self.code, title="Python", collapsed=True, sizing_mode="stretch_width", margin=2
+        )
         self.copy_btn.js_on_click(
-            args={"code": self.code},
-            code="if (navigator.clipboard) { navigator.clipboard.writeText(code.value)"
-            ".catch(() => {}); }",
+            args={"code": self.code, "btn": self.copy_btn, "card": self.code_card},
+            code=COPY_JS,
         )
         self._extra = self.extra_panes()
         side = pn.Column(
@@ -248,9 +290,7 @@ class Scene(pn.viewable.Viewer):
             self.cancel_btn,
             *self.controls(),
             pn.Row(self.download, self.copy_btn),
-            pn.Card(
-                self.code, title="Python", collapsed=True, sizing_mode="stretch_width", margin=2
-            ),
+            self.code_card,
             width=330,
         )
         main = pn.Column(

@@ -187,16 +187,12 @@ class PhasePlaneScene(BokehScene):
 
     def python_code(self) -> str:
         s = self.state
-        return (
-            python_preamble(s)
-            + (
-                "from fpucore.qc import phase\n"
-                f"pp = phase.phase_plane(law, {float(s.w_plus)!r}, {float(s.V)!r}, n_grid=241)\n"
-                "print(pp.regime, [(c.kind, c.w) for c in pp.critical_points])\n"
-            )
-            + "".join(
-                f"o = phase.orbit_through(law, {float(s.w_plus)!r}, {float(s.V)!r}, {w0!r}, {wp0!r}, "
-                "(pp.w[0], pp.w[-1]))  # the orbit through a clicked point\n"
-                for w0, wp0 in self.clicks
-            )
+        wv = f"{float(s.w_plus)!r}, {float(s.V)!r}"
+        code = python_preamble(s) + (
+            "from fpucore.qc import phase\n"
+            f"pp = phase.phase_plane(law, {wv}, n_grid=241)\n"
+            "print(pp.regime, [(c.kind, c.w) for c in pp.critical_points])\n"
         )
+        for w0, wp0 in self.clicks:  # the orbits through the clicked points
+            code += f"o = phase.orbit_through(law, {wv}, {w0!r}, {wp0!r}, (pp.w[0], pp.w[-1]))\n"
+        return code
