@@ -157,8 +157,9 @@ def phase_plane(
     # The window stays in the law's stable interval [alpha, beta] except where a critical point
     # lies outside it: the paper counts three critical points for c+^2 < V^2 < c-^2, and the
     # second saddle w_S can lie beyond beta (w_S = 6.79 > beta = 6.72 at w+ = 1, V = 5).
-    w_lo = min([law.alpha] + [c.w for c in cps])
-    w_hi = max([law.beta] + [c.w for c in cps])
+    ext = 0.03 * (law.beta - law.alpha)  # a margin, so a marker there is not cut in half
+    w_lo = min([law.alpha] + [c.w - ext for c in cps if c.w < law.alpha])
+    w_hi = max([law.beta] + [c.w + ext for c in cps if c.w > law.beta])
     w_grid = np.linspace(max(lo - pad, w_lo), min(hi + pad, w_hi), n_grid)
     wp_max = max([float(np.max(np.abs(o.wp))) for o in orbits] + [0.0])
     if wp_max == 0.0:
