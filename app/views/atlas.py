@@ -133,9 +133,11 @@ class AtlasScene(BokehScene):
         lo, _, hi = s.w_plus_range()  # (alpha, beta) for the cubic; finite for any law
         pad = 0.02 * (hi - lo)
         rows = self._rows = f"{lo + pad}:{hi - pad}:{int(self.n_w.value)}"
-        res = atlas.run(law, "solitary", rows=rows, V=int(self.n_V.value),
-                        N=int(self.N_run.value), floquet=True, finite_size=False,
-                        progress=lambda d, n, f: self.set_progress(d, n))  # fmt: skip
+        res = atlas.run(
+            law, "solitary", rows=rows, V=int(self.n_V.value), N=int(self.N_run.value),
+            floquet=True, finite_size=False,
+            progress=lambda d, n, f: self.set_progress(d, n, "atlas points"),
+        )  # fmt: skip
         label = f"atlas run ({res.n_computed} points, {res.workers} {res.backend} workers)"
         self._run_time = (label, res.elapsed_s)
         info.time(label, res.elapsed_s)

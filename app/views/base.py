@@ -254,6 +254,11 @@ class Scene(pn.viewable.Viewer):
         self.progress = pn.indicators.Progress(
             value=-1, max=100, visible=False, sizing_mode="stretch_width", bar_color="info"
         )
+        # the running job's stage, its percentage and the time left (plain text: no markup)
+        self.progress_text = pn.pane.Str(
+            "", visible=False, css_classes=["scene-progress"], margin=(0, 10)
+        )
+        self._stage = ("", 0.0, 0.0)  # (name, start of the stage, last text update)
         self.cancel_btn = pn.widgets.Button(
             label="Cancel", color="warning", visible=False, css_classes=["scene-cancel"]
         )
@@ -287,6 +292,7 @@ class Scene(pn.viewable.Viewer):
             pn.pane.Markdown("#### Error and time", margin=(0, 5)),
             self.status,
             self.progress,
+            self.progress_text,
             self.cancel_btn,
             *self.controls(),
             pn.Row(self.download, self.copy_btn),
@@ -381,9 +387,36 @@ class Scene(pn.viewable.Viewer):
         """The Cancel button: stop waiting for the running job (killed if nobody else waits)."""
         self._cancel = True
 
-    def set_progress(self, done: float, total: float | None = None) -> None:
+    def set_progress(self, done: float, total: float | None = None, stage: str = "") -> None:
+        """Progress of the running job: the fraction ``done`` (or done / total) of ``stage``;
+        a new stage restarts the time-left estimate (elapsed × (1 − x) / x, once 2 % are done
+        and half a second has passed).  The text changes at most four times a second (each
+        change is a model update sent to the browser)."""
         x = float(done) if total is None else float(done) / max(float(total), 1.0)
-        self.progress.value = int(100 * min(max(x, 0.0), 1.0))
+        x = min(max(x, 0.0), 1.0)
+        now = time.perf_counter()
+        name, t0, last = self._stage
+        if stage and stage != name:
+            name, t0, last = stage, now, 0.0
+        self.progress.value = int(100 * x)
+        if now - last < 0.25 and x < 1.0:
+            self._stage = (name, t0, last)
+            return
+        text = f"{name}: {100 * x:.0f} %" if name else f"{100 * x:.0f} %"
+        if 0.02 <= x < 1.0 and now - t0 >= 0.5:
+            text += f" · about {fmt_time((now - t0) * (1.0 - x) / x)} left"
+        self._stage = (name, t0, now)
+        self.progress_text.object = text
+
+    def stage_progress(self, stage: str):
+        """The progress callback (a fraction in [0, 1]) of one named stage."""
+        return lambda x: self.set_progress(x, stage=stage)
+
+    def set_stage(self, stage: str) -> None:
+        """A new stage of the running job, before it reports a fraction."""
+        self._stage = (stage, time.perf_counter(), time.perf_counter())
+        self.progress.value = -1
+        self.progress_text.object = f"{stage} …"
 
     # ------------------------------------------------------------------ refresh machinery
     def request(self) -> None:
@@ -499,6 +532,7 @@ class Scene(pn.viewable.Viewer):
                     try:
                         self.plot.loading = True
                         self.progress.param.update(value=-1, visible=True)
+                        self.progress_text.visible = True
                         self.cancel_btn.visible = True
                     except Exception:  # noqa: BLE001 - cosmetic; never kill the timer's caller
                         log.exception("scene %s: busy indicator", self.key)
@@ -514,7 +548,9 @@ class Scene(pn.viewable.Viewer):
                 if flags["on"]:
                     self.plot.loading = False
                     self.progress.visible = False
+                    self.progress_text.visible = False
                     self.cancel_btn.visible = False
+                self._stage = ("", 0.0, 0.0)
 
         return stop
 

@@ -167,7 +167,7 @@ class ProfilesScene(BokehScene):
         try:
             c = compute.discrete_wave(
                 lw, s.mode, s.w_plus, s.V, s.N, s.tol, stop=self.superseded,
-                progress=self.set_progress,
+                progress=self.stage_progress("discrete wave"),
             )  # fmt: skip
         except compute.ParameterError as exc:
             if exc.name != "N":

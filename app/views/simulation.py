@@ -145,7 +145,9 @@ class SimulationScene(BokehScene):
             raise SceneMessage("Choose the initial data and press 'Run simulation'.", "info")
         kind, p = self._params
         s = self.state
-        c = compute.simulation(kind, s.law(), p, stop=self.superseded, progress=self.set_progress)
+        c = compute.simulation(
+            kind, s.law(), p, stop=self.superseded, progress=self.stage_progress("simulation")
+        )
         sim = c.value
         info.time(f"simulation ({kind})", c)
         info.error("relative energy drift", sim.energy_drift)
