@@ -39,7 +39,7 @@ from .state import (
     TOL_OPTIONS,
     URL_PARAMS,
     ExplorerState,
-    parse_url,
+    state_from_url,
     url_query,
 )
 from .views import SCENES
@@ -484,8 +484,8 @@ def session_query() -> dict[str, str]:
 def from_url() -> Explorer:
     """The session's Explorer built from its validated URL (one state, no default-then-URL
     double render), with the URL rewritten to the state and kept in sync with it."""
-    values, errors = parse_url(session_query())
-    explorer = Explorer(ExplorerState(**values), url_errors=errors)
+    state, errors = state_from_url(session_query())
+    explorer = Explorer(state, url_errors=errors)
     loc = pn.state.location
     if loc is not None:
         st = explorer.state

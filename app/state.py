@@ -288,7 +288,9 @@ def _float(name: str, raw: str, valid: str, lo: float | None = None, hi: float |
         x = float(raw)
     except ValueError:
         raise ParameterError(name, raw, valid, "not a number") from None
-    if not math.isfinite(x) or (lo is not None and not lo <= x <= hi):
+    if not math.isfinite(x):  # the text as typed: "1e400", not the "inf" it rounds to
+        raise ParameterError(name, raw.strip(), valid, "not a finite double (beyond ±1.8e308)")
+    if lo is not None and not lo <= x <= hi:
         raise ParameterError(name, x, valid)
     return x
 
@@ -373,6 +375,43 @@ def parse_url(query: dict[str, str]) -> tuple[dict, list[str]]:
         except ParameterError as exc:
             errors.append(f"URL value ignored: {exc}")
     return values, errors
+
+
+def state_from_url(query: dict[str, str]) -> tuple[ExplorerState, list[str]]:
+    """The state a link describes, and one message per value it could not take.
+
+    Beyond :func:`parse_url`'s per-value checks, the values must fit together: a w_plus outside
+    the law's range of w₊ is refused (the slider could not show it) and the law's default kept;
+    in superkink mode V and w₊ are tied (V = V_SK(w₊)), so a link that gives V alone sets w₊
+    from it (as typing V does), and one that gives both, inconsistently, keeps w₊ and says so.
+    """
+    values, errors = parse_url(query)
+    st = ExplorerState(**{k: v for k, v in values.items() if k not in ("w_plus", "V")})
+    try:
+        lo, w_star, hi = st.w_plus_range()
+    except ParameterError:  # an invalid law: the page explains it
+        lo = w_star = hi = None
+    w = values.get("w_plus")
+    if w is not None and lo is not None and not (lo < w < hi and w != w_star):
+        errors.append(
+            "URL value ignored: "
+            + str(ParameterError("w_plus", w, f"({lo:.10g}, {hi:.10g}) without w* = {w_star:.10g}"))
+        )
+        w = None
+    V = values.get("V")
+    if st.mode == "superkink" and w is not None and V is not None:
+        vsk = qc.sound_speeds(st.law(), w)[1] if lo is not None else None
+        if vsk is not None and abs(V - vsk) > 1e-9 * vsk:
+            errors.append(
+                f"URL value ignored: V = {V!r} (in superkink mode V = V_SK(w_plus) = {vsk:.10g} "
+                f"for w_plus = {w!r})"
+            )
+            V = None
+    if w is not None:
+        st.w_plus = w
+    if V is not None:
+        st.V = V  # in superkink mode this moves w₊ along its branch (ExplorerState._tie)
+    return st, errors
 
 
 def url_value(x) -> str:
