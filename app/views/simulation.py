@@ -196,11 +196,19 @@ class SimulationScene(BokehScene):
             raise SceneMessage("Choose the initial data and press 'Run simulation'.", "info")
         kind, p = self._params
         s = self.state
-        c = compute.simulation(kind, s.law(), p, stop=self.superseded, progress=self.set_progress)
+        c = compute.simulation(
+            kind, s.law(), p, stop=self.superseded, progress=self.stage_progress("simulation")
+        )
         sim = c.value
         info.time(f"simulation ({kind})", c)
-        info.error("energy drift", sim.energy_drift)
-        info.error("error estimate", sim.error_estimate)
+        info.error("relative energy drift", sim.energy_drift)
+        # what the integrator's own estimate bounds depends on the method (SimulationResult)
+        what = (
+            "strain step-doubling error max|w_h − w_2h|/15"
+            if sim.method == "symplectic"
+            else "accumulated local error (RMS over the state)"
+        )
+        info.error(what, sim.error_estimate)
         info.notes.append(
             f"{sim.method}, {sim.n_steps} steps ({sim.n_rejected} rejected), rtol {sim.rtol:g}"
             if sim.method != "symplectic"
