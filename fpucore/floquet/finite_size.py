@@ -20,16 +20,17 @@ structured route (quarter-size for the paper's reversible waves), and three phys
    cannot vanish on a ring in [N/2, N] and reappear at N; a phonon collision does (measured:
    superkink V = 5.6 at N = 500: 250: 4.0e-5, 292: 0 (on the circle), 334: 7.2e-5, …, 500: 6.2e-5).
 2. the upper envelope — the points above every later one, on their concave upper hull in
-   (log N, log e) (:func:`upper_envelope`), fitted by e ∝ N^−p: a ring resonance's envelope decays (p ≈ 1; measured p = 0.97 for the superkink
-   V = 4.8, e·N = 1.90 … 1.93 over 250 … 500), a converged mode's does not (p ≈ 0).
+   (log N, log e) (:func:`upper_envelope`), fitted by e ∝ N^−p: a ring resonance's envelope
+   decays (p ≈ 1; measured p = 0.98 for the superkink V = 4.8, e·N = 1.90 … 1.93 over
+   250 … 500), a converged mode's does not (p ≈ 0).
 3. convergence — the spread (max e − min e)/e(N) over the window: ≤ ``CONVERGED_SPREAD`` (10 %)
    for a mode that has converged to its growth rate (the f′ < 0 control: 0 to round-off).
 
 Decision (one record, :class:`Decision`): "stable" if e(N) is within its error bar;
 "finite_size" if the excess is absent on a ring of the window (1), or its envelope decays
 (2): p ≥ ``DECAY_P`` = 0.5 and the excess at N at most (N_first/N)^0.5 (71 % at N_first = N/2)
-of the largest on the window — a drop no converged mode shows; "unstable" only if the excess is present on every ring and has converged (3);
-otherwise — and whenever fewer than ``MIN_POINTS`` lengths could be computed — "undetermined",
+of the largest on the window — a drop no converged mode shows; "unstable" only if the excess
+is present on every ring and has converged (3); otherwise — and whenever fewer than ``MIN_POINTS`` lengths could be computed — "undetermined",
 with the computation that would decide it ("compute at N ≥ 2N": a resonance's envelope halves, a
 mode's growth stays).  Every "unstable" therefore rests on an excess that did not change by more
 than 10 % while the ring doubled in length.
@@ -38,8 +39,8 @@ Limitation: a genuine instability weaker than a coexisting ring resonance hides 
 N is large enough for the resonance to fall below it (the envelope then flattens at its growth).
 
 Why not the earlier three-point fit e = e∞ + C/N over 0.4N, 0.6N, N: on a sawtooth three points
-are not a trend (its "unstable" fallback labelled 16 of the paper's 22 superkinks at N = 200/500,
-every one a finite-size artefact by the paper), and the 1/N law has O(1/N²) curvature (e·N
+are not a trend (its "unstable" fallback labelled 16 of the 44 rows of the paper's superkinks
+at N = 200 and 500 "unstable", every one a finite-size artefact by the paper), and the 1/N law has O(1/N²) curvature (e·N
 rises 1.90 → 1.93 for V = 4.8), so e∞ came out "significantly positive" for a pure resonance.
 Why not the eigenvectors' localization: a phonon multiplier colliding with the wave's internal
 mode has an eigenvector partly on the core and partly on the ring, so a core fraction needs its
