@@ -30,9 +30,9 @@ Decision (one record, :class:`Decision`): "stable" if e(N) is within its error b
 "finite_size" if the excess is absent on a ring of the window (1), or its envelope decays
 (2): p ≥ ``DECAY_P`` = 0.5 and the excess at N at most (N_first/N)^0.5 (71 % at N_first = N/2)
 of the largest on the window — a drop no converged mode shows; "unstable" only if the excess
-is present on every ring and has converged (3); otherwise — and whenever fewer than ``MIN_POINTS`` lengths could be computed — "undetermined",
-with the computation that would decide it ("compute at N ≥ 2N": a resonance's envelope halves, a
-mode's growth stays).  Every "unstable" therefore rests on an excess that did not change by more
+is present on every ring and has converged (3); otherwise — and whenever fewer than
+``MIN_POINTS`` lengths could be computed — "undetermined", with the computation that would
+decide it ("compute at N ≥ 2N": a resonance's envelope halves, a mode's growth stays).  Every "unstable" therefore rests on an excess that did not change by more
 than 10 % while the ring doubled in length.
 
 Limitation: a genuine instability weaker than a coexisting ring resonance hides under it until
@@ -40,8 +40,9 @@ N is large enough for the resonance to fall below it (the envelope then flattens
 
 Why not the earlier three-point fit e = e∞ + C/N over 0.4N, 0.6N, N: on a sawtooth three points
 are not a trend (its "unstable" fallback labelled 16 of the 44 rows of the paper's superkinks
-at N = 200 and 500 "unstable", every one a finite-size artefact by the paper), and the 1/N law has O(1/N²) curvature (e·N
-rises 1.90 → 1.93 for V = 4.8), so e∞ came out "significantly positive" for a pure resonance.
+at N = 200 and 500 "unstable", every one a finite-size artefact by the paper), and the 1/N law
+has O(1/N²) curvature (e·N rises 1.90 → 1.93 for V = 4.8), so e∞ came out "significantly
+positive" for a pure resonance.
 Why not the eigenvectors' localization: a phonon multiplier colliding with the wave's internal
 mode has an eigenvector partly on the core and partly on the ring, so a core fraction needs its
 own threshold and an inverse iteration on the 2N × 2N monodromy per multiplier — the window
