@@ -32,8 +32,9 @@ Decision (one record, :class:`Decision`): "stable" if e(N) is within its error b
 of the largest on the window — a drop no converged mode shows; "unstable" only if the excess
 is present on every ring and has converged (3); otherwise — and whenever fewer than
 ``MIN_POINTS`` lengths could be computed — "undetermined", with the computation that would
-decide it ("compute at N ≥ 2N": a resonance's envelope halves, a mode's growth stays).  Every "unstable" therefore rests on an excess that did not change by more
-than 10 % while the ring doubled in length.
+decide it ("compute at N ≥ 2N": a resonance's envelope halves, a mode's growth stays).
+Every "unstable" therefore rests on an excess that did not change by more than 10 % while the
+ring doubled in length.
 
 Limitation: a genuine instability weaker than a coexisting ring resonance hides under it until
 N is large enough for the resonance to fall below it (the envelope then flattens at its growth).
