@@ -19,6 +19,10 @@ structured route (quarter-size for the paper's reversible waves), and three phys
 1. presence — is the excess beyond its error bar on every ring of the window?  A mode of the wave
    cannot vanish on a ring in [N/2, N] and reappear at N; a phonon collision does (measured:
    superkink V = 5.6 at N = 500: 250: 4.0e-5, 292: 0 (on the circle), 334: 7.2e-5, …, 500: 6.2e-5).
+   Likewise a dip: the excess falling below ``DIP`` = ½ of larger values on both sides of it
+   (V = 5.55: 376: 1.4e-4, 416: 3.1e-5, 500: 1.2e-4) — the largest |μ| of a converged mode plus
+   any resonance above it cannot fall below the mode's own growth, so the dip also bounds any
+   instability of the wave itself (printed).
 2. the upper envelope — the points above every later one, on their concave upper hull in
    (log N, log e) (:func:`upper_envelope`), fitted by e ∝ N^−p: a ring resonance's envelope
    decays (p ≈ 1; measured p = 0.98 for the superkink V = 4.8, e·N = 1.90 … 1.93 over
@@ -27,7 +31,7 @@ structured route (quarter-size for the paper's reversible waves), and three phys
    for a mode that has converged to its growth rate (the f′ < 0 control: 0 to round-off).
 
 Decision (one record, :class:`Decision`): "stable" if e(N) is within its error bar;
-"finite_size" if the excess is absent on a ring of the window (1), or its envelope decays
+"finite_size" if the excess is absent on a ring of the window or dips (1), or its envelope decays
 (2): p ≥ ``DECAY_P`` = 0.5 and the excess at N at most (N_first/N)^0.5 (71 % at N_first = N/2)
 of the largest on the window — a drop no converged mode shows; "unstable" only if the excess
 is present on every ring and has converged (3); otherwise — and whenever fewer than
@@ -79,6 +83,7 @@ WINDOW = 7  # chain lengths in [N/2, N], the requested N included
 MIN_POINTS = 4  # fewer computed lengths: "undetermined"
 CONVERGED_SPREAD = 0.1  # (max e − min e)/e(N) of a converged mode over the window
 DECAY_P = 0.5  # envelope exponent above which the excess decays with N
+DIP = 0.5  # an excess below DIP × the larger values on both sides of it is a dip
 N_MIN = 8
 CLASSES = ("stable", "finite_size", "unstable", "undetermined")
 
@@ -193,9 +198,9 @@ def upper_envelope(N: np.ndarray, e: np.ndarray) -> np.ndarray:
 
 def classify(N: np.ndarray, e: np.ndarray, err: np.ndarray) -> dict:
     """The decision from the window's points (N_k, e_k ± err_k), N ascending, the requested N
-    last (module doc).  Returns classification, reason ("within_error" | "absent" | "decays" |
-    "persists" | "unresolved" | "few_lengths"), absent_N (lengths where the excess is within its
-    error bar), p ± p_error and C (envelope e ≈ C N^−p, NaN with < 2 hull points), envelope_N,
+    last (module doc).  Returns classification, reason ("within_error" | "absent" | "dips" |
+    "decays" | "persists" | "unresolved" | "few_lengths"), absent_N (lengths where the excess is
+    within its error bar), dip_N (lengths where it falls below DIP × larger values on both sides), p ± p_error and C (envelope e ≈ C N^−p, NaN with < 2 hull points), envelope_N,
     spread, e_inf ± e_inf_error (e∞ + C/N over the window, reported only), checked (≥ MIN_POINTS
     lengths), and the legacy flags shrinks / intermittent."""
     N = np.asarray(N, float)
@@ -203,7 +208,7 @@ def classify(N: np.ndarray, e: np.ndarray, err: np.ndarray) -> dict:
     err = np.asarray(err, float)
     nan = math.nan
     out = {"p": nan, "p_error": nan, "C": nan, "e_inf": nan, "e_inf_error": nan, "spread": nan,
-           "absent_N": [], "envelope_N": [], "shrinks": False, "intermittent": False,
+           "absent_N": [], "dip_N": [], "envelope_N": [], "shrinks": False, "intermittent": False,
            "checked": N.size >= MIN_POINTS}  # fmt: skip
     if not e[-1] > err[-1]:
         out["classification"], out["reason"] = "stable", "within_error"
@@ -220,15 +225,22 @@ def classify(N: np.ndarray, e: np.ndarray, err: np.ndarray) -> dict:
             out["p"], out["p_error"] = fit_power_law(N[hull], e[hull], err[hull])
             ly = np.log(e[hull])
             out["C"] = float(np.exp(ly.mean() + out["p"] * np.log(N[hull]).mean()))
-    out["intermittent"] = bool(out["absent_N"])
+    # a dip: between larger excesses on both sides the excess falls below half of them; the max
+    # of a converged mode of the wave (plus any resonance above it) cannot fall below the mode
+    dips = [k for k in range(1, N.size - 1)
+            if e[k] < DIP * min(e[:k].max(), e[k + 1 :].max())]  # fmt: skip
+    out["dip_N"] = [int(N[k]) for k in dips]
+    out["intermittent"] = bool(out["absent_N"] or dips)
     # decays: the envelope falls like N^-p, p ≥ DECAY_P, and the excess at N is that far below
     # the largest one on the window (a measured drop, not only a fitted slope)
     drop = e[-1] <= (N[0] / N[-1]) ** DECAY_P * e.max()
     out["shrinks"] = bool(out["p"] >= DECAY_P and drop)
     if not out["checked"]:
         cls, why = "undetermined", "few_lengths"
-    elif out["intermittent"]:
+    elif out["absent_N"]:
         cls, why = "finite_size", "absent"
+    elif out["intermittent"]:
+        cls, why = "finite_size", "dips"
     elif out["shrinks"]:
         cls, why = "finite_size", "decays"
     elif out["spread"] <= CONVERGED_SPREAD:
@@ -266,6 +278,7 @@ class Decision:
     p_error: float = math.nan
     spread: float = math.nan
     absent_N: tuple = ()
+    dip_N: tuple = ()
     not_run: str = ""
     next_step: str = ""
 
@@ -275,7 +288,7 @@ class Decision:
         return {
             "stable": "stable",
             "finite_size": "finite-size artefact ("
-            + ("absent on a shorter ring)" if self.reason == "absent" else "decays as N grows)"),
+            + ("decays as N grows)" if self.reason == "decays" else "comes and goes with N)"),
             "unstable": "unstable (the excess persists as N grows)",
             "undetermined": f"not determined at N = {self.N}",
         }[self.classification]
@@ -304,6 +317,14 @@ class Decision:
                     f"on it within the error bar at N = {gone} (max|mu|-1 at N = {self._pts()}) "
                     "- a resonance of the finite ring that comes and goes with N; a mode of the "
                     "wave would be present on every ring of the window")  # fmt: skip
+        if self.reason == "dips":
+            low = min(self.points_excess)
+            at = ", ".join(str(k) for k in self.dip_N)
+            return (f"finite-size artefact: multipliers leave the unit circle by {out}, but the "
+                    f"excess falls to less than half its neighbours at N = {at} (max|mu|-1 at "
+                    f"N = {self._pts()}) - a resonance of the finite ring that comes and goes "
+                    "with N; the largest |mu| of a mode of the wave would not dip, so any "
+                    f"instability of the wave itself is below {low:.1e}")  # fmt: skip
         if self.reason == "decays":
             return (f"finite-size artefact: multipliers leave the unit circle by {out}, and the "
                     f"excess decays as the ring grows ({self._fit()}; max|mu|-1 at N = "
@@ -330,7 +351,8 @@ class Decision:
                  points_N=[int(x) for x in self.points_N],
                  points_excess=[float(x) for x in self.points_excess],
                  points_error=[float(x) for x in self.points_error],
-                 absent_N=[int(x) for x in self.absent_N])  # fmt: skip
+                 absent_N=[int(x) for x in self.absent_N],
+                 dip_N=[int(x) for x in self.dip_N])  # fmt: skip
         return {k: (None if isinstance(v, float) and not math.isfinite(v) else v)
                 for k, v in d.items()}  # fmt: skip
 
@@ -361,7 +383,7 @@ def decide(N: np.ndarray, e: np.ndarray, err: np.ndarray, growth_rate: float, no
         growth_rate=float(growth_rate), points_N=tuple(int(x) for x in N),
         points_excess=tuple(float(x) for x in e), points_error=tuple(float(x) for x in err),
         p=fit["p"], p_error=fit["p_error"], spread=fit["spread"],
-        absent_N=tuple(fit["absent_N"]), not_run=not_run if cls == "undetermined" else "",
+        absent_N=tuple(fit["absent_N"]), dip_N=tuple(fit["dip_N"]), not_run=not_run if cls == "undetermined" else "",
         next_step=step,
     )  # fmt: skip
     return d, fit

@@ -32,7 +32,8 @@ SAW = np.array([1.0, 0.35, 0.9, 0.55, 1.0, 0.3, 0.95])
 @pytest.mark.parametrize(
     "e, cls, reason",
     [
-        (0.3 / N * SAW, "finite_size", "decays"),  # sawtooth, 1/N envelope, present everywhere
+        (0.3 / N * SAW, "finite_size", "dips"),  # sawtooth, 1/N envelope, present everywhere
+        (0.3 / N * np.r_[1.0, 0.9, 0.8, 0.9, 1.0, 0.95, 1.0], "finite_size", "decays"),
         (0.3 / N * np.where(SAW > 0.5, SAW, 0.0), "finite_size", "absent"),  # comes and goes
         (0.3 / N, "finite_size", "decays"),  # the clean 1/N law (superkink V = 4.8)
         (1.93 / N - 8.0 / N**2, "finite_size", "decays"),  # 1/N with curvature (e·N rising)
@@ -63,8 +64,10 @@ def test_the_old_three_point_fallback_cases_are_no_longer_unstable():
     n = np.array([250, 292, 334, 376, 416, 458, 500], float)
     e48 = np.array([7.60e-3, 6.53e-3, 5.73e-3, 5.10e-3, 4.63e-3, 4.21e-3, 3.864e-3])
     e56 = np.array([3.97e-5, 2.2e-16, 7.16e-5, 8.54e-5, 1.00e-4, 9.16e-5, 6.197e-5])
-    assert _decide(e48, n=n)[0].classification == "finite_size"
-    assert _decide(e56, n=n)[0].classification == "finite_size"
+    e555 = np.array([1.67e-5, 1.38e-4, 1.55e-4, 1.42e-4, 3.12e-5, 8.27e-5, 1.19e-4])
+    assert _decide(e48, n=n)[0].reason == "decays"
+    assert _decide(e56, n=n)[0].reason == "absent"
+    assert _decide(e555, n=n)[0].reason == "dips"
     old = fs.extrapolate(n, e48, ERR)  # the old e∞ fit: "significantly positive" at 1/N law
     assert old[0] > 2 * old[1]
 
@@ -73,7 +76,7 @@ _NUM = re.compile(r"[-+]?\d+\.\d+e[-+]\d+")
 
 
 @pytest.mark.parametrize(
-    "e", [0.3 / N * SAW, 0.3 / N * np.where(SAW > 0.5, SAW, 0.0), np.full(N.size, 1e-3),
+    "e", [0.3 / N * SAW, 0.3 / N, 0.3 / N * np.where(SAW > 0.5, SAW, 0.0), np.full(N.size, 1e-3),
           np.linspace(3e-5, 7e-5, N.size), np.r_[np.full(N.size - 1, 1e-3), 1e-13]],
 )  # fmt: skip
 def test_words_agree_with_the_numbers(e):
@@ -86,9 +89,13 @@ def test_words_agree_with_the_numbers(e):
     if d.classification == "stable":
         assert d.excess <= d.error
     elif d.classification == "finite_size" and d.reason == "absent":
-        assert any(x <= 2e-12 for x in printed) and "absent" in h
+        assert any(x <= 2e-12 for x in printed) and "comes and goes" in h
         for n in d.absent_N:
             assert f"{n}: " in s
+    elif d.classification == "finite_size" and d.reason == "dips":
+        k = list(d.points_N).index(d.dip_N[0])
+        assert printed[k] < 0.5 * min(max(printed[:k]), max(printed[k + 1 :]))
+        assert "comes and goes" in h and f"below {min(printed):.1e}" in s
     elif d.classification == "finite_size":
         assert printed[-1] < max(printed) and "decays" in h
     elif d.classification == "unstable":
