@@ -200,7 +200,8 @@ def classify(N: np.ndarray, e: np.ndarray, err: np.ndarray) -> dict:
     """The decision from the window's points (N_k, e_k ± err_k), N ascending, the requested N
     last (module doc).  Returns classification, reason ("within_error" | "absent" | "dips" |
     "decays" | "persists" | "unresolved" | "few_lengths"), absent_N (lengths where the excess is
-    within its error bar), dip_N (lengths where it falls below DIP × larger values on both sides), p ± p_error and C (envelope e ≈ C N^−p, NaN with < 2 hull points), envelope_N,
+    within its error bar), dip_N (lengths where it falls below DIP × larger values on both
+    sides), p ± p_error and C (envelope e ≈ C N^−p, NaN with < 2 hull points), envelope_N,
     spread, e_inf ± e_inf_error (e∞ + C/N over the window, reported only), checked (≥ MIN_POINTS
     lengths), and the legacy flags shrinks / intermittent."""
     N = np.asarray(N, float)
@@ -383,7 +384,8 @@ def decide(N: np.ndarray, e: np.ndarray, err: np.ndarray, growth_rate: float, no
         growth_rate=float(growth_rate), points_N=tuple(int(x) for x in N),
         points_excess=tuple(float(x) for x in e), points_error=tuple(float(x) for x in err),
         p=fit["p"], p_error=fit["p_error"], spread=fit["spread"],
-        absent_N=tuple(fit["absent_N"]), dip_N=tuple(fit["dip_N"]), not_run=not_run if cls == "undetermined" else "",
+        absent_N=tuple(fit["absent_N"]), dip_N=tuple(fit["dip_N"]),
+        not_run=not_run if cls == "undetermined" else "",
         next_step=step,
     )  # fmt: skip
     return d, fit
