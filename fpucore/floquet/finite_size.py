@@ -13,7 +13,7 @@ exponentially small corrections.  A positive control: a constant state with f′
 rate 2√(−f′) per unit time at every even N).
 
 Evidence (:func:`chain_lengths`, :func:`base_at`, :func:`classify`): e(N_k) on a *window* of
-``WINDOW`` = 7 chain lengths evenly spaced in [N/2, N] (the requested N last), each on the
+``WINDOW`` = 6 chain lengths evenly spaced in [N/2, N] (the requested N last), each on the
 structured route (quarter-size for the paper's reversible waves), and three physical tests:
 
 1. presence — is the excess beyond its error bar on every ring of the window?  A mode of the wave
@@ -57,8 +57,11 @@ change of stability of the family needs an extremum of E_ren(V); changes of clas
 finite-size effects (:func:`fpucore.floquet.energy.stability_changes`, summarised in one line by
 :func:`fpucore.floquet.energy.changes_summary`).
 
-Cost (benchmarks/bench_floquet.py): the six shorter spectra are Σ(N_k/N)³ ≈ 2.1 eigenvalue calls
-of the requested size on the structured route plus their monodromies and wave re-solves.
+Cost (benchmarks/bench_floquet.py, part D): the five shorter spectra are Σ(N_k/N)³ ≈ 1.9
+eigenvalue calls of the requested size on the structured route plus their monodromies and wave
+re-solves; the rings are computed shortest first and the window stops as soon as an absent
+excess or a dip has decided it (:func:`settled`).  With seven lengths the superkink V = 5.2
+cost 1.8 × one dense spectrum (structured spectrum + decision, load 14), over the 1.5 × target.
 
 Smaller-N waves.  A wave result is re-solved on N_k sites with the converged wave truncated to
 its central N_k sites as the Newton predictor (:func:`fpucore.wave.resize`): the truncation is
@@ -79,7 +82,7 @@ from fpucore.floquet.checks import HomogeneousState
 from fpucore.wave import resize, solve_solitary, solve_superkink
 from fpucore.wave.tails import N_MIN as WAVE_N_MIN
 
-WINDOW = 7  # chain lengths in [N/2, N], the requested N included
+WINDOW = 6  # chain lengths in [N/2, N], the requested N included
 MIN_POINTS = 4  # fewer computed lengths: "undetermined"
 CONVERGED_SPREAD = 0.1  # (max e − min e)/e(N) of a converged mode over the window
 DECAY_P = 0.5  # envelope exponent above which the excess decays with N
@@ -174,6 +177,18 @@ def extrapolate(N: np.ndarray, e: np.ndarray, err: np.ndarray) -> tuple[float, f
     s2 = float(res @ res) / dof if dof > 0 else 0.0
     lever = math.sqrt(1.0 / x.size + x.mean() ** 2 / sxx)
     return e_inf, math.sqrt(s2) * lever + float(np.max(err)) * lever
+
+
+def settled(N: np.ndarray, e: np.ndarray, err: np.ndarray) -> bool:
+    """True when the points computed so far (N ascending, the requested N included) already
+    decide "finite_size" whatever the remaining rings show: an absent excess stays absent, and a
+    dip stays a dip (more points only raise the maxima on its sides).  The window stops there."""
+    N, e, err = (np.asarray(a, float) for a in (N, e, err))
+    if not e[-1] > err[-1]:
+        return False
+    if np.any(e <= err):
+        return True
+    return any(e[k] < DIP * min(e[:k].max(), e[k + 1 :].max()) for k in range(1, N.size - 1))
 
 
 def upper_envelope(N: np.ndarray, e: np.ndarray) -> np.ndarray:

@@ -14,7 +14,14 @@ import numpy as np
 
 from fpucore.errors import ParameterError, require_finite
 from fpucore.floquet.checks import phonon_gap, quartet_symmetry_error
-from fpucore.floquet.finite_size import Decision, base_at, chain_lengths, decide, min_chain
+from fpucore.floquet.finite_size import (
+    Decision,
+    base_at,
+    chain_lengths,
+    decide,
+    min_chain,
+    settled,
+)
 from fpucore.floquet.monodromy import base_state, default_steps, monodromy, multipliers_of
 from fpucore.floquet.reversible import reversor_of
 from fpucore.floquet.structured import structured_multipliers
@@ -166,7 +173,8 @@ def spectrum(
     nearest continuous-spectrum multiplier of the end states (:func:`phonon_gap`).
     check : also build 𝓜 with 2m steps and report ‖𝓜_m − 𝓜_2m‖ as integrator_error.
     finite_size : when max|μ| − 1 exceeds the error bar, also compute the spectrum of the same
-    wave on the window of six shorter rings in [N/2, N] (structured route) and decide
+    wave on the window of five shorter rings in [N/2, N] (structured route, shortest first,
+    stopping once an absent excess or a dip has decided it) and decide
     (:mod:`fpucore.floquet.finite_size`).  False: no extra spectra; an excess beyond the error
     bar is then "undetermined" and the verdict says which test was not run.
     method : "dense" (LAPACK dgeev on the deflated (2N−2)² block, the reference) or
@@ -270,6 +278,8 @@ def spectrum(
             # the paper's reversible waves; agreement with dense within the error bar tested)
             f_k = spectrum(r_k, m=mono.m, check=False, finite_size=False, method="structured")
             pts.append((n_k, f_k.excess, max(f_k.error, integ if math.isfinite(integ) else 0.0)))
+            if settled(*zip(*sorted(pts))):  # absent or a dip: the rest cannot change it
+                break
     elif finite_size:
         why = ""
     pts.sort()
