@@ -248,6 +248,7 @@ def classify(N: np.ndarray, e: np.ndarray, err: np.ndarray) -> dict:
             if e[k] < DIP * min(e[:k].max(), e[k + 1 :].max())]  # fmt: skip
     out["dip_N"] = [int(N[k]) for k in dips]
     out["intermittent"] = bool(out["absent_N"] or dips)
+    out["checked"] = bool(out["checked"] or out["intermittent"])  # conclusive at any count
     # decays: the envelope falls like N^-p, p ≥ DECAY_P, and the excess at N is that far below
     # the largest one on the window (a measured drop, not only a fitted slope)
     drop = e[-1] <= (N[0] / N[-1]) ** DECAY_P * e.max()

@@ -57,6 +57,20 @@ def test_two_points_are_undetermined_and_say_what_would_decide():
     assert d.classification == "undetermined" and "compute at N >= 128" in d.sentence
 
 
+def test_a_window_stopped_early_is_decided_by_its_absent_excess_or_dip():
+    """The spectrum computes the rings shortest first and stops once an absent excess or a dip
+    has decided the window (fs.settled); three points then suffice."""
+    n = np.array([250, 292, 500], float)
+    e = np.array([3.97e-5, 2.2e-16, 6.197e-5])  # superkink V = 5.6, N = 500 (measured)
+    err = np.full(3, 1e-10)
+    assert fs.settled(n, e, err) and not fs.settled(n[[0, 2]], e[[0, 2]], err[:2])
+    d, _ = fs.decide(n, e, err, 0.01)
+    assert (d.classification, d.reason) == ("finite_size", "absent")
+    dip = np.array([1.4e-4, 3.1e-5, 1.2e-4])
+    assert fs.settled(n, dip, err) and fs.decide(n, dip, err, 0.01)[0].reason == "dips"
+    assert not fs.settled(n, np.array([2e-4, 1.5e-4, 1.2e-4]), err)  # a decay needs the window
+
+
 def test_the_old_three_point_fallback_cases_are_no_longer_unstable():
     """The superkink V = 4.8 at the README's lengths (measured, points of a 1/N law with
     curvature) and V = 5.6 (a sawtooth): the old test said "unstable" for both."""
