@@ -36,7 +36,7 @@ def register(sub) -> None:
         q.add_argument(
             "--no-finite-size",
             action="store_true",
-            help="skip the finite-size test (spectra on 6 shorter rings in [N/2, N]); an excess "
+            help="skip the finite-size test (spectra on 5 shorter rings in [N/2, N]); an excess "
             "is then undetermined",
         )
         q.add_argument("--method", choices=floquet.METHODS, default="dense",

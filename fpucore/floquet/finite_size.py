@@ -13,7 +13,7 @@ exponentially small corrections.  A positive control: a constant state with f′
 rate 2√(−f′) per unit time at every even N).
 
 Evidence (:func:`chain_lengths`, :func:`base_at`, :func:`classify`): e(N_k) on a *window* of
-``WINDOW`` = 7 chain lengths evenly spaced in [N/2, N] (the requested N last), each on the
+``WINDOW`` = 6 chain lengths evenly spaced in [N/2, N] (the requested N last), each on the
 structured route (quarter-size for the paper's reversible waves), and three physical tests:
 
 1. presence — is the excess beyond its error bar on every ring of the window?  A mode of the wave
@@ -57,12 +57,12 @@ change of stability of the family needs an extremum of E_ren(V); changes of clas
 finite-size effects (:func:`fpucore.floquet.energy.stability_changes`, summarised in one line by
 :func:`fpucore.floquet.energy.changes_summary`).
 
-Cost (benchmarks/bench_floquet.py, part D): the six shorter spectra are Σ(N_k/N)³ ≈ 2.4
+Cost (benchmarks/bench_floquet.py, part D): the five shorter spectra are Σ(N_k/N)³ ≈ 1.9
 eigenvalue calls of the requested size on the structured route plus their monodromies and wave
 re-solves; the rings are computed shortest first and the window stops as soon as an absent
-excess or a dip has decided it (:func:`settled`).  Six lengths (250, 300, …, 500) cost less
-but alias the sawtooth: the README superkink sweep then left 2 of 22 rows at N = 500 and 7 of
-22 at N = 200 undetermined (seven lengths: 0 and 6).
+excess or a dip has decided it (:func:`settled`).  Measured: seven lengths cost 1.4–1.6 × one
+dense spectrum in total (structured spectrum + decision, load 8–14), six 1.2 ×; both decide
+every row of the README superkink sweep (N = 200 and 500).
 
 Smaller-N waves.  A wave result is re-solved on N_k sites with the converged wave truncated to
 its central N_k sites as the Newton predictor (:func:`fpucore.wave.resize`): the truncation is
@@ -83,7 +83,7 @@ from fpucore.floquet.checks import HomogeneousState
 from fpucore.wave import resize, solve_solitary, solve_superkink
 from fpucore.wave.tails import N_MIN as WAVE_N_MIN
 
-WINDOW = 7  # chain lengths in [N/2, N], the requested N included
+WINDOW = 6  # chain lengths in [N/2, N], the requested N included
 MIN_POINTS = 4  # fewer computed lengths: "undetermined"
 CONVERGED_SPREAD = 0.1  # (max e − min e)/e(N) of a converged mode over the window
 DECAY_P = 0.5  # envelope exponent above which the excess decays with N

@@ -173,7 +173,7 @@ def spectrum(
     nearest continuous-spectrum multiplier of the end states (:func:`phonon_gap`).
     check : also build 𝓜 with 2m steps and report ‖𝓜_m − 𝓜_2m‖ as integrator_error.
     finite_size : when max|μ| − 1 exceeds the error bar, also compute the spectrum of the same
-    wave on the window of six shorter rings in [N/2, N] (structured route, shortest first,
+    wave on the window of five shorter rings in [N/2, N] (structured route, shortest first,
     stopping once an absent excess or a dip has decided it) and decide
     (:mod:`fpucore.floquet.finite_size`).  False: no extra spectra; an excess beyond the error
     bar is then "undetermined" and the verdict says which test was not run.

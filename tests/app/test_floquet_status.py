@@ -26,7 +26,7 @@ from fpucore.floquet import finite_size as fs  # noqa: E402
 BY_KEY = {cls.key: cls for cls in SCENES}
 N = 128
 WIN = np.array(fs.chain_lengths(N, 64) + [N], float)
-SAW = np.array([1.0, 0.35, 0.9, 0.55, 1.0, 0.3, 0.95])
+SAW = np.array([1.0, 0.35, 0.9, 0.55, 1.0, 0.95])
 WINDOWS = {
     "stable": np.r_[np.full(WIN.size - 1, 1e-3), 1e-14],
     "finite_size": 0.3 / WIN * SAW,
