@@ -97,3 +97,17 @@ def test_other_laws_every_unstable_survives_twice_the_chain(law, tmp_path, monke
     assert set(sw.classification) <= set(fq.CLASSES)
     (cp, vsk), _ = qc.solitary_intervals(law, 1.0)
     _unstable_survive_doubling(law, "solitary", cp + (vsk - cp) * np.array([0.5, 0.95]), 1.0)
+
+
+@pytest.mark.parametrize("N", [40, 80])
+def test_quartic_positive_control_is_unstable_at_N_and_2N(N):
+    """The quartic's constant state beyond β (f′ < 0): "unstable" on every ring, growth rate
+    2√(−f′) per unit time (derived in tests/floquet/test_finite_size.py) at N and at 2N: what
+    a genuine instability looks like to the window test at a law other than the paper's."""
+    law = PolynomialLaw((1.0, 10.0, -1.0, -0.01))
+    w0 = float(law.beta) + 0.5
+    fp = float(law.df(w0))
+    assert fp < 0
+    fr = fq.spectrum(fq.HomogeneousState(law, w0, 6.0, N, convex=False), method="structured")
+    assert fr.classification == "unstable" and fr.decision.reason == "persists", fr.verdict
+    assert fr.growth_rate == pytest.approx(2.0 * np.sqrt(-fp), rel=1e-9)
