@@ -62,7 +62,8 @@ class FloquetResult(Result):
     finite_size_prefactor C : the upper envelope max|μ|−1 ≈ C N^−p (NaN when not fitted);
     extrapolated_excess ± extrapolated_excess_error : fit e∞ + C′/N over the window (reported,
     not used by the decision: the 1/N law has curvature);
-    finite_size_checked : ≥ MIN_POINTS chain lengths were computed; finite_size_s : wall time (s).
+    finite_size_checked : ≥ MIN_POINTS chain lengths were computed, or an absent excess or a dip
+    decided the window early; finite_size_s : wall time (s).
     monodromy_s / check_s / eig_s / elapsed_s : wall times (s).
     """
 
