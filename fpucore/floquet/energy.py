@@ -331,7 +331,8 @@ def stability_changes(law, w_plus: float, V, classification, criterion: EnergyCr
               for v, dv in zip(criterion.qc_extrema_V, criterion.qc_extrema_V_error)]  # fmt: skip
     out = []
     for lo, hi in qc.solitary_intervals(law, w_plus):
-        sel = (V > lo) & (V < hi) & np.isin(cls, CLASSES)
+        # an undetermined velocity has no class to change from or to
+        sel = (V > lo) & (V < hi) & np.isin(cls, CLASSES) & (cls != "undetermined")
         order = np.argsort(V[sel])
         v, c = V[sel][order], cls[sel][order]
         for i in range(v.size - 1):
@@ -342,3 +343,21 @@ def stability_changes(law, w_plus: float, V, classification, criterion: EnergyCr
             out.append(StabilityChange(float(v[i]), float(v[i + 1]), str(c[i]), str(c[i + 1]),
                                        bool(near), x0))  # fmt: skip
     return out
+
+
+def changes_summary(changes: list[StabilityChange]) -> str:
+    """The cross-check of a sweep against the energy criterion in one line (plain text)."""
+    k = len(changes)
+    if k == 0:
+        return ("No change between stable and unstable along the sweep: consistent with the "
+                "energy criterion.")  # fmt: skip
+    at = [c for c in changes if c.explained]
+    what = f"{k} change{'s' if k > 1 else ''} of class across the stable/unstable line"
+    if not at:
+        return (f"{what}, none at an extremum of E_ren: finite-size effects (a change of "
+                "stability needs dE_ren/dV = 0; check at a larger N).")  # fmt: skip
+    where = ", ".join(f"{c.extremum_V:.6g}" for c in at)
+    rest = k - len(at)
+    return (f"{what}, {len(at)} at an extremum of E_ren (V = {where}): consistent with a change "
+            "of stability there" + (f"; {rest} elsewhere: finite-size effects." if rest else ".")
+            )  # fmt: skip
