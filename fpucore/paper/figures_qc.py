@@ -36,7 +36,9 @@ def fig_superkink(reduced: bool):
                 series("f(w)", w, LAW.f(w)),
                 series("Rayleigh line, slope V_SK²", w, ray, "dashed"),
                 series("slope c₊²", w, f_plus + c_plus**2 * (w - W_PLUS), "dashed"),
-                series("slope c₋² (tangent at w₋ˢ)", w, f_plus + c_minus**2 * (w - W_PLUS), "dashed"),
+                series(
+                    "slope c₋² (tangent at w₋ˢ)", w, f_plus + c_minus**2 * (w - W_PLUS), "dashed"
+                ),
                 series("w₊, w₋", [sk.w_plus, sk.w_minus], LAW.f([sk.w_plus, sk.w_minus]), "points"),
                 series("w*", [LAW.w_star], [0.0], "vline"),
             ),
@@ -49,18 +51,61 @@ def fig_superkink(reduced: bool):
     beta = (b + math.sqrt(b * b + 3 * a)) / (3 * a)
     src = "law = CubicLaw(-1, 10)"
     comps = [
-        compare("superkink", "w* (eq. cubic_more)", "b/(3|a|)", b / (3 * a), LAW.w_star,
-                roundoff(LAW.w_star), source=src + "; law.w_star", elapsed_s=t, rounding=0),
-        compare("superkink", "α (eq. cubic_more)", "−(√(b²+3|a|)−b)/(3|a|)", alpha, LAW.alpha,
-                roundoff(alpha, 64), source="law.alpha", elapsed_s=t, rounding=0),
-        compare("superkink", "β (eq. cubic_more)", "(b+√(b²+3|a|))/(3|a|)", beta, LAW.beta,
-                roundoff(beta, 64), source="law.beta", elapsed_s=t, rounding=0),
-        compare("superkink", "driving force G at w₊ = 1 (eq. zero_G)", "0", 0.0,
-                sk.driving_force, roundoff(LAW.phi(sk.w_minus), 64),
-                source="qc.superkink_from_w_plus(law, 1).driving_force", elapsed_s=t, rounding=0),
-        compare("superkink", "w₋ˢ at w₊ = 1: (b − |a|w₊)/(2|a|)", "(b−|a|w₊)/(2|a|)",
-                (b - a * W_PLUS) / (2 * a), w_s, roundoff(w_s), source="qc.w_minus_sonic(law, 1)",
-                elapsed_s=t, rounding=0),
+        compare(
+            "superkink",
+            "w* (eq. cubic_more)",
+            "b/(3|a|)",
+            b / (3 * a),
+            LAW.w_star,
+            roundoff(LAW.w_star),
+            source=src + "; law.w_star",
+            elapsed_s=t,
+            rounding=0,
+        ),
+        compare(
+            "superkink",
+            "α (eq. cubic_more)",
+            "−(√(b²+3|a|)−b)/(3|a|)",
+            alpha,
+            LAW.alpha,
+            roundoff(alpha, 64),
+            source="law.alpha",
+            elapsed_s=t,
+            rounding=0,
+        ),
+        compare(
+            "superkink",
+            "β (eq. cubic_more)",
+            "(b+√(b²+3|a|))/(3|a|)",
+            beta,
+            LAW.beta,
+            roundoff(beta, 64),
+            source="law.beta",
+            elapsed_s=t,
+            rounding=0,
+        ),
+        compare(
+            "superkink",
+            "driving force G at w₊ = 1 (eq. zero_G)",
+            "0",
+            0.0,
+            sk.driving_force,
+            roundoff(LAW.phi(sk.w_minus), 64),
+            source="qc.superkink_from_w_plus(law, 1).driving_force",
+            elapsed_s=t,
+            rounding=0,
+        ),
+        compare(
+            "superkink",
+            "w₋ˢ at w₊ = 1: (b − |a|w₊)/(2|a|)",
+            "(b−|a|w₊)/(2|a|)",
+            (b - a * W_PLUS) / (2 * a),
+            w_s,
+            roundoff(w_s),
+            source="qc.w_minus_sonic(law, 1)",
+            elapsed_s=t,
+            rounding=0,
+        ),
     ]
     return panels, comps, {"a": LAW.a, "b": LAW.b, "w_plus": W_PLUS}, ""
 
@@ -81,7 +126,9 @@ def fig_pplane(reduced: bool):
         ser = [series(f"{o.name}", o.w, o.wp) for o in pp.orbits]
         for cp in pp.critical_points:
             ser.append(series(f"{cp.kind} ({cp.w:.4g}, 0)", [cp.w], [0.0], "points"))
-        title = f"({tag}) V = V_SK {'−' if dv < 0 else '+'} {abs(dv):g}" if dv else f"({tag}) V = V_SK"
+        title = (
+            f"({tag}) V = V_SK {'−' if dv < 0 else '+'} {abs(dv):g}" if dv else f"({tag}) V = V_SK"
+        )
         panels.append(Panel(f"{title}: {pp.regime}", "w", "w′", tuple(ser)))
     comps = caption_speeds("pplane", W_PLUS, keys=("V_SK", "w_minus"))
     notes = (
@@ -119,8 +166,16 @@ def fig_cubic(reduced: bool):
     )
     t = clock.s
     comps = [
-        compare("cubic", f"superkink velocity {name} bound (eq. V_bounds_cubic)", printed, value,
-                ours, roundoff(ours), source="qc.superkink_velocity_bounds(law)", elapsed_s=t)
+        compare(
+            "cubic",
+            f"superkink velocity {name} bound (eq. V_bounds_cubic)",
+            printed,
+            value,
+            ours,
+            roundoff(ours),
+            source="qc.superkink_velocity_bounds(law)",
+            elapsed_s=t,
+        )
         for name, (printed, value), ours in zip(("lower", "upper"), PAPER_V_BOUNDS, (lo, hi))
     ]
     return panels, comps, {"a": LAW.a, "b": LAW.b, "V_profiles": (4.9, 5.2, 5.5, 5.8)}, ""
@@ -146,9 +201,17 @@ def fig_SWvelocities_cubic(reduced: bool):
     comps = caption_speeds("SWvelocities_cubic", 1.0) + caption_speeds("SWvelocities_cubic", 6.0)
     for name, ours in (("c₊", c_p), ("V_SK", v_sk), ("c₋", c_m)):
         comps.append(
-            compare("SWvelocities_cubic", f"{name} at w₊ = w*", "√(1 − b²/(3a))", c_star, ours,
-                    roundoff(ours, 64), source="qc.sound_speeds(law, law.w_star)", elapsed_s=t,
-                    rounding=0)
+            compare(
+                "SWvelocities_cubic",
+                f"{name} at w₊ = w*",
+                "√(1 − b²/(3a))",
+                c_star,
+                ours,
+                roundoff(ours, 64),
+                source="qc.sound_speeds(law, law.w_star)",
+                elapsed_s=t,
+                rounding=0,
+            )
         )
     return panels, comps, {"a": LAW.a, "b": LAW.b, "n": len(d.w_plus)}, ""
 
@@ -189,19 +252,41 @@ def fig_SWamp_energy_QCcubic(reduced: bool):
     fam = qc.diagram.solitary_family(LAW, W_PLUS, n=60 if reduced else 160)
     vline = series("V_SK", [fam.V_SK], [0.0], "vline")
     panels = (
-        Panel("(a) amplitude", "V", "w_amp", (
-            series(fam.kind_below, fam.V_below, fam.amp_below),
-            series(fam.kind_above, fam.V_above, fam.amp_above), vline)),
-        Panel("(b) renormalized energy", "V", "E_ren^QC", (
-            series(fam.kind_below, fam.V_below, fam.energy_below),
-            series(fam.kind_above, fam.V_above, fam.energy_above), vline)),
+        Panel(
+            "(a) amplitude",
+            "V",
+            "w_amp",
+            (
+                series(fam.kind_below, fam.V_below, fam.amp_below),
+                series(fam.kind_above, fam.V_above, fam.amp_above),
+                vline,
+            ),
+        ),
+        Panel(
+            "(b) renormalized energy",
+            "V",
+            "E_ren^QC",
+            (
+                series(fam.kind_below, fam.V_below, fam.energy_below),
+                series(fam.kind_above, fam.V_above, fam.energy_above),
+                vline,
+            ),
+        ),
     )
     t = clock.s
     comps = caption_speeds("SWamp_energy_QCcubic", W_PLUS, keys=("V_SK", "c_plus", "c_minus"))
     comps.append(
-        compare("SWamp_energy_QCcubic", "amplitude at the SK corner |w₋ − w₊|", "17/3 − 1 = 14/3",
-                14.0 / 3.0, fam.sk_amplitude, roundoff(fam.sk_amplitude),
-                source="qc.diagram.solitary_family(law, 1).sk_amplitude", elapsed_s=t, rounding=0)
+        compare(
+            "SWamp_energy_QCcubic",
+            "amplitude at the SK corner |w₋ − w₊|",
+            "17/3 − 1 = 14/3",
+            14.0 / 3.0,
+            fam.sk_amplitude,
+            roundoff(fam.sk_amplitude),
+            source="qc.diagram.solitary_family(law, 1).sk_amplitude",
+            elapsed_s=t,
+            rounding=0,
+        )
     )
     notes = f"largest E_ren^QC error bound along the family: {fam.max_energy_error:.2g}"
     return panels, comps, {"w_plus": W_PLUS, "n": len(fam.V_below)}, notes

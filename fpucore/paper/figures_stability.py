@@ -38,8 +38,17 @@ def _bound(figure, quantity, printed, bound, sw, mask, source, minus_one=False):
     if minus_one:
         val -= 1.0
     at = np.asarray(sw.V)[mask][i] if y.size else np.nan
-    return compare(figure, f"{quantity} (max at V = {at:.5g})", printed, bound, val, err,
-                   source=source, elapsed_s=sw.elapsed_s, kind="upper_bound")
+    return compare(
+        figure,
+        f"{quantity} (max at V = {at:.5g})",
+        printed,
+        bound,
+        val,
+        err,
+        source=source,
+        elapsed_s=sw.elapsed_s,
+        kind="upper_bound",
+    )
 
 
 SK_V_FULL = np.round(np.linspace(4.8, 5.85, 22), 4)
@@ -54,11 +63,16 @@ def fig_floquet_SK(reduced: bool):
     V = np.asarray(sw.V)
     src = f"floquet.sweep(law, 'superkink', V, N={N}).max_modulus"
     panels = (
-        Panel(f"max |μ| of superkinks, N = {N}", "V", "max |μ|", (
-            series("max |μ|", V, sw.max_modulus, "points"),
-            series("V = 5.74", [5.74], [1.0], "vline"),
-            series("V = 5.57", [5.57], [1.0], "vline"),
-        )),
+        Panel(
+            f"max |μ| of superkinks, N = {N}",
+            "V",
+            "max |μ|",
+            (
+                series("max |μ|", V, sw.max_modulus, "points"),
+                series("V = 5.74", [5.74], [1.0], "vline"),
+                series("V = 5.57", [5.57], [1.0], "vline"),
+            ),
+        ),
     )
     comps = [
         _bound("floquet_SK", "max|μ| − 1 for V ≥ 5.74", "O(1e-8)", 1e-8, sw, V >= 5.74, src, True),
@@ -78,21 +92,50 @@ def fig_Floquet_example(reduced: bool):
     th = np.linspace(0, 2 * np.pi, 721)
     out = np.abs(mu) > 1 + fr.error
     panels = (
-        Panel("(a) multipliers, V = 5.2", "Re μ", "Im μ", (
-            series("unit circle", np.cos(th), np.sin(th)),
-            series("μ", mu.real, mu.imag, "points"))),
-        Panel("(b) |μ| > 1 (zoom)", "Re μ", "Im μ", (
-            series("unit circle", np.cos(th), np.sin(th)),
-            series("μ, |μ| > 1 + error", mu.real[out], mu.imag[out], "points"))),
+        Panel(
+            "(a) multipliers, V = 5.2",
+            "Re μ",
+            "Im μ",
+            (
+                series("unit circle", np.cos(th), np.sin(th)),
+                series("μ", mu.real, mu.imag, "points"),
+            ),
+        ),
+        Panel(
+            "(b) |μ| > 1 (zoom)",
+            "Re μ",
+            "Im μ",
+            (
+                series("unit circle", np.cos(th), np.sin(th)),
+                series("μ, |μ| > 1 + error", mu.real[out], mu.imag[out], "points"),
+            ),
+        ),
     )
     src = f"floquet.spectrum(wave.solve_superkink(law, 5.2, N={N}))"
     t = clock.s
     comps = [
-        compare("Floquet_example", "max|μ| at V = 5.2 (multipliers leave the circle)", "> 1", 1.0,
-                fr.max_modulus_away_from_1, fr.error, source=src + ".max_modulus_away_from_1",
-                elapsed_s=t, kind="lower_bound"),
-        compare("Floquet_example", "max|μ| at V = 5.2", "< 1.005", 1.005, fr.max_modulus,
-                fr.error, source=src + ".max_modulus", elapsed_s=t, kind="upper_bound"),
+        compare(
+            "Floquet_example",
+            "max|μ| at V = 5.2 (multipliers leave the circle)",
+            "> 1",
+            1.0,
+            fr.max_modulus_away_from_1,
+            fr.error,
+            source=src + ".max_modulus_away_from_1",
+            elapsed_s=t,
+            kind="lower_bound",
+        ),
+        compare(
+            "Floquet_example",
+            "max|μ| at V = 5.2",
+            "< 1.005",
+            1.005,
+            fr.max_modulus,
+            fr.error,
+            source=src + ".max_modulus",
+            elapsed_s=t,
+            kind="upper_bound",
+        ),
     ]
     notes = f"{int(out.sum())} multipliers with |μ| > 1 + error ({fr.error:.2g})"
     return panels, comps, {"V": 5.2, "N": N, "method": fr.method}, notes
@@ -120,12 +163,29 @@ def fig_floquet_cubicSW(reduced: bool):
         Vs, v_sk = _sw_grid(w_plus, reduced)
         sw = _sweep("solitary", Vs, w_plus)
         V = np.asarray(sw.V)
-        panels.append(Panel(f"({tag}) w₊ = {w_plus:g}, N = {N}", "V", "max |μ|", (
-            series("max |μ|", V, sw.max_modulus, "points"),
-            series("V_SK", [v_sk], [1.0], "vline"))))
+        panels.append(
+            Panel(
+                f"({tag}) w₊ = {w_plus:g}, N = {N}",
+                "V",
+                "max |μ|",
+                (
+                    series("max |μ|", V, sw.max_modulus, "points"),
+                    series("V_SK", [v_sk], [1.0], "vline"),
+                ),
+            )
+        )
         printed, bound = SW_BOUNDS[w_plus]
         src = f"floquet.sweep(law, 'solitary', V, w_plus={w_plus:g}, N={N}).max_modulus"
-        comps.append(_bound("floquet_cubicSW", f"max|μ| of solitary waves, w₊ = {w_plus:g}",
-                            printed, bound, sw, V > 0, src))
+        comps.append(
+            _bound(
+                "floquet_cubicSW",
+                f"max|μ| of solitary waves, w₊ = {w_plus:g}",
+                printed,
+                bound,
+                sw,
+                V > 0,
+                src,
+            )
+        )
         notes.append(f"w₊ = {w_plus:g}: {int(np.sum(sw.converged))}/{V.size} converged")
     return tuple(panels), comps, {"w_plus": (1.0, 6.0), "N": N}, "; ".join(notes)
