@@ -10,7 +10,7 @@ import numpy as np
 from fpucore import simulate, wave
 from fpucore.paper.common import LAW
 from fpucore.paper.compare import compare
-from fpucore.paper.figure import Clock, Panel, series
+from fpucore.paper.figure import Panel, series
 
 
 def _spacetime(tag: str, s, title: str) -> Panel:

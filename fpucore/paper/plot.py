@@ -52,7 +52,7 @@ def _element(hv, s: Series, color: str, backend: str, panel: Panel):
             el = el.opts(**({"line_dash": "dashed"} if backend == "bokeh" else {"linestyle": "--"}))
         return el
     if s.style == "points":
-        size = {"size": 5} if backend == "bokeh" else {"s": 12}
+        size = {"size": 5} if backend == "bokeh" else {"s": 25}
         return hv.Scatter((s.x, s.y), **dims, **kw).opts(color=color, **size)
     if s.style == "vline":
         return hv.VLine(float(s.x[0])).opts(
@@ -95,10 +95,14 @@ def save(result: FigureResult, path: str | Path) -> Path:
     backend = FORMATS.get(path.suffix.lower())
     if backend is None:
         raise ParameterError("out", str(path), "a file ending in " + ", ".join(FORMATS))
-    hv = ui()[0]
+    hv, INLINE, file_html, _ = ui()
     obj = plot(result, backend)
     if backend == "bokeh":
-        hv.save(obj, str(path), backend="bokeh", resources="inline", title=f"Fig. {result.label}")
+        # Bokeh's file_html, not hv.save: hv.save's page (Panel's template) links its favicons
+        # from cdn.holoviz.org — the page would not be self-contained
+        page = file_html(hv.render(obj, backend="bokeh"), resources=INLINE,
+                         title=f"Fig. {result.label}")  # fmt: skip
+        path.write_text(page, encoding="utf-8")
     else:
         hv.save(obj, str(path), backend="matplotlib", fmt=path.suffix[1:].lower())
     return path
