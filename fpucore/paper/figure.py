@@ -58,8 +58,8 @@ class FigureResult(Result):
     notes: str = ""
     extra: dict = field(default_factory=dict)
 
-    ERROR_FIELDS: ClassVar[tuple[str, ...]] = ()
-    DERIVED: ClassVar[tuple[str, ...]] = ("status", "n_agree")
+    ERROR_FIELDS: ClassVar[tuple[str, ...]] = ("max_error",)
+    DERIVED: ClassVar[tuple[str, ...]] = ("status", "n_agree", "max_error")
     EXCLUDE: ClassVar[tuple[str, ...]] = ("panels",)
 
     @property
@@ -74,6 +74,11 @@ class FigureResult(Result):
     def message(self) -> str:
         bad = [c.quantity for c in self.comparisons if not c.agrees]
         return "all comparisons agree" if not bad else "disagrees: " + "; ".join(bad)
+
+    @property
+    def max_error(self) -> float:
+        """The largest error bar among the comparisons (0 without comparisons)."""
+        return max((c.error for c in self.comparisons), default=0.0)
 
     @property
     def n_agree(self) -> int:
