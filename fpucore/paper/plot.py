@@ -114,7 +114,8 @@ def _table_html(results) -> str:
         for c in r.comparisons:
             cls = "ok" if c.agrees else "bad"
             rows.append(
-                f"<tr class='{cls}'><td>{html.escape(r.label)}</td><td>{html.escape(c.quantity)}</td>"
+                f"<tr class='{cls}'><td>{html.escape(r.label)}</td>"
+                f"<td>{html.escape(c.quantity)}</td>"
                 f"<td>{html.escape(c.printed)}</td><td>{c.ours:.10g}</td><td>{c.error:.2g}</td>"
                 f"<td>{c.verdict}</td><td>{html.escape(c.why)}</td><td>{c.elapsed_s:.2f}</td></tr>"
             )

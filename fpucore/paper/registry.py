@@ -67,9 +67,9 @@ _F = [
         "§3",
         fqc.fig_pplane,
         0.3,
-        "Phase portraits for eq. (TW_QC_gen2) with the cubic f(w), w₊ = 1 and (a) V = V_SK − 0.001; "
-        "(b) V = V_SK; (c) V = V_SK + 0.005. Here V_SK = 2√65/3, w₋ = 17/3. The coloured "
-        "trajectories are a tensile solitary wave in (a), superkinks in (b) and a compressive "
+        "Phase portraits for eq. (TW_QC_gen2) with the cubic f(w), w₊ = 1 and "
+        "(a) V = V_SK − 0.001; (b) V = V_SK; (c) V = V_SK + 0.005. Here V_SK = 2√65/3, "
+        "w₋ = 17/3. The coloured trajectories are a tensile solitary wave in (a), superkinks in (b) and a compressive "
         "solitary wave in (c).",
     ),
     (
@@ -77,9 +77,9 @@ _F = [
         "§4",
         fqc.fig_cubic,
         0.1,
-        "(a) The limiting strains w± of a superkink as functions of V_SK for the cubic nonlinearity "
-        "with a = −1, b = 10 (symmetric about the vertical axis). (b) Strain profiles for the QC "
-        "model at different velocity values.",
+        "(a) The limiting strains w± of a superkink as functions of V_SK for the cubic "
+        "nonlinearity with a = −1, b = 10 (symmetric about the vertical axis). (b) Strain "
+        "profiles for the QC model at different velocity values.",
     ),
     (
         "SWvelocities_cubic",

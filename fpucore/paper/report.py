@@ -99,26 +99,39 @@ def compute_many(
     total, count = len(labels), len(done)
     if progress:
         progress(count, total, "cache")
-    if todo:
-        backend = "inline" if workers == 1 else "process"
-        ex = Executor(backend=backend, workers=None if backend == "inline" else workers,
-                      caller_runs=backend == "process")  # fmt: skip
+
+    def take(lab: str, val) -> bool:
+        """Record one figure; False once the budget is spent."""
+        nonlocal count
+        if isinstance(val, BaseException):
+            missing.append(f"{lab}: {type(val).__name__}: {val}")
+        else:
+            done[lab] = val
+            if use_cache:
+                store(val, version)
+        count += 1
+        if progress:
+            progress(count, total, lab)
+        return time.perf_counter() - t0 <= time_budget_s
+
+    items = [(lab, reduced) for lab in todo]
+    if todo and workers == 1:  # this process, one figure after the other
+        for item in items:
+            try:
+                val = compute_job(item)
+            except Exception as exc:  # noqa: BLE001  (reported in `missing`, the others go on)
+                val = exc
+            if not take(item[0], val):
+                break
+    elif todo:
+        ex = Executor(backend="process", workers=workers, caller_runs=True)
         try:
-            for i, val in ex.map(compute_job, [(lab, reduced) for lab in todo]):
-                lab = todo[i]
-                if isinstance(val, BaseException):
-                    missing.append(f"{lab}: {type(val).__name__}: {val}")
-                else:
-                    done[lab] = val
-                    if use_cache:
-                        store(val, version)
-                count += 1
-                if progress:
-                    progress(count, total, lab)
-                if time.perf_counter() - t0 > time_budget_s:
+            for i, val in ex.map(compute_job, items):
+                if not take(todo[i], val):
                     break
         finally:
             ex.shutdown()
+    if todo:
         missing += [f"{lab}: not computed within the time budget ({time_budget_s:g} s)"
                     for lab in todo if lab not in done and not any(
                         m.startswith(lab + ":") for m in missing)]  # fmt: skip

@@ -72,8 +72,10 @@ def test_the_registry_holds_exactly_the_papers_figures_in_order():
 
 
 @pytest.mark.parametrize(
-    "label", [pytest.param(lab, marks=pytest.mark.slow) if lab in SLOW else lab
-              for lab in paper.LABELS],  # fmt: skip
+    "label",
+    [
+        pytest.param(lab, marks=pytest.mark.slow) if lab in SLOW else lab for lab in paper.LABELS
+    ],  # fmt: skip
 )
 def test_figure_computes_and_every_printed_number_agrees(label):
     r = _result(label)
