@@ -69,8 +69,8 @@ _F = [
         0.3,
         "Phase portraits for eq. (TW_QC_gen2) with the cubic f(w), w₊ = 1 and "
         "(a) V = V_SK − 0.001; (b) V = V_SK; (c) V = V_SK + 0.005. Here V_SK = 2√65/3, "
-        "w₋ = 17/3. The coloured trajectories are a tensile solitary wave in (a), superkinks in (b) and a compressive "
-        "solitary wave in (c).",
+        "w₋ = 17/3. The coloured trajectories are a tensile solitary wave in (a), superkinks "
+        "in (b) and a compressive solitary wave in (c).",
     ),
     (
         "cubic",
