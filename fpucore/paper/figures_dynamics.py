@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from fpucore import simulate, wave
+from fpucore import qc, simulate, wave
 from fpucore.paper.common import LAW
 from fpucore.paper.compare import compare
 from fpucore.paper.figure import Panel, series
@@ -157,11 +157,14 @@ def fig_Riemann1(reduced: bool):
     comps.append(vel(sk, "−5.7209", "superkink velocity", 0.0))
     comps.append(vel(left, "−5.6159", "left DSW leading-edge velocity", spread[-1]))
     comps.append(vel(right, "4.6404", "right DSW leading-edge velocity", spread[1]))
-    comps.append(compare("Riemann1", "strain behind the superkink = w_B of the left DSW edge",
-                         "2.0667", 2.0667, np.nan if sk is None else sk.right_state,
-                         0.0 if sk is None else abs(sk.right_state - left.background)
-                         if left is not None else np.nan, source=src + "[superkink].right_state",
-                         elapsed_s=s.elapsed_s))  # fmt: skip
+    # the plateau between the superkink and the left DSW: measured (the DSW edge's background),
+    # its error bar the distance from the exact state behind a superkink with 4.6 ahead (eqs.
+    # Rline, zero_G: mirror image, 2w* − 4.6)
+    exact = qc.superkink_from_w_plus(LAW, RIEMANN["w_left"]).w_minus
+    w_B = np.nan if left is None else left.background
+    comps.append(compare("Riemann1", "background w_B of the left DSW edge (state behind the "
+                         "superkink)", "2.0667", 2.0667, w_B, abs(w_B - exact),
+                         source=src + "[dsw_edge].background", elapsed_s=s.elapsed_s))  # fmt: skip
     # panels (c)-(e): tracked site against the computed wave at the measured V and w_B
     for tag, k, w in zip("cde", RIEMANN["probes"], (sk, left, right)):
         series_k = s.probe_series[RIEMANN["probes"].index(k)]
