@@ -48,7 +48,6 @@ class PaperScene(Scene):
         "parameters. Every figure reproduced, with our numbers beside the printed ones: "
         "`fpu paper --out report.html`; the table: docs/paper_comparison.md._"
     )
-    depends: tuple[str, ...] = ()  # a list of the paper's figures: no state dependence
     cheap = True
 
     def make_plot(self):
@@ -78,7 +77,14 @@ class PaperScene(Scene):
         self.state.param.update(**new)
 
     def render(self, info: Info):
+        """The list does not change; an invalid current state is named above it (the buttons
+        set valid parameters)."""
         info.shown = f"{len(FIGURES)} figures of the paper"
+        problem = self.state.problem()
+        if problem is not None:
+            info.warning = (
+                f"The current parameters show no wave: {problem} A figure sets valid ones."
+            )
         return None
 
     def publish(self, obj) -> None:

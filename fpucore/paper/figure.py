@@ -13,7 +13,7 @@ import numpy as np
 from fpucore.paper.compare import Comparison
 from fpucore.result import Result
 
-STYLES = ("line", "dashed", "points", "vline", "hline", "image")
+STYLES = ("line", "dashed", "points", "vline", "hline", "image", "contours")
 
 
 @dataclass(frozen=True)
@@ -21,7 +21,8 @@ class Series:
     """One drawn object of a panel.
 
     style : "line", "dashed", "points" (x, y of equal length), "vline" / "hline" (x or y is a
-        length-1 array: the position), "image" (x (nx,), y (ny,), z (ny, nx): a space–time map).
+        length-1 array: the position), "image" (x (nx,), y (ny,), z (ny, nx): a space–time map),
+        "contours" (x, y, z as for "image"; level curves of z, e.g. the phase portrait's H).
     """
 
     label: str

@@ -112,6 +112,29 @@ def _window_spread(s) -> dict[int, float]:
     return out
 
 
+WINDOW_SITES = 25.0  # half-width of panels (c)–(e) in sites passed
+
+
+def _first_crest(t, w_k, background: float, amplitude: float) -> float:
+    """Time of the first crest of a pulse passing a site: after the site has been at the
+    background (the superkink passed site 200 first), the first time w − w_B exceeds half the
+    amplitude (signed), then the extremum within the next half period of the crest."""
+    sign = 1.0 if amplitude > 0 else -1.0
+    dev = sign * (w_k - background)
+    at_bg = np.flatnonzero(np.abs(w_k - background) < 0.1 * abs(amplitude))
+    if at_bg.size == 0:
+        return float(t[np.argmax(dev)])
+    i0 = at_bg[0]
+    above = np.flatnonzero(dev[i0:] > 0.5 * abs(amplitude))
+    if above.size == 0:
+        return float(t[i0 + np.argmax(dev[i0:])])
+    i1 = i0 + above[0]
+    j = i1
+    while j + 1 < dev.size and dev[j + 1] >= dev[j]:  # climb to the crest
+        j += 1
+    return float(t[j])
+
+
 def fig_Riemann1(reduced: bool):
     """Fig. Riemann1: Riemann data w^l = 4.6, w^r = 0, L = 3600, t = 300: (a) the final strain;
     (c) w_100(t) with the superkink at the measured V; (d) w_200(t) with the solitary wave at the
@@ -165,21 +188,32 @@ def fig_Riemann1(reduced: bool):
     comps.append(compare("Riemann1", "background w_B of the left DSW edge (state behind the "
                          "superkink)", "2.0667", 2.0667, w_B, abs(w_B - exact),
                          source=src + "[dsw_edge].background", elapsed_s=s.elapsed_s))  # fmt: skip
-    # panels (c)-(e): tracked site against the computed wave at the measured V and w_B
+    # panels (c)-(e): tracked site against the computed wave at the measured V and w_B, in a
+    # window of ±WINDOW_SITES / |V| around the wave's passage (as the paper's insets)
     for tag, k, w in zip("cde", RIEMANN["probes"], (sk, left, right)):
-        series_k = s.probe_series[RIEMANN["probes"].index(k)]
-        ser = [series(f"w_{k}(t)", s.probe_t, series_k)]
+        t, w_k = s.probe_t, s.probe_series[RIEMANN["probes"].index(k)]
+        ser = []
+        keep = np.ones(t.size, bool)
         if w is not None:
             V = abs(w.velocity)
             if w.kind == "superkink":
                 r = wave.solve_superkink(LAW, V)
-                t_c = float(s.probe_t[np.argmax(series_k < LAW.w_star)])
+                t_c = float(t[np.argmax(w_k < LAW.w_star)])  # pinning w(0) = w*
             else:
                 r = wave.solve_solitary(LAW, w.background, V)
-                t_c = float(s.probe_t[np.argmax(np.abs(series_k - w.background))])
+                t_c = _first_crest(t, w_k, w.background, w.amplitude)
+            keep = np.abs(t - t_c) <= WINDOW_SITES / V
             if r.converged:
                 tt, ww = _overlay(r, t_c, w.velocity < 0)
-                ser.append(series(f"{w.kind} wave V = {w.velocity:.5g}", tt, ww, "dashed"))
+                near = np.abs(tt - t_c) <= WINDOW_SITES / V
+                name = (
+                    "superkink"
+                    if w.kind == "superkink"
+                    else f"solitary wave, w_B = {w.background:.5g},"
+                )
+                ser.append(series(f"{name} V = {w.velocity:.5g}", tt[near], ww[near],
+                                  "dashed"))  # fmt: skip
+        ser.insert(0, series(f"w_{k}(t)", t[keep], w_k[keep]))
         panels.append(Panel(f"({tag}) site {k}", "t", f"w_{k}", tuple(ser)))
     notes = f"{len(s.waves)} tracked waves; energy drift {s.energy_drift:.2g}"
     return tuple(panels), comps, dict(RIEMANN), notes

@@ -84,7 +84,8 @@ def fig_pplane(reduced: bool):
         elapsed += pp.elapsed_s
         regimes.append(pp.regime)
         resid = max(resid, pp.orbit_residual)
-        ser = [series(f"{o.name}", o.w, o.wp) for o in pp.orbits]
+        ser = [series("", pp.w, pp.wp, "contours", z=pp.H)]  # the level curves of H
+        ser += [series(f"{o.name}", o.w, o.wp) for o in pp.orbits]
         for cp in pp.critical_points:
             ser.append(series(f"{cp.kind} ({cp.w:.4g}, 0)", [cp.w], [0.0], "points"))
         title = (

@@ -22,6 +22,7 @@ from fpucore.paper.figure import FigureResult, Panel, Series
 
 BACKENDS = ("bokeh", "matplotlib")
 FORMATS = {".html": "bokeh", ".svg": "matplotlib", ".png": "matplotlib"}
+CONTOUR_LEVELS = 16  # level curves of a "contours" series
 PALETTE = ("#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#e377c2", "#17becf")
 
 
@@ -60,6 +61,10 @@ def _element(hv, s: Series, color: str, backend: str, panel: Panel):
         )
     if s.style == "hline":
         return hv.HLine(float(s.y[0])).opts(color="gray")
+    if s.style == "contours":
+        img = hv.Image((s.x, s.y, s.z), kdims=[panel.xlabel, panel.ylabel], vdims=["H"])
+        lines = hv.operation.contours(img, levels=CONTOUR_LEVELS, filled=False)
+        return lines.opts(color="lightgray", **({"line_width": 1} if backend == "bokeh" else {}))
     if s.style == "image":
         el = hv.Image((s.x, s.y, s.z), kdims=[panel.xlabel, panel.ylabel], vdims=["w"])
         return el.opts(cmap="viridis", colorbar=True)
