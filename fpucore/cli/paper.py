@@ -2,6 +2,7 @@
 
     fpu paper --list                                   # the 17 figures by LaTeX label
     fpu paper --figure pplane --out pplane.html        # one figure (.html, .svg or .png)
+    fpu paper --figure pplane --out pplane.ipynb       # its notebook (runs top to bottom)
     fpu paper --out report.html                        # all figures + comparison table, offline
     fpu paper --table docs/paper_comparison.md         # the comparison table (Markdown)
 
@@ -18,11 +19,11 @@ from tqdm import tqdm
 
 from fpucore.cli.common import check_out_path, print_json
 from fpucore.errors import ParameterError
-from fpucore.paper import plot
+from fpucore.paper import notebook, plot
 from fpucore.paper.registry import FIGURES, LABELS, figure
 from fpucore.paper.report import compute_many, markdown_table
 
-FORMATS = tuple(plot.FORMATS)
+FORMATS = (*plot.FORMATS, ".ipynb")
 
 
 def register(sub) -> None:
@@ -47,6 +48,8 @@ def _check(args) -> list[str]:
     labels = list(LABELS) if not args.figure else [figure(lab).label for lab in args.figure]
     if args.out is not None and Path(args.out).suffix.lower() not in FORMATS:
         raise ParameterError("--out", args.out, "a file ending in " + ", ".join(FORMATS))
+    if args.out is not None and args.out.lower().endswith(".ipynb") and len(labels) != 1:
+        raise ParameterError("--out", args.out, "one --figure", "a notebook holds one figure")
     if args.out is not None and len(labels) > 1 and not args.out.lower().endswith(".html"):
         raise ParameterError("--out", args.out, "an .html file", "several figures make a report")
     if args.table is not None:
@@ -65,6 +68,10 @@ def run(args) -> int:
             print(f"{f.number:2d}  {lab:22s} {f.section:5s} {f.caption[:70]}…")
         return 0
     labels = _check(args)
+    if args.out is not None and args.out.lower().endswith(".ipynb"):
+        notebook.write(labels[0], args.out, reduced=args.reduced)  # computed when it runs
+        print(f"wrote {args.out}")
+        return 0
     if args.out is None and args.table is None and not args.json:
         raise ParameterError("--out", None, "--out FILE, --table FILE.md, --json or --list")
     bar = tqdm(total=len(labels), desc="fpu paper", unit="fig", file=sys.stderr, leave=False)

@@ -52,6 +52,8 @@ LATE_OK: set[tuple[str, str]] = {
     ("fpucore/paper/plot.py", "from bokeh import models"),
     ("fpucore/paper/plot.py", "from bokeh.embed import file_html"),
     ("fpucore/paper/plot.py", "from bokeh.resources import INLINE"),
+    # nbformat only when a notebook is written (fpu paper --out x.ipynb)
+    ("fpucore/paper/notebook.py", "import nbformat"),
 }
 PLOTTING = {key for key in LATE_OK if key[0] == "fpucore/paper/plot.py"}
 
