@@ -148,6 +148,10 @@ class Explorer:
             css_classes=["w-N"],
             **mk,
         )
+        # N typed exactly (the slider's step at 4000 sites is coarse); the state evens it
+        self.N_exact = pn.widgets.IntInput(
+            label="N (type)", value=int(st.N), step=2, css_classes=["in-N"], width=110
+        )
         self.tol = pn.widgets.DiscreteSlider(
             label="tolerance",
             options=list(TOL_OPTIONS),
@@ -163,6 +167,14 @@ class Explorer:
         self.tol.param.watch(lambda e: self._set(tol=float(e.new)), "value_throttled")
         self.w_plus_exact.param.watch(lambda e: self._set(w_plus=e.new), "value")
         self.V_exact.param.watch(lambda e: self._set(V=e.new), "value")
+        self.N_exact.param.watch(self._on_typed_N, "value")
+
+    def _on_typed_N(self, event) -> None:
+        if self._syncing or event.new is None:
+            return
+        self.state.set_typed_N(event.new)
+        if int(self.state.N) != event.new:  # evened or clamped: show what is used
+            self._sync_widgets()
 
     def _build_law_widgets(self) -> None:
         """Law selector: cubic (a, b sliders) or an expression with its coefficient sliders."""
@@ -301,6 +313,7 @@ class Explorer:
             self._put(self.b, st.b, **widened(st.b, *B_RANGE))
             self._sync_law()
             self._put(self.N, int(st.N), **widened(st.N, *N_RANGE))
+            self.N_exact.value = int(st.N)
             self._put(self.tol, nearest_tol(st.tol))
             summ = st.summary()
             if "alpha" in summ:
@@ -392,7 +405,7 @@ class Explorer:
     # ------------------------------------------------------------------ layout
     def sidebar(self) -> list:
         accuracy = pn.Card(
-            self.N,
+            pn.Row(self.N, self.N_exact, sizing_mode="stretch_width"),
             self.tol,
             pn.pane.Markdown(
                 "_Smaller N / looser tolerance: faster, less accurate — see the "

@@ -147,6 +147,21 @@ class ExplorerState(param.Parameterized):
             return "superkink"
         return qc.solitary(self.law(), self.w_plus, self.V).kind
 
+    def set_typed_N(self, value) -> None:
+        """N typed into the box beside the slider: an odd N goes to the even N below it and one
+        outside N_RANGE to the nearest end; ``note`` says so (never silently)."""
+        if value is None:
+            return
+        N = int(value)
+        fixed = min(max(N - N % 2, N_RANGE[0]), N_RANGE[1])
+        self.N = fixed
+        if fixed != N:
+            why = "odd" if N_RANGE[0] <= N <= N_RANGE[1] else "outside the range"
+            self.note = (
+                f"N = {N} is {why}: using N = {fixed} (an even integer in "
+                f"[{N_RANGE[0]}, {N_RANGE[1]}])"
+            )
+
     # ------------------------------------------------------------------ coupling
     def _tie(self, *events):
         if self._tying:

@@ -207,6 +207,25 @@ def energy_criterion(
     return criterion_from_samples(law, w_plus, V, E, dE, ok, qc_samples, family, t0)
 
 
+def _samples(**arrays) -> list[np.ndarray]:
+    """The sample arrays as 1-D arrays of one length n (``converged`` as bool), else
+    ParameterError naming the first that differs (V of 5 and energy of 4 used to be cut to 4)."""
+    out = []
+    for name, x in arrays.items():
+        try:
+            arr = np.atleast_1d(np.asarray(x, dtype=bool if name == "converged" else float))
+        except (TypeError, ValueError):
+            arr = None
+        n = out[0].size if out else None
+        if arr is None or arr.ndim != 1 or (n is not None and arr.size != n):
+            shape = "not numbers" if arr is None else f"shape {arr.shape}"
+            raise ParameterError(
+                name, shape, "a 1-D array" + (f" of length {n}, like V" if n is not None else "")
+            )
+        out.append(arr)
+    return out
+
+
 def criterion_from_samples(
     law,
     w_plus: float,
@@ -228,11 +247,8 @@ def criterion_from_samples(
     w_plus = require_finite("w_plus", w_plus)
     (a, b), (c, d) = qc.solitary_intervals(law, w_plus)
     _check_qc_samples(qc_samples)
-    V = np.atleast_1d(np.asarray(V, dtype=float))
-    E = np.atleast_1d(np.asarray(energy, dtype=float))
-    dE = np.atleast_1d(np.asarray(energy_error, dtype=float))
-    ok = np.atleast_1d(np.asarray(converged, dtype=bool)) & np.isfinite(E)
-    ok &= np.isfinite(dE)
+    V, E, dE, conv = _samples(V=V, energy=energy, energy_error=energy_error, converged=converged)
+    ok = conv & np.isfinite(E) & np.isfinite(dE)
     ext, qV, qE, qext = [], [], [], []
     for lo, hi in ((a, b), (c, d)):
         sel = ok & (V > lo) & (V < hi)
