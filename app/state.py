@@ -27,7 +27,7 @@ from fpucore.errors import ParameterError
 
 from . import compute
 
-TABS = ("force", "phase", "profiles", "diagram", "floquet", "simulation", "atlas")
+TABS = ("force", "phase", "profiles", "diagram", "floquet", "simulation", "atlas", "paper")
 MODES = ("solitary", "superkink")
 #: what the sliders (and so the URL) may set; N even (fpucore's N_MIN = 64)
 A_RANGE = (-5.0, -0.1)

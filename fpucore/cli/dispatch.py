@@ -10,12 +10,12 @@ from __future__ import annotations
 import sys
 
 from fpucore.budget import require_env_budget
-from fpucore.cli import atlas, floquet, qc, simulate, warm, wave
+from fpucore.cli import atlas, floquet, paper, qc, simulate, warm, wave
 from fpucore.cli.common import Parser, check_out_path
 from fpucore.errors import ParameterError
 from fpucore.parallel.threads import apply_thread_policy
 
-COMMANDS = (qc, warm, wave, floquet, simulate, atlas)
+COMMANDS = (qc, warm, wave, floquet, simulate, atlas, paper)
 
 
 def build_parser() -> Parser:
