@@ -13,11 +13,12 @@ import signal
 import sys
 import threading
 
-from fpucore.cli import atlas, floquet, qc, simulate, warm, wave
+from fpucore.budget import require_env_budget
+from fpucore.cli import atlas, floquet, paper, qc, simulate, warm, wave
 from fpucore.cli.common import Parser, check_out_path
 from fpucore.errors import ParameterError
 
-COMMANDS = (qc, warm, wave, floquet, simulate, atlas)
+COMMANDS = (qc, warm, wave, floquet, simulate, atlas, paper)
 # what every computing command needs (the old eager ``import fpucore``): loaded after parsing
 STACK = ("fpucore.parallel.threads", "fpucore.qc", "fpucore.wave", "fpucore.floquet",
          "fpucore.simulate")  # fmt: skip
@@ -61,6 +62,7 @@ def main(argv: list[str] | None = None) -> int:
         # command computing one job; commands that fan out (atlas) set threads=1 for the parent
         threads = getattr(args, "threads", None)
         apply_thread_policy(default_threads() if threads is None else threads)
+        require_env_budget()  # an invalid FPU_MEMORY_BUDGET is refused by every command
         if getattr(args, "out", None) is not None:  # an unwritable output fails before the work
             check_out_path(args.out, store=getattr(args, "out_is_store", False))
         return int(args.func(args) or 0)

@@ -54,10 +54,11 @@ import numpy  # noqa: F401  (numpy's OpenBLAS is loaded before the limit is appl
 import scipy.linalg  # noqa: F401  (load scipy's own OpenBLAS so the limit reaches it)
 from threadpoolctl import ThreadpoolController, threadpool_info, threadpool_limits
 
-from fpucore.errors import ParameterError
+from fpucore.errors import ParameterError, require_int
 
 THREADING_LAYER = "omp"  # the layer fpucore/__init__ also puts in the environment
 ENV_VAR = "FPU_THREADS"  # the user's override of the budget (a positive integer or "all")
+MAX_THREADS = 4096  # per process: far above any machine's cores
 _limiter = None  # the active threadpoolctl limiter (kept alive: the limit holds while it lives)
 _process_budget: int | None = None  # set by apply_thread_policy / thread_policy
 _in_force: int | None = None  # the BLAS/OpenMP limit this module last applied process-wide
@@ -85,6 +86,14 @@ def cores() -> int:
         return os.cpu_count() or 1
 
 
+def thread_count(n_threads: int | None) -> int:
+    """The thread count of a policy: :func:`cores` for None, else an integer >= 1 (ParameterError
+    for 'x', 2.5, True ...: ``int('x')`` used to escape as a ValueError)."""
+    if n_threads is None:
+        return cores()
+    return require_int("n_threads", n_threads, 1, MAX_THREADS)
+
+
 def default_threads() -> int:
     """The budget the user asked for: ``FPU_THREADS`` (a positive integer, or ``all`` for every
     core), else 1.  A malformed value is refused with a ParameterError naming the variable."""
@@ -97,8 +106,9 @@ def default_threads() -> int:
         n = int(raw)
     except ValueError:
         n = 0
-    if n < 1:
-        raise ParameterError(ENV_VAR, raw, "a positive integer or 'all'", "environment variable")
+    if not 1 <= n <= MAX_THREADS:
+        raise ParameterError(ENV_VAR, raw, f"an integer in [1, {MAX_THREADS}] or 'all'",
+                             "environment variable")  # fmt: skip
     return n
 
 
@@ -122,7 +132,7 @@ def apply_thread_policy(n_threads: int | None = 1) -> dict:
     libraries found and the limits now in force.
     """
     global _limiter, _process_budget, _in_force
-    n = cores() if n_threads is None else max(1, int(n_threads))
+    n = thread_count(n_threads)
     # Numba first: it launches its layer (loading libgomp), which threadpoolctl then limits too
     numba.set_num_threads(_numba_threads(n))
     if _limiter is not None:
@@ -149,7 +159,7 @@ def thread_policy(n_threads: int | None = 1) -> Iterator[None]:
     one thread like a worker; afterwards it is back to its own budget.  Costs ~1.5 ms
     (threadpoolctl scans the loaded libraries)."""
     global _process_budget, _in_force
-    n = cores() if n_threads is None else max(1, int(n_threads))
+    n = thread_count(n_threads)
     old = numba.get_num_threads()
     saved = _process_budget, _in_force
     numba.set_num_threads(_numba_threads(n))

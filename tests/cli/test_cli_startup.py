@@ -14,7 +14,7 @@ from fpucore.cli import choices
 
 HELPS = [[], ["qc"], ["warm"], ["wave"], ["wave", "superkink"], ["floquet"],
          ["floquet", "superkink"], ["floquet", "sweep"], ["simulate"], ["simulate", "riemann"],
-         ["simulate", "wave", "solitary"], ["atlas"], ["atlas", "solitary"]]  # fmt: skip
+         ["simulate", "wave", "solitary"], ["atlas"], ["atlas", "solitary"], ["paper"]]  # fmt: skip
 
 # every help of the parser in one fresh interpreter, then the heavy modules it imported
 HELP_PROBE = r"""
