@@ -25,10 +25,14 @@ import sys
 # The `fpu` command (console script, or `python -m fpucore`: argv[0] is still "-m" while runpy
 # imports the package) cannot catch Ctrl-C before its main() runs: Python would print a
 # KeyboardInterrupt traceback.  For the import only, Ctrl-C gives the CLI's own one line and
-# exit 130 (issue 14 item 7); the previous handler comes back at the end of this file, and the
-# scientific stack is imported later, inside main()'s own handler.  A library import (any other
-# argv[0]) is left alone.
-_CLI_IMPORT = bool(sys.argv) and (os.path.basename(sys.argv[0]) == "fpu" or sys.argv[0] == "-m")
+# exit 130 (issue 14 item 7).  The handler stays until fpu's main() has parsed its arguments
+# and imported the scientific stack (fpucore/cli/dispatch.py: load_stack puts Python's own
+# handler back for the command).  A library import (any other argv[0]) is left alone.
+_ORIG_ARGV = getattr(sys, "orig_argv", [])
+_RUN_AS_MODULE = "-m" in _ORIG_ARGV and _ORIG_ARGV[_ORIG_ARGV.index("-m") + 1 :][:1] == ["fpucore"]
+_CLI_IMPORT = bool(sys.argv) and (
+    os.path.basename(sys.argv[0]) == "fpu" or (sys.argv[0] == "-m" and _RUN_AS_MODULE)
+)
 
 
 def _interrupted_during_import(signum, frame):  # pragma: no cover (a subprocess test)
@@ -38,7 +42,7 @@ def _interrupted_during_import(signum, frame):  # pragma: no cover (a subprocess
 
 
 if _CLI_IMPORT:
-    _PREVIOUS_SIGINT = signal.signal(signal.SIGINT, _interrupted_during_import)
+    signal.signal(signal.SIGINT, _interrupted_during_import)
 
 from fpucore.jit_cache import key_cache_dir  # noqa: E402
 
@@ -95,7 +99,3 @@ def __getattr__(name: str):
 
 def __dir__() -> list[str]:
     return sorted(set(globals()) | set(_LAZY))
-
-
-if _CLI_IMPORT:
-    signal.signal(signal.SIGINT, _PREVIOUS_SIGINT)

@@ -36,6 +36,9 @@ def load_stack() -> None:
     (NumPy's) surfaces as an ImportError with a traceback, not as KeyboardInterrupt."""
     main_thread = threading.current_thread() is threading.main_thread()
     previous = signal.signal(signal.SIGINT, _interrupted) if main_thread else None
+    if getattr(previous, "__module__", None) == "fpucore":
+        # fpucore/__init__'s start-up handler of the `fpu` process: the command gets Python's own
+        previous = signal.default_int_handler
     try:
         for name in STACK:
             importlib.import_module(name)
