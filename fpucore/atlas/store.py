@@ -245,6 +245,9 @@ def read_done(path: Path, grid: Grid) -> np.ndarray:
     return done_of(zarr_module().open_array(path / "done", mode="r", zarr_format=2), grid)
 
 
+READ_BLOCK = 64 * 2**20  # bytes of one field read at once while loading a store
+
+
 def load_records(group, grid: Grid, cols: dict[str, np.ndarray]) -> np.ndarray:
     """Copy the stored records of the done points into ``cols`` (one array per field, the
     grid's shape, filled with the fields' fill values) and return the done mask.
@@ -252,29 +255,36 @@ def load_records(group, grid: Grid, cols: dict[str, np.ndarray]) -> np.ndarray:
     A point counts as done only if its ``done`` flag and every field of its chunk read back and
     its status is not empty (every record has one: an empty status is a lost data chunk).  A
     chunk failing any of these is left at its fill values and recomputed by the run; its files
-    are rewritten whole, so the damage is repaired.  One field is read at a time (the transient
-    memory is one field of the grid, not the store)."""
+    are rewritten whole, so the damage is repaired.  Fields are read in blocks of rows of at
+    most :data:`READ_BLOCK` bytes (the transient memory of loading, whatever the grid)."""
     done = done_of(group["done"], grid)
     bad = np.zeros(grid.shape, bool)
+    chunks = grid.chunks()
     for k in FIELDS:
         arr, col = group[k], cols[k]
-        try:
-            vals = np.asarray(arr[...])
-            col[done] = vals[done]
-            continue
-        except Exception:  # noqa: BLE001  (some chunk of this field is damaged: go chunk by chunk)
-            pass
-        for i, j0, j1 in grid.chunks():
-            if done[i, j0:j1].any():
-                try:
-                    vals = np.asarray(arr[i, j0:j1])
-                    sel = done[i, j0:j1]
-                    col[i, j0:j1][sel] = vals[sel]
-                except Exception:  # noqa: BLE001
-                    bad[i, j0:j1] = True
-    for i, j0, j1 in grid.chunks():  # a point's status is never empty once written
-        if (cols["status"][i, j0:j1][done[i, j0:j1]] == "").any():
-            bad[i, j0:j1] = True
+        step = max(1, READ_BLOCK // max(1, col.itemsize * grid.shape[1]))
+        for r0 in range(0, grid.shape[0], step):
+            r1 = min(r0 + step, grid.shape[0])
+            sel = done[r0:r1]
+            if not sel.any():
+                continue
+            try:
+                col[r0:r1][sel] = np.asarray(arr[r0:r1])[sel]
+                continue
+            except Exception:  # noqa: BLE001  (a damaged chunk in the block: chunk by chunk)
+                pass
+            for i, j0, j1 in chunks:
+                if r0 <= i < r1 and done[i, j0:j1].any():
+                    try:
+                        pick = done[i, j0:j1]
+                        col[i, j0:j1][pick] = np.asarray(arr[i, j0:j1])[pick]
+                    except Exception:  # noqa: BLE001
+                        bad[i, j0:j1] = True
+    lost = done & (cols["status"] == "")  # a point's status is never empty once written
+    if lost.any():
+        for i, j0, j1 in chunks:
+            if lost[i, j0:j1].any():
+                bad[i, j0:j1] = True
     done &= ~bad
     for k, (_, fill) in FIELDS.items():  # chunks read only in part go back to "not computed"
         cols[k][bad] = fill
