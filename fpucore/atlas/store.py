@@ -245,7 +245,7 @@ def read_done(path: Path, grid: Grid) -> np.ndarray:
     return done_of(zarr_module().open_array(path / "done", mode="r", zarr_format=2), grid)
 
 
-READ_BLOCK = 64 * 2**20  # bytes of one field read at once while loading a store
+READ_BLOCK = 16 * 2**20  # bytes of one field read at once while loading a store
 
 
 def load_records(group, grid: Grid, cols: dict[str, np.ndarray]) -> np.ndarray:
