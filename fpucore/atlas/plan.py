@@ -65,6 +65,8 @@ def plan_workers(backend: str, workers, n_chunks: int, address, force: bool):
         raise ParameterError("workers", workers, "an integer >= 1 or None (all cores)")
     if not isinstance(force, bool):
         raise ParameterError("force_workers", force, "True | False")
+    if backend == "external":  # an Executor the caller made: its processes exist already
+        return workers, ()
     if backend == "inline":
         note = () if workers in (None, 1) else (f"workers={workers} ignored: the inline "
                                                  "backend computes in this process",)  # fmt: skip
@@ -108,11 +110,13 @@ def worker_bytes(N: int | None, floquet: bool) -> float:
 def plan(grid: Grid, backend: str, workers, address, force_workers: bool, N: int | None,
          floquet: bool, memory_budget=None) -> Plan:  # fmt: skip
     """Workers and memory of a run, refused (ParameterError naming ``grid`` or ``workers``, with
-    the estimate and the budget) if the memory estimate exceeds the budget."""
+    the estimate and the budget) if the memory estimate exceeds the budget.  backend : "process"
+    | "dask" | "inline", or "external" for an Executor the caller made (``workers`` = its
+    count; its processes run already, so only the table is a new request)."""
     n_chunks = len(grid.chunks())
     n, notes = plan_workers(backend, workers, n_chunks, address, force_workers)
     table = PARENT_BASE + PARENT_FACTOR * POINT_BYTES * grid.size
-    per_worker = worker_bytes(N, floquet) if backend != "inline" else 0.0
+    per_worker = worker_bytes(N, floquet) if backend not in ("inline", "external") else 0.0
     if backend == "inline" and floquet:  # the spectrum's matrices live in this process
         per_worker = worker_bytes(N, True) - WORKER_BYTES
     pool = (n or 0) * per_worker

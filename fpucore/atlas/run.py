@@ -209,10 +209,10 @@ def run(
             raise ParameterError("backend", backend, "'dask' with a scheduler address")
         parse_scheduler_address(address, "address")  # no traffic yet: the form first
     grid = make_grid(law, kind, rows, V, chunk)
-    if executor is not None:  # its workers are given: only the memory is planned
-        address, backend = None, "inline" if executor.backend == "inline" else "process"
-        workers, force_workers = executor.workers, True
-    p = plan(grid, backend, workers, address, force_workers, N, floquet, memory_budget)
+    if executor is not None:  # its workers run already: only the table is a new request
+        p = plan(grid, "external", executor.workers, None, True, N, floquet, memory_budget)
+    else:
+        p = plan(grid, backend, workers, address, force_workers, N, floquet, memory_budget)
     attrs = identity_attrs(grid, law, N, tol, floquet, finite_size, m, continuation,
                            floquet_method)  # fmt: skip
     path = None
