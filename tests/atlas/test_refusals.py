@@ -268,7 +268,7 @@ p = plan(make_grid(law, "solitary", kw["rows"], kw["V"]), "process", 1, None, Fa
 assert p.memory_bytes == res.memory_estimate_bytes
 print(base, rss(), p.table_bytes)
 """
-    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=T)
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
     assert r.returncode == 0, r.stderr
     base, peak, estimate = map(float, r.stdout.split())
     table = 120_000 * atlas_plan.POINT_BYTES
