@@ -272,8 +272,10 @@ print(base, rss(), p.table_bytes)
     assert r.returncode == 0, r.stderr
     base, peak, estimate = map(float, r.stdout.split())
     table = 120_000 * atlas_plan.POINT_BYTES
-    print(f"parent grew {(peak - base) / 2**20:.0f} MiB; table {table / 2**20:.0f} MiB; "
-          f"peak {peak / 2**20:.0f} MiB, estimate {estimate / 2**20:.0f} MiB")
+    print(
+        f"parent grew {(peak - base) / 2**20:.0f} MiB; table {table / 2**20:.0f} MiB; "
+        f"peak {peak / 2**20:.0f} MiB, estimate {estimate / 2**20:.0f} MiB"
+    )
     assert peak <= estimate  # the bound holds (the base measured: ~185 MiB of imports)
     assert peak - base >= 0.8 * table  # and the table is really what it costs
 
