@@ -24,6 +24,7 @@ from typing import TYPE_CHECKING, ClassVar
 import numpy as np
 
 from fpucore.atlas.grid import Grid, make_grid
+from fpucore.atlas.plan import plan
 from fpucore.atlas.point import FIELDS, empty_record, failure_text, solve_chunk
 from fpucore.atlas.store import (
     StoreLock,
@@ -31,10 +32,11 @@ from fpucore.atlas.store import (
     check_out,
     create,
     identity_attrs,
+    load_records,
     open_existing,
-    read_done,
     skeleton,
 )
+from fpucore.budget import require_time_budget
 from fpucore.errors import ParameterError, require_finite
 from fpucore.floquet.monodromy import MAX_N
 from fpucore.floquet.multipliers import METHODS
@@ -42,8 +44,11 @@ from fpucore.law import HardeningSofteningLaw
 
 if TYPE_CHECKING:
     import xarray as xr
-from fpucore.parallel import Cancelled, Executor, WorkerDied, cores
+from fpucore.parallel import BACKENDS, Cancelled, Executor, WorkerDied
+from fpucore.parallel.scheduler import check_scheduler, parse_scheduler_address
 from fpucore.result import Result, status_of
+
+MAX_STEPS = 20_000  # RK steps per period: floquet.spectrum's range of m
 
 STATUS_COUNTS = ("ok", "not_converged", "no_wave", "failed")
 
@@ -54,7 +59,9 @@ class AtlasResult(Result):
     n_* : points by status over the whole grid (``n_pending``: not computed, e.g. budget hit);
     n_computed / n_loaded : points computed in this run / read back from the store.
     max_residual, max_modulus_error : the largest wave residual and Floquet error bar over
-    the ``ok`` points (NaN if none).  points_per_s : n_computed / elapsed_s."""
+    the ``ok`` points (NaN if none).  points_per_s : n_computed / elapsed_s.  notes : what the
+    run decided before it started (workers capped, ...).  memory_estimate_bytes : the memory
+    estimate checked against the budget (:mod:`fpucore.atlas.plan`)."""
 
     kind: str
     shape: tuple
@@ -77,6 +84,8 @@ class AtlasResult(Result):
     stopped: bool
     message: str
     elapsed_s: float
+    notes: tuple = ()
+    memory_estimate_bytes: float = math.nan
 
     ERROR_FIELDS: ClassVar = ("max_residual", "max_modulus_error")
     EXCLUDE: ClassVar = ("dataset",)
@@ -86,14 +95,22 @@ class AtlasResult(Result):
         return status_of(self.converged, self.stopped)
 
 
-def check_args(N, tol, time_budget_s) -> None:
+def check_args(N, tol, time_budget_s, m=None, **flags) -> None:
+    """Every scalar option of :func:`run`, refused up front (the grid, the law and the store are
+    checked by their own modules).  flags : name → value of the options that must be bools."""
     if N is not None and not (isinstance(N, (int, np.integer)) and 8 <= N <= MAX_N and N % 2 == 0):
         raise ParameterError("N", N, f"an even integer in [8, {MAX_N}] or None (automatic)")
     tol = require_finite("tol", tol)
     if not (1e-15 <= tol <= 1e-3):
         raise ParameterError("tol", tol, "[1e-15, 1e-3]")
-    if time_budget_s is not None and not (require_finite("time_budget_s", time_budget_s) > 0):
-        raise ParameterError("time_budget_s", time_budget_s, "> 0 seconds or None")
+    require_time_budget(time_budget_s)
+    if m is not None and not (isinstance(m, (int, np.integer)) and not isinstance(m, bool)
+                              and 2 <= m <= MAX_STEPS):  # fmt: skip
+        raise ParameterError("m", m, f"an integer in [2, {MAX_STEPS}] or None (automatic)",
+                             "RK steps per period of the Floquet integration")  # fmt: skip
+    for name, value in flags.items():
+        if not isinstance(value, (bool, np.bool_)):
+            raise ParameterError(name, value, "True | False")
 
 
 class Table:
@@ -102,6 +119,7 @@ class Table:
     def __init__(self, grid: Grid, attrs: dict):
         self.ds = skeleton(grid, attrs)
         self.cols = {k: self.ds[k].values for k in [*FIELDS, "done"]}
+        self.grid = grid
 
     def put(self, i: int, j0: int, records: list[dict], final: bool) -> None:
         for j, rec in enumerate(records, start=j0):
@@ -109,10 +127,12 @@ class Table:
                 self.cols[k][i, j] = rec[k]
             self.cols["done"][i, j] = 1 if final else 0
 
-    def load(self, stored: xr.Dataset, done: np.ndarray) -> None:
-        for k in [*FIELDS, "done"]:
-            vals = stored[k].values
-            self.cols[k][done] = vals[done]
+    def load(self, group) -> int:
+        """The stored records of the done points (damaged chunks left to recompute, see
+        :func:`fpucore.atlas.store.load_records`); returns how many were loaded."""
+        done = load_records(group, self.grid, self.cols)
+        self.cols["done"][done] = 1
+        return int(done.sum())
 
     def count(self, status: str) -> int:
         return int(np.sum(self.cols["status"] == status))
@@ -141,6 +161,9 @@ def run(
     on_points: Callable[[list[tuple[int, int, dict]]], None] | None = None,
     time_budget_s: float | None = None,
     caller_runs: bool = False,
+    force_workers: bool = False,
+    memory_budget: str | float | None = None,
+    note: Callable[[str], None] | None = None,
 ) -> AtlasResult:
     """Compute (or resume) an atlas over the grid (rows × V) — see :mod:`fpucore.atlas`.
 
@@ -160,41 +183,68 @@ def run(
     run starts its own process pool, this process computes chunks too and the pool has one
     process fewer (``Executor(caller_runs=True)``; sweeps use it); the time budget is then
     checked between two of its chunks.
+    workers : processes of a local pool or LocalCluster (None: min(cores, chunks)); a larger
+    count is capped at that (with a note) unless force_workers, and refused above 4 x cores
+    (:mod:`fpucore.atlas.plan`).  address : a Dask scheduler "tcp://HOST:PORT" (backend "dask"),
+    checked with a bounded connect and handshake before the store is created
+    (:func:`fpucore.parallel.scheduler.check_scheduler`).  memory_budget : the memory the
+    table and the workers may take (default ``FPU_MEMORY_BUDGET`` or 25 % of RAM), estimated
+    before anything starts.  note(text) : each decision of the plan (e.g. workers capped),
+    before the run starts; also in ``AtlasResult.notes``.
+
+    Everything is checked before the store is created or anything computed: a refused run
+    leaves no store behind, so its corrected retry is not refused as "the store exists".
     """
     t0 = time.perf_counter()
     if not isinstance(law, HardeningSofteningLaw):
         raise ParameterError("law", law, "a force law (CubicLaw, PolynomialLaw, ...)")
-    check_args(N, tol, time_budget_s)
+    check_args(N, tol, time_budget_s, m, floquet=floquet, finite_size=finite_size,
+               continuation=continuation, resume=resume, caller_runs=caller_runs)  # fmt: skip
     if floquet_method not in METHODS:
         raise ParameterError("floquet_method", floquet_method, " | ".join(map(repr, METHODS)))
+    if backend not in BACKENDS:
+        raise ParameterError("backend", backend, " | ".join(BACKENDS))
+    if address is not None:
+        if backend != "dask":
+            raise ParameterError("backend", backend, "'dask' with a scheduler address")
+        parse_scheduler_address(address, "address")  # no traffic yet: the form first
     grid = make_grid(law, kind, rows, V, chunk)
+    if executor is not None:  # its workers run already: only the table is a new request
+        p = plan(grid, "external", executor.workers, None, True, N, floquet, memory_budget)
+    else:
+        p = plan(grid, backend, workers, address, force_workers, N, floquet, memory_budget)
     attrs = identity_attrs(grid, law, N, tol, floquet, finite_size, m, continuation,
                            floquet_method)  # fmt: skip
-    table = Table(grid, attrs)
-    lock = writer = None
     path = None
     if out is not None:
         path = check_out(out)
-        exists = path.exists()
-        if exists and not resume:
+        if path.exists() and not resume:
             raise ParameterError("out", str(out), "a new path, or resume=True (--resume)",
                                  "the store exists")  # fmt: skip
+    notes = list(p.notes)
+    if address is not None:  # last check before the store: a bounded connect and handshake
+        ident = check_scheduler(address, name="address")
+        notes.append(f"Dask scheduler {address}: {ident.get('n_workers')} workers")
+    for text in notes:
+        if note is not None:
+            note(text)
+    table = Table(grid, attrs)
+    lock = writer = None
+    if path is not None:
         lock = StoreLock(path)
     try:
         n_loaded = 0
         if path is not None:
             if path.exists():
-                stored = open_existing(path, grid, attrs)
-                done = read_done(path, grid)
-                table.load(stored, done)
-                n_loaded = int(done.sum())
+                n_loaded = table.load(open_existing(path, grid, attrs))
             else:
-                create(path, grid, attrs)
+                create(path, table.ds, grid.chunk)
             writer = Writer(path)
         res = _execute(
             grid, table, law, N, tol, (floquet, finite_size, floquet_method), m, continuation,
             writer, executor,
-            backend, workers, address, progress, on_points, time_budget_s, t0, caller_runs,
+            backend, (p.workers, workers is None), address, progress, on_points, time_budget_s,
+            t0, caller_runs,
         )  # fmt: skip
         n_computed, used_backend, n_workers, stopped, msg = res
         if writer is not None:
@@ -219,14 +269,14 @@ def run(
         points_per_s=n_computed / elapsed if elapsed > 0 else math.nan,
         converged=n_pending == 0 and counts["failed"] == 0, stopped=stopped,
         message=msg or f"{grid.size} points: {summary} ({n_loaded} from the store)",
-        elapsed_s=elapsed,
+        elapsed_s=elapsed, notes=tuple(notes), memory_estimate_bytes=p.memory_bytes,
     )  # fmt: skip
 
 
 def _execute(grid, table, law, N, tol, floquet, m, continuation, writer, executor, backend,
              workers, address, progress, on_points, time_budget_s, t0, caller_runs):  # fmt: skip
     """Submit the chunks not yet done, gather and store them; (n_computed, backend, workers,
-    stopped, message)."""
+    stopped, message).  workers : (the plan's count, whether it was chosen automatically)."""
     done = table.cols["done"] == 1
     todo = [(i, j0, j1) for i, j0, j1 in grid.chunks() if not done[i, j0:j1].all()]
 
@@ -239,9 +289,10 @@ def _execute(grid, table, law, N, tol, floquet, m, continuation, writer, executo
 
     own = executor is None and bool(todo)
     if own:
-        if backend == "process" and len(todo) == 1 and workers is None:
+        planned, automatic = workers
+        if backend == "process" and len(todo) == 1 and automatic:
             backend = "inline"  # one chunk: no pool to start
-        n = min(cores(), len(todo)) if (workers is None and backend == "process") else workers
+        n = None if planned is None else min(planned, len(todo))
         executor = Executor(backend, workers=n, address=address,
                             caller_runs=caller_runs and backend == "process")  # fmt: skip
     total, failed = grid.size, int(np.sum(table.cols["status"] == "failed"))

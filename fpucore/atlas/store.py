@@ -9,8 +9,12 @@ created/updated times.
 
 Crash safety.  Zarr's local store writes each file atomically (temporary file + rename).  A chunk
 is written data first, ``done`` last: a client killed in between leaves ``done = 0`` and the
-chunk is recomputed on resume — a half-written point is never read as valid.  Unreadable
-``done`` files count as not done.
+chunk is recomputed on resume — a half-written point is never read as valid.  A chunk any of
+whose files cannot be read back (a damaged or truncated file: a decompression error) counts as
+not done, is recomputed on resume and its files rewritten (:func:`load_records`).  A damaged
+skeleton — a variable's metadata (``.zarray``), the attributes or a coordinate — cannot be
+repaired from the chunks: resuming it is refused with one line saying what to do
+(:func:`open_existing`).
 
 Exclusive writer.  :class:`StoreLock` takes an ``fcntl`` lock on ``<store>.lock`` (pid and host
 written inside): a second sweep on the same store is refused; the kernel releases the lock when
@@ -23,7 +27,9 @@ import fcntl
 import os
 import shutil
 import socket
+import tempfile
 import time
+import warnings
 from importlib import metadata
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -69,7 +75,8 @@ def fpucore_version() -> str:
 
 
 def check_out(path: str | os.PathLike) -> Path:
-    """Refuse a store path that cannot be written, before anything is computed."""
+    """Refuse a store path that cannot be written, before anything is computed: its directory
+    must exist and take a new entry (tried: ``os.access`` says yes for root on ``/proc``)."""
     p = Path(path)
     if not p.parent.is_dir():
         raise ParameterError("out", str(path), "a path in an existing directory",
@@ -79,6 +86,12 @@ def check_out(path: str | os.PathLike) -> Path:
                              "it is a file")  # fmt: skip
     if not os.access(p.parent, os.W_OK):
         raise ParameterError("out", str(path), "a writable location")
+    try:  # the store, its ".creating" twin and its ".lock" are all made in the parent
+        os.rmdir(tempfile.mkdtemp(prefix=f".{p.name}.", suffix=".probe", dir=p.parent))
+    except OSError as exc:
+        raise ParameterError("out", str(path), "a writable location",
+                             f"cannot create anything in {p.parent}: {exc.strerror or exc}"
+                             ) from None  # fmt: skip
     return p
 
 
@@ -87,7 +100,12 @@ class StoreLock:
 
     def __init__(self, path: Path):
         self.path = path.with_name(path.name + ".lock")  # beside the store: not a Zarr node
-        self._fd = os.open(self.path, os.O_RDWR | os.O_CREAT, 0o644)
+        try:
+            self._fd = os.open(self.path, os.O_RDWR | os.O_CREAT, 0o644)
+        except OSError as exc:
+            raise ParameterError("out", str(path), "a writable location",
+                                 f"cannot create {self.path.name}: {exc.strerror or exc}"
+                                 ) from None  # fmt: skip
         try:
             fcntl.flock(self._fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except BlockingIOError:
@@ -117,9 +135,8 @@ def skeleton(grid: Grid, attrs: dict) -> xr.Dataset:
     dims = (grid.row_dim, "V")
     data = {k: (dims, np.full(grid.shape, fill, dtype=dt)) for k, (dt, fill) in FIELDS.items()}
     data["done"] = (dims, np.zeros(grid.shape, np.int8))
-    rows = np.array(grid.rows, dtype=float if grid.row_dim == "w_plus" else "<U8")
     xr = xarray_module()
-    return xr.Dataset(data, coords={grid.row_dim: rows, "V": grid.V}, attrs=attrs)
+    return xr.Dataset(data, coords={grid.row_dim: skeleton_rows(grid), "V": grid.V}, attrs=attrs)
 
 
 def identity_attrs(grid: Grid, law, N, tol: float, floquet: bool, finite_size: bool, m,
@@ -139,35 +156,68 @@ def identity_attrs(grid: Grid, law, N, tol: float, floquet: bool, finite_size: b
     return attrs
 
 
-def create(path: Path, grid: Grid, attrs: dict) -> None:
-    """Write the empty store beside ``path`` and rename it into place (a client killed while
-    creating leaves no half-made store behind)."""
+def create(path: Path, ds: xr.Dataset, chunk: int) -> None:
+    """Write the empty store ``ds`` (the run's own table: no second copy of the grid in memory)
+    beside ``path`` and rename it into place (a client killed while creating leaves no
+    half-made store behind).  chunk : points per Zarr chunk along V."""
     tmp = path.with_name(path.name + ".creating")
     shutil.rmtree(tmp, ignore_errors=True)
-    ds = skeleton(grid, {**attrs, "created": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())})
-    enc = {k: {"chunks": (1, grid.chunk)} for k in ds.data_vars}
+    ds = ds.copy(deep=False)
+    ds.attrs = {**ds.attrs, "created": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())}
+    enc = {k: {"chunks": (1, chunk)} for k in ds.data_vars}
     # Zarr format 2: fixed-width unicode (status, message) is part of its spec (not yet of v3's)
     ds.to_zarr(tmp, mode="w", encoding=enc, consolidated=False, zarr_format=2)
     os.rename(tmp, path)
 
 
-def open_existing(path: Path, grid: Grid, attrs: dict) -> xr.Dataset:
-    """The stored Dataset, after checking it is this grid with these parameters."""
+RESUME_ADVICE = ("move it aside (or delete it) and run again without --resume (resume=False), "
+                 "or choose a new --out")  # fmt: skip
+
+
+def damaged(path: Path, what: str) -> ParameterError:
+    """The refusal of a store whose skeleton (metadata, attributes, coordinates) is broken."""
+    return ParameterError("out", str(path), "an intact atlas store to resume",
+                          f"the store is damaged: {what}; {RESUME_ADVICE}")  # fmt: skip
+
+
+def open_existing(path: Path, grid: Grid, attrs: dict):
+    """The stored Zarr group, after checking its skeleton is intact (every variable's metadata,
+    the attributes, the coordinates) and that it is this grid with these parameters.  Damaged
+    data chunks are not looked at here: :func:`load_records` recomputes them."""
     try:
-        ds = xarray_module().open_zarr(path, consolidated=False)
-    except Exception as exc:  # noqa: BLE001
-        raise ParameterError("out", str(path), "an atlas store", f"cannot open: {exc}") from None
-    diff = [k for k in IDENTITY if _plain(ds.attrs.get(k)) != _plain(attrs[k])]
-    same_grid = (
-        grid.row_dim in ds.dims and ds.sizes.get(grid.row_dim) == len(grid.rows)
-        and ds.sizes.get("V") == grid.V.size and np.array_equal(ds["V"].values, grid.V)
-        and [str(x) for x in ds[grid.row_dim].values] == [str(x) for x in skeleton_rows(grid)]
-    )  # fmt: skip
-    if diff or not same_grid:
-        what = ", ".join(f"{k}: stored {ds.attrs.get(k)!r} vs {attrs[k]!r}" for k in diff)
+        group = zarr_module().open_group(path, mode="r", zarr_format=2)
+        stored = dict(group.attrs)
+    except Exception as exc:  # noqa: BLE001  (whatever zarr raises: the store is unusable)
+        raise damaged(path, f"not a readable Zarr group ({type(exc).__name__}: {exc})") from None
+    if not stored:
+        raise damaged(path, "its attributes (.zattrs) are missing")
+    diff = [k for k in IDENTITY if _plain(stored.get(k)) != _plain(attrs[k])]
+    if diff:
+        what = ", ".join(f"{k}: stored {stored.get(k)!r} vs {attrs[k]!r}" for k in diff)
         raise ParameterError("out", str(path), "a store of the same grid and parameters to "
-                             "resume", what or "the grid differs")  # fmt: skip
-    return ds
+                             "resume", what)  # fmt: skip
+    names = [*FIELDS, "done", grid.row_dim, "V"]
+    with warnings.catch_warnings():  # zarr warns of each directory without metadata: said below
+        warnings.simplefilter("ignore")
+        present = set(group.array_keys())
+    missing = [k for k in names if k not in present]
+    if missing:
+        raise damaged(path, f"variable(s) {', '.join(missing)} missing (no .zarray)")
+    wrong = [k for k in [*FIELDS, "done"] if tuple(group[k].shape) != grid.shape]
+    if wrong:
+        raise damaged(path, f"variable(s) {', '.join(wrong)} not of the grid's shape")
+    try:
+        V, rows = group["V"][:], group[grid.row_dim][:]
+    except Exception as exc:  # noqa: BLE001
+        raise damaged(path, f"a coordinate is unreadable ({type(exc).__name__}: {exc})") from None
+    same_grid = (
+        len(rows) == len(grid.rows) and np.array_equal(np.asarray(V), grid.V)
+        and [str(x) for x in rows] == [str(x) for x in skeleton_rows(grid)]
+    )  # fmt: skip
+    if not same_grid:
+        raise ParameterError("out", str(path), "a store of the same grid and parameters to "
+                             "resume", "the grid differs")  # fmt: skip
+    return group
 
 
 def _plain(v):
@@ -178,15 +228,66 @@ def skeleton_rows(grid: Grid) -> np.ndarray:
     return np.array(grid.rows, dtype=float if grid.row_dim == "w_plus" else "<U8")
 
 
-def read_done(path: Path, grid: Grid) -> np.ndarray:
-    """(n_rows, n_V) bool: points whose final record is stored (unreadable chunks: False)."""
-    arr = zarr_module().open_array(path / "done", mode="r", zarr_format=2)
+def done_of(arr, grid: Grid) -> np.ndarray:
+    """(n_rows, n_V) bool from the ``done`` array: 1 = final record stored; a chunk that cannot
+    be read counts as not done (it is recomputed)."""
     done = np.zeros(grid.shape, bool)
     for i, j0, j1 in grid.chunks():
         try:
             done[i, j0:j1] = np.asarray(arr[i, j0:j1]) == 1
         except Exception:  # noqa: BLE001  (a damaged chunk is recomputed)
             pass
+    return done
+
+
+def read_done(path: Path, grid: Grid) -> np.ndarray:
+    """(n_rows, n_V) bool: points whose final record is stored (unreadable chunks: False)."""
+    return done_of(zarr_module().open_array(path / "done", mode="r", zarr_format=2), grid)
+
+
+READ_BLOCK = 16 * 2**20  # bytes of one field read at once while loading a store
+
+
+def load_records(group, grid: Grid, cols: dict[str, np.ndarray]) -> np.ndarray:
+    """Copy the stored records of the done points into ``cols`` (one array per field, the
+    grid's shape, filled with the fields' fill values) and return the done mask.
+
+    A point counts as done only if its ``done`` flag and every field of its chunk read back and
+    its status is not empty (every record has one: an empty status is a lost data chunk).  A
+    chunk failing any of these is left at its fill values and recomputed by the run; its files
+    are rewritten whole, so the damage is repaired.  Fields are read in blocks of rows of at
+    most :data:`READ_BLOCK` bytes (the transient memory of loading, whatever the grid)."""
+    done = done_of(group["done"], grid)
+    bad = np.zeros(grid.shape, bool)
+    chunks = grid.chunks()
+    for k in FIELDS:
+        arr, col = group[k], cols[k]
+        step = max(1, READ_BLOCK // max(1, col.itemsize * grid.shape[1]))
+        for r0 in range(0, grid.shape[0], step):
+            r1 = min(r0 + step, grid.shape[0])
+            sel = done[r0:r1]
+            if not sel.any():
+                continue
+            try:
+                col[r0:r1][sel] = np.asarray(arr[r0:r1])[sel]
+                continue
+            except Exception:  # noqa: BLE001  (a damaged chunk in the block: chunk by chunk)
+                pass
+            for i, j0, j1 in chunks:
+                if r0 <= i < r1 and done[i, j0:j1].any():
+                    try:
+                        pick = done[i, j0:j1]
+                        col[i, j0:j1][pick] = np.asarray(arr[i, j0:j1])[pick]
+                    except Exception:  # noqa: BLE001
+                        bad[i, j0:j1] = True
+    lost = done & (cols["status"] == "")  # a point's status is never empty once written
+    if lost.any():
+        for i, j0, j1 in chunks:
+            if lost[i, j0:j1].any():
+                bad[i, j0:j1] = True
+    done &= ~bad
+    for k, (_, fill) in FIELDS.items():  # chunks read only in part go back to "not computed"
+        cols[k][bad] = fill
     return done
 
 

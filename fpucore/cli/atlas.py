@@ -2,11 +2,15 @@
 
 fpu atlas solitary --w-plus 0.2:6.5:40 --V 40 --N 500 --floquet --out atlas.zarr
 fpu atlas superkink --V 4.8:5.85:22 --N 500 --floquet --out sk.zarr [--branch both]
-    [--scheduler tcp://HOST:8786 | --workers K | --backend dask] [--resume] [--json]
+    [--scheduler tcp://HOST:8786 | --workers K [--force-workers] | --backend dask] [--resume]
+    [--memory-budget 4GiB] [--json]
 
 ``--V K``: K velocities spanning the union of the existence intervals over the rows;
 ``--V LO:HI:K``: an explicit range.  Progress: a tqdm bar on stderr (points, failed, ETA).
 Ctrl-C stops cleanly (exit 130); every chunk written so far is kept and ``--resume`` goes on.
+Everything is checked before the store is created (exit 2, one line): the options, the grid's
+memory against the budget, ``--out``, and ``--scheduler`` (a bounded connect and handshake);
+``--workers`` above the cores is capped (a note on stderr) unless ``--force-workers``.
 """
 
 from __future__ import annotations
@@ -51,7 +55,13 @@ def register(sub) -> None:
             default=None,
             help="process pool (default), dask (LocalCluster unless --scheduler)",
         )
-        q.add_argument("--workers", type=int, default=None, help="worker processes (all cores)")
+        q.add_argument("--workers", type=int, default=None,
+                       help="worker processes (default and cap: min(cores, chunks))")  # fmt: skip
+        q.add_argument("--force-workers", action="store_true",
+                       help="run --workers processes even above the cores")  # fmt: skip
+        q.add_argument("--memory-budget", default=None,
+                       help="memory the table and workers may take (e.g. 4GiB, 50%%; default "
+                       "FPU_MEMORY_BUDGET or 25%% of RAM)")  # fmt: skip
         q.add_argument("--time-budget", type=float, default=None, help="stop after this many s")
         q.add_argument("--no-progress", action="store_true", help="no progress bar")
         q.add_argument("--json", action="store_true", help="print the summary as JSON")
@@ -91,8 +101,13 @@ def run(args) -> int:
             finite_size=not args.no_finite_size, m=args.m, chunk=args.chunk,
             continuation=not args.no_continuation, out=args.out,
             resume=args.resume, backend=backend, workers=args.workers, address=args.scheduler,
-            progress=progress, time_budget_s=args.time_budget,
+            progress=progress, time_budget_s=args.time_budget, force_workers=args.force_workers,
+            memory_budget=args.memory_budget, note=lambda text: sys.stderr.write(f"fpu: {text}\n"),
         )  # fmt: skip
+    except ParameterError as exc:
+        if exc.name == "address":  # the API's name of what this command calls --scheduler
+            raise ParameterError("scheduler", exc.value, exc.valid, exc.reason) from None
+        raise
     except KeyboardInterrupt:
         if bar is not None:
             bar.close()

@@ -36,6 +36,8 @@ STAGES = (
 LATE_OK: set[tuple[str, str]] = {
     # distributed's ~1 s import kept out of every `import fpucore` (only the dask backend needs it)
     ("fpucore/parallel/executor.py", "from fpucore.parallel.dask_backend import DaskBackend"),
+    # ... and out of every atlas run without a --scheduler (its probe's identity request)
+    ("fpucore/parallel/scheduler.py", "from distributed.comm import connect"),
     # SymPy (~0.3 s) only when a law is typed; xarray + zarr (~0.4 s) only when a store is
     # written: not paid by every CLI call, server start and worker pool
     ("fpucore/law/expression.py", "import sympy"),
