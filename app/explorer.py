@@ -43,7 +43,7 @@ from .state import (
     url_query,
 )
 from .views import SCENES
-from .views.base import md_escape
+from .views.base import md_literal
 
 #: at most this many coefficient sliders (a law of higher degree is edited as text only)
 MAX_COEFF_SLIDERS = 8
@@ -63,10 +63,11 @@ class Explorer:
         self._syncing = False
         self._build_widgets()
         self.url_alert = pn.pane.Alert(
-            "\n\n".join(md_escape(e) for e in url_errors or []),
+            "\n\n".join(md_literal(e) for e in url_errors or []),
             alert_type="warning",
             visible=bool(url_errors),
             css_classes=["url-message"],
+            disable_math=True,
             sizing_mode="stretch_width",
         )
         self.tabs = pn.Tabs(
@@ -138,7 +139,9 @@ class Explorer:
         self.V_exact = pn.widgets.FloatInput(
             label="V (exact)", value=st.V, css_classes=["in-V"], width=130
         )
-        self.ranges = pn.pane.Markdown("", css_classes=["ranges"], sizing_mode="stretch_width")
+        self.ranges = pn.pane.Markdown(
+            "", css_classes=["ranges"], sizing_mode="stretch_width", disable_math=True
+        )
         self.N = pn.widgets.IntSlider(
             label="N (sites, even)",
             start=N_RANGE[0],
@@ -322,7 +325,7 @@ class Explorer:
     def _ranges_text(self, s: dict) -> str:
         st = self.state
         if "alpha" not in s:
-            return f"**invalid law:** {md_escape(st.problem() or '')}"
+            return f"**invalid law:** {md_literal(st.problem() or '')}"
         if (s["w_lo"], s["w_hi"]) == (s["alpha"], s["beta"]):
             where = f"w₊ ∈ (α, β) = ({s['alpha']:.5g}, {s['beta']:.5g})"
         else:  # another law: w₋ must stay inside (α, β) too
@@ -341,10 +344,10 @@ class Explorer:
             lines.append(f"superkink V bounds ({s['V_lo']:.6g}, {s['V_hi']:.6g})")
         kind = st.kind()
         lines.append(
-            f"current: **{kind}**" if kind != "invalid" else f"⚠ {md_escape(st.problem())}"
+            f"current: **{kind}**" if kind != "invalid" else f"⚠ {md_literal(st.problem())}"
         )
         if st.note:
-            lines.append(f"_{st.note}_")
+            lines.append(f"_{md_literal(st.note)}_")
         return "\n\n".join(lines)
 
     # ------------------------------------------------------------------ events

@@ -146,10 +146,30 @@ def state_stamp(state: ExplorerState) -> str:
     return f"a={state.a!r} b={state.b!r} {rest}"
 
 
-def md_escape(text: str) -> str:
-    """Text shown verbatim in a Markdown pane: the ``*`` of a law's powers (w**2) would start
-    emphasis otherwise."""
-    return text.replace("\\", "\\\\").replace("*", "\\*")
+#: Markdown's ASCII punctuation that can start markup (CommonMark backslash-escapes them all)
+_MD_PUNCT = frozenset("\\`*_{}[]()#+-.!|~:$=")
+#: characters that would open or close HTML (and attribute values): written as entities
+_HTML_CHARS = {"&": "&amp;", "<": "&lt;", ">": "&gt;", '"': "&quot;", "'": "&#x27;"}
+
+
+def md_literal(text) -> str:
+    """``text`` for a Markdown pane, shown exactly as typed and never as markup.
+
+    User-supplied text (a URL value, a typed law, an exception message repeating them) reaches
+    the page through Markdown panes whose renderer passes raw HTML through: ``<img onerror=…>``
+    in a URL ran script in the page.  One pass: the HTML characters become entities and every
+    other Markdown punctuation character gets its backslash escape (one pass, so an entity's
+    ``#`` is not escaped again) — ``__import__('os')`` and ``w**2`` show literally, ``[x](…)``
+    is no link, ``$…$`` no math."""
+    out = []
+    for ch in str(text):
+        if ch in _HTML_CHARS:
+            out.append(_HTML_CHARS[ch])
+        elif ch in _MD_PUNCT:
+            out.append("\\" + ch)
+        else:
+            out.append(ch)
+    return "".join(out)
 
 
 def python_preamble(state: ExplorerState) -> str:
@@ -190,10 +210,14 @@ class Scene(pn.viewable.Viewer):
         self.state = state
         self.plot = self.make_plot()
         self.alert = pn.pane.Alert(
-            "", alert_type="warning", visible=False, css_classes=["scene-message"]
+            "",
+            alert_type="warning",
+            visible=False,
+            css_classes=["scene-message"],
+            disable_math=True,
         )
         self.status = pn.pane.Markdown(
-            "", css_classes=["scene-status"], sizing_mode="stretch_width"
+            "", css_classes=["scene-status"], sizing_mode="stretch_width", disable_math=True
         )
         self.progress = pn.indicators.Progress(
             value=-1, max=100, visible=False, sizing_mode="stretch_width", bar_color="info"
@@ -393,7 +417,7 @@ class Scene(pn.viewable.Viewer):
         try:
             self.publish(obj)
             if info.warning:
-                self.alert.param.update(alert_type="warning", object=md_escape(info.warning))
+                self.alert.param.update(alert_type="warning", object=md_literal(info.warning))
             self.alert.visible = bool(info.warning)
             self.last_message = None
             self.renders += 1
@@ -445,11 +469,10 @@ class Scene(pn.viewable.Viewer):
         self.last_message = text
         self.last_info = None
         try:
-            self.alert.param.update(alert_type=kind, object=md_escape(text), visible=True)
+            self.alert.param.update(alert_type=kind, object=md_literal(text), visible=True)
             self.hide_plot()
-            self.status.object = (
-                f"_no plot: see the message_\n\n<small>Parameters: {md_escape(self._stamp)}</small>"
-            )
+            stamp = md_literal(self._stamp)
+            self.status.object = f"_no plot: see the message_\n\n<small>Parameters: {stamp}</small>"
             self.code.value = python_preamble(self.state) + f"# nothing shown: {text}\n"
         except Exception:  # noqa: BLE001
             log.exception("scene %s: showing the message failed", self.key)
@@ -462,7 +485,7 @@ class Scene(pn.viewable.Viewer):
     def _write_status(self, info: Info, t0: float, partial: bool = False) -> None:
         lines = []
         if info.shown:
-            lines.append(f"**Shown:** {info.shown}")
+            lines.append(f"**Shown:** {md_literal(info.shown)}")
         if info.errors:
             errs = " · ".join(f"{k} {v:.2e}" for k, v in info.errors)
             lines.append(f"**Error:** {errs}")
@@ -476,10 +499,10 @@ class Scene(pn.viewable.Viewer):
                 tparts.append(f"{label} {fmt_time(float(c))}")
         tparts.append(f"server {fmt_time(time.perf_counter() - t0)}")
         lines.append("**Time:** " + " · ".join(tparts))
-        lines.extend(f"_{n}_" for n in info.notes)
+        lines.extend(f"_{md_literal(n)}_" for n in info.notes)
         if partial:
             lines.append("_computing the rest ..._")
-        lines.append(f"<small>Parameters: {md_escape(self._stamp)}</small>")
+        lines.append(f"<small>Parameters: {md_literal(self._stamp)}</small>")
         self.status.object = "\n\n".join(lines)
 
     def _download(self):

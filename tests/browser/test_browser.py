@@ -778,3 +778,83 @@ def test_invalid_law_in_the_url_is_named_and_the_rest_kept(page):
     assert "no softening" in url_message(page), url_message(page)
     text = wait_rendered(page, "phase")
     assert "V = 5.1" in text and "law=" not in text  # the cubic, with the URL's V
+
+
+# ----------------------------------------------------------------------------- user text
+#: OWASP-style payloads (each ≤ 40 characters, so a URL message repeats it whole)
+PAYLOADS = [
+    "<script>alert(1)</script>",
+    "<img src=x onerror=alert(7)>",
+    '"><svg onload=alert(1)>',
+    "<iframe src=javascript:alert(1)>",
+    "<details open ontoggle=alert(1)>",
+    "javascript:alert(1)",
+    "[x](javascript:alert(1))",
+    "';alert(1)//",
+    "__import__('os')",
+    "**b** _i_ `c` $x$ &amp; # h",
+]
+URL_NAMES = ("a", "b", "law", "w_plus", "V", "mode", "tab", "N", "tol")
+
+#: every element of the page, through Bokeh's shadow roots: injected markup (an element whose
+#: attribute is an event handler, a javascript: URL, or a script that calls alert)
+JS_INJECTED = """() => { const bad = []; const walk = (root) => {
+  for (const el of root.querySelectorAll('*')) {
+    for (const at of el.attributes) {
+      const v = (at.value || '').toLowerCase();
+      if (at.name.startsWith('on') || v.includes('javascript:') || v.includes('alert('))
+        bad.push(el.tagName + ' ' + at.name + '=' + at.value);
+    }
+    if (el.tagName === 'SCRIPT' && (el.textContent || '').includes('alert(')) bad.push('SCRIPT');
+    if (el.shadowRoot) walk(el.shadowRoot);
+  } }; walk(document); return bad; }"""
+
+
+def injected(page) -> list[str]:
+    return page.evaluate(JS_INJECTED)
+
+
+def test_user_text_is_shown_literally_and_never_runs(page):
+    """Every URL parameter and every text input gets the payload list: no dialog fires, no
+    element with an event handler / javascript: URL appears in the DOM, and the messages repeat
+    each value exactly as typed (the old Markdown rendering ran ``V`` and ``tab`` payloads as
+    script and showed ``__import__('os')`` as ``import('os')``)."""
+    dialogs: list[str] = []
+    page.on("dialog", lambda d: (dialogs.append(d.message), d.dismiss()))
+    for payload in PAYLOADS:
+        q = urllib.parse.urlencode({n: payload for n in URL_NAMES})
+        page.goto(f"{page.server}/main?{q}")
+        page.locator(".url-message").get_by_text("tab=").wait_for()
+        settled(page)
+        page.wait_for_timeout(300)  # an onerror fires once the image has failed to load
+        note = " ".join(url_message(page).split())
+        for name in URL_NAMES:
+            assert f"{name}={payload!r}" in note, (name, payload, note)
+        assert not injected(page), (payload, injected(page))
+        assert not dialogs, (payload, dialogs)
+    # the law box: the typed text is repeated in the scene's parameters line and message
+    page.goto(f"{page.server}/main?{FAST}")
+    settled(page)
+    page.locator(".w-law-kind button", has_text="expression").click()
+    box = page.locator(".in-law input")
+    for payload in PAYLOADS:
+        box.fill(payload)
+        box.press("Enter")
+        wait_url(page, lambda q, p=payload: q.get("law") == p.strip())
+        text, msg, q = settled(page)
+        assert f"law={payload.strip()}" in " ".join(text.split()), (payload, text)
+        assert msg, (payload, text)  # no law: the scene says why
+        page.wait_for_timeout(300)
+        assert not injected(page), (payload, injected(page))
+        assert not dialogs, (payload, dialogs)
+    # the atlas store's path box: its message names the path as typed
+    open_tab(page, "Atlas")
+    store = page.locator(".scene-atlas .bk-input-group", has_text="atlas store").locator("input")
+    for payload in PAYLOADS[:3]:
+        store.fill(payload)
+        store.press("Enter")
+        page.locator(".scene-atlas .scene-message").get_by_text(payload).wait_for(timeout=20_000)
+        page.wait_for_timeout(300)
+        assert not injected(page), (payload, injected(page))
+    assert not dialogs, dialogs
+    assert not app_tracebacks()
