@@ -20,11 +20,14 @@
 
 from __future__ import annotations
 
+import logging
 import math
 import urllib.parse
 
 import panel as pn
+import panel.io.location as pn_location
 import param
+from panel.io.state import set_curdoc
 
 from fpucore.errors import ParameterError
 from fpucore.law import PolynomialLaw, expression_of
@@ -45,6 +48,8 @@ from .state import (
 from .views import SCENES
 from .views.base import md_literal
 
+log = logging.getLogger("fpu-explorer")
+
 #: at most this many coefficient sliders (a law of higher degree is edited as text only)
 MAX_COEFF_SLIDERS = 8
 
@@ -62,8 +67,9 @@ class Explorer:
         self.by_key = {s.key: s for s in self.scenes}
         self._syncing = False
         self._build_widgets()
+        self.url_errors = list(url_errors or [])
         self.url_alert = pn.pane.Alert(
-            "\n\n".join(md_literal(e) for e in url_errors or []),
+            "\n\n".join(md_literal(e) for e in self.url_errors),
             alert_type="warning",
             visible=bool(url_errors),
             css_classes=["url-message"],
@@ -164,8 +170,8 @@ class Explorer:
                 lambda e, n=name: self._set(**{n: e.new}), "value_throttled"
             )
         self.tol.param.watch(lambda e: self._set(tol=float(e.new)), "value_throttled")
-        self.w_plus_exact.param.watch(lambda e: self._set(w_plus=e.new), "value")
-        self.V_exact.param.watch(lambda e: self._set(V=e.new), "value")
+        self.w_plus_exact.param.watch(lambda e: self._typed("w_plus", e.new), "value")
+        self.V_exact.param.watch(lambda e: self._typed("V", e.new), "value")
 
     def _build_law_widgets(self) -> None:
         """Law selector: cubic (a, b sliders) or an expression with its coefficient sliders."""
@@ -188,7 +194,8 @@ class Explorer:
         self._last_expression = st.expression
         self._from_slider = False
         self.law_kind.param.watch(self._on_law_kind, "value")
-        self.law_text.param.watch(lambda e: self._set(expression=(e.new or "").strip()), "value")
+        self._law_wanted = st.expression
+        self.law_text.param.watch(lambda e: self._apply_expression(e.new), "value")
 
     def _on_law_kind(self, event) -> None:
         if self._syncing:
@@ -205,7 +212,11 @@ class Explorer:
                     text = compute.law(st.a, st.b).as_polynomial().expression
                 except ParameterError:
                     text = "w + 10*w**2 - w**3 - 0.01*w**4"
-            self._set(expression=text)
+                try:  # written by the app: bounded, built here at once
+                    compute.trusted_expression_law(text)
+                except ParameterError:
+                    pass
+            self._apply_expression(text)
 
     def _on_coeff(self, k: int, value) -> None:
         """Coefficient slider k (c_{k+1}) moved: the expression is rewritten from the sliders."""
@@ -213,9 +224,15 @@ class Explorer:
             return
         coeffs = [float(s.value) for s in self.coeff_sliders]
         coeffs[k] = float(f"{float(value):.6g}")  # no 10.059999999999999 from the slider step
+        text = expression_of(coeffs)
+        try:  # written by the app from ≤ MAX_COEFF_SLIDERS floats: bounded, built here at once
+            compute.trusted_expression_law(text)
+        except ParameterError:
+            pass  # the state shows why
+        self._law_wanted = text
         self._from_slider = True
         try:
-            self._set(expression=expression_of(coeffs))
+            self._set(expression=text)
         finally:
             self._from_slider = False
 
@@ -252,6 +269,51 @@ class Explorer:
             )
             self.coeff_box.visible = poly and made
 
+    def _apply_expression(self, text: str | None) -> None:
+        """A law typed in the box (or chosen): applied once it is built.  A typed text is built
+        in the law worker within its budgets (app.compute.request_law), never in this handler:
+        a law not built yet is applied from the worker's answer (if it is still the one
+        wanted), and the sidebar says it is being checked meanwhile."""
+        if self._syncing or text is None:
+            return
+        text = text.strip()
+        self._law_wanted = text
+        if not text or compute.lookup_law(text) is not None:
+            self._set(expression=text)
+            return
+        self.ranges.object = f"_checking the law {md_literal(text[:60])} …_"
+        doc = pn.state.curdoc
+
+        def built(_fut) -> None:  # in the law worker's watcher thread
+            if self._law_wanted != text:
+                return  # another law was typed meanwhile
+            try:
+                with set_curdoc(doc):
+                    self._set(expression=text)
+            except Exception:  # noqa: BLE001 - a session closed meanwhile
+                log.exception("applying the law %r", text[:60])
+
+        compute.request_law(text).add_done_callback(built)
+
+    def url_law_checked(self, text: str, outcome) -> None:
+        """The URL's law, still being built when the page was (app.state.URL_LAW_WAIT_S), is
+        built or refused: show it, or name it in the URL message and fall back to the cubic."""
+        if self.state.expression != text:
+            return  # the user changed the law meanwhile
+        if isinstance(outcome, ParameterError):
+            err = ParameterError("law", outcome.value, outcome.valid, outcome.reason)
+            self.url_errors.append(f"URL value ignored: {err}")
+            self.url_alert.param.update(
+                object="\n\n".join(md_literal(e) for e in self.url_errors), visible=True
+            )
+            self._law_wanted = ""
+            self._set(expression="")
+            return
+        self._sync_widgets()
+        for s in self.scenes:
+            s.stale = True
+        self.active_scene().request()
+
     def _anchor_sliders(self, coeffs: tuple[float, ...]) -> None:
         """(Re)build the coefficient sliders with ranges around ``coeffs``."""
         self._coeff_anchor = tuple(coeffs)
@@ -279,6 +341,23 @@ class Explorer:
             sliders.append(sl)
         self.coeff_sliders = sliders
         self.coeff_box.objects = sliders
+
+    def _typed(self, name: str, value) -> None:
+        """A value typed in an exact box: a non-finite one (``1e309`` arrives as inf) is
+        refused with a message and the box shows the state's value again."""
+        if self._syncing or value is None:
+            return
+        if not math.isfinite(value):
+            box = self.w_plus_exact if name == "w_plus" else self.V_exact
+            self._syncing = True
+            try:
+                box.value = getattr(self.state, name)
+            finally:
+                self._syncing = False
+            err = ParameterError(name, value, "a finite number")
+            self.state.note = f"typed value ignored: {err}"
+            return
+        self._set(**{name: value})
 
     def _set(self, **kw):
         if self._syncing or any(v is None for v in kw.values()):
@@ -452,6 +531,26 @@ def widened(x: float, lo: float, hi: float) -> dict:
     return {"start": min(lo, x), "end": max(hi, x)}
 
 
+def _parse_query_tolerant(query: str) -> dict:
+    """Panel's ``parse_query``, except that a value it cannot convert stays a string."""
+    try:
+        return _panel_parse_query(query)
+    except ValueError:
+        return dict(urllib.parse.parse_qsl(query[1:]))
+
+
+_panel_parse_query = pn_location.parse_query
+
+
+def tolerate_long_url_values() -> None:
+    """Panel's Location converts every URL value itself (``int(v)`` for digits); a value longer
+    than CPython's int-string limit (4300 digits) made that a traceback at every location
+    sync.  The app reads its own parameters from the raw query (and refuses values longer than
+    MAX_URL_VALUE), so Panel's parse keeps such a value as text — CPython's guard (against
+    quadratic-time conversions) stays on for everything else.  Idempotent."""
+    pn_location.parse_query = _parse_query_tolerant
+
+
 def session_query() -> dict[str, str]:
     """The page's URL query as {name: first value} (server sessions; empty otherwise)."""
     args = pn.state.session_args or {}
@@ -467,7 +566,22 @@ def from_url() -> Explorer:
     """The session's Explorer built from its validated URL (one state, no default-then-URL
     double render), with the URL rewritten to the state and kept in sync with it."""
     values, errors = parse_url(session_query())
+    text = values.get("expression", "")
+    # a law still being built (see parse_url_value): the page is built meanwhile, and once the
+    # law's outcome is known (maybe during this build) the explorer shows it or names it
+    pending = bool(text) and compute.lookup_law(text) is None
     explorer = Explorer(ExplorerState(**values), url_errors=errors)
+    if pending:
+        doc = pn.state.curdoc
+
+        def built(fut) -> None:  # in the law worker's watcher thread (or here, if done)
+            try:
+                with set_curdoc(doc):
+                    explorer.url_law_checked(text, fut.result())
+            except Exception:  # noqa: BLE001 - a session closed meanwhile
+                log.exception("applying the URL's law %r", text[:60])
+
+        compute.request_law(text).add_done_callback(built)
     loc = pn.state.location
     if loc is not None:
         st = explorer.state

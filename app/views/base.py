@@ -23,6 +23,7 @@ import io
 import json
 import logging
 import math
+import re
 import threading
 import time
 from dataclasses import dataclass, field
@@ -57,6 +58,7 @@ class SceneMessage(Exception):
 class Info:
     """What a render reports next to its plot."""
 
+    #: Markdown: user-supplied parts (a path, an exception's text) go through md_literal
     shown: str = ""
     errors: list[tuple[str, float]] = field(default_factory=list)
     timings: list[tuple[str, Computed | float]] = field(default_factory=list)
@@ -146,10 +148,14 @@ def state_stamp(state: ExplorerState) -> str:
     return f"a={state.a!r} b={state.b!r} {rest}"
 
 
-#: Markdown's ASCII punctuation that can start markup (CommonMark backslash-escapes them all)
-_MD_PUNCT = frozenset("\\`*_{}[]()#+-.!|~:$=")
+#: characters that start inline Markdown anywhere in a line (emphasis, code, links, strike,
+#: math, table cells): backslash-escaped (CommonMark escapes any ASCII punctuation)
+_MD_INLINE = frozenset("\\`*_[]~$|")
 #: characters that would open or close HTML (and attribute values): written as entities
 _HTML_CHARS = {"&": "&amp;", "<": "&lt;", ">": "&gt;", '"': "&quot;", "'": "&#x27;"}
+#: block markup, only at a line's start: a heading, a list item (-, +, 1.), a setext underline
+_MD_BLOCK = re.compile(r"(?m)^([ \t]*)([#+=-])")
+_MD_NUMBERED = re.compile(r"(?m)^([ \t]*\d+)([.)])")
 
 
 def md_literal(text) -> str:
@@ -157,19 +163,21 @@ def md_literal(text) -> str:
 
     User-supplied text (a URL value, a typed law, an exception message repeating them) reaches
     the page through Markdown panes whose renderer passes raw HTML through: ``<img onerror=…>``
-    in a URL ran script in the page.  One pass: the HTML characters become entities and every
-    other Markdown punctuation character gets its backslash escape (one pass, so an entity's
-    ``#`` is not escaped again) — ``__import__('os')`` and ``w**2`` show literally, ``[x](…)``
-    is no link, ``$…$`` no math."""
+    in a URL ran script in the page.  One pass writes the HTML characters as entities and
+    backslash-escapes inline Markdown (one pass, so an entity's ``#`` is not escaped again);
+    then block markup at a line's start is escaped.  ``__import__('os')`` and ``w**2`` show
+    literally, ``[x](…)`` is no link, ``$…$`` no math, and the source stays readable."""
     out = []
     for ch in str(text):
         if ch in _HTML_CHARS:
             out.append(_HTML_CHARS[ch])
-        elif ch in _MD_PUNCT:
+        elif ch in _MD_INLINE:
             out.append("\\" + ch)
         else:
             out.append(ch)
-    return "".join(out)
+
+    escaped = _MD_BLOCK.sub(r"\1\\\2", "".join(out))
+    return _MD_NUMBERED.sub(r"\1\\\2", escaped)  # "1." → "1\." (no list item)
 
 
 def python_preamble(state: ExplorerState) -> str:
@@ -485,7 +493,7 @@ class Scene(pn.viewable.Viewer):
     def _write_status(self, info: Info, t0: float, partial: bool = False) -> None:
         lines = []
         if info.shown:
-            lines.append(f"**Shown:** {md_literal(info.shown)}")
+            lines.append(f"**Shown:** {info.shown}")
         if info.errors:
             errs = " · ".join(f"{k} {v:.2e}" for k, v in info.errors)
             lines.append(f"**Error:** {errs}")
@@ -499,7 +507,7 @@ class Scene(pn.viewable.Viewer):
                 tparts.append(f"{label} {fmt_time(float(c))}")
         tparts.append(f"server {fmt_time(time.perf_counter() - t0)}")
         lines.append("**Time:** " + " · ".join(tparts))
-        lines.extend(f"_{md_literal(n)}_" for n in info.notes)
+        lines.extend(f"_{n}_" for n in info.notes)
         if partial:
             lines.append("_computing the rest ..._")
         lines.append(f"<small>Parameters: {md_literal(self._stamp)}</small>")

@@ -18,6 +18,7 @@ import statistics
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 import urllib.parse
 import urllib.request
@@ -103,6 +104,7 @@ def server():
             time.sleep(0.2)
         print(f"\n[browser] server up after {time.monotonic() - t0:.1f} s (incl. warm-up)")
         SERVER_LOG["path"] = log.name
+        SERVER_LOG["pid"] = str(proc.pid)
         yield url
     finally:
         proc.terminate()
@@ -857,4 +859,91 @@ def test_user_text_is_shown_literally_and_never_runs(page):
         page.wait_for_timeout(300)
         assert not injected(page), (payload, injected(page))
     assert not dialogs, dialogs
+    assert not app_tracebacks()
+
+
+# ----------------------------------------------------------------------------- laws off the loop
+DOS_LAWS = ["(w+1)**100000", "w*9**9**9"]
+
+
+def server_rss_mb() -> float:
+    for line in Path(f"/proc/{SERVER_LOG['pid']}/status").read_text().splitlines():
+        if line.startswith("VmRSS:"):
+            return int(line.split()[1]) / 1024
+    raise AssertionError("no VmRSS")
+
+
+class LivenessProbe(threading.Thread):
+    """Polls /liveness (and the server's RSS) every 0.1 s until stopped."""
+
+    def __init__(self, server: str):
+        super().__init__(daemon=True)
+        self.server, self.times, self.rss = server, [], []
+        self.halt = threading.Event()
+
+    def run(self):
+        while not self.halt.is_set():
+            self.times.append(_liveness(self.server))
+            self.rss.append(server_rss_mb())
+            self.halt.wait(0.1)
+
+    def stop(self) -> LivenessProbe:
+        self.halt.set()
+        self.join(30)
+        return self
+
+
+def test_a_pathological_law_never_freezes_the_server(browser, server):
+    """Session A opens DoS links (a law whose expansion takes minutes and gigabytes) and types
+    one in the law box; meanwhile session B moves a slider: B's renders and /liveness answer
+    within 1 s, the server's RSS grows < 100 MB, and A names the refused law.  (Before: the
+    server froze for ~111 s on the first link and > 6 min on the second.)"""
+    a, b = browser.new_page(), browser.new_page()
+    try:
+        b.goto(f"{server}/main?tab=force&V=5.05")
+        settled(b)
+        rss0 = server_rss_mb()
+        probe = LivenessProbe(server)
+        probe.start()
+        renders = []
+        for law in DOS_LAWS:
+            a.goto(f"{server}/main?" + urllib.parse.urlencode({"law": law, "tab": "force"}))
+            handle = b.locator(".w-V .noUi-handle").first
+            handle.focus()
+            for key in ("ArrowLeft", "ArrowRight", "ArrowLeft"):
+                before = status_text(b, "force")
+                t = time.monotonic()
+                b.keyboard.press(key)
+                wait_status_change(b, "force", before)
+                renders.append(time.monotonic() - t)
+            a.locator(".url-message").get_by_text(f"law={law!r}").wait_for(timeout=30_000)
+            note = url_message(a)
+            assert "URL value ignored" in note, note
+            text, msg, q = settled(a)  # the cubic, with the URL rewritten to it
+            assert "law" not in q, q
+        # typed in the law box
+        a.locator(".w-law-kind button", has_text="expression").click()
+        box = a.locator(".in-law input")
+        box.fill(DOS_LAWS[1])
+        box.press("Enter")
+        before = status_text(b, "force")
+        b.locator(".w-V .noUi-handle").first.focus()
+        t = time.monotonic()
+        b.keyboard.press("ArrowRight")
+        wait_status_change(b, "force", before)
+        renders.append(time.monotonic() - t)
+        a.locator(".ranges").get_by_text("invalid law").wait_for(timeout=30_000)
+        ranges = " ".join(a.locator(".ranges p").all_inner_texts())
+        assert DOS_LAWS[1] in ranges, ranges
+        probe.stop()
+        growth = max(probe.rss) - rss0
+        print(
+            f"[browser] DoS laws: B renders {[round(x, 3) for x in renders]} s, /liveness max "
+            f"{max(probe.times):.3f} s over {len(probe.times)} polls, RSS +{growth:.0f} MB"
+        )
+        assert max(renders) <= 1.0 and max(probe.times) <= 1.0, (renders, max(probe.times))
+        assert growth <= 100, growth
+    finally:
+        a.close()
+        b.close()
     assert not app_tracebacks()
