@@ -25,7 +25,6 @@ import math
 import urllib.parse
 
 import panel as pn
-import panel.io.location as pn_location
 import param
 from panel.io.state import set_curdoc
 
@@ -529,26 +528,6 @@ def widened(x: float, lo: float, hi: float) -> dict:
     if not math.isfinite(x):
         return {"start": lo, "end": hi}
     return {"start": min(lo, x), "end": max(hi, x)}
-
-
-def _parse_query_tolerant(query: str) -> dict:
-    """Panel's ``parse_query``, except that a value it cannot convert stays a string."""
-    try:
-        return _panel_parse_query(query)
-    except ValueError:
-        return dict(urllib.parse.parse_qsl(query[1:]))
-
-
-_panel_parse_query = pn_location.parse_query
-
-
-def tolerate_long_url_values() -> None:
-    """Panel's Location converts every URL value itself (``int(v)`` for digits); a value longer
-    than CPython's int-string limit (4300 digits) made that a traceback at every location
-    sync.  The app reads its own parameters from the raw query (and refuses values longer than
-    MAX_URL_VALUE), so Panel's parse keeps such a value as text — CPython's guard (against
-    quadratic-time conversions) stays on for everything else.  Idempotent."""
-    pn_location.parse_query = _parse_query_tolerant
 
 
 def session_query() -> dict[str, str]:

@@ -9,11 +9,18 @@ os.environ.setdefault("BOKEH_RESOURCES", "server")
 import panel as pn  # noqa: E402
 
 from app import compute  # noqa: E402
-from app.explorer import from_url, tolerate_long_url_values  # noqa: E402
+from app.explorer import from_url  # noqa: E402
 from app.resources import serve_locally  # noqa: E402
+from app.server_guards import (  # noqa: E402
+    serve_document_locally,
+    tolerate_detached_sessions,
+    tolerate_long_url_values,
+)
 
 serve_locally()
+serve_document_locally(pn.state.curdoc)
 tolerate_long_url_values()
+tolerate_detached_sessions()
 
 pn.extension(loading_indicator=True, notifications=False, throttled=True)
 

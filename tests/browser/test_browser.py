@@ -150,8 +150,8 @@ def _tracebacks(log_text: str) -> list[str]:
 
 
 def _client_disconnect(tb: str) -> bool:
-    if "bokeh/server/connection.py" in tb and "assert self._session is not None" in tb:
-        return True  # the page went away before its session existed (Bokeh's on_close)
+    # (Bokeh's "assert self._session is not None" at a browser's close is no longer excused:
+    # app/server_guards.py handles it)
     return tb.strip().splitlines()[-1].startswith(_DISCONNECTS)
 
 
@@ -947,3 +947,72 @@ def test_a_pathological_law_never_freezes_the_server(browser, server):
         a.close()
         b.close()
     assert not app_tracebacks()
+
+
+# ----------------------------------------------------------------------------- ten sessions
+#: the targets on 2 cores (issue: /liveness max 17.6-21.7 s before); asserted as such only with
+#: FPU_STRICT_TIMING=1 (run under `flock /tmp/bench.lock`), else the looser CI bound below
+LIVENESS_MAX_S, LIVENESS_P95_S = 2.0, 0.5
+LOOSE_MAX_S, LOOSE_P95_S = 8.0, 2.0
+
+
+@pytest.mark.slow
+def test_ten_sessions_stay_responsive_and_consistent(browser, server):
+    """Ten sessions open at once and move their V slider for a bounded time while /liveness is
+    polled; then every page settles to exact box = URL = plot (its status stamp and its
+    Rayleigh line), the server log has no traceback (none at the pages' close either), and no
+    request leaves the server."""
+    host = urllib.parse.urlparse(server).netloc
+    foreign: list[str] = []
+    probe = LivenessProbe(server)
+    probe.start()
+    Vs = [f"{4.4 + 0.09 * k:.2f}" for k in range(10)]
+    pages = [browser.new_page() for _ in Vs]
+    for pg in pages:
+        pg.set_default_timeout(TIMEOUT_MS)
+        pg.on(
+            "request",
+            lambda r: (
+                foreign.append(r.url)
+                if urllib.parse.urlparse(r.url).netloc not in (host, "")
+                and not r.url.startswith(("data:", "blob:"))
+                else None
+            ),
+        )
+    try:
+        for pg, V in zip(pages, Vs):  # all ten page builds at once
+            pg.goto(f"{server}/main?tab=force&V={V}&{FAST}", wait_until="commit")
+        for pg in pages:
+            settled(pg, 180)
+        rng = random.Random(5)
+        t_end = time.monotonic() + 45
+        moves = 0
+        while time.monotonic() < t_end:
+            pg = rng.choice(pages)
+            pg.locator(".w-V .noUi-handle").first.focus()
+            pg.keyboard.press(rng.choice(["ArrowLeft", "ArrowRight"]))
+            moves += 1
+            pg.wait_for_timeout(150)
+        for k, pg in enumerate(pages):
+            pg.wait_for_timeout(300)
+            text, msg, q = settled(pg, 120)
+            box = pg.locator(".in-V input").input_value()
+            assert float(box) == float(q["V"]), (k, box, q["V"], text)
+            check_consistent(pg, text, msg, q)
+    finally:
+        for pg in pages:
+            pg.close()
+    time.sleep(2)  # the server handles the ten closes
+    probe.stop()
+    times = sorted(probe.times)
+    p95 = times[int(0.95 * (len(times) - 1))]
+    print(
+        f"[browser] ten sessions, {moves} slider moves: /liveness max {times[-1]:.3f} s, p95 "
+        f"{p95:.3f} s, median {statistics.median(times):.3f} s over {len(times)} polls; "
+        f"load average {os.getloadavg()}"
+    )
+    assert not foreign, foreign
+    assert not app_tracebacks(), app_tracebacks()[-1][-2000:]
+    strict = os.environ.get("FPU_STRICT_TIMING") == "1"
+    lim_max, lim_p95 = (LIVENESS_MAX_S, LIVENESS_P95_S) if strict else (LOOSE_MAX_S, LOOSE_P95_S)
+    assert times[-1] <= lim_max and p95 <= lim_p95, (times[-1], p95, strict)
