@@ -5,8 +5,13 @@
   (α, β) with w* marked, V over (c₊, c₋) with V_SK marked (solitary mode) or over the superkink
   bounds of eq. V_bounds_cubic (superkink mode, where V and w₊ are tied).
 * Only the visible scene renders; a parameter change marks the others stale and they render
-  when their tab is opened.  All tabs are in the browser from the start (Tabs(dynamic=False)):
-  an update never races the lazy creation of a tab's figures (it was lost then).
+  when their tab is opened.  A served page is built with the visible scene only (the build runs
+  on the server's event loop, which ten sessions' builds held for up to 20 s); the hidden
+  scenes are built right after the page has loaded, one per model update, or at once when their
+  tab is opened.  Each is then in the browser before it first renders (Tabs(dynamic=False), no
+  lazy creation by Panel: an update raced that and was lost).
+* A typed law (box or URL) is built in a worker process within a time and memory budget
+  (:func:`app.compute.request_law`) and applied from its answer; never in a handler or the build.
 * The law: the cubic with its a, b sliders, or an expression (fpucore.law_from_expression, e.g.
   ``w + 10*w**2 - w**3 - 0.01*w**4``) with one slider per coefficient; a coefficient slider
   rewrites the expression (exact reprs), so the text, the URL and "copy as Python" follow it.
@@ -22,6 +27,7 @@ from __future__ import annotations
 
 import logging
 import math
+import threading
 import urllib.parse
 
 import panel as pn
@@ -60,10 +66,21 @@ CSS = """
 class Explorer:
     """One browser session's dashboard (state + widgets + scenes)."""
 
-    def __init__(self, state: ExplorerState | None = None, url_errors: list[str] | None = None):
+    def __init__(
+        self,
+        state: ExplorerState | None = None,
+        url_errors: list[str] | None = None,
+        lazy: bool = False,
+    ):
+        """``lazy``: build only the visible scene now (a served page: the build runs on the
+        server's event loop, and the seven scenes' figures were ~85 % of it); the others are
+        built by :meth:`build_hidden` once the page has loaded, or when their tab is opened."""
         self.state = state or ExplorerState()
-        self.scenes = [cls(self.state) for cls in SCENES]
-        self.by_key = {s.key: s for s in self.scenes}
+        self._doc = pn.state.curdoc
+        self._scene_lock = threading.RLock()
+        self.by_key = {
+            cls.key: cls(self.state) for cls in SCENES if not lazy or cls.key == self.state.tab
+        }
         self._syncing = False
         self._build_widgets()
         self.url_errors = list(url_errors or [])
@@ -76,7 +93,7 @@ class Explorer:
             sizing_mode="stretch_width",
         )
         self.tabs = pn.Tabs(
-            *[(s.title, s) for s in self.scenes],
+            *[(cls.title, self.by_key.get(cls.key) or placeholder(cls)) for cls in SCENES],
             dynamic=False,  # all figures in the browser at once (see the module docstring)
             sizing_mode="stretch_width",
             css_classes=["scene-tabs"],
@@ -454,8 +471,38 @@ class Explorer:
         if self.state.tab != key:
             self.state.tab = key  # → _on_state renders it if stale
 
+    @property
+    def scenes(self) -> list:
+        """The scenes built so far, in tab order."""
+        return [self.by_key[cls.key] for cls in SCENES if cls.key in self.by_key]
+
+    def scene(self, key: str):
+        """The scene of tab ``key``, built now (and put into its tab) if it was deferred."""
+        with self._scene_lock:
+            sc = self.by_key.get(key)
+            if sc is not None:
+                return sc
+            i, cls = next((i, c) for i, c in enumerate(SCENES) if c.key == key)
+            with set_curdoc(self._doc):
+                sc = cls(self.state)
+                self.by_key[key] = sc
+                objects = list(self.tabs.objects)
+                objects[i] = sc.panel
+                self.tabs.objects = objects  # the tab's models are made on the session's loop
+            return sc
+
+    def build_hidden(self) -> None:
+        """Build the deferred scenes, one at a time (each a separate model update, so the
+        server's event loop serves other sessions in between)."""
+        for cls in SCENES:
+            try:
+                self.scene(cls.key)
+            except Exception:  # noqa: BLE001 - a session closed meanwhile
+                log.exception("building the scene %s", cls.key)
+                return
+
     def active_scene(self):
-        return self.by_key[self.state.tab]
+        return self.scene(self.state.tab)
 
     def first_render(self) -> None:
         """While the page is built: render the visible scene now if it is cheap (QC, cached),
@@ -465,10 +512,12 @@ class Explorer:
             scene.refresh(building=True)
 
     def start(self):
-        """Called once the page has loaded: render the visible scene if still needed."""
+        """Called once the page has loaded: render the visible scene if still needed, then
+        build the deferred ones."""
         scene = self.active_scene()
         if scene.stale:
             scene.request()
+        self.build_hidden()
 
     # ------------------------------------------------------------------ layout
     def sidebar(self) -> list:
@@ -509,6 +558,16 @@ class Explorer:
         )
 
 
+def placeholder(cls) -> pn.Column:
+    """A deferred scene's tab until :meth:`Explorer.scene` builds it."""
+    return pn.Column(
+        pn.pane.Markdown("_preparing this view …_"),
+        name=cls.title,
+        css_classes=[f"scene-{cls.key}-pending"],
+        sizing_mode="stretch_width",
+    )
+
+
 def nearest_tol(tol: float) -> float:
     """The tolerance option closest (in log) to tol."""
     t = float(tol) if math.isfinite(tol) and tol > 0 else 1e-10
@@ -541,15 +600,16 @@ def session_query() -> dict[str, str]:
     return out
 
 
-def from_url() -> Explorer:
+def from_url(lazy: bool = True) -> Explorer:
     """The session's Explorer built from its validated URL (one state, no default-then-URL
-    double render), with the URL rewritten to the state and kept in sync with it."""
+    double render), with the URL rewritten to the state and kept in sync with it; ``lazy``:
+    hidden scenes built after the page has loaded (see Explorer)."""
     values, errors = parse_url(session_query())
     text = values.get("expression", "")
     # a law still being built (see parse_url_value): the page is built meanwhile, and once the
     # law's outcome is known (maybe during this build) the explorer shows it or names it
     pending = bool(text) and compute.lookup_law(text) is None
-    explorer = Explorer(ExplorerState(**values), url_errors=errors)
+    explorer = Explorer(ExplorerState(**values), url_errors=errors, lazy=lazy)
     if pending:
         doc = pn.state.curdoc
 
