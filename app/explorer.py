@@ -6,10 +6,10 @@
   bounds of eq. V_bounds_cubic (superkink mode, where V and w₊ are tied).
 * Only the visible scene renders; a parameter change marks the others stale and they render
   when their tab is opened.  A served page is built with the visible scene only (the build runs
-  on the server's event loop, which ten sessions' builds held for up to 20 s); the hidden
-  scenes are built right after the page has loaded, one per model update, or at once when their
-  tab is opened.  Each is then in the browser before it first renders (Tabs(dynamic=False), no
-  lazy creation by Panel: an update raced that and was lost).
+  on the server's event loop, which ten sessions' builds held for up to 20 s); a hidden scene
+  is built when its tab is opened, and is in the browser before it first renders (its tab's
+  models are queued before its render's updates; Panel's own lazy tabs, Tabs(dynamic=True),
+  created them concurrently with the render's updates, which were lost).
 * A typed law (box or URL) is built in a worker process within a time and memory budget
   (:func:`app.compute.request_law`) and applied from its answer; never in a handler or the build.
 * The law: the cubic with its a, b sliders, or an expression (fpucore.law_from_expression, e.g.
@@ -74,7 +74,7 @@ class Explorer:
     ):
         """``lazy``: build only the visible scene now (a served page: the build runs on the
         server's event loop, and the seven scenes' figures were ~85 % of it); the others are
-        built by :meth:`build_hidden` once the page has loaded, or when their tab is opened."""
+        built when their tab is opened (:meth:`scene`)."""
         self.state = state or ExplorerState()
         self._doc = pn.state.curdoc
         self._scene_lock = threading.RLock()
@@ -491,16 +491,6 @@ class Explorer:
                 self.tabs.objects = objects  # the tab's models are made on the session's loop
             return sc
 
-    def build_hidden(self) -> None:
-        """Build the deferred scenes, one at a time (each a separate model update, so the
-        server's event loop serves other sessions in between)."""
-        for cls in SCENES:
-            try:
-                self.scene(cls.key)
-            except Exception:  # noqa: BLE001 - a session closed meanwhile
-                log.exception("building the scene %s", cls.key)
-                return
-
     def active_scene(self):
         return self.scene(self.state.tab)
 
@@ -512,12 +502,13 @@ class Explorer:
             scene.refresh(building=True)
 
     def start(self):
-        """Called once the page has loaded: render the visible scene if still needed, then
-        build the deferred ones."""
+        """Called once the page has loaded: render the visible scene if still needed.  (The
+        deferred scenes are built when their tab is opened: built in the background right
+        after the load, ten sessions' builds kept Panel's two handler threads and the event
+        loop busy — /liveness p95 3.7 s instead of 0.3 s.)"""
         scene = self.active_scene()
         if scene.stale:
             scene.request()
-        self.build_hidden()
 
     # ------------------------------------------------------------------ layout
     def sidebar(self) -> list:
