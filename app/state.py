@@ -37,7 +37,7 @@ TOL_OPTIONS = (1e-4, 1e-6, 1e-8, 1e-10, 1e-12, 1e-13)
 MAX_URL_VALUE = 40
 MAX_URL_LAW = 200
 #: longest wait of a page build for the URL's law (the server's event loop waits meanwhile)
-URL_LAW_WAIT_S = 0.3
+URL_LAW_WAIT_S = 0.1
 URL_PARAMS = ("a", "b", "law", "w_plus", "V", "mode", "tab", "N", "tol")
 #: URL name → state parameter where they differ (``law()`` is the state's law object)
 URL_ATTRS = {"law": "expression"}
