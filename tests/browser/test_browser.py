@@ -926,6 +926,7 @@ def test_a_pathological_law_never_freezes_the_server(browser, server):
             a.locator(".url-message").get_by_text(f"law={law!r}").wait_for(timeout=30_000)
             note = url_message(a)
             assert "URL value ignored" in note, note
+            wait_url(a, lambda q: "law" not in q)  # the message and the state: two updates
             text, msg, q = settled(a)  # the cubic, with the URL rewritten to it
             assert "law" not in q, q
         # typed in the law box
