@@ -47,7 +47,7 @@ from .state import (
     TOL_OPTIONS,
     URL_PARAMS,
     ExplorerState,
-    parse_url,
+    state_from_url,
     url_query,
 )
 from .views import SCENES
@@ -155,11 +155,13 @@ class Explorer:
             format="0.00000",
             **mk,
         )
+        # one per row, full sidebar width: room for a float's 17 significant digits
         self.w_plus_exact = pn.widgets.FloatInput(
-            label="w₊ (exact)", value=st.w_plus, css_classes=["in-wplus"], width=130
-        )
+            label="w₊ (exact)", value=st.w_plus, css_classes=["in-wplus"],
+            sizing_mode="stretch_width",
+        )  # fmt: skip
         self.V_exact = pn.widgets.FloatInput(
-            label="V (exact)", value=st.V, css_classes=["in-V"], width=130
+            label="V (exact)", value=st.V, css_classes=["in-V"], sizing_mode="stretch_width"
         )
         self.ranges = pn.pane.Markdown(
             "", css_classes=["ranges"], sizing_mode="stretch_width", disable_math=True
@@ -172,6 +174,10 @@ class Explorer:
             value=st.N,
             css_classes=["w-N"],
             **mk,
+        )
+        # N typed exactly (the slider's step at 4000 sites is coarse); the state evens it
+        self.N_exact = pn.widgets.IntInput(
+            label="N (type)", value=int(st.N), step=2, css_classes=["in-N"], width=110
         )
         self.tol = pn.widgets.DiscreteSlider(
             label="tolerance",
@@ -188,6 +194,14 @@ class Explorer:
         self.tol.param.watch(lambda e: self._set(tol=float(e.new)), "value_throttled")
         self.w_plus_exact.param.watch(lambda e: self._typed("w_plus", e.new), "value")
         self.V_exact.param.watch(lambda e: self._typed("V", e.new), "value")
+        self.N_exact.param.watch(self._on_typed_N, "value")
+
+    def _on_typed_N(self, event) -> None:
+        if self._syncing or event.new is None:
+            return
+        self.state.set_typed_N(event.new)
+        if int(self.state.N) != event.new:  # evened or clamped: show what is used
+            self._sync_widgets()
 
     def _build_law_widgets(self) -> None:
         """Law selector: cubic (a, b sliders) or an expression with its coefficient sliders."""
@@ -399,6 +413,7 @@ class Explorer:
             self._put(self.b, st.b, **widened(st.b, *B_RANGE))
             self._sync_law()
             self._put(self.N, int(st.N), **widened(st.N, *N_RANGE))
+            self.N_exact.value = int(st.N)
             self._put(self.tol, nearest_tol(st.tol))
             summ = st.summary()
             if "alpha" in summ:
@@ -406,9 +421,11 @@ class Explorer:
                 span = hi - lo
                 lo, hi = lo + 1e-6 * span, hi - 1e-6 * span
                 self._put(self.w_plus, st.w_plus, step=span / 2000, **widened(st.w_plus, lo, hi))
+                mark_slider(self.w_plus, "w₊", "w*", summ["w_star"])
             try:
                 lo, hi = st.V_range()
                 self._put(self.V, st.V, step=(hi - lo) / 4000, **widened(st.V, lo, hi))
+                mark_slider(self.V, "V", "V_SK", summ.get("V_SK"))
             except Exception:  # noqa: BLE001 - w_plus invalid: keep the V slider where it was
                 pass
             self.w_plus_exact.value = st.w_plus
@@ -513,7 +530,7 @@ class Explorer:
     # ------------------------------------------------------------------ layout
     def sidebar(self) -> list:
         accuracy = pn.Card(
-            self.N,
+            pn.Row(self.N, self.N_exact, sizing_mode="stretch_width"),
             self.tol,
             pn.pane.Markdown(
                 "_Smaller N / looser tolerance: faster, less accurate — see the "
@@ -534,7 +551,8 @@ class Explorer:
             self.coeff_box,
             self.w_plus,
             self.V,
-            pn.Row(self.w_plus_exact, self.V_exact),
+            self.w_plus_exact,
+            self.V_exact,
             self.ranges,
             accuracy,
         ]
@@ -580,6 +598,22 @@ def widened(x: float, lo: float, hi: float) -> dict:
     return {"start": min(lo, x), "end": max(hi, x)}
 
 
+def mark_slider(slider, name: str, mark: str, value: float | None) -> None:
+    """A red tick on the slider's track at ``value`` (V_SK on the V slider, w* on the w₊ slider)
+    and the label saying so; no tick when the value is off the track."""
+    lo, hi = float(slider.start), float(slider.end)
+    if value is None or not (math.isfinite(value) and lo < value < hi):
+        slider.param.update(label=name, stylesheets=[])
+        return
+    pct = 100.0 * (value - lo) / (hi - lo)
+    css = (
+        ".noUi-base::after { content: ''; position: absolute; pointer-events: none; "
+        f"left: calc({pct:.4f}% - 1px); top: -5px; height: calc(100% + 10px); width: 3px; "
+        "background: #d62728; }"
+    )
+    slider.param.update(label=f"{name} (red tick: {mark} = {value:.6g})", stylesheets=[css])
+
+
 def session_query() -> dict[str, str]:
     """The page's URL query as {name: first value} (server sessions; empty otherwise)."""
     args = pn.state.session_args or {}
@@ -594,13 +628,13 @@ def session_query() -> dict[str, str]:
 def from_url(lazy: bool = True) -> Explorer:
     """The session's Explorer built from its validated URL (one state, no default-then-URL
     double render), with the URL rewritten to the state and kept in sync with it; ``lazy``:
-    hidden scenes built after the page has loaded (see Explorer)."""
-    values, errors = parse_url(session_query())
-    text = values.get("expression", "")
+    a hidden scene is built when its tab is opened (see Explorer)."""
+    state, errors = state_from_url(session_query())
+    text = state.expression
     # a law still being built (see parse_url_value): the page is built meanwhile, and once the
     # law's outcome is known (maybe during this build) the explorer shows it or names it
     pending = bool(text) and compute.lookup_law(text) is None
-    explorer = Explorer(ExplorerState(**values), url_errors=errors, lazy=lazy)
+    explorer = Explorer(state, url_errors=errors, lazy=lazy)
     if pending:
         doc = pn.state.curdoc
 

@@ -17,6 +17,8 @@ a plot.  In superkink mode V and w_plus are tied: moving one moves the other alo
 from __future__ import annotations
 
 import math
+import os
+from pathlib import Path
 
 import param
 
@@ -25,7 +27,7 @@ from fpucore.errors import ParameterError
 
 from . import compute
 
-TABS = ("force", "phase", "profiles", "diagram", "floquet", "simulation", "atlas")
+TABS = ("force", "phase", "profiles", "diagram", "floquet", "simulation", "atlas", "paper")
 MODES = ("solitary", "superkink")
 #: what the sliders (and so the URL) may set; N even (fpucore's N_MIN = 64)
 A_RANGE = (-5.0, -0.1)
@@ -38,7 +40,7 @@ MAX_URL_VALUE = 40
 MAX_URL_LAW = 200
 #: longest wait of a page build for the URL's law (the server's event loop waits meanwhile)
 URL_LAW_WAIT_S = 0.1
-URL_PARAMS = ("a", "b", "law", "w_plus", "V", "mode", "tab", "N", "tol")
+URL_PARAMS = ("a", "b", "law", "w_plus", "V", "mode", "tab", "N", "tol", "atlas")
 #: URL name → state parameter where they differ (``law()`` is the state's law object)
 URL_ATTRS = {"law": "expression"}
 #: the state parameters a URL holds, in URL_PARAMS order
@@ -59,6 +61,7 @@ class ExplorerState(param.Parameterized):
     tab = param.Selector(default="force", objects=list(TABS))
     N = param.Integer(500, doc="number of lattice sites of the discrete solve (even)")
     tol = param.Number(1e-10, doc="Newton tolerance of the discrete solve")
+    atlas = param.String("", doc="the Atlas scene's store, relative to ATLAS_ROOT; empty: none")
     #: what the state changed by itself (e.g. V moved with w_plus), shown in the sidebar
     note = param.String("")
 
@@ -148,6 +151,21 @@ class ExplorerState(param.Parameterized):
         if self.mode == "superkink":
             return "superkink"
         return qc.solitary(self.law(), self.w_plus, self.V).kind
+
+    def set_typed_N(self, value) -> None:
+        """N typed into the box beside the slider: an odd N goes to the even N below it and one
+        outside N_RANGE to the nearest end; ``note`` says so (never silently)."""
+        if value is None:
+            return
+        N = int(value)
+        fixed = min(max(N - N % 2, N_RANGE[0]), N_RANGE[1])
+        self.N = fixed
+        if fixed != N:
+            why = "odd" if N_RANGE[0] <= N <= N_RANGE[1] else "outside the range"
+            self.note = (
+                f"N = {N} is {why}: using N = {fixed} (an even integer in "
+                f"[{N_RANGE[0]}, {N_RANGE[1]}])"
+            )
 
     # ------------------------------------------------------------------ coupling
     def _tie(self, *events):
@@ -268,12 +286,13 @@ class ExplorerState(param.Parameterized):
             )
 
     # ------------------------------------------------------------------ actions
-    def pick(self, w_plus: float, V: float) -> None:
-        """Set (w_plus, V) at once, e.g. from a click on the existence diagram; V < 0 clicks
-        (the diagram is symmetric) are mirrored to V > 0."""
+    def pick(self, w_plus: float, V: float, N: int | None = None) -> None:
+        """Set (w_plus, V) at once (and N, when given), e.g. from a click on the existence
+        diagram or an atlas cell; V < 0 clicks (the diagram is symmetric) are mirrored to V > 0."""
         self._tying = True
         try:
-            self.param.update(w_plus=float(w_plus), V=abs(float(V)))
+            extra = {} if N is None else {"N": int(N)}
+            self.param.update(w_plus=float(w_plus), V=abs(float(V)), **extra)
         finally:
             self._tying = False
         if self.mode == "superkink":
@@ -286,15 +305,35 @@ def _float(name: str, raw: str, valid: str, lo: float | None = None, hi: float |
         x = float(raw)
     except ValueError:
         raise ParameterError(name, raw, valid, "not a number") from None
-    if not math.isfinite(x) or (lo is not None and not lo <= x <= hi):
+    if not math.isfinite(x):  # the text as typed: "1e400", not the "inf" it rounds to
+        raise ParameterError(name, raw.strip(), valid, "not a finite double (beyond ±1.8e308)")
+    if lo is not None and not lo <= x <= hi:
         raise ParameterError(name, x, valid)
     return x
+
+
+def atlas_root() -> Path:
+    """Where the Atlas scene may open stores: ``$FPU_ATLAS_ROOT``, else the directory the server
+    was started in.  A page (or a link) may open only stores below it, so no visitor can make
+    the server read, or probe, any other directory."""
+    return Path(os.environ.get("FPU_ATLAS_ROOT") or os.getcwd()).resolve()
+
+
+def resolve_atlas_store(name: str, raw: str) -> Path:
+    """The store ``raw`` (relative to :func:`atlas_root`, or absolute below it) as an absolute
+    path; ParameterError naming ``name`` for a path that leaves the root."""
+    root = atlas_root()
+    text = raw.strip()
+    path = (root / Path(text).expanduser()).resolve()
+    if not text or not path.is_relative_to(root):
+        raise ParameterError(name, raw, f"a path below {root}", "stores are read only there")
+    return path
 
 
 def parse_url_value(name: str, raw: str):
     """One URL query value → the state's value (raises ParameterError naming the value and
     the valid range; the same ranges the sliders have)."""
-    limit = MAX_URL_LAW if name == "law" else MAX_URL_VALUE
+    limit = MAX_URL_LAW if name in ("law", "atlas") else MAX_URL_VALUE
     if len(raw) > limit:
         raise ParameterError(name, raw[:12] + "…", f"at most {limit} characters")
     if name == "law":
@@ -335,6 +374,9 @@ def parse_url_value(name: str, raw: str):
         if N % 2 or not N_RANGE[0] <= N <= N_RANGE[1]:
             raise ParameterError(name, N, valid)
         return N
+    if name == "atlas":
+        resolve_atlas_store(name, raw)
+        return raw.strip()
     if name == "tol":
         x = _float(name, raw, "one of " + ", ".join(f"{t:g}" for t in TOL_OPTIONS))
         for t in TOL_OPTIONS:
@@ -358,6 +400,43 @@ def parse_url(query: dict[str, str]) -> tuple[dict, list[str]]:
     return values, errors
 
 
+def state_from_url(query: dict[str, str]) -> tuple[ExplorerState, list[str]]:
+    """The state a link describes, and one message per value it could not take.
+
+    Beyond :func:`parse_url`'s per-value checks, the values must fit together: a w_plus outside
+    the law's range of w₊ is refused (the slider could not show it) and the law's default kept;
+    in superkink mode V and w₊ are tied (V = V_SK(w₊)), so a link that gives V alone sets w₊
+    from it (as typing V does), and one that gives both, inconsistently, keeps w₊ and says so.
+    """
+    values, errors = parse_url(query)
+    st = ExplorerState(**{k: v for k, v in values.items() if k not in ("w_plus", "V")})
+    try:
+        lo, w_star, hi = st.w_plus_range()
+    except ParameterError:  # an invalid law: the page explains it
+        lo = w_star = hi = None
+    w = values.get("w_plus")
+    if w is not None and lo is not None and not (lo < w < hi and w != w_star):
+        errors.append(
+            "URL value ignored: "
+            + str(ParameterError("w_plus", w, f"({lo:.10g}, {hi:.10g}) without w* = {w_star:.10g}"))
+        )
+        w = None
+    V = values.get("V")
+    if st.mode == "superkink" and w is not None and V is not None:
+        vsk = qc.sound_speeds(st.law(), w)[1] if lo is not None else None
+        if vsk is not None and abs(V - vsk) > 1e-9 * vsk:
+            errors.append(
+                f"URL value ignored: V = {V!r} (in superkink mode V = V_SK(w_plus) = {vsk:.10g} "
+                f"for w_plus = {w!r})"
+            )
+            V = None
+    if w is not None:
+        st.w_plus = w
+    if V is not None:
+        st.V = V  # in superkink mode this moves w₊ along its branch (ExplorerState._tie)
+    return st, errors
+
+
 def url_value(x) -> str:
     """The URL form of a state value (floats exact: repr)."""
     return repr(x) if isinstance(x, float) else str(x)
@@ -369,7 +448,7 @@ def url_query(state: ExplorerState) -> dict[str, str]:
     out = {}
     for name, attr in zip(URL_PARAMS, STATE_PARAMS):
         value = getattr(state, attr)
-        if name == "law" and not value:
+        if name in ("law", "atlas") and not value:
             continue
         out[name] = url_value(value)
     return out

@@ -75,7 +75,7 @@ def parse_size(text: str | float | int, name: str = "memory_budget") -> int:
         x = require_finite(name, text)
         if x <= 0:
             raise ParameterError(name, x, valid)
-        return int(x)
+        return _whole_bytes(name, text, x, valid)
     m = _SIZE.match(str(text))
     if not m:
         raise ParameterError(name, text, valid)
@@ -92,7 +92,27 @@ def parse_size(text: str | float | int, name: str = "memory_budget") -> int:
         return int(total_memory() * x / 100.0)
     if unit not in _UNITS:
         raise ParameterError(name, text, valid)
-    return int(x * _UNITS[unit])
+    return _whole_bytes(name, text, x * _UNITS[unit], valid)
+
+
+def _whole_bytes(name: str, text, n: float, valid: str) -> int:
+    """``int(n)`` for a size in bytes: at least 1 byte (0.5 would become a budget of 0 bytes,
+    then blamed on whichever size is checked first) and finite (1e308TiB: OverflowError)."""
+    if not math.isfinite(n):
+        raise ParameterError(name, text, valid, "the size overflows")
+    if n < 1.0:
+        raise ParameterError(name, text, valid, f"{n:g} bytes: less than one byte (a share is "
+                             "written with %, e.g. 50%)")  # fmt: skip
+    return int(n)
+
+
+def require_env_budget() -> None:
+    """Refuse an invalid ``FPU_MEMORY_BUDGET`` up front (the ``fpu`` commands call it first):
+    commands that never estimate memory would otherwise ignore it silently, and the others
+    would report it only after their other checks."""
+    env = os.environ.get(ENV_VAR)
+    if env:  # set and empty counts as unset, as in memory_budget
+        parse_size(env, ENV_VAR)
 
 
 def memory_budget(budget: str | float | int | None = None) -> tuple[int, str]:

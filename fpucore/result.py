@@ -42,6 +42,8 @@ def _plain(value: Any, arrays: bool) -> tuple[bool, Any]:
     complex arrays are split by the caller; arrays are dropped when ``arrays`` is False."""
     if isinstance(value, Result):
         return True, value.as_dict(arrays=arrays)
+    if dataclasses.is_dataclass(value) and hasattr(value, "as_dict"):  # a plain record
+        return True, value.as_dict()
     if isinstance(value, np.ndarray):
         return arrays, value
     if isinstance(value, (list, tuple)) and value and hasattr(value[0], "as_dict"):

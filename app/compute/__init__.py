@@ -75,7 +75,16 @@ from .laws import (
     shutdown_law_executor,
     trusted_expression_law,
 )
-from .qc_calls import existence_diagram, n_needed, phase_plane, qc_family, qc_wave, spec_of
+from .qc_calls import (
+    existence_diagram,
+    n_needed,
+    phase_orbit,
+    phase_plane,
+    qc_family,
+    qc_method,
+    qc_wave,
+    spec_of,
+)
 from .workers import (
     CANCELLED,
     Superseded,
@@ -117,9 +126,11 @@ __all__ = [
     "warm_job",
     "warm_workers",
     # QC
+    "qc_method",
     "qc_wave",
     "qc_family",
     "phase_plane",
+    "phase_orbit",
     "existence_diagram",
     "spec_of",
     "n_needed",

@@ -13,7 +13,22 @@ from fpucore.qc import diagram, phase
 from .cache import CACHE, Computed, exact
 from .laws import law_key
 
-__all__ = ["qc_wave", "qc_family", "phase_plane", "existence_diagram", "spec_of", "n_needed"]
+__all__ = [
+    "qc_method",
+    "qc_wave",
+    "qc_family",
+    "phase_plane",
+    "phase_orbit",
+    "existence_diagram",
+    "spec_of",
+    "n_needed",
+]
+
+
+def qc_method(lw) -> str:
+    """How fpucore computes this law's QC waves: "closed form" (the cubic, paper §4) or
+    "quadrature" (any other law, §3) — for the timing labels."""
+    return "closed form" if qc.is_closed_form(lw) else "quadrature"
 
 
 def qc_wave(lw, mode: str, w_plus: float, V: float) -> Computed:
@@ -44,6 +59,16 @@ def phase_plane(lw, w_plus: float, V: float, n_grid: int = 241) -> Computed:
         ("phase", law_key(lw), exact(w_plus), exact(V), n_grid),
         lambda: phase.phase_plane(lw, w_plus, V, n_grid=n_grid),
     )
+
+
+def phase_orbit(lw, w_plus: float, V: float, w0: float, wp0: float, window) -> Computed:
+    """fpucore.qc.phase.orbit_through: the orbit through a clicked point (w0, w0′)."""
+    lo, hi = (float(x) for x in window)
+    return CACHE.get(
+        ("phase_orbit", law_key(lw), exact(w_plus), exact(V), exact(w0), exact(wp0),
+         exact(lo), exact(hi)),
+        lambda: phase.orbit_through(lw, w_plus, V, w0, wp0, (lo, hi)),
+    )  # fmt: skip
 
 
 def existence_diagram(lw, n: int = 400) -> Computed:

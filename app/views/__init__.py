@@ -4,6 +4,7 @@ from .atlas import AtlasScene
 from .diagram import DiagramScene
 from .floquet import FloquetScene
 from .force_law import ForceLawScene
+from .paper import PaperScene
 from .phase_plane import PhasePlaneScene
 from .profiles import ProfilesScene
 from .simulation import SimulationScene
@@ -16,6 +17,7 @@ SCENES = (
     FloquetScene,
     SimulationScene,
     AtlasScene,
+    PaperScene,
 )
 
 __all__ = ["SCENES"] + [cls.__name__ for cls in SCENES]

@@ -5,12 +5,12 @@
 Quantities: max |μ| − 1 (log scale of the excess; needs Floquet), amplitude, E_ren^D.  Cells
 without a wave (outside the existence region, or not converged) are blank; the counts by status
 and the largest error bars are shown next to the plot.  A click on a cell sets (w₊, V) to that
-cell's point (``ExplorerState.pick``); the Profiles / Floquet tabs then show that wave.
+cell's point and the atlas's N (``ExplorerState.pick``), marks the cell, and the Profiles /
+Floquet tabs then show that wave.  A store is read only below ``app.state.atlas_root()``; its
+path is part of the state, so the URL carries it.
 """
 
 from __future__ import annotations
-
-from pathlib import Path
 
 import numpy as np
 import panel as pn
@@ -18,10 +18,13 @@ import xarray as xr
 from bokeh.events import Tap
 from bokeh.models import ColorBar, ColumnDataSource, LinearColorMapper
 
+import fpucore
 from fpucore import atlas
 from fpucore.errors import ParameterError
 
-from .base import Info, SceneMessage, as_csv, md_literal, provenance, python_preamble
+from ..compute import Computed
+from ..state import N_RANGE, resolve_atlas_store
+from .base import Info, SceneMessage, as_csv, md_literal, python_preamble
 from .bokeh_scene import BokehScene, Updates, new_figure
 
 QUANTITIES = {
@@ -37,9 +40,10 @@ class AtlasScene(BokehScene):
     caption = (
         "_Heat map of an atlas of discrete solitary waves over the existence region (w₊, V): "
         "max |μ| − 1 of their Floquet spectra, their amplitude or renormalized energy. Click a "
-        "cell to open that wave. Paper: Figs. 8, 9 and 14 (one line of this map each)._"
+        "cell to open that wave. Paper: Figs. SWamp_cubic_DvsQC, SWenergy_cubic_DvsQC and "
+        "floquet_cubicSW (one line of this map each)._"
     )
-    depends = ("a", "b", "expression")
+    depends = ("a", "b", "expression", "atlas")
     plot_height = 480
 
     def build(self):
@@ -56,12 +60,18 @@ class AtlasScene(BokehScene):
         fig.image("image", x="x", y="y", dw="dw", dh="dh", source=self.src,
                   color_mapper=self.mapper)  # fmt: skip
         fig.add_layout(ColorBar(color_mapper=self.mapper, width=12), "right")
+        # the picked cell's outline (empty until a click)
+        self.pick_src = ColumnDataSource({"l": [], "r": [], "b": [], "t": []}, name="atlas-pick")
+        fig.quad(left="l", right="r", bottom="b", top="t", source=self.pick_src,
+                 fill_alpha=0.0, line_color="#d62728", line_width=3)  # fmt: skip
         fig.on_event(Tap, lambda ev: self.pick(ev.x, ev.y))
         return fig
 
     def controls(self):
-        self.store = pn.widgets.TextInput(name="atlas store (Zarr)", placeholder="atlas.zarr",
-                                          width=280)  # fmt: skip
+        self.store = pn.widgets.TextInput(
+            name="atlas store (Zarr, below the server's directory)", placeholder="atlas.zarr",
+            value=self.state.atlas, width=280,
+        )  # fmt: skip
         self.quantity = pn.widgets.Select(name="quantity", options=list(QUANTITIES), width=200)
         self.n_w = pn.widgets.IntInput(name="w₊ rows", value=8, start=2, end=60, width=130)
         self.n_V = pn.widgets.IntInput(name="velocities", value=8, start=2, end=60, width=130)
@@ -77,21 +87,38 @@ class AtlasScene(BokehScene):
         self._ds: xr.Dataset | None = None
         self._source = ""
         self._rows = ""
+        self._run_time: tuple[str, float] | None = None  # the background run's label and cost
+        self._cell: tuple[int, int] | None = None  # the picked (w₊ row, V column)
         self.last_z: np.ndarray | None = None
 
         def go(_):
             self._want_run = True
+            if self.state.atlas:  # the run replaces the store on screen (and in the URL)
+                self.state.atlas = ""
             self.request()
 
         self.run_btn.on_click(go)
-        self.store.param.watch(lambda _: self.request(), "value")
+
+        def typed(event):  # the box writes the state (and so the URL); the state renders
+            if self.state.atlas != event.new:
+                self.state.atlas = event.new
+            else:
+                self.request()
+
+        def linked(event):  # the state (the box, a URL) names a store: show it
+            if self.store.value != event.new:
+                self.store.value = event.new
+            self.request()
+
+        self.store.param.watch(typed, "value")
+        self.state.param.watch(linked, "atlas")
         self.quantity.param.watch(lambda _: self.request(), "value")
 
     # ------------------------------------------------------------------ data
     def load(self, path: str) -> xr.Dataset:
-        p = Path(path).expanduser()
+        p = resolve_atlas_store("atlas store", path)  # ParameterError: shown as the message
         if not p.is_dir():
-            raise SceneMessage(f"no atlas store at {path}")
+            raise SceneMessage(f"no atlas store at {p}")
         try:
             ds = xr.open_zarr(p, consolidated=False).load()
         except Exception as exc:  # noqa: BLE001  (shown, not raised)
@@ -106,11 +133,14 @@ class AtlasScene(BokehScene):
         lo, _, hi = s.w_plus_range()  # (alpha, beta) for the cubic; finite for any law
         pad = 0.02 * (hi - lo)
         rows = self._rows = f"{lo + pad}:{hi - pad}:{int(self.n_w.value)}"
-        res = atlas.run(law, "solitary", rows=rows, V=int(self.n_V.value),
-                        N=int(self.N_run.value), floquet=True, finite_size=False,
-                        progress=lambda d, n, f: self.set_progress(d, n))  # fmt: skip
-        info.time(f"atlas run ({res.n_computed} points, {res.workers} {res.backend} workers)",
-                  res.elapsed_s)  # fmt: skip
+        res = atlas.run(
+            law, "solitary", rows=rows, V=int(self.n_V.value), N=int(self.N_run.value),
+            floquet=True, finite_size=False,
+            progress=lambda d, n, f: self.set_progress(d, n, "atlas points"),
+        )  # fmt: skip
+        label = f"atlas run ({res.n_computed} points, {res.workers} {res.backend} workers)"
+        self._run_time = (label, res.elapsed_s)
+        info.time(label, res.elapsed_s)
         return res.dataset
 
     # ------------------------------------------------------------------ render
@@ -118,8 +148,16 @@ class AtlasScene(BokehScene):
         if self._want_run:
             self._want_run = False
             self._ds, self._source = self.run_small(info), "background run"
-        elif self.store.value:
-            self._ds, self._source = self.load(self.store.value), self.store.value
+            self._cell = None
+        elif self.state.atlas:
+            if self._source != self.state.atlas:
+                self._ds, self._source = self.load(self.state.atlas), self.state.atlas
+                self._cell, self._run_time = None, None
+        elif self._source != "background run":
+            self._ds, self._source, self._cell = None, "", None
+        if self._source == "background run" and self._run_time and not info.timings:
+            # a re-render of the run already on screen keeps what the run cost
+            info.time(self._run_time[0], Computed(None, self._run_time[1], True))
         if self._ds is None:
             raise SceneMessage("Give an atlas store (fpu atlas solitary … --out atlas.zarr) or "
                                "run a small atlas with the button.", "info")  # fmt: skip
@@ -157,7 +195,26 @@ class AtlasScene(BokehScene):
         up.set(self.fig.title, text=f"{name} over (w₊, V) (click a cell: that wave)")
         up.range(self.fig.x_range, w[0] - dw / 2, w[-1] + dw / 2)
         up.range(self.fig.y_range, V[0] - dv / 2, V[-1] + dv / 2)
+        self._cell_edges = (w, V, dw, dv)
+        up.set(self.pick_src, data=self._cell_outline())
+        if self._cell is not None:
+            i, j = self._cell
+            info.notes.append(f"picked cell w₊ = {w[i]:.6g}, V = {V[j]:.6g} (N = {self.atlas_N})")
         return up
+
+    def _cell_outline(self) -> dict:
+        if self._cell is None or self._ds is None:
+            return {"l": [], "r": [], "b": [], "t": []}
+        w, V, dw, dv = self._cell_edges
+        i, j = self._cell
+        return {"l": [w[i] - dw / 2], "r": [w[i] + dw / 2], "b": [V[j] - dv / 2],
+                "t": [V[j] + dv / 2]}  # fmt: skip
+
+    @property
+    def atlas_N(self) -> int | None:
+        """The chain size the atlas's waves were computed at (None: not recorded)."""
+        N = int(self._ds.attrs.get("N", -1)) if self._ds is not None else -1
+        return N if N > 0 else None
 
     @property
     def dataset(self) -> xr.Dataset | None:
@@ -170,10 +227,18 @@ class AtlasScene(BokehScene):
             return False
         w, V = self._ds["w_plus"].values, self._ds["V"].values
         i, j = int(np.argmin(np.abs(w - x))), int(np.argmin(np.abs(V - y)))
+        N = self.atlas_N
         try:
-            self.state.pick(float(w[i]), float(V[j]))
+            # the atlas's N too: the Profiles / Floquet tabs then show this cell's very wave
+            self.state.pick(
+                float(w[i]),
+                float(V[j]),
+                N=N if N is not None and N_RANGE[0] <= N <= N_RANGE[1] else None,
+            )
         except ParameterError:
             return False
+        self._cell = (i, j)
+        self.request()  # redraw with the cell marked
         return True
 
     def download_data(self):
@@ -184,8 +249,17 @@ class AtlasScene(BokehScene):
         cols = {"w_plus": W.ravel(), "V": Vg.ravel()}
         for k in ("amplitude", "energy", "residual", "max_modulus", "max_modulus_error"):
             cols[k] = ds[k].values.ravel()
-        hdr = provenance(self.state, f"atlas from {self._source}")
-        return "atlas.csv", as_csv(cols, hdr + "\n" + self.python_code())
+        return "atlas.csv", as_csv(cols, self.header() + "\n" + self.python_code())
+
+    def header(self) -> str:
+        """The download's header: the atlas's own parameters (its store attributes), not the
+        sidebar's N and tol, which may differ."""
+        a = self._ds.attrs
+        keys = ("kind", "law", "params", "N", "tol", "floquet", "finite_size", "floquet_method",
+                "m", "continuation", "fpucore_version", "created")  # fmt: skip
+        lines = [f"atlas from {self._source}", f"fpu-explorer / fpucore {fpucore.__version__}"]
+        lines += [f"{k}={a[k]!r}" for k in keys if k in a]
+        return "\n".join(lines)
 
     def python_code(self) -> str:
         if self._source and self._source != "background run":

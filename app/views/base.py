@@ -61,6 +61,8 @@ class Info:
     #: Markdown: user-supplied parts (a path, an exception's text) go through md_literal
     shown: str = ""
     errors: list[tuple[str, float]] = field(default_factory=list)
+    #: differences between two models (e.g. max |discrete − QC|): physics, not numerical error
+    differences: list[tuple[str, float]] = field(default_factory=list)
     timings: list[tuple[str, Computed | float]] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
     warning: str | None = None  # shown above the plot (e.g. "current V out of range")
@@ -69,12 +71,66 @@ class Info:
         self.timings.append((label, c))
 
     def error(self, label: str, value) -> None:
-        try:
-            v = float(value)
-        except (TypeError, ValueError):
-            return
-        if math.isfinite(v):
-            self.errors.append((label, v))
+        _append_finite(self.errors, label, value)
+
+    def difference(self, label: str, value) -> None:
+        """A model difference (shown on its own line, never under "Error")."""
+        _append_finite(self.differences, label, value)
+
+
+def _append_finite(rows: list[tuple[str, float]], label: str, value) -> None:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        return
+    if math.isfinite(v):
+        rows.append((label, v))
+
+
+def fmt_timing(label: str, c: Computed | float) -> str:
+    """'discrete N=500 1.20 s'; a cached result keeps the cost of its computation:
+    'discrete N=500 1.20 s (computed earlier, now from the cache)'."""
+    if isinstance(c, Computed):
+        return f"{label} {fmt_time(c.elapsed_s)}" + (
+            " (computed earlier, now from the cache)" if c.cached else ""
+        )
+    return f"{label} {fmt_time(float(c))}"
+
+
+#: the code box: monospace, no soft wrap (a long call scrolls instead of breaking)
+CODE_CSS = (
+    "textarea { font-family: ui-monospace, SFMono-Regular, Menlo, Consolas, monospace; "
+    "font-size: 12px; white-space: pre; overflow-wrap: normal; overflow: auto; }"
+)
+
+#: "Copy as Python": the Clipboard API where the page has it (https or localhost); else (plain
+#: http on another host: navigator.clipboard is undefined) a hidden textarea and the legacy copy
+#: command; if that fails too, the code card opens so the user can select the code.  The button
+#: says which happened for two seconds.
+COPY_JS = """
+const say = (text) => {
+  btn.label = text;
+  setTimeout(() => { btn.label = "Copy as Python"; }, 2000);
+};
+const legacy = () => {
+  const ta = document.createElement("textarea");
+  ta.value = code.value;
+  ta.setAttribute("readonly", "");
+  ta.style.position = "fixed";
+  ta.style.opacity = "0";
+  document.body.appendChild(ta);
+  ta.select();
+  let ok = false;
+  try { ok = document.execCommand("copy"); } catch (e) { ok = false; }
+  document.body.removeChild(ta);
+  if (ok) { say("Copied ✓"); } else { card.collapsed = false; say("Select the code below"); }
+};
+if (navigator.clipboard && window.isSecureContext) {
+  navigator.clipboard.writeText(code.value).then(() => say("Copied ✓"), legacy);
+} else {
+  legacy();
+}
+"""
 
 
 def fmt_time(s: float) -> str:
@@ -230,6 +286,11 @@ class Scene(pn.viewable.Viewer):
         self.progress = pn.indicators.Progress(
             value=-1, max=100, visible=False, sizing_mode="stretch_width", bar_color="info"
         )
+        # the running job's stage, its percentage and the time left (plain text: no markup)
+        self.progress_text = pn.pane.Str(
+            "", visible=False, css_classes=["scene-progress"], margin=(0, 10)
+        )
+        self._stage = ("", 0.0, 0.0)  # (name, start of the stage, last text update)
         self.cancel_btn = pn.widgets.Button(
             label="Cancel", color="warning", visible=False, css_classes=["scene-cancel"]
         )
@@ -242,27 +303,32 @@ class Scene(pn.viewable.Viewer):
             css_classes=["scene-download"],
         )
         self.code = pn.widgets.TextAreaInput(
-            value="", height=200, sizing_mode="stretch_width", css_classes=["scene-code"]
+            value="",
+            height=220,
+            sizing_mode="stretch_width",
+            css_classes=["scene-code"],
+            stylesheets=[CODE_CSS],
         )
         self.copy_btn = pn.widgets.Button(
             label="Copy as Python", color="light", css_classes=["scene-copy"]
         )
+        self.code_card = pn.Card(
+            self.code, title="Python", collapsed=True, sizing_mode="stretch_width", margin=2
+        )
         self.copy_btn.js_on_click(
-            args={"code": self.code},
-            code="if (navigator.clipboard) { navigator.clipboard.writeText(code.value)"
-            ".catch(() => {}); }",
+            args={"code": self.code, "btn": self.copy_btn, "card": self.code_card},
+            code=COPY_JS,
         )
         self._extra = self.extra_panes()
         side = pn.Column(
             pn.pane.Markdown("#### Error and time", margin=(0, 5)),
             self.status,
             self.progress,
+            self.progress_text,
             self.cancel_btn,
             *self.controls(),
             pn.Row(self.download, self.copy_btn),
-            pn.Card(
-                self.code, title="Python", collapsed=True, sizing_mode="stretch_width", margin=2
-            ),
+            self.code_card,
             width=330,
         )
         main = pn.Column(
@@ -286,6 +352,7 @@ class Scene(pn.viewable.Viewer):
         # the session's document: worker threads render in its context, so Panel resolves
         # resources (server-relative, not CDN) and schedules model updates on its event loop
         self._doc = pn.state.curdoc
+        self._served = self._doc is not None and self._doc.session_context is not None
         self._lock = threading.Lock()
         self._pending = False
         self._running = False
@@ -336,16 +403,52 @@ class Scene(pn.viewable.Viewer):
         self._write_status(info, time.perf_counter(), partial=True)
 
     def superseded(self) -> bool:
-        """True once the running render is no longer wanted (a newer request or Cancel)."""
-        return self._pending or self._cancel
+        """True once the running render is no longer wanted (a newer request, Cancel, or the
+        browser closed the session)."""
+        return self._pending or self._cancel or self.session_closed
+
+    @property
+    def session_closed(self) -> bool:
+        """True once Bokeh has destroyed the served session's document (the browser left).
+        Bokeh then clears every model's properties, so they read as class defaults (a figure's
+        Range1d becomes a DataRange1d, a renderer loses its glyph): a render still running for
+        that session must neither read nor write them, and nobody is left to see a message."""
+        return self._served and self._doc.session_context is None
 
     def cancel(self) -> None:
         """The Cancel button: stop waiting for the running job (killed if nobody else waits)."""
         self._cancel = True
 
-    def set_progress(self, done: float, total: float | None = None) -> None:
+    def set_progress(self, done: float, total: float | None = None, stage: str = "") -> None:
+        """Progress of the running job: the fraction ``done`` (or done / total) of ``stage``;
+        a new stage restarts the time-left estimate (elapsed × (1 − x) / x, once 2 % are done
+        and half a second has passed).  The text changes at most four times a second (each
+        change is a model update sent to the browser)."""
         x = float(done) if total is None else float(done) / max(float(total), 1.0)
-        self.progress.value = int(100 * min(max(x, 0.0), 1.0))
+        x = min(max(x, 0.0), 1.0)
+        now = time.perf_counter()
+        name, t0, last = self._stage
+        if stage and stage != name:
+            name, t0, last = stage, now, 0.0
+        self.progress.value = int(100 * x)
+        if now - last < 0.25 and x < 1.0:
+            self._stage = (name, t0, last)
+            return
+        text = f"{name}: {100 * x:.0f} %" if name else f"{100 * x:.0f} %"
+        if 0.02 <= x < 1.0 and now - t0 >= 0.5:
+            text += f" · about {fmt_time((now - t0) * (1.0 - x) / x)} left"
+        self._stage = (name, t0, now)
+        self.progress_text.object = text
+
+    def stage_progress(self, stage: str):
+        """The progress callback (a fraction in [0, 1]) of one named stage."""
+        return lambda x: self.set_progress(x, stage=stage)
+
+    def set_stage(self, stage: str) -> None:
+        """A new stage of the running job, before it reports a fraction."""
+        self._stage = (stage, time.perf_counter(), time.perf_counter())
+        self.progress.value = -1
+        self.progress_text.object = f"{stage} …"
 
     # ------------------------------------------------------------------ refresh machinery
     def request(self) -> None:
@@ -364,8 +467,8 @@ class Scene(pn.viewable.Viewer):
             with set_curdoc(self._doc):
                 while True:
                     with self._lock:
-                        if not self._pending:
-                            self._running = False
+                        if not self._pending or self.session_closed:
+                            self._running = self._pending = False
                             return
                         self._pending = False
                         self._cancel = False
@@ -393,6 +496,8 @@ class Scene(pn.viewable.Viewer):
         ``building``: called while the page itself is being built (on the session's thread,
         before the models reach the browser) — no spinner timer runs then (a timer thread could
         switch the spinner on after this render has finished and leave it on)."""
+        if self.session_closed:
+            return None
         t0 = time.perf_counter()
         info = Info()
         self.stale = False
@@ -417,10 +522,14 @@ class Scene(pn.viewable.Viewer):
             self._show_message(str(exc), "warning")
             return None
         except Exception as exc:  # the server keeps serving; the log keeps the traceback
+            if self.session_closed:  # the models were emptied under the render: not a failure
+                return None
             log.exception("scene %s failed", self.key)
             self._show_message(
                 f"computation failed: {type(exc).__name__}: {exc}".splitlines()[0], "danger"
             )
+            return None
+        if self.session_closed:
             return None
         try:
             self.publish(obj)
@@ -433,6 +542,8 @@ class Scene(pn.viewable.Viewer):
             self._write_status(info, t0)
             self.code.value = self.python_code()
         except Exception as exc:
+            if self.session_closed:
+                return None
             log.exception("scene %s: plot update failed", self.key)
             self._show_message(f"plot update failed: {type(exc).__name__}: {exc}", "danger")
             return None
@@ -453,6 +564,7 @@ class Scene(pn.viewable.Viewer):
                     try:
                         self.plot.loading = True
                         self.progress.param.update(value=-1, visible=True)
+                        self.progress_text.visible = True
                         self.cancel_btn.visible = True
                     except Exception:  # noqa: BLE001 - cosmetic; never kill the timer's caller
                         log.exception("scene %s: busy indicator", self.key)
@@ -468,7 +580,9 @@ class Scene(pn.viewable.Viewer):
                 if flags["on"]:
                     self.plot.loading = False
                     self.progress.visible = False
+                    self.progress_text.visible = False
                     self.cancel_btn.visible = False
+                self._stage = ("", 0.0, 0.0)
 
         return stop
 
@@ -497,14 +611,10 @@ class Scene(pn.viewable.Viewer):
         if info.errors:
             errs = " · ".join(f"{k} {v:.2e}" for k, v in info.errors)
             lines.append(f"**Error:** {errs}")
-        tparts = []
-        for label, c in info.timings:
-            if isinstance(c, Computed):
-                tparts.append(
-                    f"{label} {fmt_time(c.elapsed_s)}" + (" (cached)" if c.cached else "")
-                )
-            else:
-                tparts.append(f"{label} {fmt_time(float(c))}")
+        if info.differences:
+            diffs = " · ".join(f"{k} {v:.2e}" for k, v in info.differences)
+            lines.append(f"**Model difference:** {diffs}")
+        tparts = [fmt_timing(label, c) for label, c in info.timings]
         tparts.append(f"server {fmt_time(time.perf_counter() - t0)}")
         lines.append("**Time:** " + " · ".join(tparts))
         lines.extend(f"_{n}_" for n in info.notes)

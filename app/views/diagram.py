@@ -213,7 +213,9 @@ class DiagramScene(BokehScene):
             return None
         self._want_discrete = False
         self._family_args = key_args
-        c = compute.discrete_family(*key_args, stop=self.superseded, progress=self.set_progress)
+        c = compute.discrete_family(
+            *key_args, stop=self.superseded, progress=self.stage_progress("discrete family")
+        )
         info.time(f"{len(Vs)} discrete waves", c)
         rows = [r for r in c.value if hasattr(r, "amplitude")]
         bad = [r for r in rows if not r.converged]

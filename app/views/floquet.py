@@ -3,9 +3,12 @@
 (a) the 2N multipliers μ (blue ×) of the discrete wave at the current parameters with the unit
 circle drawn over them (red); (b) a zoom on the multiplier of largest modulus away from the
 trivial cluster at μ = 1, where instability quartets (|μ| − 1 beyond the error bar, red rings)
-show; (c) on demand, max |μ| against V for the family, V_SK dashed, the current V marked and,
-for a solitary family, the extrema of E_ren(V) (energy criterion: from the sweep's own waves,
-solid, and the QC family, dotted) with the cross-check of the classifications against them.
+show; (c) on demand, max |μ| − 1 against V for the family on a log axis (the paper's
+O(1e-8 … 1e-3) structure), points coloured by the stability decision, V_SK dashed, the current
+V marked and, for a solitary family, the extrema of E_ren(V) (energy criterion: from the sweep's
+own waves, solid, and the QC family, dotted) with the cross-check of the decisions against them
+in one line; (d) the decision's evidence, max |μ| − 1 on the window of rings in [N/2, N].
+Headline and sentence of the status are the decision record's (fpucore.floquet.Decision).
 
 The three figures are built once; panel (c) is hidden until a sweep exists (its visibility
 changes, the layout does not).  Spectrum and sweep run in worker processes.
@@ -19,6 +22,7 @@ from bokeh.layouts import column, row
 from bokeh.models import Whisker
 
 from fpucore import qc
+from fpucore.floquet import CLASSES, changes_summary
 
 from .. import compute
 from .base import Info, SceneMessage, as_json, fmt_num, provenance, python_preamble
@@ -35,11 +39,12 @@ from .bokeh_scene import (
 from .energy_marks import ExtremumMarks, criterion_words, fmt_extremum
 
 TH = np.linspace(0.0, 2.0 * np.pi, 721)
-#: fpucore.floquet's classification in words (never a bare "unstable": the evidence is in (d))
-CLASS_WORDS = {
-    "stable": "stable",
-    "finite_size": "finite-size artefact (the excess shrinks as N grows)",
-    "unstable": "unstable (the excess persists as N grows)",
+#: the sweep's points by decision: legend words and colour
+CLASS_STYLE = {
+    "stable": ("stable (drawn at its error bar)", "#2ca02c"),
+    "finite_size": ("finite-size artefact", "#1f77b4"),
+    "unstable": ("unstable", "#d62728"),
+    "undetermined": ("not determined at this N", "#7f7f7f"),
 }
 
 
@@ -78,11 +83,12 @@ class FloquetScene(BokehScene):
         fa = new_figure("(a) Floquet multipliers μ in the complex plane", "Re μ", "Im μ", **sq)
         fb = new_figure("(b) zoom", "Re μ", "Im μ", **sq)
         fc = new_figure(
-            "(c) largest |μ| against V along the family",
+            "(c) largest |μ| − 1 against V along the family",
             "V",
-            "max |μ|",
+            "max |μ| − 1",
             sizing_mode="stretch_width",
             height=260,
+            y_axis_type="log",
         )
         self.fig_a, self.fig_b, self.fig_c = fa, fb, fc
         # markers first, unit circle after: drawn over the 2N crosses (visible at N = 500)
@@ -104,14 +110,12 @@ class FloquetScene(BokehScene):
                 ("unit circle", [self.r_circle[0]]),
             ],
         )
-        self.r_sw = add_line(fc, "#1f77b4", 2)
-        self.r_swp = add_points(fc, "circle", 6, color="#1f77b4")
+        self.r_sw = add_line(fc, "#9e9e9e", 1)
         self.r_sw[1].name = "floquet-sweep"
-        self.whisk = Whisker(
-            source=self.r_swp[1], base="x", upper="hi", lower="lo", line_color="#1f77b4"
-        )
-        self.r_swp[1].data = {"x": [], "y": [], "hi": [], "lo": []}
-        fc.add_layout(self.whisk)
+        # one renderer per decision: the legend names the colours
+        self.r_cls = {c: add_points(fc, "circle", 7, color=CLASS_STYLE[c][1]) for c in CLASSES}
+        for c, (_, src) in self.r_cls.items():
+            src.name = f"floquet-sweep-{c}"
         self.sw_V = add_vline(fc, "black")
         self.sw_vsk = add_vline(fc, "#d62728", "dashed")
         self.ext_d = ExtremumMarks(fc, "#ff7f0e", "solid", "floquet-energy-extremum")
@@ -119,14 +123,15 @@ class FloquetScene(BokehScene):
         self.sw_legend = add_legend(
             fc,
             "right",
-            [("max |μ|", [self.r_sw[0], self.r_swp[0]]),
+            [("max |μ| − 1", [self.r_sw[0]]),
              ("E_ren extremum (sweep's waves)", self.ext_d.renderers),
-             ("E_ren^QC extremum", self.ext_q.renderers)],
+             ("E_ren^QC extremum", self.ext_q.renderers)]
+            + [(CLASS_STYLE[c][0], [self.r_cls[c][0]]) for c in CLASSES],
         )  # fmt: skip
         fc.visible = False
-        # (d) the evidence of the three-way classification: max|μ| − 1 ± error at 0.4N, 0.6N, N
+        # (d) the decision's evidence: max|μ| − 1 ± error on the window of rings in [N/2, N]
         fd = new_figure(
-            "(d) finite-size check: largest |μ| − 1 against the chain size N",
+            "(d) finite-size window: largest |μ| − 1 against the chain size N",
             "N",
             "max |μ| − 1",
             sizing_mode="stretch_width",
@@ -169,19 +174,23 @@ class FloquetScene(BokehScene):
         info.time(f"sweep ({len(Vs)} V)", c)
         self._sweep_result = sw
         mm, err = np.asarray(sw.max_modulus, float), np.asarray(sw.error, float)
-        ok = np.isfinite(mm)
-        up.data(self.r_sw[1], x=sw.V[ok], y=mm[ok])
-        up.set(
-            self.r_swp[1],
-            data={"x": sw.V[ok], "y": mm[ok], "hi": (mm + err)[ok], "lo": (mm - err)[ok]},
-        )
+        ok = np.isfinite(mm) & np.isfinite(err)
+        # max|μ| − 1 on a log axis; a point within its error bar is drawn at the bar (a bound)
+        y = np.maximum(mm - 1.0, np.maximum(err, 1e-16))
+        up.data(self.r_sw[1], x=sw.V[ok], y=y[ok])
+        cls = np.array([c or "" for c in sw.classification])
+        for c, (r, src) in self.r_cls.items():
+            sel = ok & (cls == c)
+            up.data(src, x=sw.V[sel], y=y[sel])
+            up.show(r, self.sw_legend[3 + CLASSES.index(c)], bool(sel.any()))
         up.set(self.sw_V, location=float(s.V))
         x_sk = float(vsk if vsk is not None else s.V)
         up.set(self.sw_vsk, location=x_sk, visible=vsk is not None)
         up.range(self.fig_c.x_range, float(np.min(sw.V)), float(np.max(sw.V)), pad=0.04)
-        lo, hi = finite_extent(mm[ok] - err[ok], mm[ok] + err[ok], [1.0])
-        up.range(self.fig_c.y_range, lo, hi, pad=0.1)
-        self._energy_criterion(info, up, kind, wp, Vs, (lo - 0.2 * (hi - lo), hi + 0.2 * (hi - lo)))
+        lo = float(np.min(y[ok])) / 3.0 if ok.any() else 1e-12
+        hi = float(np.max(y[ok])) * 3.0 if ok.any() else 1e-2
+        up.range(self.fig_c.y_range, lo, hi)
+        self._energy_criterion(info, up, kind, wp, Vs, (lo, hi))
         if (~ok).any():
             info.notes.append(f"sweep: {int((~ok).sum())} velocities did not converge (not drawn)")
         return True
@@ -227,26 +236,8 @@ class FloquetScene(BokehScene):
                 + criterion_words(ec.qc_extrema_V, ec.qc_extrema_V_error, ec.qc_extrema_kind,
                                   "the QC family", "between c₊ and c₋")
             )  # fmt: skip
-        for ch in changes:
-            step = (f"the classification changes from {ch.class_from} to {ch.class_to} between "
-                    f"V = {fmt_num(ch.V_from)} and V = {fmt_num(ch.V_to)}")  # fmt: skip
-            if ch.explained:
-                info.notes.append(
-                    f"Cross-check: {step}, next to the E_ren extremum at V = "
-                    f"{fmt_num(ch.extremum_V)} — consistent with the criterion."
-                )
-            else:
-                info.notes.append(
-                    f"Cross-check: {step}, where E_ren(V) has no extremum: by the energy "
-                    "criterion this is not a change of stability of the infinite chain through "
-                    "its translation mode — most likely a finite-size effect (paper §6); check "
-                    "with a larger N."
-                )
-        if not changes:
-            info.notes.append(
-                "Cross-check: the classification along the sweep does not cross between stable "
-                "(or finite-size artefact) and unstable, consistent with the energy criterion."
-            )
+        # the cross-check in one line (fpucore.floquet.changes_summary)
+        info.notes.append(f"Cross-check with the energy criterion: {changes_summary(changes)}")
 
     def render(self, info: Info):
         s = self.state
@@ -294,7 +285,7 @@ class FloquetScene(BokehScene):
         info.shown = (
             f"{r.kind} wave V = {fmt_num(r.V)}, N = {r.N}: {len(mu)} multipliers, "
             f"max |μ| = {fr.max_modulus:.10f}, away from 1: {fr.max_modulus_away_from_1:.10f} — "
-            f"**{CLASS_WORDS.get(fr.classification, fr.classification)}**: {fr.verdict}"
+            f"**{fr.decision.headline}**: {fr.decision.sentence}"
         )
         self._finite_size(fr, up)
         shown = self._sweep(info, up)
@@ -304,12 +295,12 @@ class FloquetScene(BokehScene):
         return up
 
     def _finite_size(self, fr, up: Updates) -> None:
-        """(d): the points behind "finite-size artefact" / "unstable" (hidden when stable)."""
+        """(d): the window behind the decision (hidden when the test did not run)."""
         Ns = np.asarray(fr.finite_size_N, float)
         ex = np.asarray(fr.finite_size_excess, float)
         er = np.asarray(fr.finite_size_error, float)
         ok = np.isfinite(ex) & np.isfinite(er)
-        shown = bool(fr.finite_size_checked and ok.sum() >= 2)
+        shown = bool(ok.sum() >= 2)
         up.set(self.fig_d, visible=shown)
         if not shown:
             up.set(self.r_fs[1], data={"x": [], "y": [], "hi": [], "lo": []})
@@ -318,10 +309,11 @@ class FloquetScene(BokehScene):
         up.set(self.r_fs[1], data={"x": Ns, "y": ex, "hi": ex + er, "lo": ex - er})
         up.range(self.fig_d.x_range, 0.0, float(Ns.max()), pad=0.05)
         up.range(self.fig_d.y_range, *finite_extent(ex - er, ex + er, [0.0]), pad=0.1)
-        p, dp = fr.finite_size_exponent, fr.finite_size_exponent_error
-        if np.isfinite(p):
-            up.set(self.fig_d.title, text=f"(d) finite-size check: max |μ| − 1 ∝ N^−p, p = "
-                   f"{p:.2f} ± {dp:.2f}")  # fmt: skip
+        d = fr.decision
+        title = f"(d) finite-size window: max |μ| − 1 on rings N = {int(Ns[0])} … {int(Ns[-1])}"
+        if np.isfinite(d.p) and d.p_error < abs(d.p):  # never a fit whose error exceeds it
+            title += f"; envelope ∝ N^−p, p = {d.p:.2f} ± {d.p_error:.2f}"
+        up.set(self.fig_d.title, text=title)
 
     def python_code(self) -> str:
         s = self.state
@@ -377,11 +369,14 @@ class FloquetScene(BokehScene):
             "finite_size_excess": fr.finite_size_excess,
             "finite_size_error": fr.finite_size_error,
             "finite_size_exponent": fr.finite_size_exponent,
+            "decision": fr.decision.as_dict(),
         }
         sw = self._sweep_result
         if sw is not None:
             out["sweep"] = {"V": sw.V, "max_modulus": sw.max_modulus, "error": sw.error,
-                            "classification": sw.classification, "energy": sw.energy,
+                            "classification": sw.classification,
+                            "headline": [r.get("headline") for r in sw.rows],
+                            "energy": sw.energy,
                             "energy_error": sw.energy_error}  # fmt: skip
         ec = getattr(self, "_ec", None)
         if ec is not None:
@@ -392,5 +387,6 @@ class FloquetScene(BokehScene):
                 "qc_extrema_V_error": crit.qc_extrema_V_error,
                 "qc_extrema_kind": crit.qc_extrema_kind,
                 "unexplained_changes": [(c.V_from, c.V_to) for c in changes if not c.explained],
+                "cross_check": changes_summary(changes),
             }  # fmt: skip
         return "floquet.json", as_json(out)

@@ -9,7 +9,7 @@ In solitary mode also the current Rayleigh line of slope V², and the sonic line
 from __future__ import annotations
 
 import numpy as np
-from bokeh.models import HoverTool
+from bokeh.models import HoverTool, LabelSet
 
 from fpucore import qc
 
@@ -56,11 +56,18 @@ class ForceLawScene(BokehScene):
         self.r_V = add_line(fig, "#9467bd", 2, "dashed")
         self.r_pts = add_points(fig, "circle", 8, color="black")
         self.r_pts[1].data["label"] = np.empty(0, dtype=object)
+        self.r_pts[1].data["what"] = np.empty(0, dtype=object)
+        self.r_pts[1].name = "force-special-points"  # read by the tests
         self.r_V[1].name = "force-rayleigh-V"  # read by the browser tests
+        # each special point named beside it; hovering gives its role and exact coordinates
+        fig.add_layout(
+            LabelSet(x="x", y="y", text="label", source=self.r_pts[1], x_offset=6,
+                     y_offset=-16, text_font_size="10pt")
+        )  # fmt: skip
         fig.add_tools(
             HoverTool(
                 renderers=[self.r_pts[0]],
-                tooltips=[("w", "@x{0.00000}"), ("f", "@y{0.00000}"), ("", "@label")],
+                tooltips=[("", "@label: @what"), ("w", "@x{0.000000}"), ("f", "@y{0.000000}")],
             )
         )
         self.spans = [add_vline(fig, "gray", "dotted") for _ in range(3)]
@@ -77,6 +84,7 @@ class ForceLawScene(BokehScene):
                         ("sonic line c₊", [self.r_cp[0]]),
                         ("sonic line c₋", [self.r_cm[0]]),
                         ("Rayleigh line (current V)", [self.r_V[0]]),
+                        ("special points (hover: values)", [self.r_pts[0]]),
                     ],
                 ),
             )
@@ -117,7 +125,12 @@ class ForceLawScene(BokehScene):
             up.data(src, wp_key, x=x, y1=lw.f(x), y2=R(x, sk.V))
         x = np.linspace(min(wp, wm), max(wp, wm), 2)
         up.data(self.r_sk[1], wp_key, x=x, y=R(x, sk.V))
-        pts = {"w": [wp, wm], "f": [fp, float(lw.f(wm))], "label": ["w₊", "w₋"]}
+        pts = {
+            "w": [wp, wm],
+            "f": [fp, float(lw.f(wm))],
+            "label": ["w₊", "w₋"],
+            "what": ["state ahead of the wave", "superkink's state behind (equal areas)"],
+        }
         shown = (
             f"superkink construction for w₊ = {fmt_num(wp)}: w₋ = {fmt_num(wm)}, "
             f"V_SK = {fmt_num(sk.V)}"
@@ -134,14 +147,21 @@ class ForceLawScene(BokehScene):
             pts["w"].append(wms)
             pts["f"].append(float(lw.f(wms)))
             pts["label"].append("w₋ˢ")
+            pts["what"].append("tangency of the c₋ sonic line")
             if problem is None:
                 up.data(self.r_V[1], x=xl, y=R(xl, s.V))
-                roots = qc.rayleigh_roots(lw, wp, s.V)
-                for r in roots:
+                for r in qc.rayleigh_roots(lw, wp, s.V):
                     if np.isfinite(r):
+                        # a saddle of the phase plane where V² > f′(w), a centre otherwise
+                        saddle = s.V * s.V > float(lw.df(r))
                         pts["w"].append(r)
                         pts["f"].append(float(lw.f(r)))
-                        pts["label"].append("root")
+                        pts["label"].append("w_S" if saddle else "w_C")
+                        pts["what"].append(
+                            "saddle: Rayleigh line meets f, V² > f′"
+                            if saddle
+                            else "centre: Rayleigh line meets f, V² < f′"
+                        )
                 shown += f"; current V = {fmt_num(s.V)} in " + (
                     "(c₊, V_SK)" if s.V < vsk else "(V_SK, c₋)"
                 )
@@ -156,6 +176,7 @@ class ForceLawScene(BokehScene):
                 "x": np.asarray(pts["w"], float),
                 "y": np.asarray(pts["f"], float),
                 "label": np.asarray(pts["label"], dtype=object),
+                "what": np.asarray(pts["what"], dtype=object),
             },
         )
 

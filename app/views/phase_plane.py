@@ -3,13 +3,17 @@
 Level sets of the exact first integral H(w, w′) of eq. TW_QC_gen3 (thin), the separatrix levels
 through the saddles (thick), critical points marked by type (saddle ×, center ○) and the
 current orbit highlighted: the homoclinic orbit of a tensile/compressive solitary wave, or the
-kink (red) and antikink (green) heteroclinic pair at V = V_SK.  QC only.
+kink (red) and antikink (green) heteroclinic pair at V = V_SK.  A click draws the orbit through
+that point (pplane-style, from the closed-form first integral: fpucore.qc.phase.orbit_through);
+the clicked points stay (their orbits follow w₊ and V) until "Clear orbits".  QC only.
 """
 
 from __future__ import annotations
 
 import contourpy
 import numpy as np
+import panel as pn
+from bokeh.events import Tap
 
 from .. import compute
 from ..compute import exact
@@ -17,6 +21,7 @@ from .base import Info, SceneMessage, as_csv, fmt_num, provenance, python_preamb
 from .bokeh_scene import BokehScene, Updates, add_legend, add_line, add_points, new_figure
 
 ORBIT_COLORS = {"kink": "#d62728", "antikink": "#2ca02c"}
+MAX_CLICKED = 8  # orbits drawn through clicked points at once (the oldest goes first)
 POINT_STYLES = (  # kind, marker, color
     ("saddle", "x", "black"),
     ("center", "circle", "#1f77b4"),
@@ -59,6 +64,10 @@ class PhasePlaneScene(BokehScene):
         self.r_thin = add_line(fig, "#aaaaaa", 0.8)
         self.r_sep = add_line(fig, "#444444", 1.6)
         self.r_orbits = [add_line(fig, "#e377c2", 3.5) for _ in range(2)]
+        self.r_clicked = add_line(fig, "#ff7f0e", 2.0, "dashed")
+        self.r_clicked[1].name = "phase-clicked-orbits"  # read by the tests
+        self.r_seeds = add_points(fig, "circle", 7, color="#ff7f0e")
+        fig.on_event(Tap, lambda ev: self.click(ev.x, ev.y))
         self.r_points = [
             add_points(fig, marker, 14, color=color, line_width=3)
             for _, marker, color in POINT_STYLES
@@ -67,10 +76,55 @@ class PhasePlaneScene(BokehScene):
             fig,
             "right",
             [("orbit", [r]) for r, _ in self.r_orbits]
-            + [(kind, [r]) for (kind, _, _), (r, _) in zip(POINT_STYLES, self.r_points)],
+            + [(kind, [r]) for (kind, _, _), (r, _) in zip(POINT_STYLES, self.r_points)]
+            + [("orbit through a click", [self.r_clicked[0], self.r_seeds[0]])],
         )
-        self.orbit_items, self.point_items = items[:2], items[2:]
+        self.orbit_items, self.point_items = items[:2], items[2:-1]
+        self.clicked_item = items[-1]
         return fig
+
+    def controls(self):
+        self.clear_btn = pn.widgets.Button(label="Clear orbits", css_classes=["phase-clear"])
+        return [pn.pane.Markdown("_Click in the plane: the orbit through that point._"),
+                self.clear_btn]  # fmt: skip
+
+    def _extra_watch(self) -> None:
+        self.clicks: list[tuple[float, float]] = []
+
+        def clear(_):
+            self.clicks = []
+            self.request()
+
+        self.clear_btn.on_click(clear)
+
+    def click(self, w0, wp0) -> bool:
+        """Add the orbit through (w0, w0′) (a click); False for a point off the plot."""
+        if w0 is None or wp0 is None:
+            return False
+        self.clicks = [*self.clicks, (float(w0), float(wp0))][-MAX_CLICKED:]
+        self.request()
+        return True
+
+    def _clicked_orbits(self, pp, lw, info: Info) -> tuple[np.ndarray, np.ndarray, list]:
+        """The orbits through the clicked points inside this portrait's window, as one
+        NaN-separated polyline, and the points used."""
+        s = self.state
+        xs, ys, seeds, worst, cost = [], [], [], 0.0, 0.0
+        for w0, wp0 in self.clicks:
+            if not (pp.w[0] <= w0 <= pp.w[-1] and pp.wp[0] <= wp0 <= pp.wp[-1]):
+                continue  # the window moved with w₊ or V: this point is off the plot now
+            c = compute.phase_orbit(lw, s.w_plus, s.V, w0, wp0, (pp.w[0], pp.w[-1]))
+            o = c.value
+            xs += [o.w, [np.nan]]
+            ys += [o.wp, [np.nan]]
+            seeds.append((w0, wp0))
+            worst, cost = max(worst, o.residual), cost + c.elapsed_s
+        if seeds:
+            info.time(f"{len(seeds)} clicked orbit(s)", cost)
+            info.error("H on clicked orbits", worst)
+        if not xs:
+            return np.empty(0), np.empty(0), seeds
+        return np.concatenate(xs[:-1]), np.concatenate(ys[:-1]), seeds
 
     def render(self, info: Info):
         s = self.state
@@ -104,6 +158,11 @@ class PhasePlaneScene(BokehScene):
             ws = np.array([cp.w for cp in shown if cp.kind == kind], float)
             up.data(src, key, x=ws, y=np.zeros(len(ws)))
             up.show(r, item, len(ws) > 0)
+        x, y, seeds = self._clicked_orbits(pp, lw, info)
+        up.data(self.r_clicked[1], x=x, y=y)
+        up.data(self.r_seeds[1], x=[p[0] for p in seeds], y=[p[1] for p in seeds])
+        up.show(self.r_clicked[0], self.clicked_item, bool(seeds))
+        up.show(self.r_seeds[0], None, bool(seeds))
         up.range(self.fig.x_range, pp.w[0], pp.w[-1])
         up.range(self.fig.y_range, pp.wp[0], pp.wp[-1])
 
@@ -128,8 +187,12 @@ class PhasePlaneScene(BokehScene):
 
     def python_code(self) -> str:
         s = self.state
-        return python_preamble(s) + (
+        wv = f"{float(s.w_plus)!r}, {float(s.V)!r}"
+        code = python_preamble(s) + (
             "from fpucore.qc import phase\n"
-            f"pp = phase.phase_plane(law, {float(s.w_plus)!r}, {float(s.V)!r}, n_grid=241)\n"
+            f"pp = phase.phase_plane(law, {wv}, n_grid=241)\n"
             "print(pp.regime, [(c.kind, c.w) for c in pp.critical_points])\n"
         )
+        for w0, wp0 in self.clicks:  # the orbits through the clicked points
+            code += f"o = phase.orbit_through(law, {wv}, {w0!r}, {wp0!r}, (pp.w[0], pp.w[-1]))\n"
+        return code

@@ -87,7 +87,7 @@ class ProfilesScene(BokehScene):
         lw = s.law()
         c = compute.qc_wave(lw, s.mode, s.w_plus, s.V)
         qcw = c.value
-        info.time("QC closed form", c)
+        info.time(f"QC {compute.qc_method(lw)}", c)
         if s.mode == "superkink":
             info.error("QC Rayleigh residual", qcw.rayleigh_residual)
             half = max(8.0 * qcw.width, 25.0)
@@ -167,7 +167,7 @@ class ProfilesScene(BokehScene):
         try:
             c = compute.discrete_wave(
                 lw, s.mode, s.w_plus, s.V, s.N, s.tol, stop=self.superseded,
-                progress=self.set_progress,
+                progress=self.stage_progress("discrete wave"),
             )  # fmt: skip
         except compute.ParameterError as exc:
             if exc.name != "N":
@@ -185,7 +185,7 @@ class ProfilesScene(BokehScene):
         info.error("residual", r.residual)
         info.error("dropped eq.", r.dropped_residual)
         info.error("tail", r.tail_error)
-        info.error("max |discrete − QC|", r.qc_max_deviation)
+        info.difference("max |discrete − QC|", r.qc_max_deviation)
         info.error("profile error bound", r.profile_error)
         info.error("amplitude error bound", r.amplitude_error)
         if not r.converged:
@@ -199,7 +199,11 @@ class ProfilesScene(BokehScene):
             return self._frame(up, half, ys)
         self._discrete = r
         sel = np.abs(r.n) <= half
-        info.shown = what + f"; discrete amplitude {fmt_num(r.amplitude)} ± {r.amplitude_error:.1e}"
+        if s.mode == "superkink":  # |w₋ − w₊|: both plateau states are fixed by eq. Rline
+            amp = f"amplitude |w₋ − w₊| = {fmt_num(r.amplitude)} (exact by construction)"
+        else:
+            amp = f"amplitude {fmt_num(r.amplitude)} ± {r.amplitude_error:.1e}"
+        info.shown = what + f"; discrete {amp}"
         return self._frame(up, half, ys, r.n[sel].astype(float), r.w[sel])
 
     def python_code(self) -> str:

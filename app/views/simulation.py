@@ -10,6 +10,7 @@ Bokeh ``image`` glyph (one texture, no per-cell quads: no moiré).
 from __future__ import annotations
 
 import io
+import math
 
 import numpy as np
 import panel as pn
@@ -26,6 +27,56 @@ KIND_WORDS = {
     "riemann": "Riemann data",
     "gaussian": "a Gaussian bump",
 }
+#: the tracker's kinds in plain words, with a one-line explanation (paper §6)
+WAVE_NAMES = {
+    "superkink": (
+        "superkink",
+        "a supersonic front between two states on opposite sides of w*, moving steadily",
+    ),
+    "solitary": ("solitary wave", "a single pulse on a uniform background, moving steadily"),
+    "dsw_edge": (
+        "edge of the dispersive shock",
+        "the leading pulse of a spreading train of oscillations; not a steady wave, so its "
+        "speed depends on when it is measured (included in the ±)",
+    ),
+    "front": ("front", "a jump between two states on the same side of w*"),
+}
+
+
+def fmt_pm(x: float, err: float) -> str:
+    """x ± err with x rounded to the error's second significant digit ("± 0": no spread)."""
+    if not math.isfinite(err):
+        return f"{x:.8g} ± ?"
+    if err <= 0.0:
+        return f"{x:.8g} ± 0"
+    d = min(12, max(0, 1 - math.floor(math.log10(err))))
+    return f"{x:.{d}f} ± {err:.1e}"
+
+
+def wave_table(waves) -> str:
+    """Markdown table of the tracked waves: plain name, V ± error, w_B ± error, the states;
+    then one line per kind present saying what it is and what the ± contains."""
+    if not waves:
+        return "_no waves tracked_"
+    rows = [
+        "| wave | velocity V ± error | state ahead w_B ± error | amplitude | strain left | "
+        "strain right |",
+        "|---|---|---|---|---|---|",
+    ]
+    for wv in waves:
+        name = WAVE_NAMES.get(wv.kind, (wv.kind, ""))[0]
+        rows.append(
+            f"| {name} | {fmt_pm(wv.velocity, wv.velocity_error)} | "
+            f"{fmt_pm(wv.background, wv.background_error)} | {fmt_num(wv.amplitude, 5)} | "
+            f"{fmt_num(wv.left_state, 5)} | {fmt_num(wv.right_state, 5)} |"
+        )
+    kinds = dict.fromkeys(wv.kind for wv in waves)
+    lines = [f"- **{WAVE_NAMES[k][0]}**: {WAVE_NAMES[k][1]}" for k in kinds if k in WAVE_NAMES]
+    lines.append(
+        "- ± of V: the fit's standard error plus the measured spread over fit windows and "
+        "tracking thresholds; ± of w_B: its spread over the window and the thresholds"
+    )
+    return "**Waves found by the tracker**\n\n" + "\n".join(rows) + "\n\n" + "\n".join(lines)
 
 
 class SimulationScene(BokehScene):
@@ -145,11 +196,19 @@ class SimulationScene(BokehScene):
             raise SceneMessage("Choose the initial data and press 'Run simulation'.", "info")
         kind, p = self._params
         s = self.state
-        c = compute.simulation(kind, s.law(), p, stop=self.superseded, progress=self.set_progress)
+        c = compute.simulation(
+            kind, s.law(), p, stop=self.superseded, progress=self.stage_progress("simulation")
+        )
         sim = c.value
         info.time(f"simulation ({kind})", c)
-        info.error("energy drift", sim.energy_drift)
-        info.error("error estimate", sim.error_estimate)
+        info.error("relative energy drift", sim.energy_drift)
+        # what the integrator's own estimate bounds depends on the method (SimulationResult)
+        what = (
+            "strain step-doubling error max|w_h − w_2h|/15"
+            if sim.method == "symplectic"
+            else "accumulated local error (RMS over the state)"
+        )
+        info.error(what, sim.error_estimate)
         info.notes.append(
             f"{sim.method}, {sim.n_steps} steps ({sim.n_rejected} rejected), rtol {sim.rtol:g}"
             if sim.method != "symplectic"
@@ -187,20 +246,7 @@ class SimulationScene(BokehScene):
         up.set(self.prof_legend[1], label={"value": f"t = {t[-1]:.4g}"})
         up.range(self.fig_prof.x_range, n[0], n[-1])
         up.range(self.fig_prof.y_range, float(snaps.min()), float(snaps.max()), pad=0.05)
-        rows = [
-            "| wave | velocity V (measured) | amplitude | strain left | strain right |",
-            "|---|---|---|---|---|",
-        ]
-        for wv in sim.waves:
-            rows.append(
-                f"| {wv.kind} | {wv.velocity:.8g} | {fmt_num(wv.amplitude, 5)} | "
-                f"{fmt_num(wv.left_state, 5)} | {fmt_num(wv.right_state, 5)} |"
-            )
-        self.table.object = (
-            "**Waves found by the tracker**\n\n" + "\n".join(rows)
-            if sim.waves
-            else "_no waves tracked_"
-        )
+        self.table.object = wave_table(sim.waves)
         self._sim = (kind, p, sim)
         speeds = ", ".join(f"{wv.velocity:.6g}" for wv in sim.waves[:4])
         info.shown = (
@@ -233,7 +279,9 @@ class SimulationScene(BokehScene):
         else:
             call = f"simulate.gaussian(law, {q.pop('w_B')!r}, {q.pop('A')!r}, "
         code += "sim = " + call + ", ".join(f"{k}={v!r}" for k, v in q.items()) + ")\n"
-        code += "print(sim.energy_drift, [(w.kind, w.velocity) for w in sim.waves])\n"
+        code += (
+            "print(sim.energy_drift, [(w.kind, w.velocity, w.velocity_error) for w in sim.waves])\n"
+        )
         return code
 
     def download_data(self):
@@ -250,7 +298,9 @@ class SimulationScene(BokehScene):
             error_estimate=float(sim.error_estimate),
         )
         hdr += "\nwaves: " + "; ".join(
-            f"{w.kind} V={w.velocity!r} amplitude={w.amplitude!r}" for w in sim.waves
+            f"{w.kind} V={w.velocity!r} +- {w.velocity_error!r} w_B={w.background!r} +- "
+            f"{w.background_error!r} amplitude={w.amplitude!r}"
+            for w in sim.waves
         )
         hdr += "\n" + self.python_code()
         buf = io.StringIO()

@@ -59,8 +59,9 @@ FIELDS: dict[str, tuple[str, object]] = {
     "n_unstable": ("i8", -1),
     "n_trivial": ("i8", -1),
     "trivial_split": ("f8", math.nan),
-    "verdict": ("<U32", ""),
+    "verdict": ("<U640", ""),  # the decision's sentence (fpucore.floquet.finite_size.Decision)
     "classification": ("<U32", ""),
+    "headline": ("<U64", ""),
     "floquet_converged": ("bool", False),
     "floquet_elapsed_s": ("f8", math.nan),
     "elapsed_s": ("f8", math.nan),
@@ -103,6 +104,7 @@ def add_floquet(rec: dict, fr) -> None:
         floquet_integrator_error=fr.integrator_error, n_unstable=fr.n_unstable,
         n_trivial=fr.n_trivial, trivial_split=fr.trivial_split, verdict=fr.verdict,
         classification=str(getattr(fr, "classification", "")),
+        headline=fr.decision.headline if fr.decision is not None else "",
         floquet_converged=bool(fr.converged), floquet_elapsed_s=fr.elapsed_s,
         elapsed_s=rec["wave_elapsed_s"] + fr.elapsed_s,
     )  # fmt: skip

@@ -75,24 +75,33 @@ def check_out_path(path: str, name: str = "--out", store: bool = False) -> None:
 
 
 LAW_HELP = (
-    'any hardening-softening polynomial f(w), replaces --a/--b, e.g. --law "w + 10*w**2 - w**3 '
-    '- 0.01*w**4" (an expression with a leading minus: --law="-...")'
+    "any hardening-softening polynomial f(w) of degree <= 16, instead of --a/--b, e.g. --law "
+    '"w + 10*w**2 - w**3 - 0.01*w**4" (an expression with a leading minus: --law="-...")'
 )
+DEFAULT_A, DEFAULT_B = -1.0, 10.0  # the paper's cubic
 
 
 def add_law_args(p: argparse.ArgumentParser) -> None:
     """--a/--b (the cubic; defaults: the paper's a = -1, b = 10) or --law EXPR (any
-    hardening–softening polynomial; replaces --a/--b), shared by every subcommand."""
-    p.add_argument("--a", type=float, default=-1.0, help="cubic coefficient a < 0 (default -1)")
-    p.add_argument("--b", type=float, default=10.0, help="quadratic coefficient b > 0 (default 10)")
+    hardening–softening polynomial, instead of --a/--b), shared by every subcommand."""
+    p.add_argument("--a", type=float, default=None, help="cubic coefficient a < 0 (default -1)")
+    p.add_argument("--b", type=float, default=None, help="quadratic coefficient b > 0 (default 10)")
     p.add_argument("--law", default=None, metavar="EXPR", help=LAW_HELP)
 
 
 def law_from_args(args) -> HardeningSofteningLaw:
-    """The law of the command line: ``--law`` parsed by SymPy if given, else CubicLaw(a, b)."""
+    """The law of the command line: ``--law`` parsed by SymPy if given, else CubicLaw(a, b).
+    Both at once is refused: --law would silently replace the cubic the user asked for."""
+    a, b = getattr(args, "a", None), getattr(args, "b", None)
     if getattr(args, "law", None) is not None:
+        if a is not None or b is not None:
+            given = " ".join(f"--{n} {v:g}" for n, v in (("a", a), ("b", b)) if v is not None)
+            raise ParameterError(
+                "--law", args.law, "either --law EXPR or the cubic's --a/--b, not both",
+                f"{given} given too; write the cubic into the law (a*w**3 + b*w**2 + w)",
+            )  # fmt: skip
         return law_from_expression(args.law)
-    return CubicLaw(args.a, args.b)
+    return CubicLaw(DEFAULT_A if a is None else a, DEFAULT_B if b is None else b)
 
 
 def law_fields(law: HardeningSofteningLaw) -> dict:

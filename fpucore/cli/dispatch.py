@@ -9,12 +9,13 @@ from __future__ import annotations
 
 import sys
 
-from fpucore.cli import atlas, floquet, qc, simulate, warm, wave
+from fpucore.budget import require_env_budget
+from fpucore.cli import atlas, floquet, paper, qc, simulate, warm, wave
 from fpucore.cli.common import Parser, check_out_path
 from fpucore.errors import ParameterError
 from fpucore.parallel.threads import apply_thread_policy
 
-COMMANDS = (qc, warm, wave, floquet, simulate, atlas)
+COMMANDS = (qc, warm, wave, floquet, simulate, atlas, paper)
 
 
 def build_parser() -> Parser:
@@ -31,6 +32,7 @@ def main(argv: list[str] | None = None) -> int:
         # the thread budget (fpucore/parallel/threads.py): a command computing one job uses every
         # core for it; commands that fan out (sweeps, atlas) run their jobs in 1-thread workers
         apply_thread_policy(getattr(args, "threads", None))
+        require_env_budget()  # an invalid FPU_MEMORY_BUDGET is refused by every command
         if getattr(args, "out", None) is not None:  # an unwritable output fails before the work
             check_out_path(args.out, store=getattr(args, "out_is_store", False))
         return int(args.func(args) or 0)

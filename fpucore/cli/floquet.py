@@ -36,7 +36,8 @@ def register(sub) -> None:
         q.add_argument(
             "--no-finite-size",
             action="store_true",
-            help="skip the finite-size test (spectra at 0.4N, 0.6N; about +20-40%% time)",
+            help="skip the finite-size test (spectra on 5 shorter rings in [N/2, N]); an excess "
+            "is then undetermined",
         )
         q.add_argument("--method", choices=floquet.METHODS, default="dense",
                        help="eigenvalue route: dense LAPACK (reference) or the structure-"
@@ -101,16 +102,14 @@ def run_one(args) -> int:
           f"eig {fr.eig_s:.3f} s)")  # fmt: skip
     print(f"trivial cluster at 1     : {fr.n_trivial} multipliers, split {fr.trivial_split:.1e} "
           f"(radius {fr.trivial_radius:.0e}, phonon gap {fr.phonon_gap:.1e})")  # fmt: skip
-    print(f"classification           : {fr.classification} ({fr.n_unstable} multipliers beyond "
-          "error)")  # fmt: skip
+    dec = fr.decision
+    print(f"classification           : {dec.classification} - {dec.headline} "
+          f"({fr.n_unstable} multipliers beyond error)")  # fmt: skip
     if fr.finite_size_N.size > 1:
         pts = ", ".join(f"N={n}: {e:.3e}" for n, e in zip(fr.finite_size_N, fr.finite_size_excess,
                                                             strict=True))  # fmt: skip
-        print(f"finite-size test         : max|mu|-1 at {pts}; exponent p = "
-              f"{fr.finite_size_exponent:.2f} +/- {fr.finite_size_exponent_error:.2f}, "
-              f"N -> inf: {fr.extrapolated_excess:.1e} +/- {fr.extrapolated_excess_error:.1e} "
-              f"({fr.finite_size_s:.2f} s)")  # fmt: skip
-    print(f"verdict                  : {fr.verdict}")
+        print(f"finite-size window       : max|mu|-1 at {pts} ({fr.finite_size_s:.2f} s)")
+    print(f"verdict                  : {dec.sentence}")
     for g in fr.quartets()[:5]:
         mu = g[0]
         print(f"  {'quartet' if len(g) == 4 else 'real pair'}: |mu| = {abs(mu):.10f}, "
@@ -164,19 +163,35 @@ def run_sweep(args) -> int:
     if args.json:
         print_json(obj)
         return 0
-    print(f"{'N':>5} {'V':>12} {'max|mu|-1':>11} {'away-1':>11} {'error':>9} {'unst':>4}  verdict")
+    print(f"{'N':>5} {'V':>12} {'max|mu|-1':>11} {'away-1':>11} {'error':>9} {'unst':>4}  "
+          f"{'class':<12}  decision")  # fmt: skip
     for t in tables:
         for row, c in zip(t.rows, t.cached, strict=True):
             mm, ma = row["max_modulus"], row["max_modulus_away_from_1"]
             f = lambda x: "nan" if x is None else f"{x - 1:.3e}"  # noqa: E731
             e = "nan" if row["error"] is None else f"{row['error']:.1e}"
             tag = " (cached)" if c else ""
+            cls = row["classification"] or "-"
             print(f"{t.N:>5} {row['V']:>12.8g} {f(mm):>11} {f(ma):>11} {e:>9} "
-                  f"{row['n_unstable'] or 0:>4}  {row['verdict']}{tag}")  # fmt: skip
+                  f"{row['n_unstable'] or 0:>4}  {cls:<12}  {row['headline'] or row['verdict']}"
+                  f"{tag}")  # fmt: skip
+        if args.kind == "solitary" and args.w_plus is not None:
+            print(f"{t.N:>5} energy criterion: {_energy_line(law, t)}")
     print(
         f"total {obj['elapsed_s']:.1f} s" + (f"; table written to {args.out}" if args.out else "")
     )
     return 0
+
+
+def _energy_line(law, t) -> str:
+    """The sweep's cross-check against the extrema of E_ren, one line."""
+    try:
+        ec = floquet.criterion_from_samples(law, t.w_plus, t.V, t.energy, t.energy_error,
+                                            t.converged)  # fmt: skip
+        ch = floquet.stability_changes(law, t.w_plus, t.V, t.classification, ec)
+    except ParameterError as exc:
+        return f"not evaluated ({exc})"
+    return floquet.changes_summary(ch)
 
 
 class _Buf:

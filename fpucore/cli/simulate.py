@@ -6,8 +6,11 @@
     fpu simulate wave solitary --w-plus 1 --V 5 [--json]
 
 JSON: one object with ``waves`` ([{kind, velocity, velocity_error, amplitude, left_state,
-right_state, background, peak, position, n_fit, method}]), ``energy_drift``, ``error_estimate``,
-``elapsed_s``, ``status``, ``message`` and ``details`` (with ``work_estimate``).  A progress bar
+right_state, background, peak, position, n_fit, method, velocity_fit_error,
+velocity_window_spread, velocity_threshold_spread, background_error}]; velocity_error = the fit's
+standard error + the measured spreads over fit windows and thresholds), ``energy_drift``,
+``error_estimate``, ``elapsed_s``, ``status``, ``message`` and ``details`` (with
+``work_estimate``).  A progress bar
 goes to stderr on long runs (estimated ≥ 2 s, when stderr is a terminal, or always with
 ``--progress always``).
 
@@ -163,12 +166,16 @@ def _emit(args, s, extra: dict | None = None) -> int:
         print(f"error    integrator estimate {s.error_estimate:.3e}")
         print(f"time     {s.elapsed_s:.3f} s, {s.n_steps} steps, {s.n_rhs} RHS evaluations")
         if s.waves:
-            print(f"{'kind':10s} {'velocity':>14s} {'amplitude':>11s} {'left':>10s} {'right':>10s}")
+            print(
+                f"{'kind':10s} {'velocity':>14s} {'+- error':>9s} {'amplitude':>11s} "
+                f"{'left':>10s} {'right':>10s}"
+            )
             for w in s.waves:
                 print(
-                    f"{w.kind:10s} {w.velocity:14.8f} {w.amplitude:11.5f} "
+                    f"{w.kind:10s} {w.velocity:14.8f} {w.velocity_error:9.1e} {w.amplitude:11.5f} "
                     f"{w.left_state:10.5f} {w.right_state:10.5f}"
                 )
+            print("(+- error: fit error + spread over fit windows and tracking thresholds)")
         for k, v in (extra or {}).items():
             print(f"{k}: {v}")
         for k, v in s.details.items():

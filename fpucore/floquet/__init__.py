@@ -5,7 +5,7 @@ its multipliers)  →  reversible_kernels → reversible (the quarter-size route
 waves)  →  structured_kernels → arnoldi_kernels → structured (the half-size symplectic route)
 →  multipliers (FloquetResult: spectrum, error bars, verdict)
 →  checks (quartet symmetry, homogeneous closed form, phonon gap)  →  finite_size (is an
-excess |μ| − 1 an artefact of the finite ring? the three-way classification)  →  energy (extrema
+excess |μ| − 1 an artefact of the finite ring? the one Decision record)  →  energy (extrema
 of E_ren(V) along solitary families, where stability may change)  →  sweep (max|μ| along V)
 """
 
@@ -18,11 +18,12 @@ from fpucore.floquet.checks import (
 from fpucore.floquet.energy import (
     EnergyCriterion,
     StabilityChange,
+    changes_summary,
     criterion_from_samples,
     energy_criterion,
     stability_changes,
 )
-from fpucore.floquet.finite_size import CLASSES, chain_lengths
+from fpucore.floquet.finite_size import CLASSES, Decision, chain_lengths
 from fpucore.floquet.monodromy import MAX_N, Monodromy, default_steps, monodromy, multipliers_of
 from fpucore.floquet.multipliers import METHODS, FloquetResult, spectrum
 from fpucore.floquet.reversible import reversor_of
@@ -44,8 +45,10 @@ __all__ = [
     "criterion_from_samples",
     "StabilityChange",
     "stability_changes",
+    "changes_summary",
     "CLASSES",
     "chain_lengths",
+    "Decision",
     "METHODS",
     "structured_multipliers",
     "reversor_of",

@@ -17,6 +17,7 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from fpucore.errors import ParameterError
+from fpucore.law import require_law
 
 
 def quartet_symmetry_error(mu: np.ndarray) -> tuple[float, float]:
@@ -95,6 +96,9 @@ class HomogeneousState:
     convex: bool = True
 
     def __post_init__(self):
+        require_law(self.law)
+        if self.kind != "homogeneous":
+            raise ParameterError("kind", self.kind, "'homogeneous' (the kind of a constant state)")
         if self.convex:
             self.law.require_convex("w0", self.w0)
         elif not (math.isfinite(self.w0) and float(self.law.df(self.w0)) != 0.0):

@@ -207,6 +207,25 @@ def energy_criterion(
     return criterion_from_samples(law, w_plus, V, E, dE, ok, qc_samples, family, t0)
 
 
+def _samples(**arrays) -> list[np.ndarray]:
+    """The sample arrays as 1-D arrays of one length n (``converged`` as bool), else
+    ParameterError naming the first that differs (V of 5 and energy of 4 used to be cut to 4)."""
+    out = []
+    for name, x in arrays.items():
+        try:
+            arr = np.atleast_1d(np.asarray(x, dtype=bool if name == "converged" else float))
+        except (TypeError, ValueError):
+            arr = None
+        n = out[0].size if out else None
+        if arr is None or arr.ndim != 1 or (n is not None and arr.size != n):
+            shape = "not numbers" if arr is None else f"shape {arr.shape}"
+            raise ParameterError(
+                name, shape, "a 1-D array" + (f" of length {n}, like V" if n is not None else "")
+            )
+        out.append(arr)
+    return out
+
+
 def criterion_from_samples(
     law,
     w_plus: float,
@@ -228,11 +247,8 @@ def criterion_from_samples(
     w_plus = require_finite("w_plus", w_plus)
     (a, b), (c, d) = qc.solitary_intervals(law, w_plus)
     _check_qc_samples(qc_samples)
-    V = np.atleast_1d(np.asarray(V, dtype=float))
-    E = np.atleast_1d(np.asarray(energy, dtype=float))
-    dE = np.atleast_1d(np.asarray(energy_error, dtype=float))
-    ok = np.atleast_1d(np.asarray(converged, dtype=bool)) & np.isfinite(E)
-    ok &= np.isfinite(dE)
+    V, E, dE, conv = _samples(V=V, energy=energy, energy_error=energy_error, converged=converged)
+    ok = conv & np.isfinite(E) & np.isfinite(dE)
     ext, qV, qE, qext = [], [], [], []
     for lo, hi in ((a, b), (c, d)):
         sel = ok & (V > lo) & (V < hi)
@@ -315,7 +331,8 @@ def stability_changes(law, w_plus: float, V, classification, criterion: EnergyCr
               for v, dv in zip(criterion.qc_extrema_V, criterion.qc_extrema_V_error)]  # fmt: skip
     out = []
     for lo, hi in qc.solitary_intervals(law, w_plus):
-        sel = (V > lo) & (V < hi) & np.isin(cls, CLASSES)
+        # an undetermined velocity has no class to change from or to
+        sel = (V > lo) & (V < hi) & np.isin(cls, CLASSES) & (cls != "undetermined")
         order = np.argsort(V[sel])
         v, c = V[sel][order], cls[sel][order]
         for i in range(v.size - 1):
@@ -326,3 +343,21 @@ def stability_changes(law, w_plus: float, V, classification, criterion: EnergyCr
             out.append(StabilityChange(float(v[i]), float(v[i + 1]), str(c[i]), str(c[i + 1]),
                                        bool(near), x0))  # fmt: skip
     return out
+
+
+def changes_summary(changes: list[StabilityChange]) -> str:
+    """The cross-check of a sweep against the energy criterion in one line (plain text)."""
+    k = len(changes)
+    if k == 0:
+        return ("No change between stable and unstable along the sweep: consistent with the "
+                "energy criterion.")  # fmt: skip
+    at = [c for c in changes if c.explained]
+    what = f"{k} change{'s' if k > 1 else ''} of class across the stable/unstable line"
+    if not at:
+        return (f"{what}, none at an extremum of E_ren: finite-size effects (a change of "
+                "stability needs dE_ren/dV = 0; check at a larger N).")  # fmt: skip
+    where = ", ".join(f"{c.extremum_V:.6g}" for c in at)
+    rest = k - len(at)
+    return (f"{what}, {len(at)} at an extremum of E_ren (V = {where}): consistent with a change "
+            "of stability there" + (f"; {rest} elsewhere: finite-size effects." if rest else ".")
+            )  # fmt: skip

@@ -15,11 +15,12 @@ import numpy as np
 from fpucore.errors import ParameterError, require_finite
 from fpucore.floquet.checks import phonon_gap, quartet_symmetry_error
 from fpucore.floquet.finite_size import (
+    Decision,
     base_at,
     chain_lengths,
-    classify,
+    decide,
     min_chain,
-    verdict_text,
+    settled,
 )
 from fpucore.floquet.monodromy import base_state, default_steps, monodromy, multipliers_of
 from fpucore.floquet.reversible import reversor_of
@@ -49,15 +50,20 @@ class FloquetResult(Result):
     excess : max_modulus_away_from_1 − 1; excess_significant : excess > error.
     unstable : multipliers (away from 1) with |μ| − 1 > error.
     growth_rate : V·ln(max_modulus_away_from_1), the growth rate Re λ per unit time (μ = e^{λ/V}).
-    classification : "stable" (nothing beyond the error bar) | "finite_size" (the excess shrinks
-    as the chain grows: an artefact of the finite ring) | "unstable" (it does not shrink), see
-    :mod:`fpucore.floquet.finite_size`; verdict : the same in one sentence with the evidence.
-    finite_size_N / finite_size_excess / finite_size_error : (k,) the points (N_k, max|μ|−1 ± err)
-    of the finite-size test, N ascending, the requested N last (only N when "stable" or
+    decision : the one stability decision (:class:`fpucore.floquet.finite_size.Decision`): its
+    classification "stable" (nothing beyond the error bar) | "finite_size" (absent on a ring of
+    the window [N/2, N], or its upper envelope decays with N: an artefact of the finite ring) |
+    "unstable" (present on every ring and converged) | "undetermined" (with the computation that
+    would decide it, ``decision.next_step``), its headline and its sentence;
+    classification, verdict : decision.classification and decision.sentence.
+    finite_size_N / finite_size_excess / finite_size_error : (k,) the window's points
+    (N_k, max|μ|−1 ± err), N ascending, the requested N last (only N when "stable" or
     ``finite_size=False``); finite_size_exponent p ± finite_size_exponent_error and
-    finite_size_prefactor C : the fitted line max|μ|−1 = C N^−p; extrapolated_excess ±
-    extrapolated_excess_error : fit e∞ + C′/N at N → ∞;
-    finite_size_checked : ≥ 3 chain lengths were available; finite_size_s : its wall time (s).
+    finite_size_prefactor C : the upper envelope max|μ|−1 ≈ C N^−p (NaN when not fitted);
+    extrapolated_excess ± extrapolated_excess_error : fit e∞ + C′/N over the window (reported,
+    not used by the decision: the 1/N law has curvature);
+    finite_size_checked : ≥ MIN_POINTS chain lengths were computed, or an absent excess or a dip
+    decided the window early; finite_size_s : wall time (s).
     monodromy_s / check_s / eig_s / elapsed_s : wall times (s).
     """
 
@@ -104,6 +110,7 @@ class FloquetResult(Result):
     message: str
     wave: dict = field(default_factory=dict)
     route: str = "dense"
+    decision: Decision | None = None
 
     # finite_size_exponent_error, extrapolated_excess_error, structure_error are NaN where not
     # applicable, so they are not protocol error fields (those are always finite)
@@ -167,10 +174,10 @@ def spectrum(
     nearest continuous-spectrum multiplier of the end states (:func:`phonon_gap`).
     check : also build 𝓜 with 2m steps and report ‖𝓜_m − 𝓜_2m‖ as integrator_error.
     finite_size : when max|μ| − 1 exceeds the error bar, also compute the spectrum of the same
-    wave on 0.4N and 0.6N sites (structured route) and classify the excess
-    (:mod:`fpucore.floquet.finite_size`; adds ~20–40 % to the run time).  False: no extra
-    spectra; an excess beyond the error bar is then classified "unstable" with
-    finite_size_checked = False and the verdict says so.
+    wave on the window of five shorter rings in [N/2, N] (structured route, shortest first,
+    stopping once an absent excess or a dip has decided it) and decide
+    (:mod:`fpucore.floquet.finite_size`).  False: no extra spectra; an excess beyond the error
+    bar is then "undetermined" and the verdict says which test was not run.
     method : "dense" (LAPACK dgeev on the deflated (2N−2)² block, the reference) or
     "structured" (half-size structure-preserving route, :mod:`fpucore.floquet.structured`:
     elliptic multipliers exactly on the circle; its error bar comes from the measured
@@ -262,25 +269,27 @@ def spectrum(
     why = "finite_size=False"
     if finite_size and excess > error:
         lengths = chain_lengths(N, min_chain(r))
-        why = "" if lengths else f"N = {N} is too short for two shorter chains"
+        why = "" if lengths else f"N = {N} is too short for a window of rings in [N/2, N]"
         for n_k in lengths:
             r_k, reason = base_at(r, n_k)
             if r_k is None:
                 why = reason
                 continue
-            # the shorter rings only supply max|μ| − 1: the structured route (≈ half the cost of
-            # dense, agreement within the error bar tested over the paper's families)
+            # the shorter rings only supply max|μ| − 1: the structured route (quarter size for
+            # the paper's reversible waves; agreement with dense within the error bar tested)
             f_k = spectrum(r_k, m=mono.m, check=False, finite_size=False, method="structured")
             pts.append((n_k, f_k.excess, max(f_k.error, integ if math.isfinite(integ) else 0.0)))
+            if settled(*zip(*sorted(pts))):  # absent or a dip: the rest cannot change it
+                break
+    elif finite_size:
+        why = ""
     pts.sort()
     fs_N = np.array([p[0] for p in pts], dtype=np.int64)
     fs_e = np.array([p[1] for p in pts])
     fs_err = np.array([p[2] for p in pts])
-    fit = classify(fs_N, fs_e, fs_err)
-    if not finite_size:
-        fit["checked"] = False
-    cls = fit["classification"]
-    verdict = verdict_text(cls, excess, error, fs_N, fs_e, fit, growth, why)
+    decision, fit = decide(fs_N, fs_e, fs_err, growth, why, min_chain(r))
+    cls = decision.classification
+    verdict = decision.sentence
     finite_s = time.perf_counter() - tf
     msgs.insert(0, verdict)
     return FloquetResult(
@@ -313,6 +322,7 @@ def spectrum(
         extrapolated_excess=fit["e_inf"],
         extrapolated_excess_error=fit["e_inf_error"],
         finite_size_checked=bool(fit["checked"]),
+        decision=decision,
         finite_size_s=finite_s,
         phonon_gap=gap,
         N=N,

@@ -46,9 +46,10 @@ import time
 
 import numpy as np
 
-from fpucore.errors import ParameterError
+from fpucore.errors import ParameterError, require_int
 from fpucore.floquet.arnoldi_kernels import dcgs2_steps
 from fpucore.floquet.hessenberg import hessenberg_eigvals
+from fpucore.floquet.monodromy import MAX_N
 from fpucore.floquet.reversible import reversible_lambdas
 from fpucore.floquet.structured_kernels import (
     extract_bands,
@@ -192,7 +193,13 @@ def structured_multipliers(
     reduce_s / arnoldi_s / eig_s / elapsed_s (wall times, s).
     """
     t0 = time.perf_counter()
-    N = int(n)
+    N = require_int("n", n, 2, MAX_N)
+    mat = np.asarray(mat, dtype=float)
+    if mat.shape != (2 * N, 2 * N) or not np.all(np.isfinite(mat)):
+        raise ParameterError(
+            "mat", f"<array {mat.shape}>",
+            f"a finite (2n, 2n) = ({2 * N}, {2 * N}) matrix (the shifted monodromy of n sites)",
+        )  # fmt: skip
     m = N - 1
     mu_sums, defect = sums_and_defect(mat, N)
     info: dict = {"route": "arnoldi", "reversor": None, "band_s": 0.0, "reduce_s": 0.0,

@@ -51,7 +51,7 @@ CHUNK = 1  # velocities per task (fixed: results must not depend on the number o
 _ROW_KEYS = (
     "V", "max_modulus", "max_modulus_away_from_1", "error", "symmetry_error", "integrator_error",
     "n_unstable", "n_trivial", "trivial_split", "verdict", "wave_converged", "wave_residual",
-    "converged", "elapsed_s", "message", "classification", "energy", "energy_error",
+    "converged", "elapsed_s", "message", "classification", "headline", "energy", "energy_error",
 )  # fmt: skip
 # sweep row key ← atlas record field
 _FROM_ATLAS = {
@@ -61,6 +61,7 @@ _FROM_ATLAS = {
     "n_trivial": "n_trivial", "trivial_split": "trivial_split", "verdict": "verdict",
     "wave_converged": "converged", "wave_residual": "residual", "converged": "floquet_converged",
     "elapsed_s": "elapsed_s", "message": "message", "classification": "classification",
+    "headline": "headline",
     "energy": "energy", "energy_error": "energy_error",
 }  # fmt: skip
 

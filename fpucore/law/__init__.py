@@ -3,8 +3,10 @@
 A law is a small Python object (validation, constants α, β, w*, vectorised f, f′, f″, Φ) plus a
 handle ``(law_id, params)`` that the Numba kernels in :mod:`.kernels` take.
 
-    kernels (Numba f, f′, f″ by law_id)  →  base (the hardening–softening class)
-    →  polynomial (Σ c_k w^k, hypotheses of §2 checked)  →  cubic  ·  expression (text → law)
+    kernels (Numba f, f′, f″ by law_id)  →  base (the hardening–softening class)  →  scale (the
+    computable range shared by every law)  →  polynomial (Σ c_k w^k, hypotheses of §2 checked)
+    →  cubic  ·  expression_bounds (degree, exponents, sizes of a text, before any algebra)
+    →  expression (text → law)
 """
 
 from .base import HardeningSofteningLaw, require_law

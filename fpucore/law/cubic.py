@@ -11,41 +11,17 @@ from ..errors import ParameterError, require_finite
 from .base import HardeningSofteningLaw
 from .kernels import LAW_CUBIC
 from .polynomial import PolynomialLaw
-
-# The computable range of a law (issue 14).  Every closed form of paper §3–4 multiplies at most an
-# energy density (≤ c_max² W², since 0 < f′ ≤ c_max² on (α, β)) by one more strain; the scaling
-# w = λu maps (a, b) to (aλ², bλ) with V unchanged, so only the invariant |a|/b² shapes the law
-# and W, c_max set the units.  Laws whose units leave these bounds would overflow or underflow
-# in some closed form (b = 1.4e154: b² = inf; b = 1e80: energies ~1e318): they are refused.
-W_RANGE = (1e-30, 1e30)  # strain scale W = max(|α|, β)
-CMAX2_MAX = 1e60  # speed scale c_max² = 1 + b²/(3|a|)
-ENERGY_W_MAX = 1e120  # c_max² W³: the largest product of an energy density and a strain
-W_STAR_MIN = 1e-100  # w* / W: the inflection point stays a representable strain
+from .scale import require_computable
 
 
 def _require_computable(a: float, b: float) -> None:
+    """The computable range of :mod:`.scale`, its W, c_max², w* written without overflow."""
     A = -a
     with np.errstate(over="ignore"):
         root = math.sqrt(b * b + 3.0 * A) if b < 1e150 else math.inf
-        W = max(1.0 / (root + b), (b + root) / (3.0 * A))
         c2 = 1.0 + (b / A) * (b / 3.0) if b < 1e150 else math.inf
-        prod = c2 * W**3 if (math.isfinite(c2) and W < 1e100) else math.inf
-    if (
-        not (math.isfinite(W) and math.isfinite(c2))
-        or not W_RANGE[0] <= W <= W_RANGE[1]
-        or c2 > CMAX2_MAX
-        or prod > ENERGY_W_MAX
-        or b / (3.0 * A) < W_STAR_MIN * W  # w* = b/(3|a|) would underflow (b = 1e-300)
-    ):
-        raise ParameterError(
-            "(a, b)",
-            (a, b),
-            f"laws with strain scale W = max(|alpha|, beta) in [{W_RANGE[0]:g}, {W_RANGE[1]:g}], "
-            f"c_max^2 = 1 + b^2/(3|a|) <= {CMAX2_MAX:g}, c_max^2 W^3 <= {ENERGY_W_MAX:g} and "
-            f"w* = b/(3|a|) >= {W_STAR_MIN:g} W "
-            f"(here W = {W:.3g}, c_max^2 = {c2:.3g})",
-            "outside this range the closed forms overflow or underflow in double precision",
-        )
+    alpha, beta = -1.0 / (root + b), (b + root) / (3.0 * A)
+    require_computable("(a, b)", (a, b), alpha, beta, b / (3.0 * A), c2, "1 + b^2/(3|a|)")
 
 
 @dataclass(frozen=True)

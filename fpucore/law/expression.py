@@ -14,12 +14,24 @@ import math
 import tokenize
 
 from fpucore.errors import ParameterError
-from fpucore.law.polynomial import PolynomialLaw
+from fpucore.law.expression_bounds import MAX_LENGTH, abbreviate, screen
+from fpucore.law.polynomial import MAX_DEGREE, PolynomialLaw
 
 _FUNCS = ("sin", "cos", "tan", "exp", "log", "sqrt", "sinh", "cosh", "tanh", "Abs", "abs")
 _CONSTS = ("pi", "E")
 _OPS = {"+", "-", "*", "/", "**", "^", "(", ")"}
-_VALID = "a polynomial in w with real finite coefficients and f(0) = 0, e.g. 'w + 10*w**2 - w**3'"
+_VALID = (
+    f"a polynomial in w of degree <= {MAX_DEGREE} with real finite coefficients and f(0) = 0, "
+    "e.g. 'w + 10*w**2 - w**3'"
+)
+
+
+_DIGITS = 30  # precision of constants such as sqrt(2), pi (the coefficients are then rounded)
+
+
+def _numeric(fn):
+    """``fn`` evaluated to a :data:`_DIGITS`-digit number (its argument is a number)."""
+    return lambda *args: fn(*args).evalf(_DIGITS)
 
 
 def law_from_expression(expression: str) -> PolynomialLaw:
@@ -28,16 +40,25 @@ def law_from_expression(expression: str) -> PolynomialLaw:
     The text is tokenized first and only numbers, the operators + - * / ** ^ ( ), the variable
     ``w`` and a few function names (so that ``sin(w)`` is reported as *non-polynomial* rather
     than *unknown*) are let through to SymPy's parser (``^`` means power, ``2w`` means 2*w).
-    Refused with :class:`ParameterError` (name ``"expression"``): unparsable text, unknown names,
+    Refused with :class:`ParameterError` (name ``"expression"``), in microseconds and before any
+    algebra, when the degree, an exponent, a number or the nesting exceeds the bounds of
+    :mod:`.expression_bounds` (degree <= MAX_DEGREE); then unparsable text, unknown names,
     non-polynomial expressions, non-real or non-finite coefficients, a constant term (f(0) ≠ 0);
     the law's own hypotheses are then checked by :class:`PolynomialLaw`.
     """
     if not isinstance(expression, str):
         raise ParameterError("expression", expression, _VALID, "the expression must be a string")
-    if len(expression) > 4000 or not expression.strip():
-        raise ParameterError("expression", expression, _VALID, "empty or over-long expression")
+    if not expression.strip():
+        raise ParameterError("expression", expression, _VALID, "empty expression")
+    if len(expression) > MAX_LENGTH:
+        raise ParameterError(
+            "expression", abbreviate(expression), _VALID,
+            f"{len(expression)} characters exceed the maximum {MAX_LENGTH}",
+        )  # fmt: skip
+    # one line, single spaces: a leading space or a line break is not Python indentation here
+    text = " ".join(expression.split())
     try:
-        toks = list(tokenize.generate_tokens(io.StringIO(expression).readline))
+        toks = list(tokenize.generate_tokens(io.StringIO(text).readline))
     except (tokenize.TokenError, SyntaxError, IndentationError) as exc:
         raise ParameterError("expression", expression, _VALID, f"could not parse: {exc}") from None
     for t in toks:
@@ -61,6 +82,9 @@ def law_from_expression(expression: str) -> PolynomialLaw:
         raise ParameterError(
             "expression", expression, _VALID, f"could not parse: unexpected '{t.string}'"
         )
+    # degree, exponents, number sizes and nesting bounded before SymPy expands anything: SymPy's
+    # exact algebra on (w+1)**100000 or 9**9**9 runs for minutes and cannot be interrupted
+    screen(expression, toks, _VALID, _FUNCS, _CONSTS)
     # SymPy (~0.3 s) is imported on first use, not by every `import fpucore`: the CLI, the
     # server and each worker pool start without it unless a law is typed
     import sympy
@@ -72,13 +96,16 @@ def law_from_expression(expression: str) -> PolynomialLaw:
     )
 
     w = sympy.Symbol("w", real=True)
-    names = {"w": w, "pi": sympy.pi, "E": sympy.E, "abs": sympy.Abs}
-    names.update({n: getattr(sympy, n) for n in _FUNCS if n != "abs"})
+    # constants become 30-digit numbers at once (the screen has refused functions of w): a power
+    # of a sum of symbolic constants, (w + sqrt(2) + sqrt(3) + pi + E)**16, expands into
+    # thousands of symbolic terms; numbers merge, so the expansion stays at degree + 1 terms
+    names = {"w": w, "pi": sympy.pi.evalf(_DIGITS), "E": sympy.E.evalf(_DIGITS)}
+    names.update({n: _numeric(getattr(sympy, "Abs" if n == "abs" else n)) for n in _FUNCS})
     glob = {n: getattr(sympy, n) for n in ("Integer", "Float", "Rational", "Symbol")}
     glob["__builtins__"] = {}
     try:
         expr = parse_expr(
-            expression,
+            text,
             local_dict=names,
             global_dict=glob,
             transformations=standard_transformations + (convert_xor, implicit_multiplication),

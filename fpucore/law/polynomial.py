@@ -34,8 +34,15 @@ import numpy as np
 from fpucore.errors import ParameterError, require_finite
 from fpucore.law.base import HardeningSofteningLaw
 from fpucore.law.kernels import LAW_POLY, POLY_IDS
+from fpucore.law.scale import require_coefficient, require_computable
 
 EPS = float(np.finfo(float).eps)
+# The largest degree of a law (text or coefficients).  benchmarks/law_degree.py (families with a
+# known convex interval, references by mpmath): beta, w*, the QC w- and the discrete wave and its
+# Floquet spectrum stay accurate and converged at every degree tried up to 41 — accuracy follows
+# the monomial basis' cancellation, not the degree — so the limit bounds the work instead: SymPy's
+# exact expansion of the text and the kernels' O(degree) evaluation, far above the paper's laws.
+MAX_DEGREE = 16
 _FAST_IDS = {k: k for k in POLY_IDS if k != LAW_POLY}  # unrolled kernels: the id is the degree
 
 
@@ -61,6 +68,11 @@ def real_roots(c: Sequence[float], lo: float = -math.inf, hi: float = math.inf):
     c = np.trim_zeros(np.asarray(c, dtype=float), "b")
     if c.size <= 1:
         return []
+    with np.errstate(all="ignore"):  # far roots may overflow p(x): kept unverified, see below
+        return _real_roots(c, lo, hi)
+
+
+def _real_roots(c: np.ndarray, lo: float, hi: float) -> list[tuple[float, float]]:
     out: list[tuple[float, float]] = []
     for z in np.roots(c[::-1]):
         if abs(z.imag) > 1e-6 * max(1.0, abs(z)):
@@ -75,6 +87,10 @@ def real_roots(c: Sequence[float], lo: float = -math.inf, hi: float = math.inf):
             if abs(step) <= 2 * EPS * abs(x):
                 break
         p, dp, s = _polyval_asc(c, x)
+        if not (math.isfinite(x) and math.isfinite(s)):  # p(x) overflows: no accuracy claimed
+            if math.isfinite(z.real) and lo < z.real < hi:
+                out.append((float(z.real), math.inf))
+            continue
         if abs(p) > 256 * EPS * s:  # not a real root after all (complex pair off the axis)
             continue
         # round-off bound: simple root eps·s/|p′|; near-multiple root the √ form dominates
@@ -141,6 +157,13 @@ class PolynomialLaw(HardeningSofteningLaw):
         c = [require_finite(f"c_{k}", v) for k, v in enumerate(raw, start=1)]
         while c and c[-1] == 0.0:
             c.pop()
+        if len(c) > MAX_DEGREE:
+            raise ParameterError(
+                "coeffs", f"degree {len(c)}", f"degree <= {MAX_DEGREE}",
+                "higher degrees lose accuracy in the monomial basis (benchmarks/law_degree.py)",
+            )  # fmt: skip
+        for k, ck in enumerate(c, start=1):
+            require_coefficient(f"c_{k}", ck)
         if len(c) < 2:
             raise ParameterError(
                 "coeffs", tuple(raw), "degree >= 2 (at least c_1, c_2)",
@@ -175,6 +198,8 @@ class PolynomialLaw(HardeningSofteningLaw):
         w_star, w_err = self._inflection(ddc, alpha, beta)
         set_(self, "w_star", w_star)
         set_(self, "w_star_error", w_err)
+        c2 = float(self._horner(dc, np.asarray(w_star)))
+        require_computable("coeffs", self.coeffs, alpha, beta, w_star, c2, "f'(w*)")
 
     def _inflection(self, ddc: np.ndarray, alpha: float, beta: float) -> tuple[float, float]:
         """The unique zero of f″ in (α, β) with f″ going from + to − (paper §2)."""

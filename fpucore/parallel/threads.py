@@ -43,7 +43,10 @@ import numpy  # noqa: F401  (numpy's OpenBLAS is loaded before the limit is appl
 import scipy.linalg  # noqa: F401  (load scipy's own OpenBLAS so the limit reaches it)
 from threadpoolctl import threadpool_info, threadpool_limits
 
+from fpucore.errors import require_int
+
 THREADING_LAYER = "omp"
+MAX_THREADS = 4096  # per process: far above any machine's cores
 _limiter = None  # the active threadpoolctl limiter (kept alive: the limit holds while it lives)
 
 
@@ -65,6 +68,14 @@ def cores() -> int:
         return os.cpu_count() or 1
 
 
+def thread_count(n_threads: int | None) -> int:
+    """The thread count of a policy: :func:`cores` for None, else an integer >= 1 (ParameterError
+    for 'x', 2.5, True ...: ``int('x')`` used to escape as a ValueError)."""
+    if n_threads is None:
+        return cores()
+    return require_int("n_threads", n_threads, 1, MAX_THREADS)
+
+
 def apply_thread_policy(n_threads: int | None = 1) -> dict:
     """Limit BLAS, OpenMP and Numba threads of this process (Numba: of the calling thread).
 
@@ -74,7 +85,7 @@ def apply_thread_policy(n_threads: int | None = 1) -> dict:
     libraries found and the limits now in force.
     """
     global _limiter
-    n = cores() if n_threads is None else max(1, int(n_threads))
+    n = thread_count(n_threads)
     # Numba first: it launches its layer (loading libgomp), which threadpoolctl then limits too
     numba.set_num_threads(min(n, numba.config.NUMBA_NUM_THREADS))
     if _limiter is not None:
@@ -99,7 +110,7 @@ def thread_policy(n_threads: int | None = 1) -> Iterator[None]:
     caller_runs=True)``): while it runs a job it is one of several concurrent jobs, so it runs
     one thread like a worker; afterwards it is back to its own budget (the ``fpu`` CLI: all
     cores).  Costs ~1.5 ms (threadpoolctl scans the loaded libraries)."""
-    n = cores() if n_threads is None else max(1, int(n_threads))
+    n = thread_count(n_threads)
     old = numba.get_num_threads()
     numba.set_num_threads(min(n, numba.config.NUMBA_NUM_THREADS))
     try:

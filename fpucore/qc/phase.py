@@ -154,7 +154,13 @@ def phase_plane(
     )
     lo, hi = min(ws), max(ws)
     pad = 0.25 * max(hi - lo, 0.5)
-    w_grid = np.linspace(max(lo - pad, law.alpha), min(hi + pad, law.beta), n_grid)
+    # The window stays in the law's stable interval [alpha, beta] except where a critical point
+    # lies outside it: the paper counts three critical points for c+^2 < V^2 < c-^2, and the
+    # second saddle w_S can lie beyond beta (w_S = 6.79 > beta = 6.72 at w+ = 1, V = 5).
+    ext = 0.03 * (law.beta - law.alpha)  # a margin, so a marker there is not cut in half
+    w_lo = min([law.alpha] + [c.w - ext for c in cps if c.w < law.alpha])
+    w_hi = max([law.beta] + [c.w + ext for c in cps if c.w > law.beta])
+    w_grid = np.linspace(max(lo - pad, w_lo), min(hi + pad, w_hi), n_grid)
     wp_max = max([float(np.max(np.abs(o.wp))) for o in orbits] + [0.0])
     if wp_max == 0.0:
         wp_max = math.sqrt(24.0 / (V * V) * float(np.ptp(law.phi(w_grid)))) + 1e-3
@@ -170,3 +176,107 @@ def phase_plane(
         w_plus, V, w_grid, wp_grid, H, cps, levels, orbits, regime, res / span,
         time.perf_counter() - t0,
     )  # fmt: skip
+
+
+@dataclass(frozen=True)
+class LevelOrbit:
+    """The orbit of eq. TW_QC_gen2 through one point (w0, w0′) of the phase plane: the connected
+    component of the level set H = H(w0, w0′) of eq. TW_QC_gen3 that contains it, within the
+    window ``w_window``.  ``w``, ``wp``: (n,) points along it, NaN between separate branches;
+    ``closed``: a periodic orbit (both turning points inside the window); ``turning_points``:
+    the w where w′ = 0 (roots of the level, by bracketing); ``residual``: max |H − level| on the
+    points relative to the size of H's terms (round-off for an exact orbit)."""
+
+    w0: float
+    wp0: float
+    level: float
+    w: np.ndarray
+    wp: np.ndarray
+    closed: bool
+    turning_points: tuple[float, ...]
+    residual: float
+    elapsed_s: float = 0.0
+
+
+def orbit_through(
+    law: HardeningSofteningLaw,
+    w_plus: float,
+    V: float,
+    w0: float,
+    wp0: float,
+    w_window: tuple[float, float],
+    n: int = 801,
+) -> LevelOrbit:
+    """The orbit through (w0, w0′) in the phase portrait of (w₊, V) (pplane's "click to draw an
+    orbit"), from the first integral in closed form instead of a numerical integration:
+    w′(w) = ±√(24/V² (E − U(w))) with E = H(w0, w0′) and U = H(w, 0) (eq. TW_QC_gen3), on the
+    interval of w around w0 where E ≥ U.  Its ends are the turning points (solved to round-off
+    by bisection) or the window's edges (an orbit that leaves the window is drawn as two open
+    branches).  ``n`` points per branch."""
+    t0 = time.perf_counter()
+    law = require_law(law)
+    w_plus = law.require_convex("w_plus", w_plus)
+    V = require_phase_V(law, V)
+    w0, wp0 = require_finite("w0", w0), require_finite("wp0", wp0)
+    n = require_int("n", n, 3, N_ORBIT_MAX)
+    lo, hi = (require_finite("w_window", x) for x in w_window)
+    if not lo < hi:
+        raise ParameterError("w_window", (lo, hi), "lo < hi", "an interval of strains")
+    if not lo <= w0 <= hi:
+        raise ParameterError("w0", w0, fmt_interval(lo, hi, open_=False), "inside the window")
+
+    def gap(w):  # E − U(w) = V²/24 w′² on the level set; ≥ 0 exactly where the orbit runs
+        return level - first_integral(law, w, 0.0 * w, w_plus, V)
+
+    level = float(first_integral(law, w0, wp0, w_plus, V))
+    grid = np.linspace(lo, hi, 4 * n + 1)
+    g = gap(grid)
+    k0 = int(np.clip(np.searchsorted(grid, w0), 1, len(grid) - 1))
+    ends = []
+    for step, edge in ((-1, lo), (1, hi)):
+        # walk from w0 to the first sign change of the gap (a turning point) or the window edge
+        k = k0 - 1 if step < 0 else k0
+        idx = range(k, -1, -1) if step < 0 else range(k, len(grid))
+        end, turning, prev = edge, False, w0
+        for i in idx:
+            if g[i] < 0.0:
+                a, b = (grid[i], prev) if step < 0 else (prev, grid[i])
+                inside = b if step < 0 else a  # where the gap is >= 0
+                outside = a if step < 0 else b
+                for _ in range(200):  # bisection to round-off: no derivative needed
+                    mid = 0.5 * (inside + outside)
+                    if mid in (inside, outside):
+                        break
+                    if gap(mid) >= 0.0:
+                        inside = mid
+                    else:
+                        outside = mid
+                end, turning = inside, True
+                break
+            prev = grid[i]
+        ends.append((float(end), turning))
+    (wl, tl), (wr, tr) = ends
+    # points clustered at the turning points, where w′ varies like a square root
+    u = 0.5 - 0.5 * np.cos(np.linspace(0.0, math.pi, n))
+    w = wl + (wr - wl) * u
+    wp = np.sqrt(np.maximum(24.0 / (V * V) * gap(w), 0.0))
+    closed = tl and tr
+    if closed:  # one loop: upper branch left to right, lower branch back
+        W, WP = np.concatenate([w, w[::-1]]), np.concatenate([wp, -wp[::-1]])
+    else:  # two open branches (the orbit leaves the window)
+        W = np.concatenate([w, [np.nan], w])
+        WP = np.concatenate([wp, [np.nan], -wp])
+    ok = np.isfinite(W)
+    res = _level_residual(law, W[ok], WP[ok], w_plus, V, level)
+    turning = tuple(x for x, t in ((wl, tl), (wr, tr)) if t)
+    return LevelOrbit(w0, wp0, level, W, WP, bool(closed), turning, res, time.perf_counter() - t0)
+
+
+def _level_residual(law, w, wp, w_ref, V, level) -> float:
+    """max |H(w, w′) − level| relative to the size of H's terms (see first_integral_residual)."""
+    d = w - w_ref
+    phi_w, phi_r, f_r = law.phi(w), float(law.phi(w_ref)), float(law.f(w_ref))
+    H = V * V / 24.0 * wp * wp + phi_w - phi_r - f_r * d - 0.5 * V * V * d * d
+    scale = (np.abs(phi_w) + abs(phi_r) + np.abs(f_r * d) + V * V * (d * d + wp * wp / 24.0)
+             + abs(level))  # fmt: skip
+    return float(np.max(np.abs(H - level) / (scale + 1e-300)))

@@ -15,7 +15,7 @@ from scipy.optimize import brentq
 
 from fpucore.budget import fmt_bytes, require_memory, require_time_budget
 from fpucore.errors import ParameterError, require_finite
-from fpucore.law import HardeningSofteningLaw
+from fpucore.law import HardeningSofteningLaw, require_law
 from fpucore.simulate.steppers import H_OMEGA_AT_1E10, METHODS, STEPPERS
 
 BOUNDARIES = ("fixed_particles", "fixed_strain", "free")
@@ -53,6 +53,7 @@ def restoring_interval(law: HardeningSofteningLaw) -> tuple[float, float]:
     """The zeros of f adjacent to 0, (w_lo, w_hi) ⊃ (α, β): inside, f(w) has the sign of w (the
     spring resists); beyond them the potential Φ decreases without bound for the cubic law, so a
     strain that passes them runs away.  Cubic a = −1, b = 10: (5 − √26, 5 + √26)."""
+    law = require_law(law)
     out = []
     for edge, sgn in ((law.beta, 1.0), (law.alpha, -1.0)):
         step = max(abs(edge), 1e-3)

@@ -337,6 +337,11 @@ def whole_periods(t_end: float, T: float) -> tuple[int, float]:
     rounding.  t_end = K/V computed in floating point can fall an ulp short of K·(1/V) (for ~9 %
     of velocities): such a t_end counts as K periods, and t_K (≤ t_end (1 + 1e-12)) is taken at
     t_end by the output schedule (:func:`fpucore.simulate.config.output_schedule`)."""
+    t_end, T = require_finite("t_end", t_end), require_finite("T", T)
+    if not T > 0.0:
+        raise ParameterError("T", T, "a period T > 0", "there are no whole periods of length 0")
+    if not t_end >= 0.0:
+        raise ParameterError("t_end", t_end, "t_end >= 0")
     K = int(math.floor(t_end / T + 1e-9))
     if K >= 1 and K * T > t_end * (1.0 + 1e-12):
         K -= 1  # t_end more than rounding short of K periods: the last whole one is K − 1

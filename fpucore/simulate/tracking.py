@@ -18,7 +18,16 @@ Two stages:
    w_n(t) for pulses, crossings of w* for superkinks, located with degree-7 Hermite interpolation
    inside the step): for a wave moving with constant velocity V these times are exactly
    t_n = t_0 + n / V, so a least-squares line through (n, t_n) over the sites passed in the late
-   window gives V with no lattice-phase error; ``velocity_error`` is the standard error of that fit.
+   window gives V with no lattice-phase error.
+3. **Error** of each velocity, measured, not assumed: ``velocity_error`` = the fit's standard
+   error + the spread of V over other fit windows (:data:`WINDOWS`: a longer one starting half a
+   window earlier, the window's later half, its earlier half) + the spread over the detection
+   threshold (×½ and ×2, :data:`THRESHOLDS`; the wave matched by kind and position).  A steady
+   wave (superkink, solitary wave) gives the same V in every window (spread ~1e-9); the leading
+   edge of a dispersive shock is not steady: on the paper's Riemann run its V drifts by ~6e-4
+   between windows, which the standard error of one fit (1e-5) does not show.  The state ahead
+   (``background``) gets the same treatment: ``background_error`` is its spread over the window's
+   snapshots and the thresholds.
 """
 
 from __future__ import annotations
@@ -27,6 +36,14 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
+#: fit windows besides the tracking window [t_a, t_b] (D = t_b − t_a), as (start, end) in units of
+#: D from t_a: one starting half a window earlier, the later half, the earlier half
+WINDOWS = ((-0.5, 1.0), (0.5, 1.0), (0.0, 0.5))
+#: detection thresholds besides the run's, as factors
+THRESHOLDS = (0.5, 2.0)
+#: a wave found at another threshold is the same wave if its final position is this close (sites)
+SAME_WAVE_SITES = 3.0
+
 
 @dataclass(frozen=True)
 class TrackedWave:
@@ -34,7 +51,12 @@ class TrackedWave:
 
     kind : "superkink" | "front" | "solitary" | "dsw_edge".
     velocity : sites per unit time (signed, > 0 moving to larger n).
-    velocity_error : standard error of the velocity fit.
+    velocity_error : error of the velocity: the fit's standard error plus the measured spreads
+        over fit windows and detection thresholds (the three parts below).
+    velocity_fit_error : standard error of the velocity fit alone.
+    velocity_window_spread : max |V(window) − V| over :data:`WINDOWS`.
+    velocity_threshold_spread : max |V(threshold) − V| over :data:`THRESHOLDS` (NaN if the wave
+        was found at neither).
     amplitude : pulses — crest strain minus the state ahead (signed: > 0 tensile, < 0
         compressive; the crest is the median of the time extrema of w_n(t) at the sites passed,
         which for a traveling wave all equal its true extremum); fronts — state behind minus
@@ -59,6 +81,10 @@ class TrackedWave:
     position: float
     n_fit: int
     method: str
+    velocity_fit_error: float = float("nan")
+    velocity_window_spread: float = float("nan")
+    velocity_threshold_spread: float = float("nan")
+    background_error: float = float("nan")
 
     def as_dict(self) -> dict:
         return asdict(self)
@@ -233,32 +259,36 @@ def track(
         return []
     w_star = float(law.w_star)
     L = w_trk.shape[1]
+    passes = (ev_t, ev_w, ev_s, cr_t, cr_s, L)
     waves: list[TrackedWave] = []
     for side in (-1, 1):
-        scans = [
-            scan_profile(w, origin, side, threshold, w_star, max_waves=max_waves) for w in w_trk
-        ]
-        final = scans[-1]
-        for r, f in enumerate(final):
-            ts, xs = [], []
-            for tk, sc in zip(t_trk, scans):
-                if len(sc) > r and _family(sc[r]) == _family(f):
-                    ts.append(tk)
-                    xs.append(sc[r].pos)
-            if len(ts) < 3:
-                continue
-            ts_a, xs_a = np.asarray(ts), np.asarray(xs)
-            V0, x0 = np.polyfit(ts_a, xs_a, 1)
-            if abs(V0) < 0.05 or np.sign(V0) != side:
+
+        def scans_at(thr, side=side):
+            return [scan_profile(w, origin, side, thr, w_star, max_waves=max_waves) for w in w_trk]
+
+        scans = scans_at(threshold)
+        other = [scans_at(k * threshold) for k in THRESHOLDS]
+        for r, f in enumerate(scans[-1]):
+            m = _measure(f, r, scans, t_trk, side, t_trk[0], t_trk[-1], passes)
+            if m is None:
                 continue  # not an outgoing wave
-            V, dV, nfit, method, crest = _refine(
-                f, V0, x0, ts_a[0], t_trk[-1], ev_t, ev_w, ev_s, cr_t, cr_s, L
-            )
-            if not np.isfinite(V):
-                res = xs_a - (V0 * ts_a + x0)
-                dof = max(ts_a.size - 2, 1)
-                dV = float(np.sqrt((res @ res) / dof / (((ts_a - ts_a.mean()) ** 2).sum())))
-                V, nfit, method = float(V0), int(ts_a.size), "snapshots"
+            V, dV, nfit, method, crest, aheads = m
+            D = t_trk[-1] - t_trk[0]
+            v_win = [_measure(f, r, scans, t_trk, side, t_trk[0] + a * D, t_trk[0] + b * D,
+                              passes) for a, b in WINDOWS]  # fmt: skip
+            win = max((abs(x[0] - V) for x in v_win if x is not None and np.isfinite(x[0])),
+                      default=0.0)  # fmt: skip
+            v_thr, b_thr = [], []
+            for sc in other:
+                k = _same_wave(f, sc[-1])
+                x = None if k is None else _measure(sc[-1][k], k, sc, t_trk, side, t_trk[0],
+                                                    t_trk[-1], passes)  # fmt: skip
+                if x is not None and np.isfinite(x[0]):
+                    v_thr.append(abs(x[0] - V))
+                    b_thr.append(abs(sc[-1][k].ahead - f.ahead))
+            thr_spread = max(v_thr) if v_thr else float("nan")
+            dV_all = dV + win + (thr_spread if v_thr else 0.0)
+            b_err = max([float(np.max(np.abs(aheads - f.ahead))), *b_thr])
             peak = f.peak
             if f.kind in ("superkink", "front"):
                 amp = f.behind - f.ahead
@@ -272,7 +302,7 @@ def track(
                 TrackedWave(
                     kind=f.kind,
                     velocity=float(V),
-                    velocity_error=float(dV),
+                    velocity_error=float(dV_all),
                     amplitude=float(amp),
                     left_state=float(left),
                     right_state=float(right),
@@ -281,9 +311,57 @@ def track(
                     position=float(f.pos) + 1.0,
                     n_fit=int(nfit),
                     method=method,
+                    velocity_fit_error=float(dV),
+                    velocity_window_spread=float(win),
+                    velocity_threshold_spread=float(thr_spread),
+                    background_error=float(b_err),
                 )
             )
     return waves
+
+
+def _same_wave(f: _Feature, final: list[_Feature]) -> int | None:
+    """Index of the feature in ``final`` (a scan at another threshold) that is f: same family,
+    final position within SAME_WAVE_SITES."""
+    best = None
+    for k, g in enumerate(final):
+        d = abs(g.pos - f.pos)
+        if _family(g) == _family(f) and d <= SAME_WAVE_SITES and (best is None or d < best[1]):
+            best = (k, d)
+    return None if best is None else best[0]
+
+
+def _measure(f: _Feature, r: int, scans, t_trk, side: int, t_a: float, t_b: float, passes):
+    """Velocity of the r-th feature f of the final scan, fitted over [t_a, t_b]: the coarse ray
+    from its positions in the snapshots, refined by passage times (:func:`_refine`).  Returns
+    (V, σ_V, count, method, crest, states ahead over the snapshots), or None if the wave is not
+    outgoing."""
+    ts, xs, aheads = [], [], []
+    for tk, sc in zip(t_trk, scans):
+        if len(sc) > r and _family(sc[r]) == _family(f):
+            ts.append(tk)
+            xs.append(sc[r].pos)
+            aheads.append(sc[r].ahead)
+    if len(ts) < 3:
+        return None
+    ts_a, xs_a = np.asarray(ts), np.asarray(xs)
+    V0, x0 = np.polyfit(ts_a, xs_a, 1)
+    if abs(V0) < 0.05 or np.sign(V0) != side:
+        return None
+    # the tracking window itself starts where the wave was first seen in it (as before)
+    t0 = ts_a[0] if abs(t_a - t_trk[0]) <= 1e-12 * max(1.0, t_b) else max(t_a, 0.0)
+    V, dV, nfit, method, crest = _refine(f, V0, x0, t0, t_b, *passes)
+    if not np.isfinite(V):
+        sel = (ts_a >= t_a - 1e-12) & (ts_a <= t_b + 1e-12)
+        if sel.sum() < 3:
+            return None
+        tw, xw = ts_a[sel], xs_a[sel]
+        V1, x1 = np.polyfit(tw, xw, 1)
+        res = xw - (V1 * tw + x1)
+        dof = max(tw.size - 2, 1)
+        dV = float(np.sqrt((res @ res) / dof / (((tw - tw.mean()) ** 2).sum())))
+        V, nfit, method = float(V1), int(tw.size), "snapshots"
+    return V, dV, nfit, method, crest, np.asarray(aheads)
 
 
 def _refine(f, V0, x0, t_a, t_b, ev_t, ev_w, ev_s, cr_t, cr_s, L):
@@ -307,22 +385,18 @@ def _refine(f, V0, x0, t_a, t_b, ev_t, ev_w, ev_s, cr_t, cr_s, L):
     else:
         tt, ss, want = ev_t, ev_s, f.sign
     tol = 0.3 / abs(V0)
-    ns, ts, vals = [], [], []
-    for n in n_sites:
-        tp = (n - x0) / V0
-        row = tt[n]
-        ok = (ss[n] == want) & np.isfinite(row)
-        if not ok.any():
-            continue
-        cand = row[ok]
-        j = int(np.argmin(np.abs(cand - tp)))
-        if abs(cand[j] - tp) < tol:
-            ns.append(n)
-            ts.append(cand[j])
-            if f.kind != "superkink":
-                vals.append(ev_w[n][ok][j])
+    # per site, the recorded time of the wanted sign nearest the coarse ray (all sites at once)
+    rows = tt[n_sites]
+    tp = (n_sites - x0) / V0
+    with np.errstate(invalid="ignore"):
+        d = np.where((ss[n_sites] == want) & np.isfinite(rows), np.abs(rows - tp[:, None]), np.inf)
+    j = np.argmin(d, axis=1) if n_sites.size else np.zeros(0, dtype=np.int64)
+    k = np.arange(n_sites.size)
+    hit = d[k, j] < tol if n_sites.size else np.zeros(0, dtype=bool)
+    ns, ts = n_sites[hit], rows[k[hit], j[hit]]
+    vals = ev_w[n_sites[hit], j[hit]] if f.kind != "superkink" else np.zeros(0)
     if len(ns) < 8:
         return np.nan, np.nan, len(ns), "", np.nan
     V, dV, cnt = fit_passage(ns, ts)
-    crest = float(np.median(vals)) if vals else np.nan
+    crest = float(np.median(vals)) if vals.size else np.nan
     return V, dV, cnt, "passage_times", crest

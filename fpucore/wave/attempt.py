@@ -6,6 +6,8 @@ spec, N, m, K, the tolerances, the time budget, the Newton history, the routes t
 method per route or rescue:
 
     solve()          the whole solve: ordinary() or plateau(), then refine_m(), check_plateau()
+    embedded()       flat tops on a chain longer than they need: solved on the N they need,
+                     padded with the background state (the user's N is served, bounds kept)
     ordinary()       QC guess (or a predictor), then grow_N(), cut_N(), continue_in_V()
     plateau()        flat tops near V_SK: continuation in plateau mass (:mod:`.plateau`)
     newton()         one Newton run on a system, with the tail check every route shares
@@ -28,6 +30,7 @@ from dataclasses import replace as _replace
 import numpy as np
 
 from fpucore import qc
+from fpucore.wave import bounds as wb
 from fpucore.wave import period_map as pm
 from fpucore.wave import plateau as wp
 from fpucore.wave import tails as wt
@@ -46,6 +49,10 @@ from fpucore.wave.setup import (
 from fpucore.wave.system import NewtonOutcome, WaveSystem, newton
 
 FLOOR_FACTOR = 4.0  # accept residuals / step-doubling errors up to this × the round-off level
+#: flat tops (QC γ·x_f ≥ wp.GX_FALLBACK) are solved to at least this tol: their plateau length
+#: is fixed only by the last digits of the residual (σ_min ∝ |V − V_SK|); measured at
+#: V_SK − 1e-11, N = 64: tol 1e-10 gives profile_error 0.65, tol 1e-12 gives 0.05
+FLAT_TOP_TOL = 1e-12
 
 
 @dataclass(frozen=True)
@@ -94,6 +101,7 @@ class Solved:
     residual_floor: float
     note: str = ""
     front_uncertainty: float = math.nan
+    bounds: object = None  # wb.WaveBounds computed by the route itself (embedded flat tops)
 
 
 def choose_m_floor(law, spec: Spec, x: np.ndarray, int_tol: float, m_min: int = 6) -> int:
@@ -138,6 +146,10 @@ class WaveSolve:
 
     def __post_init__(self):
         self.t0 = time.perf_counter()
+        self.gx = 0.0 if self.spec.kind == "superkink" else wp.qc_half_plateau(self.spec.qcw)
+        if self.gx >= wp.GX_FALLBACK and self.tol > FLAT_TOP_TOL:
+            self.tol = FLAT_TOP_TOL  # said in the route (see FLAT_TOP_TOL)
+            self.routes.append(f"flat top: tol tightened to {FLAT_TOP_TOL:g}")
         self.tols = Tolerances.of(self.spec, self.tol)
         self.N = choose_N(self.law, self.spec, self.N_req, self.tol)
         pred = self.predictor
@@ -183,7 +195,11 @@ class WaveSolve:
 
     # ------------------------------------------------------------------ the solve
     def solve(self) -> Solved:
-        gx = self.half_plateau() if self.predictor is None else 0.0
+        gx = self.gx if self.predictor is None else 0.0
+        if gx >= wp.GX_FALLBACK and self.N > self.n_work():
+            done = self.embedded()
+            if done is not None:
+                return done
         if gx >= wp.GX_DIRECT:  # flat top near V_SK: fixed-V Newton cannot fix the plateau
             out, note = self.plateau()
             self.routes.append(note)
@@ -210,11 +226,49 @@ class WaveSolve:
             fu,
         )
 
-    def half_plateau(self) -> float:
-        """QC γ·x_f for solitary waves (how long the flat top is), 0 for superkinks."""
-        if self.spec.kind == "superkink":
-            return 0.0
-        return wp.qc_half_plateau(self.spec.qcw)
+    def n_work(self) -> int:
+        """The chain a flat top needs: its tails reach tail_tol (at least N_MIN)."""
+        return max(wt.N_MIN, required_N(self.law, self.spec, self.tols.tail_tol))
+
+    def embedded(self) -> Solved | None:
+        """A flat top on a chain longer than it needs (the explorer's N = 500): solve it on
+        n_work() sites, pad with the background state, check the residual on the user's N.
+
+        Why: on the long chain the plateau mode's smallest singular value is measured 22×
+        smaller (N = 64: 1.2e-13, N = 500: 5.4e-15, at V_SK − 1e-11), so the residual's
+        round-off fixes the plateau to only ±53 sites there against ±0.03 on 64 sites.  The
+        padded state is the same wave: Newton on N takes no step (else None: the caller's
+        route), and its bounds against the infinite chain's wave are those of the short solve
+        (which include its truncation by finite N) and, on the padded sites, the tail deviation
+        at the short chain's ends (:func:`fpucore.wave.bounds.embedded`)."""
+        N_w = self.n_work()
+        sub = WaveSolve(
+            self.law, self.spec, N_w, self.tol, self.jacobian, self.max_iter, max(1.0, self.left())
+        ).solve()
+        if not sub.out.converged or sub.out.factorization is None:
+            return None
+        x = self.resized(sub.out.x, N_w, self.N)
+        kept = (self.m, self.K, self.system)
+        self.m, self.K = sub.m, sub.K
+        self.system = self.build(self.N)
+        out = self.newton(self.system, x, max(1.0, self.left()))
+        if not out.converged or not np.array_equal(out.x, x):
+            self.m, self.K, self.system = kept  # the caller's route starts as it would have
+            self.routes.append(f"padding the N = {N_w} solution moved it on N = {self.N}")
+            return None
+        xs = sub.out.x
+        b = wb.error_bounds(sub.system, xs, sub.out.factorization, True)
+        b = wb.embedded(b, self.law, xs[0::2], xs[1::2], self.spec.V, self.spec.w_left,
+                        self.spec.w_right)  # fmt: skip
+        route = (
+            f"{sub.route}; solved on N = {N_w} (the chain the flat top needs), padded with "
+            f"w_B to N = {self.N}: residual on N = {self.N} checked, bounds from N = {N_w} "
+            "plus the tails"
+        )
+        hist = tuple(sub.history) + tuple(self.history)
+        floor = max(sub.residual_floor, self.floor)
+        return Solved(out, self.system, hist, route, self.m, self.K, self.N, floor, sub.note,
+                      sub.front_uncertainty, b)  # fmt: skip
 
     def refine_m(self, out: NewtonOutcome) -> NewtonOutcome:
         """Step-doubling error at the solution; more RK steps if the guess-based m was optimistic
@@ -311,7 +365,10 @@ class WaveSolve:
             law, spec.w_plus, spec.V, start.out.x, start.system.V, self.N, self.m, self.K,
             self.tols.res_tol, t_end,
         )  # fmt: skip
-        note = f"plateau route from |V-V_SK|={start.system.V - v_sk:+.2g}: {path.note}"
+        note = (
+            f"plateau route from a start wave at V - V_SK = {start.system.V - v_sk:+.2g} to "
+            f"V - V_SK = {spec.V - v_sk:+.2g}: {path.note}"
+        )
         x_p = path.x if path.x is not None else x_best
         out = self.newton(self.system, x_p, max(1.0, self.left()))
         if not out.converged:

@@ -122,7 +122,7 @@ def energy_gradient(law, w, wdot, V, w_B) -> np.ndarray:
 
 
 # =============================================================================== profile
-def _tail_deviation(law, w, wd, w_inf, V, side: int) -> float:
+def tail_deviation(law, w, wd, w_inf, V, side: int) -> float:
     """τ: deviation of the exact wave from w_∞ at the boundary spring, extrapolated from the
     computed tail (sites 1–3 in from the end, away from the clamp) at rate λ, and from the rates
     |ẇ| = Vλ|w − w_∞| of a pure exponential tail."""
@@ -135,6 +135,15 @@ def _tail_deviation(law, w, wd, w_inf, V, side: int) -> float:
     ext = np.max(d[1:] * np.exp(-lam * (k[1:] + 1)))
     ext_rate = np.max(np.abs(wd[idx]) / (V * lam) * np.exp(-lam * (k + 1)))
     return float(max(ext, ext_rate, d[0] * math.exp(-lam)))
+
+
+def embedded(b: WaveBounds, law, w, wd, V: float, w_left: float, w_right: float) -> WaveBounds:
+    """Bounds of a wave solved on fewer sites (w, wd: that solution) and padded with its
+    background states to a longer chain: on the padded sites the exact wave lies within the
+    tail deviation τ at the short chain's ends (it decays further outward), elsewhere the short
+    chain's bounds hold unchanged (they already include its truncation by finite N)."""
+    tau = max(tail_deviation(law, w, wd, w_left, V, -1), tail_deviation(law, w, wd, w_right, V, 1))
+    return _replace(b, profile=max(b.profile, SAFETY * tau), truncation=max(b.truncation, tau))
 
 
 def noise_sample(S: WaveSystem, x: np.ndarray, F: np.ndarray, seed: int = 12345) -> np.ndarray:
@@ -179,8 +188,8 @@ def error_bounds(S: WaveSystem, x: np.ndarray, fact: tuple, solitary: bool, orde
     # including its systematic part (rounded RK increments), which the second difference misses
     model = [F_2m - S.residual(x, m=2 * S.m + k)[0] for k in (1, 2)]
     rho_model = [solve_with(fact, n_k) for n_k in model]
-    tau_L = _tail_deviation(law, w, wd, S.w_left, V, -1)
-    tau_R = _tail_deviation(law, w, wd, S.w_right, V, 1)
+    tau_L = tail_deviation(law, w, wd, S.w_left, V, -1)
+    tau_R = tail_deviation(law, w, wd, S.w_right, V, 1)
     c_L = _boundary_column(S, x, F_m, "left")
     c_R = _boundary_column(S, x, F_m, "right")
     t_L, t_R = solve_with(fact, c_L), solve_with(fact, c_R)

@@ -166,6 +166,8 @@ def _bounds(spec: Spec, done: Solved):
     before one) only the integrator error is known and the bounds are infinite."""
     out, S = done.out, done.system
     solitary = spec.kind != "superkink"
+    if done.bounds is not None:
+        return done.bounds
     if out.factorization is None:
         x = out.x
         ierr = pm.step_doubling_error(S.law, x[0::2], x[1::2], S.T, S.m, spec.w_left, spec.w_right)

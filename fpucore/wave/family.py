@@ -38,8 +38,11 @@ class Family:
 
 
 def _check_V_values(V_values) -> np.ndarray:
-    V = np.atleast_1d(np.asarray(V_values, dtype=float))
-    if V.ndim != 1 or V.size == 0 or not np.all(np.isfinite(V)):
+    try:
+        V = np.atleast_1d(np.asarray(V_values, dtype=float))
+    except (TypeError, ValueError):  # ['a'], [None], ragged lists: numpy's own error otherwise
+        V = None
+    if V is None or V.ndim != 1 or V.size == 0 or not np.all(np.isfinite(V)):
         raise ParameterError("V_values", V_values, "a non-empty 1-D array of finite velocities")
     return V
 

@@ -39,12 +39,14 @@ def test_markdown_pane_shows_the_text_as_typed(text):
     assert html.unescape(inner).split() == text.split(), (text, out)
 
 
-def test_a_pathological_law_is_refused_within_its_budget_and_a_good_one_still_builds():
-    t0 = time.monotonic()
-    with pytest.raises(compute.ParameterError, match="took longer than"):
-        compute.expression_law("(w+1)**100000")
-    # the budget (3 s) counts from the job's start; the worker's start comes first
-    assert time.monotonic() - t0 < compute.LAW_TIME_S + 30
+def test_a_law_past_its_time_budget_is_stopped_and_a_good_one_still_builds(monkeypatch):
+    """fpucore's parser refuses the known DoS strings itself now; the server's budget is the net
+    for any construction that is slow anyway: with a zero budget the job is stopped (its worker
+    killed and replaced) and the law refused, and the next law builds on the new worker."""
+    monkeypatch.setattr(compute.laws, "LAW_TIME_S", 0.0)
+    with pytest.raises(compute.ParameterError, match="took longer than 0 s"):
+        compute.expression_law("(w+1)**16 - (w+1)**15")
+    monkeypatch.undo()
     assert compute.expression_law("w + 9*w**2 - w**3").coeffs == (1.0, 9.0, -1.0)
 
 
@@ -55,4 +57,4 @@ def test_a_page_build_never_waits_for_a_law():
         compute.expression_law(text)
     assert time.monotonic() - t0 < 0.5
     outcome = compute.request_law(text).result(timeout=60)  # the worker's answer, later
-    assert isinstance(outcome, compute.ParameterError) and "took longer" in str(outcome)
+    assert isinstance(outcome, compute.ParameterError) and "9**9**9" in str(outcome)

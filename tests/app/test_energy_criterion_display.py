@@ -99,11 +99,18 @@ def test_floquet_sweep_panel_shows_the_criterion_and_the_cross_check():
     for lo, hi in ((lo1, hi1), (lo2, hi2)):
         u = [x for x, v in zip(unstable, sw.V) if lo < v < hi]
         crossings += sum(p != q for p, q in zip(u, u[1:]))
-    if sc._ec[0].extrema_V.size == 0:
-        # no extremum anywhere: every crossing of the stable/unstable line is flagged
-        assert status.count("most likely a finite-size effect") == crossings
+    # the paper's figure: max|μ| − 1 on a log axis, every point in the colour of its decision
+    assert type(sc.fig_c.y_scale).__name__ == "LogScale" and sc.fig_c.y_range.start > 0
+    for c in fq.CLASSES:
+        drawn = sorted(sc.r_cls[c][1].data["x"])
+        assert np.allclose(drawn, sorted(v for v, k in zip(sw.V, sw.classification) if k == c))
+    # the cross-check is one line, never one paragraph per change
+    assert status.count("Cross-check") == 1
+    if sc._ec[0].extrema_V.size == 0 and crossings:
+        # no extremum anywhere: every crossing of the stable/unstable line is a finite-size effect
+        assert f"{crossings} change" in status and "none at an extremum of E_ren" in status
     if crossings == 0:
-        assert "does not cross between stable" in status
+        assert "No change between stable and unstable along the sweep" in status
     code = sc.python_code()
     assert "criterion_from_samples" in code and "stability_changes" in code
 

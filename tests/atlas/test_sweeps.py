@@ -25,7 +25,7 @@ def test_pool_sweep_equals_single_calls(tmp_path, monkeypatch):
     columns = {"V", "max_modulus", "max_modulus_away_from_1", "error", "symmetry_error",
                "integrator_error", "n_unstable", "n_trivial", "trivial_split", "verdict",
                "wave_converged", "wave_residual", "converged", "elapsed_s", "message",
-               "classification", "energy", "energy_error"}  # fmt: skip
+               "classification", "headline", "energy", "energy_error"}  # fmt: skip
     assert all(set(r) == columns for r in s.rows)
     for j, v in enumerate(V):
         fr = fq.spectrum(wave.solve_superkink(LAW, v, N=64))
@@ -33,6 +33,7 @@ def test_pool_sweep_equals_single_calls(tmp_path, monkeypatch):
         assert abs(s.max_modulus[j] - fr.max_modulus) <= s.error[j] + fr.error + 1e-9
         assert s.rows[j]["verdict"].split(":")[0] == fr.verdict.split(":")[0]
         assert s.classification[j] == fr.classification
+        assert s.rows[j]["headline"] == fr.decision.headline
 
 
 @pytest.mark.parametrize(

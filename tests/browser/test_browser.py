@@ -1017,3 +1017,30 @@ def test_ten_sessions_stay_responsive_and_consistent(browser, server):
     strict = os.environ.get("FPU_STRICT_TIMING") == "1"
     lim_max, lim_p95 = (LIVENESS_MAX_S, LIVENESS_P95_S) if strict else (LOOSE_MAX_S, LOOSE_P95_S)
     assert times[-1] <= lim_max and p95 <= lim_p95, (times[-1], p95, strict)
+
+
+def test_paper_tab_opens_three_figures(page):
+    """The Paper tab: a click on a figure sets the state (law, mode, w₊, V, N, tab), the URL
+    carries it and the scene that shows the figure renders exactly that state."""
+    page.goto(f"{page.server}/main?a=-2&b=12&w_plus=0.5&V=4&{FAST}&mode=solitary&tab=paper")
+    cases = [
+        # label, tab, mode, V (the paper's parameters), what the scene must show
+        ("pplane", "phase", "solitary", 2 * 65**0.5 / 3 - 0.001, "Time:"),
+        ("superkink", "force", "superkink", 2 * 65**0.5 / 3, "Time:"),
+        ("stabSW", "simulation", "solitary", 5.2174919476, "Run simulation"),
+    ]
+    for label, tab, mode, V, shows in cases:
+        if query(page).get("tab") != "paper":
+            open_tab(page, "Paper")
+            wait_url(page, lambda q: q.get("tab") == "paper")
+        page.locator(f".paper-open-{label} button").click()
+        q = wait_url(page, lambda q, t=tab, m=mode: q.get("tab") == t and q.get("mode") == m)
+        assert q.get("tab") == tab and q.get("mode") == mode, (label, q)
+        assert (float(q["a"]), float(q["b"]), int(q["N"])) == (-1.0, 10.0, 500), q
+        assert abs(float(q["V"]) - V) < 1e-9, (label, q["V"])
+        if shows == "Time:":
+            text, msg, q = settled(page)
+            assert stamp(q) in text and not msg, (label, text, msg)
+        else:
+            page.locator(f".scene-{tab} .scene-message").get_by_text(shows).wait_for()
+        assert not app_tracebacks()

@@ -1,4 +1,4 @@
-"""Three-way classification of a Floquet spectrum (issue 12): stable / finite_size / unstable.
+"""The stability decision of a Floquet spectrum: stable / finite_size / unstable / undetermined.
 
 References: a genuinely unstable constant state (f′ < 0) whose multipliers and growth rate are
 derived here in closed form; synthetic point sets with a known law for the fits.  The paper's
@@ -47,9 +47,10 @@ def test_unstable_constant_state_with_known_growth_rate(w0, V, N):
     assert fr.classification == "unstable" and fr.finite_size_checked
     assert list(fr.finite_size_N) == fq.chain_lengths(N) + [N]
     assert np.allclose(fr.finite_size_excess, math.exp(sigma / V) - 1.0, rtol=1e-11)
-    assert abs(fr.finite_size_exponent) < 1e-6  # no decay with N at all
+    assert fr.decision.spread < 1e-9  # no change with N at all
     assert fr.extrapolated_excess == pytest.approx(math.exp(sigma / V) - 1.0, rel=1e-9)
-    assert fr.verdict.startswith("unstable:") and "does not shrink" in fr.verdict
+    assert fr.verdict.startswith("unstable:") and "on every ring" in fr.verdict
+    assert fr.decision.reason == "persists" and fr.decision.next_step == ""
 
 
 def test_stable_constant_state_is_stable_without_extra_spectra():
@@ -70,10 +71,13 @@ def test_homogeneous_state_refuses_degenerate_or_nonconvex_by_default():
 
 
 def test_finite_size_off_says_so():
+    """Without the test an excess is not called unstable: "undetermined", saying what was not
+    run and what would decide it."""
     fr = fq.spectrum(fq.HomogeneousState(LAW, 7.0, 5.0, 40, convex=False), finite_size=False)
-    assert fr.classification == "unstable" and not fr.finite_size_checked
+    assert fr.classification == "undetermined" and not fr.finite_size_checked
     assert list(fr.finite_size_N) == [40]
-    assert "not tested for a finite-size effect" in fr.verdict and "finite_size=False" in fr.verdict
+    assert "was not run (finite_size=False)" in fr.verdict
+    assert fr.decision.next_step and fr.decision.next_step in fr.verdict
 
 
 # ----------------------------------------------------------------------------- the fits
@@ -82,41 +86,21 @@ def test_fits_recover_known_laws():
     err = np.full(3, 1e-13)
     p, dp = fs.fit_power_law(N, 0.28 / N, err)
     assert p == pytest.approx(1.0, abs=1e-12) and dp < 1e-6
-    assert fs.classify(N, 0.28 / N, err)["C"] == pytest.approx(0.28, rel=1e-12)
     p, _ = fs.fit_power_law(N, 3.0 * N**-2.5, err)
     assert p == pytest.approx(2.5, abs=1e-12)
     e_inf, de = fs.extrapolate(N, 0.01 + 0.3 / N, err)
     assert e_inf == pytest.approx(0.01, abs=1e-12) and de < 1e-11
 
 
-@pytest.mark.parametrize(
-    "e, expected",
-    [
-        (0.28 / np.array([250, 334, 500]), "finite_size"),  # the paper's 1/N law
-        (np.array([1e-3, 1e-3, 1e-3]), "unstable"),  # does not shrink
-        (0.01 + 0.3 / np.array([250, 334, 500]), "unstable"),  # shrinks to a positive limit
-        (np.array([2e-3, 9e-4, 1e-13]), "stable"),  # within the error bar at the requested N
-        (np.array([3e-5, 7e-5, 6e-5]), "unstable"),  # grows (quartets emerging/rejoining)
-        (np.array([1.9e-4, 1e-14, 1.8e-4]), "finite_size"),  # absent on a shorter ring
-    ],
-)
-def test_classify_synthetic(e, expected):
-    N = np.array([250, 334, 500])
-    assert fs.classify(N, e, np.full(3, 2e-13))["classification"] == expected
-
-
-def test_classify_needs_three_lengths():
-    out = fs.classify(np.array([250, 500]), np.array([2e-3, 1e-3]), np.full(2, 1e-13))
-    assert out["classification"] == "unstable" and not out["checked"]
-
-
-def test_chain_lengths_cost_no_more_than_requested():
-    for N in (80, 100, 128, 160, 200, 500, 1000):
+def test_chain_lengths_span_half_to_N():
+    for N in (128, 160, 200, 500, 1000):
         ns = fs.chain_lengths(N, 64)
-        assert len(ns) == 2 and all(64 <= n < N and n % 2 == 0 for n in ns)
-        if N >= 160:  # below, the shortest wave chain (64) is > 0.4N: small, cheap spectra
-            assert sum((n / N) ** 3 for n in ns) <= 0.6  # dense eig ∝ N³
-    assert fs.chain_lengths(64, 64) == [] and fs.chain_lengths(500) == [200, 300]
+        assert len(ns) == fs.WINDOW - 1 and ns == sorted(ns)
+        assert all(64 <= n < N and n % 2 == 0 for n in ns)
+        assert ns[0] == max(64, N // 2 + (N // 2) % 2) or abs(ns[0] - N / 2) <= 1
+    assert fs.chain_lengths(500) == [250, 300, 350, 400, 450]
+    # a window narrower than [3N/4, N] is no test
+    assert fs.chain_lengths(64, 64) == [] and fs.chain_lengths(80, 64) == []
 
 
 # ----------------------------------------------------------------------------- waves
@@ -133,19 +117,21 @@ def test_short_chain_superkink_is_classified_with_evidence():
     r = wave.solve_superkink(LAW, 5.2, N=128)
     fr = fq.spectrum(r)
     assert fr.classification == "finite_size", fr.verdict
-    assert list(fr.finite_size_N) == [64, 96, 128]
-    assert np.all(np.diff(fr.finite_size_excess) < 0)
-    assert 0.5 < fr.finite_size_exponent < 1.5  # ~1/N (measured 0.95–1.05 at N = 128 … 500)
-    line = fr.finite_size_prefactor * fr.finite_size_N.astype(float) ** -fr.finite_size_exponent
-    assert np.allclose(line, fr.finite_size_excess, rtol=0.3)  # the fitted line the app draws
+    ns, full = list(fr.finite_size_N), fs.chain_lengths(128, 64)
+    # shortest first; the window stops once an absent excess or a dip has decided it
+    assert ns[-1] == 128 and ns[:-1] == full[: len(ns) - 1] and ns[0] == 64
+    assert len(ns) == len(full) + 1 or fr.decision.reason in ("absent", "dips")
 
 
 def test_cli_json_has_classification(capsys):
     assert cli_main(["floquet", "superkink", "--V", "5.2", "--N", "128", "--json"]) == 0
     d = json.loads(capsys.readouterr().out)
     assert d["classification"] == "finite_size"
-    assert 0.5 < d["finite_size_exponent"] < 1.5
-    assert d["finite_size_N"] == [64, 96, 128] and len(d["finite_size_excess"]) == 3
+    assert d["finite_size_N"][0] == 64 and d["finite_size_N"][-1] == 128
+    assert len(d["finite_size_excess"]) == len(d["finite_size_N"])
+    dec = d["decision"]
+    assert dec["classification"] == d["classification"] and dec["sentence"] == d["verdict"]
+    assert dec["headline"].startswith("finite-size artefact")
     for k in ("extrapolated_excess", "extrapolated_excess_error", "finite_size_exponent_error",
               "growth_rate", "verdict", "finite_size_checked"):  # fmt: skip
         assert k in d

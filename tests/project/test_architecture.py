@@ -12,13 +12,26 @@ library's ``ast``, nothing imported):
 from __future__ import annotations
 
 import ast
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
 PKG = ROOT / "fpucore"
-STAGES = ("law", "qc", "tableaux", "wave", "floquet", "simulate", "parallel", "atlas", "cli")
+STAGES = (
+    "law",
+    "qc",
+    "tableaux",
+    "wave",
+    "floquet",
+    "simulate",
+    "parallel",
+    "atlas",
+    "paper",
+    "cli",
+)
 # imports inside functions allowed only to keep a real optional dependency optional
 LATE_OK: set[tuple[str, str]] = {
     # distributed's ~1 s import kept out of every `import fpucore` (only the dask backend needs it)
@@ -33,7 +46,16 @@ LATE_OK: set[tuple[str, str]] = {
     ),
     ("fpucore/atlas/store.py", "import xarray"),
     ("fpucore/atlas/store.py", "import zarr"),
+    # the one place fpucore draws (fpu paper, Jupyter): HoloViews / Bokeh only when a figure is
+    # plotted, never by `import fpucore` (test_fpucore_is_headless allows exactly these)
+    ("fpucore/paper/plot.py", "import holoviews as hv"),
+    ("fpucore/paper/plot.py", "from bokeh import models"),
+    ("fpucore/paper/plot.py", "from bokeh.embed import file_html"),
+    ("fpucore/paper/plot.py", "from bokeh.resources import INLINE"),
+    # nbformat only when a notebook is written (fpu paper --out x.ipynb)
+    ("fpucore/paper/notebook.py", "import nbformat"),
 }
+PLOTTING = {key for key in LATE_OK if key[0] == "fpucore/paper/plot.py"}
 
 
 def _modname(path: Path) -> str:
@@ -186,7 +208,25 @@ def test_no_private_name_crosses_a_module():
 
 
 def test_fpucore_is_headless():
-    ui = ("panel", "holoviews", "bokeh", "hvplot")
+    """No UI package in fpucore, except the lazy imports inside fpucore/paper/plot.py's ui()."""
+    ui = ("panel", "holoviews", "bokeh", "hvplot", "matplotlib")
     for path in _files("fpucore"):
+        rel = path.relative_to(ROOT).as_posix()
         for base, _, node in _imports(_modname(path), ast.parse(path.read_text())):
+            if (rel, ast.unparse(node)) in PLOTTING:
+                continue
             assert base.split(".")[0] not in ui, f"{path}:{node.lineno} imports {base}"
+
+
+def test_import_fpucore_and_its_cli_load_no_ui_package():
+    """The lazy plotting imports stay lazy: `import fpucore` and the CLI's parser (with the
+    paper command) load neither HoloViews nor Bokeh (fresh interpreter)."""
+    code = (
+        "import sys, fpucore, fpucore.paper, fpucore.cli.dispatch as d; d.build_parser(); "
+        "ui = ('holoviews', 'bokeh', 'panel', 'matplotlib'); "
+        "print(sorted(m for m in ui if m in sys.modules))"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120,
+                         cwd=ROOT)  # fmt: skip
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.strip() == "[]"

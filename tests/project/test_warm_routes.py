@@ -60,12 +60,12 @@ print(json.dumps({"before": before, "after": signatures(), "n": int(fr.finite_si
 
 def test_the_essential_floquet_route_compiles_what_the_floquet_scene_runs():
     """After the essential "floquet" warm-up, a spectrum with its finite-size test (the scene's
-    computation: dense at N, the reversible route at 0.4N and 0.6N) adds no compiled signature,
-    so no visitor waits for a compile (a new signature is a compile or a cache load).  Fails
-    when the warm-up leaves the reversible route out."""
+    computation: dense at N, the reversible route on up to 5 rings in [N/2, N]) adds no compiled
+    signature, so no visitor waits for a compile (a new signature is a compile or a cache
+    load).  Fails when the warm-up leaves the reversible route out."""
     out = subprocess.run([sys.executable, "-c", _SCENE_SCRIPT], capture_output=True, text=True,
                          timeout=600, check=True)  # fmt: skip
     res = json.loads(out.stdout.strip().splitlines()[-1])
-    assert res["n"] == 3 and res["cls"] != "stable"
+    assert res["n"] >= 3 and res["cls"] != "stable"  # the window (it stops once decided)
     assert res["after"] == res["before"]
     assert all(n > 0 for k, n in res["before"].items() if "reversible_kernels" in k)

@@ -36,6 +36,24 @@ def test_critical_points_are_rayleigh_intersections():
             assert (c.kind == "saddle") == (V**2 > float(LAW.df(c.w)))
 
 
+@pytest.mark.parametrize("V", [4.3, 5.0, VSK1, 5.3, 5.37])
+def test_window_holds_every_critical_point(V):
+    """For c+^2 < V^2 < c-^2 the paper counts three critical points (two saddles and a centre);
+    the plotted window holds all three, the second saddle w_S too when it lies beyond beta
+    (w+ = 1, V = 5: w_S = 6.79 > beta = 6.72).  w_S is checked against the largest real root of
+    the Rayleigh condition f(w) - f(w+) = V^2 (w - w+) found by numpy's companion matrix."""
+    cp, _, cm = qc.sound_speeds(LAW, 1.0)
+    assert cp < V < cm
+    pp = phase_plane(LAW, 1.0, V)
+    assert [c.kind for c in pp.critical_points] == ["saddle", "center", "saddle"]
+    for c in pp.critical_points:
+        assert pp.w[0] <= c.w <= pp.w[-1]
+    # the roots of the cubic f(w) - f(w+) - V^2 (w - w+) by numpy's companion matrix
+    roots = np.roots([-1.0, 10.0, 1.0 - V**2, V**2 - float(LAW.f(1.0))])
+    w_S = max(r.real for r in roots if abs(r.imag) < 1e-9)
+    assert pp.critical_points[2].w == pytest.approx(w_S, rel=1e-10)
+
+
 def test_level_set_through_saddle_contains_orbit():
     """The homoclinic orbit lies on the H = 0 level of the gridded first integral: linear
     interpolation of H at the orbit points is bounded by the grid's interpolation error."""
@@ -92,3 +110,63 @@ def test_vectorised_family_matches_single_waves():
             assert amp == pytest.approx(sw.amplitude, rel=1e-13)
             assert en == pytest.approx(sw.energy, rel=1e-12)
     assert fam.max_energy_error < 1e-9 * np.max(np.abs(fam.energy_above))
+
+
+@pytest.mark.parametrize("w0,wp0", [(2.0, 0.0), (2.5, 0.1), (1.6, -0.3), (3.0, 0.5)])
+def test_orbit_through_a_point_matches_a_numerical_integration(w0, wp0):
+    """The level-set orbit through (w0, w0') against an independent integration of eq.
+    TW_QC_gen2, V^2/12 w'' = -(f(w) - f(w+) - V^2 (w - w+)), by scipy's DOP853: the integrated
+    trajectory stays on the level (H constant) and reaches exactly the turning points the
+    closed form gives (inside the centre's loop: a closed orbit with two turning points;
+    outside it: an open orbit that turns once and leaves the window)."""
+    from scipy.integrate import solve_ivp
+
+    from fpucore.qc.phase import orbit_through
+
+    V, wp_ = 5.0, 1.0
+    pp = phase_plane(LAW, wp_, V)
+    window = (pp.w[0], pp.w[-1])
+    o = orbit_through(LAW, wp_, V, w0, wp0, window)
+    assert o.residual < 1e-13
+    fplus = float(LAW.f(wp_))
+
+    def rhs(_, y):
+        w, p = y
+        return [p, -12.0 / V**2 * (float(LAW.f(w)) - fplus - V**2 * (w - wp_))]
+
+    def leaves(_, y):  # stop where the orbit leaves the window
+        return min(y[0] - window[0], window[1] - y[0])
+
+    leaves.terminal = True
+    sol = solve_ivp(rhs, (0.0, 40.0), [w0, wp0], method="DOP853", rtol=1e-12, atol=1e-12,
+                    events=leaves, dense_output=True)  # fmt: skip
+    t = np.linspace(0.0, sol.t[-1], 20001)
+    w, p = sol.sol(t)
+    if o.closed:
+        assert len(o.turning_points) == 2
+        assert w.min() == pytest.approx(o.turning_points[0], abs=1e-8)
+        assert w.max() == pytest.approx(o.turning_points[1], abs=1e-8)
+    else:
+        assert len(o.turning_points) == 1
+        # the integration (forward or backward in ξ) reaches the one turning point
+        back = solve_ivp(rhs, (0.0, -40.0), [w0, wp0], method="DOP853", rtol=1e-12,
+                         atol=1e-12, events=leaves, dense_output=True)  # fmt: skip
+        wb, pb = back.sol(np.linspace(0.0, back.t[-1], 20001))
+        ext = [w.max(), wb.max()] if o.turning_points[0] > w0 - 1e-12 else [w.min(), wb.min()]
+        assert min(abs(e - o.turning_points[0]) for e in ext) < 1e-8
+        w, p = np.concatenate([w, wb]), np.concatenate([p, pb])
+    # the closed form's upper branch lies on the integrated trajectory where both are
+    up = p > 0
+    ws, ps = w[up][np.argsort(w[up])], p[up][np.argsort(w[up])]
+    k = np.isfinite(o.w) & (o.wp > 0.05) & (o.w > ws[0]) & (o.w < ws[-1])
+    assert k.sum() > 100
+    assert np.max(np.abs(np.interp(o.w[k], ws, ps) - o.wp[k])) < 1e-5
+
+
+def test_orbit_through_refuses_a_point_outside_its_window():
+    from fpucore.qc.phase import orbit_through
+
+    with pytest.raises(ParameterError, match="w0"):
+        orbit_through(LAW, 1.0, 5.0, 9.0, 0.0, (0.0, 7.0))
+    with pytest.raises(ParameterError, match="w_window"):
+        orbit_through(LAW, 1.0, 5.0, 1.0, 0.0, (7.0, 0.0))

@@ -1,0 +1,91 @@
+"""Scene "Paper" — the paper's 17 figures (fpucore.paper's registry), each with its caption and
+a button that sets the explorer's state (law, mode, w₊, V, N, tab) to the scene that shows it;
+the URL follows the state as for any other change.
+
+The full reproduction of each figure with the comparison table is ``fpu paper --out report.html``
+(and docs/paper_comparison.md); this scene only links the figures to the live scenes.
+"""
+
+from __future__ import annotations
+
+import panel as pn
+
+from fpucore.paper import FIGURES
+
+from .base import Info, Scene, md_literal
+
+#: w₊ ahead of the superkink V = 5.2 (the paper's example, Figs. Floquet_example, stabSK (b)):
+#: qc.superkink_from_V(CubicLaw(-1, 10), 5.2).w_plus — the state sets V = V_SK(w₊) from it
+W_PLUS_5_2 = 0.6327161199294542
+#: the state that shows each figure: (tab, mode, w_plus, V, N); in superkink mode V follows
+#: w_plus (V = V_SK(w_plus), eq. cubic_cond2), so V is None there.  a = −1, b = 10 throughout.
+FIGURE_STATE: dict[str, tuple[str, str, float, float | None, int]] = {
+    "superkink": ("force", "superkink", 1.0, None, 500),
+    "pplane": ("phase", "solitary", 1.0, 5.373838498865699, 500),  # V_SK − 0.001
+    "cubic": ("profiles", "superkink", 1.0, None, 500),
+    "SWvelocities_cubic": ("diagram", "solitary", 1.0, 5.0, 500),
+    "SWs_cubic": ("profiles", "solitary", 1.0, 5.0, 500),
+    "SWamp_energy_QCcubic": ("diagram", "solitary", 1.0, 5.0, 500),
+    "TWcubic": ("profiles", "superkink", W_PLUS_5_2, None, 500),
+    "SWs_cubic_DvsQC": ("profiles", "solitary", 1.0, 5.2, 500),
+    "SWamp_cubic_DvsQC": ("diagram", "solitary", 6.0, 5.0, 500),
+    "SWenergy_cubic_DvsQC": ("diagram", "solitary", 6.0, 5.0, 500),
+    "floquet_SK": ("floquet", "superkink", W_PLUS_5_2, None, 500),
+    "Floquet_example": ("floquet", "superkink", W_PLUS_5_2, None, 500),
+    "stabSK": ("simulation", "superkink", W_PLUS_5_2, None, 500),
+    "Riemann1": ("simulation", "superkink", 20.0 / 3.0 - 4.6, None, 500),  # V = 5.7209
+    "floquet_cubicSW": ("floquet", "solitary", 1.0, 5.38, 500),
+    "stabSW": ("simulation", "solitary", 6.0, 5.2174919476, 500),
+    "SWdyn": ("simulation", "solitary", 1.0, 5.2494, 500),
+}
+
+
+class PaperScene(Scene):
+    key = "paper"
+    title = "Paper"
+    caption = (
+        "_The paper's figures: a button opens the scene that shows the figure with its "
+        "parameters. Every figure reproduced, with our numbers beside the printed ones: "
+        "`fpu paper --out report.html`; the table: docs/paper_comparison.md._"
+    )
+    cheap = True
+
+    def make_plot(self):
+        rows = []
+        self.buttons: dict[str, pn.widgets.Button] = {}
+        for label, fig in FIGURES.items():
+            btn = pn.widgets.Button(
+                name=f"Show Fig. {fig.number}",
+                button_type="primary",
+                width=130,
+                css_classes=["paper-open", f"paper-open-{label}"],
+            )
+            btn.on_click(lambda _e, lab=label: self.open(lab))
+            self.buttons[label] = btn
+            text = f"**Fig. {fig.number}** `{label}` ({fig.section}) — {md_literal(fig.caption)}"
+            rows.append(pn.Row(btn, pn.pane.Markdown(text, sizing_mode="stretch_width")))
+        return pn.Column(*rows, sizing_mode="stretch_width", css_classes=["paper-list"])
+
+    def open(self, label: str) -> None:
+        """Set the state to the scene of figure ``label`` (two updates: the law and mode first,
+        so that the state's tie of V to w₊ in superkink mode acts on the new mode)."""
+        tab, mode, w_plus, V, N = FIGURE_STATE[label]
+        self.state.param.update(a=-1.0, b=10.0, expression="", mode=mode)
+        new = {"w_plus": w_plus, "N": N, "tab": tab}
+        if V is not None:
+            new["V"] = V
+        self.state.param.update(**new)
+
+    def render(self, info: Info):
+        """The list does not change; an invalid current state is named above it (the buttons
+        set valid parameters)."""
+        info.shown = f"{len(FIGURES)} figures of the paper"
+        problem = self.state.problem()
+        if problem is not None:
+            info.warning = (
+                f"The current parameters show no wave: {problem} A figure sets valid ones."
+            )
+        return None
+
+    def publish(self, obj) -> None:
+        """The list is static: nothing to update."""

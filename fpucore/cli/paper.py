@@ -1,0 +1,121 @@
+"""``fpu paper``: the paper's figures, computed and compared with the printed numbers.
+
+    fpu paper --list                                   # the 17 figures by LaTeX label
+    fpu paper --figure pplane --out pplane.html        # one figure (.html, .svg or .png)
+    fpu paper --figure pplane --out pplane.ipynb       # its notebook (runs top to bottom)
+    fpu paper --out report.html                        # all figures + comparison table, offline
+    fpu paper --table docs/paper_comparison.md         # the comparison table (Markdown)
+
+``--reduced`` lowers grid sizes and the number of velocities (never the paper's N, L, t of a
+compared number); computed figures are cached (``$FPU_CACHE_DIR/paper``) and reused.
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+from tqdm import tqdm
+
+from fpucore.cli.common import check_out_path, print_json
+from fpucore.errors import ParameterError
+from fpucore.paper import notebook, plot
+from fpucore.paper.registry import FIGURES, LABELS, figure
+from fpucore.paper.report import compute_many, markdown_table
+
+FORMATS = (*plot.FORMATS, ".ipynb")
+
+
+def register(sub) -> None:
+    p = sub.add_parser("paper", help="the paper's figures: compute, compare, export")
+    p.add_argument("--list", action="store_true", help="list the figures and exit")
+    p.add_argument("--figure", action="append", default=None, metavar="LABEL",
+                   help="a figure's LaTeX label (repeatable; default: all)")  # fmt: skip
+    p.add_argument("--out", default=None,
+                   help="one figure: .html/.svg/.png; several or all: the HTML report")  # fmt: skip
+    p.add_argument("--table", default=None, metavar="FILE.md",
+                   help="write the comparison table (Markdown)")  # fmt: skip
+    p.add_argument("--reduced", action="store_true", help="smaller grids / fewer velocities")
+    p.add_argument("--no-cache", action="store_true", help="recompute cached figures")
+    p.add_argument("--workers", type=int, default=None, help="processes (default: all cores)")
+    p.add_argument("--time-budget", type=float, default=3600.0, metavar="S",
+                   help="stop starting figures after S seconds (default 3600)")  # fmt: skip
+    p.add_argument("--json", action="store_true", help="print the comparisons as JSON")
+    p.set_defaults(func=run)
+
+
+def _check(args) -> list[str]:
+    labels = list(LABELS) if not args.figure else [figure(lab).label for lab in args.figure]
+    if args.out is not None and Path(args.out).suffix.lower() not in FORMATS:
+        raise ParameterError("--out", args.out, "a file ending in " + ", ".join(FORMATS))
+    if args.out is not None and args.out.lower().endswith(".ipynb") and len(labels) != 1:
+        raise ParameterError("--out", args.out, "one --figure", "a notebook holds one figure")
+    if args.out is not None and len(labels) > 1 and not args.out.lower().endswith(".html"):
+        raise ParameterError("--out", args.out, "an .html file", "several figures make a report")
+    if args.table is not None:
+        check_out_path(args.table, "--table")
+        if not args.table.lower().endswith(".md"):
+            raise ParameterError("--table", args.table, "a Markdown file (.md)")
+    if args.workers is not None and not 1 <= args.workers <= 4096:
+        raise ParameterError("--workers", args.workers, "[1, 4096]")
+    return labels
+
+
+def run(args) -> int:
+    if args.list:
+        for lab in LABELS:
+            f = FIGURES[lab]
+            print(f"{f.number:2d}  {lab:22s} {f.section:5s} {f.caption[:70]}…")
+        return 0
+    labels = _check(args)
+    if args.out is not None and args.out.lower().endswith(".ipynb"):
+        notebook.write(labels[0], args.out, reduced=args.reduced)  # computed when it runs
+        print(f"wrote {args.out}")
+        return 0
+    if args.out is None and args.table is None and not args.json:
+        raise ParameterError("--out", None, "--out FILE, --table FILE.md, --json or --list")
+    bar = tqdm(total=len(labels), desc="fpu paper", unit="fig", file=sys.stderr, leave=False)
+
+    def progress(done: int, total: int, label: str) -> None:
+        bar.n = done
+        bar.set_postfix_str(label)
+        bar.refresh()
+
+    results, missing, wall = compute_many(labels, reduced=args.reduced, use_cache=not args.no_cache,
+                                          workers=args.workers, time_budget_s=args.time_budget,
+                                          progress=progress)  # fmt: skip
+    bar.close()
+    n = sum(len(r.comparisons) for r in results)
+    ok = sum(r.n_agree for r in results)
+    summary = (f"{len(results)}/{len(labels)} figures, {ok} of {n} printed numbers agree, "
+               f"{wall:.1f} s")  # fmt: skip
+    if args.out is not None:
+        if len(labels) == 1 and results:
+            plot.save(results[0], args.out)
+        else:
+            plot.report_html(results, FIGURES, args.out,
+                             "The paper, figure by figure — fpu-explorer", summary)  # fmt: skip
+        print(f"wrote {args.out}")
+    if args.table is not None:
+        Path(args.table).write_text(_table_doc(results, missing, args.reduced), encoding="utf-8")
+        print(f"wrote {args.table}")
+    if args.json:
+        print_json({"figures": [r.as_dict() for r in results], "missing": missing,
+                    "elapsed_s": wall})  # fmt: skip
+    print(summary)
+    for m in missing:
+        print(f"not computed: {m}", file=sys.stderr)
+    return 0
+
+
+def _table_doc(results, missing, reduced: bool) -> str:
+    head = (
+        "# The paper vs fpu-explorer, number by number\n\n"
+        "Generated by `fpu paper --table docs/paper_comparison.md"
+        f"{' --reduced' if reduced else ''}` (do not edit by hand).  Each row: a number the paper"
+        " (`../shared/paper.tex`) prints, our value, our error bar, and the verdict — a value"
+        " agrees when |ours − paper| ≤ error + half a unit of the paper's last printed digit; a"
+        " bound holds when ours ± error is on its side (fpucore/paper/compare.py).  a = −1,"
+        " b = 10 throughout.\n\n"
+    )
+    return head + markdown_table(results, missing)

@@ -1,0 +1,63 @@
+"""The Paper scene: one entry per figure of the paper, and a click sets the explorer's state to
+the scene that shows the figure (checked against the paper's parameters and closed forms)."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+pytest.importorskip("panel")
+
+from app.explorer import Explorer  # noqa: E402
+from app.state import TABS, url_query  # noqa: E402
+from app.views.paper import FIGURE_STATE, W_PLUS_5_2  # noqa: E402
+from fpucore import paper  # noqa: E402
+
+
+def v_sk(w_plus: float, a: float = -1.0, b: float = 10.0) -> float:
+    """The paper's eq. cubic_cond2, evaluated independently of fpucore."""
+    return math.sqrt(1 + b * b / (3 * abs(a)) - abs(a) * (w_plus - b / (3 * abs(a))) ** 2)
+
+
+def test_every_figure_has_a_state_and_a_button():
+    ex = Explorer()
+    sc = ex.by_key["paper"]
+    assert "paper" in TABS and set(FIGURE_STATE) == set(paper.LABELS)
+    assert list(sc.buttons) == list(paper.LABELS)
+    assert sc.buttons["Riemann1"].name == "Show Fig. 14"
+
+
+def test_the_superkink_of_the_papers_examples():
+    assert v_sk(W_PLUS_5_2) == pytest.approx(5.2, abs=1e-12)
+    assert v_sk(20 / 3 - 4.6) == pytest.approx(5.7209, abs=5e-5)  # Fig. Riemann1's superkink
+
+
+@pytest.mark.parametrize(
+    "label, tab, mode, V",
+    [
+        ("pplane", "phase", "solitary", 2 * math.sqrt(65) / 3 - 0.001),
+        ("Floquet_example", "floquet", "superkink", 5.2),
+        ("stabSW", "simulation", "solitary", 5.2174919476),
+        ("Riemann1", "simulation", "superkink", 5.720916787),
+        ("superkink", "force", "superkink", 2 * math.sqrt(65) / 3),
+    ],
+)
+def test_a_click_sets_law_mode_V_tab_and_url(label, tab, mode, V):
+    ex = Explorer()
+    ex.state.param.update(a=-2.0, b=12.0, mode="solitary", V=4.0, w_plus=0.5, N=200)
+    ex.by_key["paper"].buttons[label].clicks += 1  # the user clicks
+    st = ex.state
+    assert (st.a, st.b, st.expression, st.mode, st.tab) == (-1.0, 10.0, "", mode, tab)
+    assert st.V == pytest.approx(V, abs=1e-9) and st.N == 500
+    assert st.problem() is None  # a valid wave: the scene shows it
+    assert TABS[ex.tabs.active] == tab
+    q = url_query(st)
+    assert q["tab"] == tab and q["mode"] == mode and float(q["V"]) == pytest.approx(V, abs=1e-9)
+
+
+def test_each_figure_gives_a_valid_state():
+    ex = Explorer()
+    for label in FIGURE_STATE:
+        ex.by_key["paper"].open(label)
+        assert ex.state.problem() is None, label

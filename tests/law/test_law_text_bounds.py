@@ -1,0 +1,214 @@
+"""A force-law text is bounded before any algebra: the strings that froze the server (SymPy
+expanding ``(w+1)**100000``, ``w**99999999``, ``w*9**9**9``, a 1e999999 literal) and worse ones
+drawn by hypothesis are refused in <= 50 ms each, through the API (``law_from_expression``) and
+the CLI (``fpu qc --law``), naming the real cause; legitimate laws still parse.
+
+Every text is tried in a separate worker process (one per module, restarted after a timeout):
+on code without the bounds a string hangs for minutes and takes gigabytes, and the test must
+fail in seconds and free them, not block the suite."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+import time
+
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from fpucore.law import PolynomialLaw, law_from_expression
+from fpucore.law.polynomial import MAX_DEGREE
+
+LIMIT_S = 0.050  # a refusal's budget (measured inside the worker: no process start-up in it)
+TIMEOUT_S = 10.0  # a worker that has not answered by then has hung
+
+# the worker: reads one JSON line (mode, text), answers the refusal (or law) and its time
+WORKER = r"""
+import json, sys, time, io, contextlib
+from fpucore.errors import ParameterError
+from fpucore.law import law_from_expression
+from fpucore.cli import main
+for line in sys.stdin:
+    mode, text = json.loads(line)
+    err = io.StringIO()
+    t0 = time.perf_counter()
+    try:
+        if mode == "api":
+            law = law_from_expression(text)
+            out = {"ok": True, "law": law.expression}
+        else:
+            with contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
+                rc = main(["qc", "--w-plus", "0.5", "--law=" + text])
+            out = {"ok": rc == 0, "rc": rc, "error": err.getvalue()}
+    except ParameterError as e:
+        out = {"ok": False, "error": str(e), "name": e.name}
+    except Exception as e:
+        out = {"ok": False, "error": f"{type(e).__name__}: {e}", "name": None}
+    out["s"] = time.perf_counter() - t0
+    print(json.dumps(out), flush=True)
+"""
+
+
+class Worker:
+    def __init__(self):
+        self.proc = None
+
+    def start(self):
+        env = dict(os.environ, PYTHONPATH=os.getcwd())
+        self.proc = subprocess.Popen([sys.executable, "-c", WORKER], stdin=subprocess.PIPE,
+                                     stdout=subprocess.PIPE, text=True, env=env)  # fmt: skip
+        self.ask("api", "w + 10*w**2 - w**3")  # imports SymPy: not part of any timing below
+        self.ask("cli", "w + 10*w**2 - w**3")  # and the CLI's first thread-policy scan
+
+    def ask(self, mode: str, text: str) -> dict:
+        if self.proc is None or self.proc.poll() is not None:
+            self.start()
+        self.proc.stdin.write(json.dumps([mode, text]) + "\n")
+        self.proc.stdin.flush()
+        t0 = time.monotonic()
+        while time.monotonic() - t0 < TIMEOUT_S:
+            import select
+
+            ready, _, _ = select.select([self.proc.stdout], [], [], 0.1)
+            if ready:
+                return json.loads(self.proc.stdout.readline())
+        self.proc.kill()  # a hang (old code): free the CPU and memory, fail this text
+        self.proc.wait()
+        self.proc = None
+        pytest.fail(f"{mode}: {text[:60]!r} not answered within {TIMEOUT_S} s")
+
+    def close(self):
+        if self.proc is not None:
+            self.proc.stdin.close()
+            self.proc.wait(timeout=10)
+
+
+@pytest.fixture(scope="module")
+def worker():
+    w = Worker()
+    yield w
+    w.close()
+
+
+def refused(worker, text: str, *words: str) -> None:
+    """Refused by the API and the CLI (``fpu qc --law``, exit 2, one line) in <= LIMIT_S each
+    beyond the CLI's own start, naming the expression and a cause.  Times are the best of up to
+    three tries: on the shared machine (load 10-18) one try can lose its core for > 50 ms."""
+    api_s = cli_s = float("inf")
+    for _ in range(3):
+        api = worker.ask("api", text)
+        assert not api["ok"] and api["name"] == "expression", api
+        assert any(w in api["error"] for w in words), api["error"]
+        cli = worker.ask("cli", text)
+        assert cli["rc"] == 2 and cli["error"].count("\n") == 1, cli
+        assert cli["error"].startswith("fpu: error: expression=")
+        assert "Traceback" not in cli["error"]
+        # the CLI's own cost (parser, thread policy: ~10-50 ms) measured by a text refused at once
+        base = worker.ask("cli", "w + x")
+        assert base["rc"] == 2 and "unknown name" in base["error"]
+        api_s, cli_s = min(api_s, api["s"]), min(cli_s, cli["s"] - base["s"])
+        if api_s <= LIMIT_S and cli_s <= LIMIT_S:
+            return
+    assert api_s <= LIMIT_S and cli_s <= LIMIT_S, (text[:60], api_s, cli_s)
+
+
+# the strings of the fuzzing report (minutes to hours each before) and their causes
+DOS = [
+    ("(w+1)**100000", "degree 100000 of (w+1)**100000 exceeds the maximum 16"),
+    ("w**99999999", "degree 99999999 of w**99999999 exceeds the maximum 16"),
+    ("w*9**9**9", "the number 9**9**9 (about 10^3.7e+08) exceeds the float range"),
+    ("w + 1e999999*w**2 - w**3", "the literal 1e999999 exceeds the float range"),
+    ("w + " + "9" * 5000 + "*w**2 - w**3", "characters exceed the maximum"),
+    ("w + " + "9" * 400 + "*w**2 - w**3", "has 400 digits"),
+    ("(1/2)**(10**100)*w + w**2 - w**3", "is below the float range"),
+    ("((1+10**-15)**1000)**1000*w", "digits (maximum 2000)"),
+    ("w**2**2**2**2", "degree 65536 of w**2**2**2**2 exceeds the maximum 16"),
+    ("w**2**2**2**2**2", "the number 2**2**2**2**2 (about 10^1.97e+04) exceeds the float"),
+    ("(" * 100 + "w" + ")" * 100, "nesting depth exceeds the maximum 32"),
+    ("w" + "+w" * 300, "exceed the maximum 256"),
+    ("w + exp(10**6)*w**2", "exceeds the float range"),
+]
+
+
+@pytest.mark.parametrize("text, cause", DOS, ids=[t[:24] for t, _ in DOS])
+def test_dos_strings_are_refused_fast_naming_the_cause(worker, text, cause):
+    refused(worker, text, cause)
+
+
+def big_int(draw) -> str:
+    return str(draw(st.integers(17, 10**12)))
+
+
+@st.composite
+def worse(draw) -> tuple[str, tuple[str, ...]]:
+    """A text whose algebra is unbounded, embedded in a legitimate law: (text, cause words)."""
+    kind = draw(st.sampled_from(["power", "nested", "literal", "depth", "sum", "float"]))
+    if kind == "power":  # a power of a sum of degree > 16
+        base = draw(st.sampled_from(["w", "(w+1)", "(2*w-3/7)", "(w**2+w)", "(w+1)**2"]))
+        bad, words = f"{base}**{big_int(draw)}", ("degree",)
+    elif kind == "nested":  # a tower of numbers, times w
+        n = draw(st.integers(3, 6))
+        tower = "**".join(str(draw(st.integers(10, 99))) for _ in range(n))
+        bad, words = f"w*{tower}", ("float range", "exceeds the maximum")
+    elif kind == "literal":
+        digits = draw(st.integers(331, 900))
+        lit = draw(st.sampled_from(["1" + "0" * digits, f"1e{draw(st.integers(309, 10**9))}"]))
+        bad, words = f"{lit}*w**2", ("float range", "digits")
+    elif kind == "depth":
+        d = draw(st.integers(33, 400))
+        bad, words = "(" * d + "w" + ")" * d, ("nesting depth",)
+    elif kind == "sum":  # a long sum raised to a power: degree and length both out of range
+        n = draw(st.integers(130, 400))
+        bad, words = "(" + "+".join(["w"] * n) + f")**{big_int(draw)}", ("maximum",)
+    else:  # a rational near 1 to a huge power: a harmless float, an enormous exact value
+        bad, words = f"(1+1/10**15)**{draw(st.integers(10**4, 10**12))}*w", ("digits", "maximum")
+    text = draw(st.sampled_from([bad + " + w", f"w + 10*w**2 - w**3 + {bad}", f"w*({bad})"]))
+    return text, words + LONG  # a long instance may be refused for its length first
+
+
+LONG = ("characters exceed the maximum", "terms and operators exceed the maximum")
+
+
+@settings(
+    max_examples=60, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture]
+)
+@given(worse())
+def test_worse_strings_are_refused_fast(worker, case):
+    text, words = case
+    refused(worker, text, *words)
+
+
+GOOD = [
+    "w + 10*w**2 - w**3",  # README
+    "w + 10*w**2 - w**3 - 0.01*w**4",  # the tests' quartic
+    "w + 10w^2 - w^3",  # ^ and implicit products
+    "w + 21/2*w**2 - 7/3*w**3",  # cubic with rational coefficients
+    "w + sqrt(2)*w**2 - w**3/3 - pi*w**4/1000",
+    "w*(1 + 10*w - w**2)",
+    "w + 10*w**2 - w**3 - 1e-20*w**16",  # the largest degree
+    " w + 10*w**2 -\n\tw**3 ",  # surrounding spaces and line breaks are not indentation
+]
+
+
+@pytest.mark.parametrize("text", GOOD)
+def test_legitimate_laws_still_parse(text):
+    law = law_from_expression(text)
+    assert law_from_expression(law.expression) == law  # and round-trip
+
+
+def test_rational_coefficients_are_exact():
+    law = law_from_expression("w + 21/2*w**2 - 7/3*w**3")
+    assert law.coeffs == (1.0, 10.5, -7 / 3)
+    law = law_from_expression("w + sqrt(2)*w**2 - w**3")
+    assert law.coeffs[1] == 2**0.5  # a 30-digit constant rounds to the nearest double
+
+
+def test_degree_limit_is_the_same_for_text_and_coefficients():
+    assert MAX_DEGREE == 16
+    with pytest.raises(ValueError, match="degree 17 of w\\*\\*17 exceeds the maximum 16"):
+        law_from_expression("w + 10*w**2 - w**3 - 1e-20*w**17")
+    with pytest.raises(ValueError, match="degree <= 16"):
+        PolynomialLaw((1.0, 10.0, -1.0) + (0.0,) * 13 + (-1e-20,))
