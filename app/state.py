@@ -38,6 +38,8 @@ TOL_OPTIONS = (1e-4, 1e-6, 1e-8, 1e-10, 1e-12, 1e-13)
 #: expression may be longer, but is bounded too
 MAX_URL_VALUE = 40
 MAX_URL_LAW = 200
+#: longest wait of a page build for the URL's law (the server's event loop waits meanwhile)
+URL_LAW_WAIT_S = 0.1
 URL_PARAMS = ("a", "b", "law", "w_plus", "V", "mode", "tab", "N", "tol", "atlas")
 #: URL name → state parameter where they differ (``law()`` is the state's law object)
 URL_ATTRS = {"law": "expression"}
@@ -338,10 +340,16 @@ def parse_url_value(name: str, raw: str):
         text = raw.strip()
         if not text or text == "cubic":
             return ""  # the cubic (a, b)
+        # built in the law worker; a page build (on the server's event loop) waits for it at
+        # most URL_LAW_WAIT_S — a law still being built then is kept, and the explorer
+        # re-renders (or names it in the URL message) once its outcome is known
+        fut = compute.request_law(text)
         try:
-            compute.expression_law(text)
-        except ParameterError as exc:  # fpucore names it "expression"; the URL calls it law
-            raise ParameterError(name, text, exc.valid, exc.reason) from None
+            outcome = fut.result(timeout=URL_LAW_WAIT_S)
+        except TimeoutError:
+            return text
+        if isinstance(outcome, ParameterError):  # fpucore names it "expression"; the URL: law
+            raise ParameterError(name, outcome.value, outcome.valid, outcome.reason)
         return text
     if name == "a":
         return _float(name, raw, f"[{A_RANGE[0]:g}, {A_RANGE[1]:g}]", *A_RANGE)

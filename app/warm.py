@@ -35,6 +35,7 @@ from fpucore.warm import warm_all  # noqa: E402
 apply_thread_policy(1)
 
 DEFAULT_SCENES = "force,phase,profiles,diagram,simulation"
+WARM_LAW = "w + 10*w**2 - w**3 - 0.01*w**4"
 
 
 def _warm_background() -> None:
@@ -73,6 +74,8 @@ def warm(verbose: bool = True, scenes: str | None = None) -> dict[str, float]:
     # ~10 s of the wait for /liveness); a heavy job submitted meanwhile queues behind their
     # warm-up.  Then the lazy routes (fpucore.warm.LAZY) compile on one core.
     threading.Thread(target=_warm_background, name="fpu-warm-workers", daemon=True).start()
+    # the law worker starts and imports SymPy now, not at the first typed law or law link
+    compute.request_law(WARM_LAW)
 
     explorer = Explorer()
     for scene in explorer.scenes:
@@ -96,4 +99,5 @@ if __name__ in ("__main__", "panel_setup_module"):
     # On exit (Bokeh stops its loop on SIGTERM and Ctrl-C) the worker pool stops first: a worker
     # start cut short by the exit would make the fork server print a traceback.
     atexit.register(compute.shutdown_executor)
+    atexit.register(compute.shutdown_law_executor)
     warm()

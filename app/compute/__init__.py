@@ -63,7 +63,18 @@ from .jobs import (
     wave_job,
     wave_key,
 )
-from .laws import expression_law, law, law_key, make_law
+from .laws import (
+    LAW_TIME_S,
+    building_page,
+    expression_law,
+    law,
+    law_key,
+    lookup_law,
+    make_law,
+    request_law,
+    shutdown_law_executor,
+    trusted_expression_law,
+)
 from .qc_calls import (
     existence_diagram,
     n_needed,
@@ -97,6 +108,12 @@ __all__ = [
     # laws
     "law",
     "expression_law",
+    "trusted_expression_law",
+    "lookup_law",
+    "request_law",
+    "shutdown_law_executor",
+    "building_page",
+    "LAW_TIME_S",
     "make_law",
     "law_key",
     # workers

@@ -3,22 +3,39 @@ cache-key form.
 
 fpucore builds the laws; this module adds what the app needs around them: coefficients too
 large for the closed forms are refused as a ParameterError (never an overflow on screen), a
-typed expression is parsed once (memoised), and :func:`law_key` is the law's part of every
-cache key (:mod:`app.compute.cache`).
+typed expression is built once (memoised) in a worker process with a time and memory budget
+(never in the server process: its text comes from a link), and :func:`law_key` is the law's
+part of every cache key (:mod:`app.compute.cache`).
 """
 
 from __future__ import annotations
 
-import functools
+import contextlib
+import threading
+import time
+from collections import OrderedDict
+from concurrent.futures import Future
 
 import numpy as np
 
 from fpucore.errors import ParameterError
 from fpucore.law import CubicLaw, HardeningSofteningLaw, PolynomialLaw, law_from_expression
+from fpucore.parallel import Executor
 
 from .cache import exact
 
-__all__ = ["law", "expression_law", "make_law", "law_key"]
+__all__ = [
+    "law",
+    "expression_law",
+    "trusted_expression_law",
+    "lookup_law",
+    "request_law",
+    "build_law_job",
+    "shutdown_law_executor",
+    "building_page",
+    "make_law",
+    "law_key",
+]
 
 
 def law(a: float, b: float) -> CubicLaw:
@@ -36,21 +53,193 @@ def law(a: float, b: float) -> CubicLaw:
         ) from None
 
 
-@functools.lru_cache(maxsize=64)
-def _parsed(expression: str) -> tuple[PolynomialLaw | None, ParameterError | None]:
+#: a typed law is built in a worker process within these budgets: the text comes from a link or
+#: the law box, and a pathological one (``(w+1)**100000``, ``w*9**9**9``) once held the whole
+#: server for minutes and gigabytes.  The time counts from the job's start in its worker (a
+#: legitimate law takes milliseconds; SymPy's import on a fresh worker ~0.3 s).
+LAW_TIME_S = 3.0
+LAW_MEMORY_BYTES = 512 * 2**20
+#: a worker killed for its budget is replaced; a law waits for a worker's start at most this long
+LAW_START_S = 60.0
+_MEMO_SIZE = 1024
+
+_memo: OrderedDict[str, PolynomialLaw | ParameterError] = OrderedDict()
+_pending: dict[str, Future] = {}
+_lock = threading.Lock()
+_executor: list[Executor] = []
+
+
+def _law_executor() -> Executor:
+    """The one worker process that builds typed laws (its own, not the heavy pool: a busy pool
+    never delays a law, and a law stopped for its budget never kills a heavy job)."""
+    with _lock:
+        if not _executor:
+            _executor.append(Executor(backend="process", workers=1))
+        return _executor[0]
+
+
+def shutdown_law_executor() -> None:
+    with _lock:
+        ex = _executor.pop() if _executor else None
+    if ex is not None:
+        ex.shutdown()
+
+
+def _short(expression: str) -> str:
+    return expression if len(expression) <= 60 else expression[:40] + "…"
+
+
+def _refusal(expression: str, reason: str) -> ParameterError:
+    valid = f"a law built within {LAW_TIME_S:g} s and {LAW_MEMORY_BYTES >> 20} MiB"
+    return ParameterError("expression", _short(expression), valid, reason)
+
+
+def build_law_job(expression: str, progress=None) -> PolynomialLaw | ParameterError:
+    """Run in the law worker: fpucore.law_from_expression under an address-space limit of
+    LAW_MEMORY_BYTES beyond the worker's current size (restored afterwards).  Returns the law or
+    the ParameterError that refuses it (never raises).  ``progress(0)`` marks the start of the
+    budgeted part: a fresh worker first imports SymPy (seconds on a loaded machine)."""
+    import resource
+
+    import sympy  # noqa: F401 - before the budget starts
+
+    if progress is not None:
+        progress(0.0)
+
+    soft, hard = resource.getrlimit(resource.RLIMIT_AS)
+    with open("/proc/self/statm") as f:
+        vm = int(f.read().split()[0]) * resource.getpagesize()
+    limit = vm + LAW_MEMORY_BYTES
+    if hard != resource.RLIM_INFINITY:
+        limit = min(limit, hard)
+    resource.setrlimit(resource.RLIMIT_AS, (limit, hard))
     try:
-        return law_from_expression(expression), None
+        lw = law_from_expression(expression)
+        try:  # the law's characteristic strains, computed here rather than in the server
+            lw.alpha, lw.beta, lw.w_star  # noqa: B018
+        except ParameterError:
+            pass
+        return lw
     except ParameterError as exc:
-        return None, exc
+        return exc
+    except MemoryError:
+        return _refusal(expression, f"needs more than {LAW_MEMORY_BYTES >> 20} MiB to build")
+    except RecursionError:
+        return _refusal(expression, "nested too deeply")
+    except Exception as exc:  # noqa: BLE001 - any failure of the algebra is a refusal
+        return _refusal(expression, f"could not be built: {type(exc).__name__}")
+    finally:
+        resource.setrlimit(resource.RLIMIT_AS, (soft, hard))
+
+
+def _remember(expression: str, outcome) -> None:
+    with _lock:
+        _memo[expression] = outcome
+        _memo.move_to_end(expression)
+        while len(_memo) > _MEMO_SIZE:
+            _memo.popitem(last=False)
+        fut = _pending.pop(expression, None)
+    if fut is not None:
+        fut.set_result(outcome)
+
+
+def _watch(expression: str, job) -> None:
+    """Wait for the law job within its budgets; kill it past them; remember the outcome."""
+    t_end = time.monotonic() + LAW_START_S
+    # the budget starts when the job reports its start (a worker may be starting before it)
+    while job.progress is None and not job.done() and time.monotonic() < t_end:
+        time.sleep(0.005)
+    try:
+        outcome = job.result(timeout=LAW_TIME_S)
+    except TimeoutError:
+        job.cancel()  # the worker process is terminated (and replaced)
+        outcome = _refusal(expression, f"took longer than {LAW_TIME_S:g} s to build: stopped")
+    except Exception as exc:  # noqa: BLE001 - a dead worker, a cancelled job: a refusal
+        outcome = _refusal(expression, f"could not be built: {type(exc).__name__}")
+    _remember(expression, outcome)
+
+
+def lookup_law(expression: str) -> PolynomialLaw | ParameterError | None:
+    """The outcome of a law already built (or refused), else None (never blocks)."""
+    with _lock:
+        return _memo.get(expression)
+
+
+def request_law(expression: str) -> Future:
+    """A future of the law's outcome (the PolynomialLaw, or the ParameterError refusing it),
+    built in the law worker within LAW_TIME_S and LAW_MEMORY_BYTES.  Never blocks."""
+    with _lock:
+        fut = _pending.get(expression)
+        if fut is not None:
+            return fut
+        fut = Future()
+        if expression in _memo:
+            fut.set_result(_memo[expression])
+            return fut
+        _pending[expression] = fut
+    try:
+        job = _law_executor().submit(build_law_job, expression)
+    except Exception as exc:  # noqa: BLE001
+        _remember(expression, _refusal(expression, f"no law worker: {type(exc).__name__}"))
+        return fut
+    threading.Thread(target=_watch, args=(expression, job), daemon=True, name="law").start()
+    return fut
+
+
+_page = threading.local()
+
+
+@contextlib.contextmanager
+def building_page():
+    """Around a page build (app/main.py, on the server's event loop): meanwhile
+    :func:`expression_law` never waits for a law in this thread."""
+    _page.building = True
+    try:
+        yield
+    finally:
+        _page.building = False
+
+
+def _on_event_loop() -> bool:
+    return getattr(_page, "building", False)
 
 
 def expression_law(expression: str) -> PolynomialLaw:
-    """fpucore.law_from_expression, memoised (laws are immutable; the state asks for its law on
-    every change and SymPy's parse costs milliseconds).  Raises its ParameterError."""
-    lw, exc = _parsed(expression)
-    if exc is not None:  # a fresh exception: re-raising the cached one would grow its traceback
-        raise ParameterError(exc.name, exc.value, exc.valid, exc.reason)
-    return lw
+    """The PolynomialLaw of a typed expression (fpucore.law_from_expression, built in the law
+    worker within its budgets, memoised).  Raises its ParameterError.
+
+    Never blocks the server's event loop: there, a law not built yet raises a ParameterError
+    saying it is being checked (the explorer re-renders once it is, see app.explorer);
+    elsewhere (a websocket handler thread, a scene's thread, a script) it waits for the outcome,
+    at most LAW_START_S + LAW_TIME_S."""
+    outcome = lookup_law(expression)
+    if outcome is None:
+        fut = request_law(expression)
+        if _on_event_loop() and not fut.done():
+            raise ParameterError("law", _short(expression), "a law whose check has finished",
+                                 f"still being checked in a worker process (at most "
+                                 f"{LAW_TIME_S:g} s)")  # fmt: skip
+        outcome = fut.result()
+    if isinstance(outcome, ParameterError):
+        # a fresh exception: re-raising the stored one would grow its traceback
+        raise ParameterError(outcome.name, outcome.value, outcome.valid, outcome.reason)
+    return outcome
+
+
+def trusted_expression_law(expression: str) -> PolynomialLaw:
+    """The law of an expression the app wrote itself (``expression_of`` of at most
+    MAX_COEFF_SLIDERS finite coefficients, a cubic's ``as_polynomial``): bounded, so parsed in
+    this process at once (a coefficient slider needs no worker round trip).  Memoised."""
+    outcome = lookup_law(expression)
+    if outcome is None:
+        try:
+            outcome = law_from_expression(expression)
+        except ParameterError as exc:
+            outcome = exc
+        _remember(expression, outcome)
+    if isinstance(outcome, ParameterError):
+        raise ParameterError(outcome.name, outcome.value, outcome.valid, outcome.reason)
+    return outcome
 
 
 def make_law(a: float, b: float, expression: str = "") -> HardeningSofteningLaw:

@@ -24,7 +24,7 @@ from fpucore.errors import ParameterError
 
 from ..compute import Computed
 from ..state import N_RANGE, resolve_atlas_store
-from .base import Info, SceneMessage, as_csv, python_preamble
+from .base import Info, SceneMessage, as_csv, md_literal, python_preamble
 from .bokeh_scene import BokehScene, Updates, new_figure
 
 QUANTITIES = {
@@ -173,7 +173,7 @@ class AtlasScene(BokehScene):
             raise SceneMessage(f"no {name} in this atlas (computed without Floquet?)")
         counts = {k: int(np.sum(ds["status"].values == k))
                   for k in ("ok", "not_converged", "no_wave", "failed")}  # fmt: skip
-        info.shown = f"{name} over (w₊, V), {self._source}"
+        info.shown = f"{name} over (w₊, V), {md_literal(self._source)}"
         info.error("max residual", np.nanmax(np.where(ok, ds["residual"].values, np.nan)))
         if var == "max_modulus":
             info.error("max |μ| error bar", np.nanmax(np.where(ok, ds[

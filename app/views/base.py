@@ -23,6 +23,7 @@ import io
 import json
 import logging
 import math
+import re
 import threading
 import time
 from dataclasses import dataclass, field
@@ -57,6 +58,7 @@ class SceneMessage(Exception):
 class Info:
     """What a render reports next to its plot."""
 
+    #: Markdown: user-supplied parts (a path, an exception's text) go through md_literal
     shown: str = ""
     errors: list[tuple[str, float]] = field(default_factory=list)
     #: differences between two models (e.g. max |discrete − QC|): physics, not numerical error
@@ -202,10 +204,36 @@ def state_stamp(state: ExplorerState) -> str:
     return f"a={state.a!r} b={state.b!r} {rest}"
 
 
-def md_escape(text: str) -> str:
-    """Text shown verbatim in a Markdown pane: the ``*`` of a law's powers (w**2) would start
-    emphasis otherwise."""
-    return text.replace("\\", "\\\\").replace("*", "\\*")
+#: characters that start inline Markdown anywhere in a line (emphasis, code, links, strike,
+#: math, table cells): backslash-escaped (CommonMark escapes any ASCII punctuation)
+_MD_INLINE = frozenset("\\`*_[]~$|")
+#: characters that would open or close HTML (and attribute values): written as entities
+_HTML_CHARS = {"&": "&amp;", "<": "&lt;", ">": "&gt;", '"': "&quot;", "'": "&#x27;"}
+#: block markup, only at a line's start: a heading, a list item (-, +, 1.), a setext underline
+_MD_BLOCK = re.compile(r"(?m)^([ \t]*)([#+=-])")
+_MD_NUMBERED = re.compile(r"(?m)^([ \t]*\d+)([.)])")
+
+
+def md_literal(text) -> str:
+    """``text`` for a Markdown pane, shown exactly as typed and never as markup.
+
+    User-supplied text (a URL value, a typed law, an exception message repeating them) reaches
+    the page through Markdown panes whose renderer passes raw HTML through: ``<img onerror=…>``
+    in a URL ran script in the page.  One pass writes the HTML characters as entities and
+    backslash-escapes inline Markdown (one pass, so an entity's ``#`` is not escaped again);
+    then block markup at a line's start is escaped.  ``__import__('os')`` and ``w**2`` show
+    literally, ``[x](…)`` is no link, ``$…$`` no math, and the source stays readable."""
+    out = []
+    for ch in str(text):
+        if ch in _HTML_CHARS:
+            out.append(_HTML_CHARS[ch])
+        elif ch in _MD_INLINE:
+            out.append("\\" + ch)
+        else:
+            out.append(ch)
+
+    escaped = _MD_BLOCK.sub(r"\1\\\2", "".join(out))
+    return _MD_NUMBERED.sub(r"\1\\\2", escaped)  # "1." → "1\." (no list item)
 
 
 def python_preamble(state: ExplorerState) -> str:
@@ -246,10 +274,14 @@ class Scene(pn.viewable.Viewer):
         self.state = state
         self.plot = self.make_plot()
         self.alert = pn.pane.Alert(
-            "", alert_type="warning", visible=False, css_classes=["scene-message"]
+            "",
+            alert_type="warning",
+            visible=False,
+            css_classes=["scene-message"],
+            disable_math=True,
         )
         self.status = pn.pane.Markdown(
-            "", css_classes=["scene-status"], sizing_mode="stretch_width"
+            "", css_classes=["scene-status"], sizing_mode="stretch_width", disable_math=True
         )
         self.progress = pn.indicators.Progress(
             value=-1, max=100, visible=False, sizing_mode="stretch_width", bar_color="info"
@@ -502,7 +534,7 @@ class Scene(pn.viewable.Viewer):
         try:
             self.publish(obj)
             if info.warning:
-                self.alert.param.update(alert_type="warning", object=md_escape(info.warning))
+                self.alert.param.update(alert_type="warning", object=md_literal(info.warning))
             self.alert.visible = bool(info.warning)
             self.last_message = None
             self.renders += 1
@@ -559,11 +591,10 @@ class Scene(pn.viewable.Viewer):
         self.last_message = text
         self.last_info = None
         try:
-            self.alert.param.update(alert_type=kind, object=md_escape(text), visible=True)
+            self.alert.param.update(alert_type=kind, object=md_literal(text), visible=True)
             self.hide_plot()
-            self.status.object = (
-                f"_no plot: see the message_\n\n<small>Parameters: {md_escape(self._stamp)}</small>"
-            )
+            stamp = md_literal(self._stamp)
+            self.status.object = f"_no plot: see the message_\n\n<small>Parameters: {stamp}</small>"
             self.code.value = python_preamble(self.state) + f"# nothing shown: {text}\n"
         except Exception:  # noqa: BLE001
             log.exception("scene %s: showing the message failed", self.key)
@@ -589,7 +620,7 @@ class Scene(pn.viewable.Viewer):
         lines.extend(f"_{n}_" for n in info.notes)
         if partial:
             lines.append("_computing the rest ..._")
-        lines.append(f"<small>Parameters: {md_escape(self._stamp)}</small>")
+        lines.append(f"<small>Parameters: {md_literal(self._stamp)}</small>")
         self.status.object = "\n\n".join(lines)
 
     def _download(self):

@@ -21,7 +21,7 @@ from panel.io.state import set_curdoc
 
 from .. import compute
 from ..compute import exact
-from .base import Info, SceneMessage, as_csv, fmt_num, provenance, python_preamble
+from .base import Info, SceneMessage, as_csv, fmt_num, md_literal, provenance, python_preamble
 from .bokeh_scene import (
     BokehScene,
     FigurePane,
@@ -309,7 +309,7 @@ class DiagramScene(BokehScene):
         try:
             c = compute.energy_extrema_qc(s.law(), s.w_plus)
         except compute.ParameterError as exc:
-            info.notes.append(f"energy criterion not shown: {exc}")
+            info.notes.append(f"energy criterion not shown: {md_literal(exc)}")
             self.ext_qc.update(up, [], [], (), *ylim, self.ext_legend[0])
             self.ext_d.update(up, [], [], (), *ylim, self.ext_legend[1])
             return

@@ -12,7 +12,7 @@ import panel as pn
 
 from fpucore.paper import FIGURES
 
-from .base import Info, Scene, md_escape
+from .base import Info, Scene, md_literal
 
 #: w₊ ahead of the superkink V = 5.2 (the paper's example, Figs. Floquet_example, stabSK (b)):
 #: qc.superkink_from_V(CubicLaw(-1, 10), 5.2).w_plus — the state sets V = V_SK(w₊) from it
@@ -62,7 +62,7 @@ class PaperScene(Scene):
             )
             btn.on_click(lambda _e, lab=label: self.open(lab))
             self.buttons[label] = btn
-            text = f"**Fig. {fig.number}** `{label}` ({fig.section}) — {md_escape(fig.caption)}"
+            text = f"**Fig. {fig.number}** `{label}` ({fig.section}) — {md_literal(fig.caption)}"
             rows.append(pn.Row(btn, pn.pane.Markdown(text, sizing_mode="stretch_width")))
         return pn.Column(*rows, sizing_mode="stretch_width", css_classes=["paper-list"])
 

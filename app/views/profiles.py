@@ -14,7 +14,7 @@ import panel as pn
 from .. import compute
 from ..compute import exact
 from ..state import N_RANGE
-from .base import Info, SceneMessage, as_csv, fmt_num, provenance, python_preamble
+from .base import Info, SceneMessage, as_csv, fmt_num, md_literal, provenance, python_preamble
 from .bokeh_scene import (
     BokehScene,
     Updates,
@@ -195,7 +195,7 @@ class ProfilesScene(BokehScene):
                 f"The discrete solve did not converge at N = {r.N}, so its points are not drawn. "
                 f"{n_advice(need, r.N)} (fpucore: {r.message.split(':')[0]})"
             )
-            info.notes.append(f"discrete solve did not converge: {r.message}")
+            info.notes.append(f"discrete solve did not converge: {md_literal(r.message)}")
             return self._frame(up, half, ys)
         self._discrete = r
         sel = np.abs(r.n) <= half

@@ -19,7 +19,7 @@ from bokeh.models import ColorBar, ColumnDataSource, LinearColorMapper
 from bokeh.palettes import Viridis256
 
 from .. import compute
-from .base import Info, SceneMessage, fmt_num, provenance, python_preamble
+from .base import Info, SceneMessage, fmt_num, md_literal, provenance, python_preamble
 from .bokeh_scene import BokehScene, Updates, add_legend, add_line, new_figure
 
 KIND_WORDS = {
@@ -215,7 +215,7 @@ class SimulationScene(BokehScene):
             else f"symplectic, dt {sim.dt:g}"
         )
         if getattr(sim, "status", "ok") not in ("ok", None):
-            info.notes.append(f"status {sim.status}: {sim.message}")
+            info.notes.append(f"status {sim.status}: {md_literal(sim.message)}")
         elif sim.details.get("left_convex_interval"):
             lo, hi = sim.details["strain_range"]
             info.notes.append(

@@ -36,7 +36,7 @@ from app.state import (  # noqa: E402
     url_query,
 )
 from app.views import SCENES  # noqa: E402
-from app.views.base import md_escape, state_stamp  # noqa: E402
+from app.views.base import md_literal, state_stamp  # noqa: E402
 from fpucore.law import (  # noqa: E402
     CubicLaw,
     PolynomialLaw,
@@ -179,7 +179,7 @@ def test_changing_the_law_makes_every_scene_stale_and_redraws_the_force_law():
     sc.refresh()
     y_quartic = np.array(sc.r_f[1].data["y"])
     assert y_cubic.shape != y_quartic.shape or not np.allclose(y_cubic, y_quartic)
-    assert "law=" + md_escape(Q) in sc.status.object
+    assert "law=" + md_literal(Q) in sc.status.object
 
 
 # ---------------------------------------------------------------------------- explorer widgets
@@ -344,7 +344,7 @@ def test_floquet_scene_for_the_quartic(mode):
     assert sc.last_message is None, sc.last_message
     assert len(sc.r_mu[1].data["x"]) == 200  # 2N multipliers
     assert sc._fr.symmetry_error < 1e-8  # Hamiltonian quartets
-    assert "law=" + md_escape(Q) in sc.status.object
+    assert "law=" + md_literal(Q) in sc.status.object
 
 
 def test_simulation_scene_for_the_quartic_seeded_and_its_code():

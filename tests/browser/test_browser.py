@@ -18,6 +18,7 @@ import statistics
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 import urllib.parse
 import urllib.request
@@ -103,6 +104,7 @@ def server():
             time.sleep(0.2)
         print(f"\n[browser] server up after {time.monotonic() - t0:.1f} s (incl. warm-up)")
         SERVER_LOG["path"] = log.name
+        SERVER_LOG["pid"] = str(proc.pid)
         yield url
     finally:
         proc.terminate()
@@ -148,8 +150,8 @@ def _tracebacks(log_text: str) -> list[str]:
 
 
 def _client_disconnect(tb: str) -> bool:
-    if "bokeh/server/connection.py" in tb and "assert self._session is not None" in tb:
-        return True  # the page went away before its session existed (Bokeh's on_close)
+    # (Bokeh's "assert self._session is not None" at a browser's close is no longer excused:
+    # app/server_guards.py handles it)
     return tb.strip().splitlines()[-1].startswith(_DISCONNECTS)
 
 
@@ -195,6 +197,18 @@ def page(browser, server):
             print("[browser] FAILED", r.url),
         ),
     )
+    foreign = record_foreign_requests(pg, server)
+    pg.server = server
+    pg.js_errors = errors
+    yield pg
+    pg.close()
+    assert not errors, f"JavaScript console errors: {errors}"
+    # every resource (CSS, JS, fonts) comes from the server itself: the page works offline
+    assert not foreign, f"requests to other hosts: {foreign}"
+
+
+def record_foreign_requests(pg, server: str) -> list[str]:
+    """The list the page's requests to other hosts than the server are appended to."""
     host = urllib.parse.urlparse(server).netloc
     foreign: list[str] = []
     pg.on(
@@ -206,13 +220,7 @@ def page(browser, server):
             else None
         ),
     )
-    pg.server = server
-    pg.js_errors = errors
-    yield pg
-    pg.close()
-    assert not errors, f"JavaScript console errors: {errors}"
-    # every resource (CSS, JS, fonts) comes from the server itself: the page works offline
-    assert not foreign, f"requests to other hosts: {foreign}"
+    return foreign
 
 
 def open_app(page, query: str = "", scene: str = "force", timeout: float = 60.0):
@@ -778,6 +786,237 @@ def test_invalid_law_in_the_url_is_named_and_the_rest_kept(page):
     assert "no softening" in url_message(page), url_message(page)
     text = wait_rendered(page, "phase")
     assert "V = 5.1" in text and "law=" not in text  # the cubic, with the URL's V
+
+
+# ----------------------------------------------------------------------------- user text
+#: OWASP-style payloads (each ≤ 40 characters, so a URL message repeats it whole)
+PAYLOADS = [
+    "<script>alert(1)</script>",
+    "<img src=x onerror=alert(7)>",
+    '"><svg onload=alert(1)>',
+    "<iframe src=javascript:alert(1)>",
+    "<details open ontoggle=alert(1)>",
+    "javascript:alert(1)",
+    "[x](javascript:alert(1))",
+    "';alert(1)//",
+    "__import__('os')",
+    "**b** _i_ `c` $x$ &amp; # h",
+]
+URL_NAMES = ("a", "b", "law", "w_plus", "V", "mode", "tab", "N", "tol")
+
+#: every element of the page, through Bokeh's shadow roots: injected markup (an element whose
+#: attribute is an event handler, a javascript: URL, or a script that calls alert)
+JS_INJECTED = """() => { const bad = []; const walk = (root) => {
+  for (const el of root.querySelectorAll('*')) {
+    for (const at of el.attributes) {
+      const v = (at.value || '').toLowerCase();
+      if (at.name.startsWith('on') || v.includes('javascript:') || v.includes('alert('))
+        bad.push(el.tagName + ' ' + at.name + '=' + at.value);
+    }
+    if (el.tagName === 'SCRIPT' && (el.textContent || '').includes('alert(')) bad.push('SCRIPT');
+    if (el.shadowRoot) walk(el.shadowRoot);
+  } }; walk(document); return bad; }"""
+
+
+def injected(page) -> list[str]:
+    return page.evaluate(JS_INJECTED)
+
+
+def test_user_text_is_shown_literally_and_never_runs(page):
+    """Every URL parameter and every text input gets the payload list: no dialog fires, no
+    element with an event handler / javascript: URL appears in the DOM, and the messages repeat
+    each value exactly as typed (the old Markdown rendering ran ``V`` and ``tab`` payloads as
+    script and showed ``__import__('os')`` as ``import('os')``)."""
+    dialogs: list[str] = []
+    page.on("dialog", lambda d: (dialogs.append(d.message), d.dismiss()))
+    for payload in PAYLOADS:
+        q = urllib.parse.urlencode({n: payload for n in URL_NAMES})
+        page.goto(f"{page.server}/main?{q}")
+        page.locator(".url-message").get_by_text("tab=").wait_for()
+        settled(page)
+        page.wait_for_timeout(300)  # an onerror fires once the image has failed to load
+        note = " ".join(url_message(page).split())
+        for name in URL_NAMES:
+            assert f"{name}={payload!r}" in note, (name, payload, note)
+        assert not injected(page), (payload, injected(page))
+        assert not dialogs, (payload, dialogs)
+    # the law box: the typed text is repeated in the scene's parameters line and message
+    page.goto(f"{page.server}/main?{FAST}")
+    settled(page)
+    page.locator(".w-law-kind button", has_text="expression").click()
+    box = page.locator(".in-law input")
+    for payload in PAYLOADS:
+        box.fill(payload)
+        box.press("Enter")
+        wait_url(page, lambda q, p=payload: q.get("law") == p.strip())
+        text, msg, q = settled(page)
+        assert f"law={payload.strip()}" in " ".join(text.split()), (payload, text)
+        assert msg, (payload, text)  # no law: the scene says why
+        page.wait_for_timeout(300)
+        assert not injected(page), (payload, injected(page))
+        assert not dialogs, (payload, dialogs)
+    # the atlas store's path box: its message names the path as typed
+    open_tab(page, "Atlas")
+    store = page.locator(".scene-atlas .bk-input-group", has_text="atlas store").locator("input")
+    for payload in PAYLOADS[:3]:
+        store.fill(payload)
+        store.press("Enter")
+        page.locator(".scene-atlas .scene-message").get_by_text(payload).wait_for(timeout=20_000)
+        page.wait_for_timeout(300)
+        assert not injected(page), (payload, injected(page))
+    assert not dialogs, dialogs
+    assert not app_tracebacks()
+
+
+# ----------------------------------------------------------------------------- laws off the loop
+DOS_LAWS = ["(w+1)**100000", "w*9**9**9"]
+
+
+def server_rss_mb() -> float:
+    for line in Path(f"/proc/{SERVER_LOG['pid']}/status").read_text().splitlines():
+        if line.startswith("VmRSS:"):
+            return int(line.split()[1]) / 1024
+    raise AssertionError("no VmRSS")
+
+
+class LivenessProbe(threading.Thread):
+    """Polls /liveness (and the server's RSS) every 0.1 s until stopped."""
+
+    def __init__(self, server: str):
+        super().__init__(daemon=True)
+        self.server, self.times, self.rss = server, [], []
+        self.halt = threading.Event()
+
+    def run(self):
+        while not self.halt.is_set():
+            self.times.append(_liveness(self.server))
+            self.rss.append(server_rss_mb())
+            self.halt.wait(0.1)
+
+    def stop(self) -> LivenessProbe:
+        self.halt.set()
+        self.join(30)
+        return self
+
+
+def test_a_pathological_law_never_freezes_the_server(browser, server):
+    """Session A opens DoS links (a law whose expansion takes minutes and gigabytes) and types
+    one in the law box; meanwhile session B moves a slider: B's renders and /liveness answer
+    within 1 s (FPU_STRICT_TIMING=1; 5 s otherwise), the server's RSS grows < 100 MB, and A names
+    the refused law.  (Before: the server froze for ~111 s on the first link and > 6 min on the
+    second.)"""
+    a, b = browser.new_page(), browser.new_page()
+    try:
+        b.goto(f"{server}/main?tab=force&V=5.05")
+        settled(b)
+        rss0 = server_rss_mb()
+        probe = LivenessProbe(server)
+        probe.start()
+        renders = []
+        for law in DOS_LAWS:
+            a.goto(f"{server}/main?" + urllib.parse.urlencode({"law": law, "tab": "force"}))
+            handle = b.locator(".w-V .noUi-handle").first
+            handle.focus()
+            for key in ("ArrowLeft", "ArrowRight", "ArrowLeft"):
+                before = status_text(b, "force")
+                t = time.monotonic()
+                b.keyboard.press(key)
+                wait_status_change(b, "force", before)
+                renders.append(time.monotonic() - t)
+            a.locator(".url-message").get_by_text(f"law={law!r}").wait_for(timeout=30_000)
+            note = url_message(a)
+            assert "URL value ignored" in note, note
+            wait_url(a, lambda q: "law" not in q)  # the message and the state: two updates
+            text, msg, q = settled(a)  # the cubic, with the URL rewritten to it
+            assert "law" not in q, q
+        # typed in the law box
+        a.locator(".w-law-kind button", has_text="expression").click()
+        box = a.locator(".in-law input")
+        box.fill(DOS_LAWS[1])
+        box.press("Enter")
+        before = status_text(b, "force")
+        b.locator(".w-V .noUi-handle").first.focus()
+        t = time.monotonic()
+        b.keyboard.press("ArrowRight")
+        wait_status_change(b, "force", before)
+        renders.append(time.monotonic() - t)
+        a.locator(".ranges").get_by_text("invalid law").wait_for(timeout=30_000)
+        ranges = " ".join(a.locator(".ranges p").all_inner_texts())
+        assert DOS_LAWS[1] in ranges, ranges
+        probe.stop()
+        growth = max(probe.rss) - rss0
+        print(
+            f"[browser] DoS laws: B renders {[round(x, 3) for x in renders]} s, /liveness max "
+            f"{max(probe.times):.3f} s over {len(probe.times)} polls, RSS +{growth:.0f} MB"
+        )
+        assert growth <= 100, growth
+        # the target (1 s) with FPU_STRICT_TIMING=1 under `flock /tmp/bench.lock`; else a bound
+        # a busy CI machine keeps (before: the server froze for minutes)
+        limit = 1.0 if os.environ.get("FPU_STRICT_TIMING") == "1" else 5.0
+        assert max(renders) <= limit and max(probe.times) <= limit, (renders, max(probe.times))
+    finally:
+        a.close()
+        b.close()
+    assert not app_tracebacks()
+
+
+# ----------------------------------------------------------------------------- ten sessions
+#: the targets on 2 cores (issue: /liveness max 17.6-21.7 s before); asserted as such only with
+#: FPU_STRICT_TIMING=1 (run under `flock /tmp/bench.lock`), else the looser CI bound below
+LIVENESS_MAX_S, LIVENESS_P95_S = 2.0, 0.5
+LOOSE_MAX_S, LOOSE_P95_S = 8.0, 2.0
+
+
+@pytest.mark.slow
+def test_ten_sessions_stay_responsive_and_consistent(browser, server):
+    """Ten sessions open at once and move their V slider for a bounded time while /liveness is
+    polled; then every page settles to exact box = URL = plot (its status stamp and its
+    Rayleigh line), the server log has no traceback (none at the pages' close either), and no
+    request leaves the server."""
+    probe = LivenessProbe(server)
+    probe.start()
+    Vs = [f"{4.4 + 0.09 * k:.2f}" for k in range(10)]
+    pages = [browser.new_page() for _ in Vs]
+    foreign = [record_foreign_requests(pg, server) for pg in pages]
+    for pg in pages:
+        pg.set_default_timeout(TIMEOUT_MS)
+    try:
+        for pg, V in zip(pages, Vs):  # all ten page builds at once
+            pg.goto(f"{server}/main?tab=force&V={V}&{FAST}", wait_until="commit")
+        for pg in pages:
+            settled(pg, 180)
+        rng = random.Random(5)
+        t_end = time.monotonic() + 45
+        moves = 0
+        while time.monotonic() < t_end:
+            pg = rng.choice(pages)
+            pg.locator(".w-V .noUi-handle").first.focus()
+            pg.keyboard.press(rng.choice(["ArrowLeft", "ArrowRight"]))
+            moves += 1
+            pg.wait_for_timeout(150)
+        for k, pg in enumerate(pages):
+            pg.wait_for_timeout(300)
+            text, msg, q = settled(pg, 120)
+            box = pg.locator(".in-V input").input_value()
+            assert float(box) == float(q["V"]), (k, box, q["V"], text)
+            check_consistent(pg, text, msg, q)
+    finally:
+        for pg in pages:
+            pg.close()
+    time.sleep(2)  # the server handles the ten closes
+    probe.stop()
+    times = sorted(probe.times)
+    p95 = times[int(0.95 * (len(times) - 1))]
+    print(
+        f"[browser] ten sessions, {moves} slider moves: /liveness max {times[-1]:.3f} s, p95 "
+        f"{p95:.3f} s, median {statistics.median(times):.3f} s over {len(times)} polls; "
+        f"load average {os.getloadavg()}"
+    )
+    assert not any(foreign), foreign
+    assert not app_tracebacks(), app_tracebacks()[-1][-2000:]
+    strict = os.environ.get("FPU_STRICT_TIMING") == "1"
+    lim_max, lim_p95 = (LIVENESS_MAX_S, LIVENESS_P95_S) if strict else (LOOSE_MAX_S, LOOSE_P95_S)
+    assert times[-1] <= lim_max and p95 <= lim_p95, (times[-1], p95, strict)
 
 
 def test_paper_tab_opens_three_figures(page):
