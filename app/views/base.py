@@ -541,6 +541,7 @@ class Scene(pn.viewable.Viewer):
             self.last_info = info
             self._write_status(info, t0)
             self.code.value = self.python_code()
+            self.download.disabled = False
         except Exception as exc:
             if self.session_closed:
                 return None
@@ -596,6 +597,7 @@ class Scene(pn.viewable.Viewer):
             stamp = md_literal(self._stamp)
             self.status.object = f"_no plot: see the message_\n\n<small>Parameters: {stamp}</small>"
             self.code.value = python_preamble(self.state) + f"# nothing shown: {text}\n"
+            self.download.disabled = True  # nothing to download until a plot is shown
         except Exception:  # noqa: BLE001
             log.exception("scene %s: showing the message failed", self.key)
 

@@ -288,10 +288,18 @@ class SimulationScene(BokehScene):
         if self._sim is None:
             raise SceneMessage("no simulation yet")
         kind, p, sim = self._sim
+        sites = np.asarray(sim.sites)
+        if len(sites) == sim.L:
+            cols = f"one column per site n (all {sim.L})"
+        else:  # fpucore keeps at most max_sites_out sites, evenly spread (engine.py)
+            cols = (
+                f"one column for each of {len(sites)} sites n spread evenly over the {sim.L} "
+                f"(about every {sim.L / len(sites):.3g}th; the column names give n)"
+            )
         hdr = provenance(
             self.state,
             f"space-time strain field w_n(t) of a simulation of {KIND_WORDS[kind]}: one row per "
-            "time t, one column per site n",
+            f"time t, {cols}",
             kind=kind,
             **p,
             energy_drift=float(sim.energy_drift),
@@ -306,7 +314,6 @@ class SimulationScene(BokehScene):
         buf = io.StringIO()
         for line in hdr.splitlines():
             buf.write(f"# {line}\n")
-        sites = np.asarray(sim.sites)
         buf.write("t," + ",".join(f"n={int(k)}" for k in sites) + "\n")
         for ti, rowv in zip(np.asarray(sim.t), np.asarray(sim.snapshots)):
             buf.write(repr(float(ti)) + "," + ",".join(repr(float(v)) for v in rowv) + "\n")
