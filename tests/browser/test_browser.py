@@ -26,6 +26,8 @@ from pathlib import Path
 
 import pytest
 
+from app.state import URL_PARAMS
+
 pytestmark = pytest.mark.browser
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -118,6 +120,8 @@ def server():
         os.unlink(log.name)
         app_errors = [tb for tb in _tracebacks(text) if not _client_disconnect(tb)]
         assert not app_errors, "\n\n".join(app_errors)[-3000:]
+        # the worker pool and Numba's threading layer release their semaphores at shutdown
+        assert "leaked semaphore" not in text, text[-3000:]
 
 
 #: the running server's log file (read by the tests that check it after every step)
@@ -802,6 +806,8 @@ PAYLOADS = [
     "__import__('os')",
     "**b** _i_ `c` $x$ &amp; # h",
 ]
+# every URL parameter but the atlas store, whose value is a path (any text below the server's
+# directory is a valid one): it gets its own loop below
 URL_NAMES = ("a", "b", "law", "w_plus", "V", "mode", "tab", "N", "tol")
 
 #: every element of the page, through Bokeh's shadow roots: injected markup (an element whose
@@ -820,6 +826,10 @@ JS_INJECTED = """() => { const bad = []; const walk = (root) => {
 
 def injected(page) -> list[str]:
     return page.evaluate(JS_INJECTED)
+
+
+def test_the_payload_list_covers_every_url_parameter():
+    assert set(URL_NAMES) | {"atlas"} == set(URL_PARAMS)
 
 
 def test_user_text_is_shown_literally_and_never_runs(page):
@@ -855,7 +865,20 @@ def test_user_text_is_shown_literally_and_never_runs(page):
         page.wait_for_timeout(300)
         assert not injected(page), (payload, injected(page))
         assert not dialogs, (payload, dialogs)
+    # the atlas store from the URL: the scene's message names the path, nothing runs
+    for payload in PAYLOADS:
+        q = urllib.parse.urlencode({"tab": "atlas", "atlas": payload, "N": "120"})
+        page.goto(f"{page.server}/main?{q}")
+        msg = page.locator(".scene-atlas .scene-message").get_by_text("no atlas store")
+        msg.wait_for(timeout=20_000)
+        page.wait_for_timeout(300)
+        if "/" not in payload:  # a path keeps its text (a slash may be normalised away)
+            assert payload in msg.inner_text(), (payload, msg.inner_text())
+        assert not injected(page), (payload, injected(page))
+        assert not dialogs, (payload, dialogs)
     # the atlas store's path box: its message names the path as typed
+    page.goto(f"{page.server}/main?{FAST}")
+    settled(page)
     open_tab(page, "Atlas")
     store = page.locator(".scene-atlas .bk-input-group", has_text="atlas store").locator("input")
     for payload in PAYLOADS[:3]:
@@ -1044,3 +1067,13 @@ def test_paper_tab_opens_three_figures(page):
         else:
             page.locator(f".scene-{tab} .scene-message").get_by_text(shows).wait_for()
         assert not app_tracebacks()
+
+
+def test_an_invalid_url_value_is_reported_and_the_address_bar_rewritten(page):
+    """?tab=nonsense: the message names the value, the state keeps its default tab, and the
+    address bar shows the state's URL (a copied link reproduces what is on screen)."""
+    page.goto(f"{page.server}/main?tab=nonsense&{FAST}")
+    page.locator(".url-message").get_by_text("nonsense").wait_for()
+    q = wait_url(page, lambda q: q.get("tab") == "force")
+    assert q.get("tab") == "force", page.url
+    assert "nonsense" not in page.url
