@@ -11,6 +11,7 @@ part of every cache key (:mod:`app.compute.cache`).
 from __future__ import annotations
 
 import contextlib
+import resource
 import threading
 import time
 from collections import OrderedDict
@@ -99,9 +100,7 @@ def build_law_job(expression: str, progress=None) -> PolynomialLaw | ParameterEr
     LAW_MEMORY_BYTES beyond the worker's current size (restored afterwards).  Returns the law or
     the ParameterError that refuses it (never raises).  ``progress(0)`` marks the start of the
     budgeted part: a fresh worker first imports SymPy (seconds on a loaded machine)."""
-    import resource
-
-    import sympy  # noqa: F401 - before the budget starts
+    import sympy  # noqa: F401 - in the worker, before the budget starts (never in the server)
 
     if progress is not None:
         progress(0.0)
