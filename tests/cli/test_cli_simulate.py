@@ -88,7 +88,7 @@ def test_wave_solitary_json():
     assert d["details"]["kind"] == "tensile" and d["details"]["velocity_error"] < 1e-8
 
 
-# --------------------------------------------------------------------------- issue 14
+# ------------------------------------------------------------------------- input checks
 def test_periods_negative_names_periods():
     """--periods -1 was reported as t_end=-0.19… (after solving the wave): now refused first,
     naming --periods as typed."""

@@ -1,4 +1,4 @@
-"""Budgets of the simulations (issue 14, items 2 and 3): memory estimated from all sizes together
+"""Budgets of the simulations: memory estimated from all sizes together
 and refused before allocating; a time budget that stops a run cleanly with its partial result;
 slicing the stepping for the time checks changes no number."""
 
