@@ -1,4 +1,5 @@
-"""Floquet layer at the edges of parameter space: spectra on stiff and extreme laws, checked against closed forms
+"""Floquet layer at the edges of parameter space: spectra on stiff and extreme laws, checked
+against closed forms
 (constant states, computed here from the dispersion relation) and the quartet structure."""
 
 import math

@@ -111,7 +111,7 @@ wave = pytest.importorskip("fpucore.wave")
 
 @pytest.mark.parametrize("V", [4.805, 5.317])
 def test_seeded_shape_error_present_where_k_periods_overshoot_t_end(V):
-    """V = 4.805 (the case once reported) and another velocity where 50·(1/V) > 50/V: the shape error
+    """V = 4.805 (a reported case) and another velocity where 50·(1/V) > 50/V: the shape error
     after 50 periods is reported, and it is small (reference: the initial profile shifted by
     50 sites, eq. period)."""
     assert 50 * (1.0 / V) > 50.0 / V  # the overshooting case
