@@ -563,7 +563,7 @@ def test_floquet_plot_follows_N_and_shows_the_sweep_without_reload(page):
 
 
 def test_bad_url_values_are_named_and_the_rest_is_kept(page):
-    """Defects 6 and 10: invalid values named with their range, the others kept, the address
+    """Invalid values named with their range, the others kept, the address
     bar rewritten to what is shown; a 5000-digit value is a message, not a blank page."""
     page.goto(f"{page.server}/main?N=-5&V=5.2&tab=phase&b=1e200&mode=bogus&tol=0")
     text, msg, q = settled(page)
@@ -961,8 +961,9 @@ def test_a_pathological_law_never_freezes_the_server(browser, server):
 
 
 # ----------------------------------------------------------------------------- ten sessions
-#: the targets on 2 cores (issue: /liveness max 17.6-21.7 s before); asserted as such only with
-#: FPU_STRICT_TIMING=1 (run under `flock /tmp/bench.lock`), else the looser CI bound below
+#: the targets on 2 cores (/liveness max was 17.6-21.7 s when the server computed); asserted as
+#: such only with FPU_STRICT_TIMING=1 (run under `flock /tmp/bench.lock`), else the looser CI
+#: bound below
 LIVENESS_MAX_S, LIVENESS_P95_S = 2.0, 0.5
 LOOSE_MAX_S, LOOSE_P95_S = 8.0, 2.0
 

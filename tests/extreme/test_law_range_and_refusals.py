@@ -45,7 +45,7 @@ def test_extreme_but_computable_law_scales_exactly():
 
 
 def test_c_plus_near_alpha_to_an_ulp():
-    """Issue: near α, c+ lost a relative 7.5e-5.  Reference: √f′(w+) in 60-digit arithmetic."""
+    """Near α, c+ once lost a relative 7.5e-5.  Reference: √f′(w+) in 60-digit arithmetic."""
     mp.mp.dps = 60
     for law in (LAW, CubicLaw(-1.0, 100.0), CubicLaw(-0.01, 10.0)):
         for t in (1e-6, 1e-9, 1e-12):
