@@ -427,4 +427,3 @@ def front_uncertainty(S: WaveSystem, x: np.ndarray, tol_abs: float, iters: int =
     per = abs(v[0::2].sum()) / (2.0 * A)
     r2 = float(np.linalg.norm(F))
     return FrontUncertainty(sig, r2, r2 / sig * per, tol_abs / sig * per, per)
-
