@@ -1,5 +1,5 @@
-"""Server time of the dashboard (issue: QC scenes ≤ 50 ms per slider move, discrete profile at
-N = 500 ≤ 1 s, page interactive ≤ 3 s with a warm cache; issue 13: QC slider ≤ 100 ms server time
+"""Server time of the dashboard (targets: QC scenes ≤ 50 ms per slider move, discrete profile at
+N = 500 ≤ 1 s, page interactive ≤ 3 s with a warm cache; QC slider ≤ 100 ms server time
 and ≤ 0.5 s in the browser while another session's Floquet spectrum runs).
 
 Run: ``.venv/bin/python -m benchmarks.bench_app`` (add ``--browser`` for the time to

@@ -1,4 +1,4 @@
-"""The atlas on the execution layer (issue 15, issue 17 "Sweeps in parallel"), ratios in one run.
+"""The atlas on the execution layer and sweeps in parallel, ratios in one run.
 
     python -m benchmarks.bench_atlas            # all parts (~5 min on 2 loaded cores)
     python -m benchmarks.bench_atlas --quick    # A-C only at smaller sizes

@@ -1,5 +1,5 @@
-"""Slow path of tests/test_extreme_wave.py: the paper's flat-top solitary waves (Fig. SW_sim,
-a = −1, b = 10, w₊ = 6) at V = 5.21749194749 (|V − V_SK| ≈ 9.5e-12, compressive) and
+"""Slow path of tests/extreme/test_extreme_wave.py: the paper's flat-top solitary waves
+(Fig. SW_sim, a = −1, b = 10, w₊ = 6) at V = 5.21749194749 (|V − V_SK| ≈ 9.5e-12, compressive) and
 V = 5.2174919476 (≈ 1.0e-10 above, tensile), plus |V − V_SK| = 1e-6, 1e-8 for context.  Run:
 
     .venv/bin/python -m benchmarks.bench_extreme_wave [--budget SECONDS]

@@ -1,4 +1,4 @@
-"""Floquet spectrum benchmarks (issue 4): cost split, error against run time, family sweeps.
+"""Floquet spectrum benchmarks: cost split, error against run time, family sweeps.
 
     python -m benchmarks.bench_floquet            # parts A, B, D (a few minutes on an idle core)
     python -m benchmarks.bench_floquet --only D   # just the finite-size cost
@@ -13,7 +13,7 @@ B. Error against run time over the RK step count m: quartet-symmetry violation, 
 D. Cost of the stability decision: one structured spectrum with and without the window of six
    shorter rings in [N/2, N], against one dense spectrum, interleaved, single-threaded BLAS.
    Target: structured + decision ≤ 1.5 × dense.
-E. Structured half-size route against dense eigvals on the same 𝓜 (issue 17), interleaved,
+E. Structured half-size route against dense eigvals on the same 𝓜, interleaved,
    threadpool_limits(1), N = 500: ratio t_structured / t_dense (target ≤ 0.33) and the
    agreement of max|μ| (within the error bar) and of the unstable counts.
 C. max |μ| against V for superkinks over their velocity range and solitary waves at w₊ = 1, 6,
@@ -174,7 +174,7 @@ def part_e(N: int = 500, repeat: int = 3) -> None:
             routes = {"reversible": c, "arnoldi": None} if c is not None else {"arnoldi": None}
             for rv in routes.values():
                 fq.structured_multipliers(mono.matrix, N, mono.K, reversor=rv)  # compile
-            _, deflated, _ = deflate(mono.matrix, N)  # the issue's reference matrix
+            _, deflated, _ = deflate(mono.matrix, N)  # the reference matrix
             t_d, t_e = float("inf"), float("inf")
             t_s = dict.fromkeys(routes, float("inf"))
             for _ in range(repeat):

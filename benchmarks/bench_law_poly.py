@@ -1,4 +1,4 @@
-"""Cost of a polynomial law against the cubic in every route (issue 16), same run.
+"""Cost of a polynomial law against the cubic in every route, same run.
 
     .venv/bin/python -m benchmarks.bench_law_poly            # all sections (~1–2 min, warm JIT)
     .venv/bin/python -m benchmarks.bench_law_poly --quick    # kernels, period map, monodromy

@@ -1,4 +1,4 @@
-"""Speed of the chain simulator (issue 5) — the paper's Riemann run, a = −1, b = 10,
+"""Speed of the chain simulator — the paper's Riemann run, a = −1, b = 10,
 w_l = 4.6, w_r = 0, L = 3600, t = 300 (Fig. Riemann1), rtol = 1e-10.
 
     .venv/bin/python -m benchmarks.bench_simulate            # headline + scipy baseline (~1 min)

@@ -1,4 +1,4 @@
-"""The thread budget (issue 17 "Own the thread budget"): two Floquet spectra at once.
+"""The thread budget: two Floquet spectra at once.
 
     python -m benchmarks.bench_threads [--repeat 3] [--N 500]
 

@@ -1,4 +1,4 @@
-"""Benchmarks for discrete traveling waves (issue 3).  Run:
+"""Benchmarks for discrete traveling waves.  Run:
 
     .venv/bin/python benchmarks/bench_wave.py            # everything (~1–2 min on 2 cores)
     .venv/bin/python benchmarks/bench_wave.py --quick    # skip the slow scipy baseline
@@ -189,7 +189,7 @@ def main(argv=None):
 
 
 def bounds_cost(reps: int = 7):
-    """4. Cost of the error bounds (issue 12, target <= 20 %): the solve without them
+    """4. Cost of the error bounds (target <= 20 %): the solve without them
     (``WaveSolve(...).solve()``) against the bounds at its solution (``bounds.error_bounds``),
     same run, median of ``reps``, over waves of the extreme suite."""
     print("\n## 4. error bounds: share of a wave solve (target <= 20 %)")

@@ -25,7 +25,7 @@ import sys
 # The `fpu` command (console script, or `python -m fpucore`: argv[0] is still "-m" while runpy
 # imports the package) cannot catch Ctrl-C before its main() runs: Python would print a
 # KeyboardInterrupt traceback.  For the import only, Ctrl-C gives the CLI's own one line and
-# exit 130 (issue 14 item 7).  The handler stays until fpu's main() has parsed its arguments
+# exit 130.  The handler stays until fpu's main() has parsed its arguments
 # and imported the scientific stack (fpucore/cli/dispatch.py: load_stack puts Python's own
 # handler back for the command).  A library import (any other argv[0]) is left alone.
 _ORIG_ARGV = getattr(sys, "orig_argv", [])

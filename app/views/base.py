@@ -6,7 +6,7 @@ requests (latest parameters win); heavy fpucore calls run in worker processes
 (:func:`app.compute.run_job`) and a newer request or the Cancel button makes the thread stop
 waiting (the job is killed if nobody else waits for it), so slider drags never queue stale work.
 
-Root-cause rules (issue 13):
+Root-cause rules:
 
 * the figures of a scene are Bokeh models built once (structure fixed); a render only changes
   their data, ranges and visibility (:mod:`.bokeh_scene`) — no model is ever replaced;

@@ -62,7 +62,7 @@ class Parser(argparse.ArgumentParser):
 
 def check_out_path(path: str, name: str = "--out", store: bool = False) -> None:
     """Refuse an output file that cannot be written, before any computation: its directory must
-    exist and be writable, and the path must not be a directory (issue 14: both failed only after
+    exist and be writable, and the path must not be a directory (both once failed only after
     the whole sweep, with a traceback).  ``store``: the output is a directory store (the atlas's
     Zarr), which may exist already (resume)."""
     if not path:

@@ -103,7 +103,7 @@ def base_state(r):
     Refused (ParameterError naming the attribute): missing attributes or non-numbers; N odd,
     < 4 or > MAX_N; V outside [c_max/1000, 1000 c_max] (a period 1/V of ~1e16 steps, or an
     overflowing one); non-finite entries; strains whose perturbations grow by more than e^200
-    per period (issue 14: w = 1e6 overflowed the monodromy, which reached LAPACK as "illegal
+    per period (w = 1e6 once overflowed the monodromy, which reached LAPACK as "illegal
     value")."""
     law = require_law(_attr(r, "law", lambda x: x), "r.law")
     V = _attr(r, "V", float)
@@ -125,7 +125,7 @@ def base_state(r):
             raise ParameterError(name, "non-finite entries", "finite real numbers")
     # Perturbations of a strain with f′(w) < 0 grow like exp(√(−f′) t): over one period
     # |μ| <= exp(2√(−f′)/V).  Beyond exp(GROWTH_MAX) the monodromy over- or underflows, which
-    # reached LAPACK as "illegal value" (issue 14: w = 1e6); unstable states short of it (the
+    # reached LAPACK as "illegal value" (w = 1e6); unstable states short of it (the
     # homogeneous w0 = -0.2 of the finite-size tests) are fine.
     for name, x in (("r.w", w), ("r.w_left/r.w_right", np.array([wl, wr]))):
         with np.errstate(over="ignore", invalid="ignore"):

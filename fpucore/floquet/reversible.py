@@ -1,4 +1,4 @@
-"""Quarter-size Floquet spectrum of a reversible traveling wave (issue 17; the first choice of
+"""Quarter-size Floquet spectrum of a reversible traveling wave (the first choice of
 ``spectrum(r, method="structured")``).
 
 A wave whose profile has a centre of reflection — every solitary wave (w even about its peak),

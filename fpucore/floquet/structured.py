@@ -1,4 +1,4 @@
-"""Structure-preserving half-size Floquet spectrum (issue 17; ``spectrum(r, method="structured")``).
+"""Structure-preserving half-size Floquet spectrum (``spectrum(r, method="structured")``).
 
 The dense route (:func:`fpucore.floquet.multipliers_of`) calls LAPACK ``dgeev`` on the deflated
 (2N−2)² block.  This route uses the symplectic structure of the shifted monodromy 𝓜 instead:

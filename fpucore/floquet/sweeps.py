@@ -17,7 +17,7 @@ sweep at several N measures the N-dependence of the spurious oscillatory instabi
 Cache.  With ``use_cache`` the sweep is an atlas store in ``$FPU_CACHE_DIR/floquet`` (default
 ``./.fpu_cache/floquet``) named by the SHA-256 of its key: the inputs (kind, law parameters,
 branch, w₊, the velocities, N, m, tol, chunk; floats by ``repr``, so equal keys mean bit-equal
-inputs) **and the code** — the hash of fpucore's source and its version (issue 14 item 4: a
+inputs) **and the code** — the hash of fpucore's source and its version (a
 modified copy of the code must not serve the old rows).  Running the same sweep again resumes
 that store: nothing is recomputed; an interrupted sweep keeps its finished chunks.
 """
@@ -201,7 +201,7 @@ def _row(V: float, rec: dict) -> dict:
 
 def check_sweep_args(law, kind, V_values, w_plus, N, branch, m, tol, time_budget_s,
                      method="structured"):  # fmt: skip
-    """Validate a sweep's arguments before anything is computed (issue 14: tol=0, N=10**6 and
+    """Validate a sweep's arguments before anything is computed (tol=0, N=10**6 and
     time_budget_s=-1 used to return NaN rows).  Returns (w_plus, Vs, N, m, tol, time_budget_s)."""
     require_law(law)
     if not isinstance(kind, str) or kind not in ("superkink", "solitary"):

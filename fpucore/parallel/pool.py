@@ -43,7 +43,7 @@ TERMINATE_GRACE_S = 2.0
 def context(method: str = START_METHOD):
     """The multiprocessing context of the pool (never ``fork``: see module docstring)."""
     if method == "fork":
-        raise ValueError("fork is unsafe after an OpenMP kernel has run (issue 14 item 5)")
+        raise ValueError("fork is unsafe after an OpenMP kernel has run (GNU OpenMP deadlocks)")
     ctx = mp.get_context(method)
     if method == "forkserver":
         ctx.set_forkserver_preload(PRELOAD)

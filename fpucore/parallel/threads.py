@@ -2,7 +2,7 @@
 
 Why.  One Floquet spectrum at N = 500 is a LAPACK ``dgeev`` of a ~1000 × 1000 matrix; two of them
 at once with OpenBLAS's default (one thread per core each) took 5.4 s instead of 0.7 s on the
-2-core machine (issue 17): threads of two processes fighting for the same cores.  So threads are
+2-core machine: threads of two processes fighting for the same cores.  So threads are
 never left at a library's default, and parallelism across jobs comes from *processes*.
 
 The policy
@@ -14,8 +14,8 @@ The policy
   limited to :func:`thread_budget` threads, then restored — the caller's own numpy keeps its
   settings.  The budget is **one thread** unless the user says otherwise: measured on the 2-core
   machine, ``floquet.spectrum`` of the superkink V = 5.2, N = 500 took 0.55 s with one thread and
-  2.5 s with OpenBLAS's default two on an idle-looking machine (load 2), 20 s under load 5–9
-  (issue 24): ``dgeev`` gains little from a second thread and loses everything when a core is
+  2.5 s with OpenBLAS's default two on an idle-looking machine (load 2), 20 s under load 5–9:
+  ``dgeev`` gains little from a second thread and loses everything when a core is
   busy.  Override: the environment variable ``FPU_THREADS`` (a positive integer, or ``all`` for
   :func:`cores`), or ``apply_thread_policy(n)`` in a script (the process's budget from then on).
 * A process that runs **one of several concurrent jobs** — every worker of
@@ -35,7 +35,7 @@ The policy
   :func:`configure_threading_layer` when fpucore is imported.  It is thread-safe (the server calls
   parallel kernels from several threads; ``"workqueue"`` aborts on concurrent use) and TBB is not
   installed.  GNU OpenMP does not survive ``fork()`` ("fork() called from a process already using
-  GNU OpenMP" and a pool that never returns, issue 14 item 5), so **no fpucore process pool ever
+  GNU OpenMP" and a pool that never returns), so **no fpucore process pool ever
   forks the process that ran a kernel**: the Executor starts its workers with the ``forkserver``
   method (a clean server process, started by exec, that imported fpucore but never ran a
   kernel, forks the workers), and Dask's nannies use ``spawn``.

@@ -76,8 +76,8 @@ def sound_speeds(law: HardeningSofteningLaw, w_plus: float) -> tuple[float, floa
 def sound_speed_plus(law: CubicLaw, w_plus):
     """c₊ = √f′(w₊) (eq. cplus; w₊ may be an array), written without cancellation.
 
-    c₊² = c_max² − 3|a|e, e = (w₊ − w*)², cancels near α and β (a relative 7.5e-5 lost near α,
-    issue 14) and entirely when b²/|a| is large (b = 1e80, w₊ = 1 gave c₊ = 0).  Where it would
+    c₊² = c_max² − 3|a|e, e = (w₊ − w*)², cancels near α and β (a relative 7.5e-5 lost near α)
+    and entirely when b²/|a| is large (b = 1e80, w₊ = 1 gave c₊ = 0).  Where it would
     lose more than one bit (3|a|e > c_max²/2) a scalar w₊ gets f′(w₊) = 1 + 2bw₊ + 3aw₊² in exact
     rational arithmetic, rounded once (c₊ to an ulp: near α the sum cancels in any fixed
     precision), an array the factored 3|a| (w − α)(β − w) (error ~ε|α|/(w − α), for plots).
@@ -154,7 +154,7 @@ def rayleigh_roots(law: HardeningSofteningLaw, w_plus: float, V):
     s = w_minus_sonic(law, w_plus)
     # The two roots solve a w² + (a w₊ + b) w + C = 0, C = a w₊² + b w₊ + 1 − V² (f − R divided
     # by w − w₊).  s ± r cancels for the root of small magnitude when |w| << w* (b²/|a| large:
-    # a relative error ~ε w*/|w|, issue 14); it comes from Vieta instead, w_small = C/(a w_big).
+    # a relative error ~ε w*/|w|); it comes from Vieta instead, w_small = C/(a w_big).
     big = s + math.copysign(1.0, s) * r
     C = (1.0 - Va * Va) + w_plus * (law.b + law.a * w_plus)
     with np.errstate(divide="ignore", invalid="ignore"):

@@ -46,7 +46,7 @@ def w_minus_sonic(law: HardeningSofteningLaw, w_plus: float) -> float:
 
 def rayleigh_roots(law: HardeningSofteningLaw, w_plus: float, V):
     """(w_near, w_far): the other intersections of f with the Rayleigh line (V may be an array,
-    each V in (0, c₋]; ParameterError naming V otherwise: issue 14, NaN was returned)."""
+    each V in (0, c₋]; ParameterError naming V otherwise, where NaN was once returned)."""
     if is_closed_form(law):
         return cf.rayleigh_roots(law, w_plus, V)
     cm = gen.sound_speeds(law, w_plus)[2]

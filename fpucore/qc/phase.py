@@ -66,7 +66,7 @@ N_ORBIT_MAX = 100_001
 def require_phase_V(law: HardeningSofteningLaw, V: float) -> float:
     """V > 0 within a factor V_SPAN of c_max: far outside, V² swamps f (or the reverse) and the
     portrait is the trivial one of a linear equation, computed with overflow (V = 1e300: all
-    NaN) or a division by V² = 0 (V = 1e-300: ZeroDivisionError) — issue 14."""
+    NaN) or a division by V² = 0 (V = 1e-300: ZeroDivisionError)."""
     V = require_V(V)
     c = law.c_max
     if not c / V_SPAN <= V <= c * V_SPAN:

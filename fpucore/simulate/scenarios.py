@@ -440,9 +440,9 @@ def seeded(
 
 
 def _seeded_check(r, internals, site0, i0, N, T, K_per, w0, t_end, law) -> dict:
-    """Velocity from the passage times of the wave at the sites k = 1…K it crosses (level w*
-    crossing for a superkink, time-extremum for a solitary wave) and the shape error after K
-    whole periods.  For an exact traveling wave t_k = k T (eq. period)."""
+    """Velocity from the passage times of the wave at the sites k = 1…K it crosses (crossings
+    of w* for a superkink, of the leading flank's half-height for a solitary wave) and the shape
+    error after K whole periods.  For an exact traveling wave t_k = k T (eq. period)."""
     cr_t, cr_s = internals["cr"]
     if r.kind == "superkink":
         want = 1 if r.w_left > r.w_right else -1  # passing front: w goes from w_right to w_left

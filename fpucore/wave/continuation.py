@@ -4,7 +4,7 @@ SWs_cubic_DvsQC, SWamp_cubic_DvsQC, SWenergy_cubic_DvsQC).
 Predictor.  From a converged wave x(V₀) the guess at V₁ is x(V₀) + [x_QC(V₁) − x_QC(V₀)]: the QC
 closed form carries the large, known change of the profile (width, boundary states, w_S(V)) and
 the discrete correction x − x_QC, which varies slowly in V, is carried over.  States on chains
-of different N are re-centred and padded with the tail states (:func:`fpucore.resize`).
+of different N are re-centred and padded with the tail states (:func:`fpucore.wave.setup.resize`).
 
 :func:`continue_to` is the rescue used by ``wave.solve_*`` when Newton from the QC guess fails:
 find a nearby velocity (towards the middle of the family's interval) where the QC guess converges,

@@ -427,8 +427,3 @@ def front_uncertainty(S: WaveSystem, x: np.ndarray, tol_abs: float, iters: int =
     per = abs(v[0::2].sum()) / (2.0 * A)
     r2 = float(np.linalg.norm(F))
     return FrontUncertainty(sig, r2, r2 / sig * per, tol_abs / sig * per, per)
-
-
-def decay_rate_plateau(law, V: float, w_plateau: float) -> float:
-    """λ at the plateau state (the rate of the front–front interaction e^{−2λ d})."""
-    return wt.decay_rate(law, w_plateau, V)

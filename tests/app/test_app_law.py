@@ -1,4 +1,4 @@
-"""The explorer with any polynomial law (issue 16): law selector, URL, cache keys, downloads,
+"""The explorer with any polynomial law: law selector, URL, cache keys, downloads,
 "copy as Python" and every scene's compute path, without a browser.
 
 References are independent of the app and of fpucore's QC module: the quartic's equal-area and

@@ -1,4 +1,4 @@
-"""The energy criterion on the Diagrams and Floquet scenes (issue 12), without a browser.
+"""The energy criterion on the Diagrams and Floquet scenes, without a browser.
 
 References: the QC energy E_ren^QC (eq. Eren_QC) on a dense grid of the closed form (its
 minimum on the soft family w₊ = −0.04 of a = −1, b = 10, near V ≈ 0.759; monotone on the paper's

@@ -1,6 +1,6 @@
 """``fpucore.floquet.sweep`` as a one-row atlas on the execution layer: several chunks on a
 process pool give the rows of single ``wave``/``floquet`` calls within their error bars, the
-public columns stay, and the inputs that used to give NaN rows are refused (issue 14 item 6)."""
+public columns stay, and the inputs that used to give NaN rows are refused."""
 
 from __future__ import annotations
 

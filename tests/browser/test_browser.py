@@ -311,7 +311,7 @@ def test_every_scene_renders_a_plot(page):
         wait_rendered(page, key, 240.0)  # Floquet is the slow one
         page.locator(f".scene-{key} canvas").first.wait_for()
         assert "Error:" in status_text(page, key), status_text(page, key)
-        if key == "diagram":  # the energy criterion's sentence (issue 12)
+        if key == "diagram":  # the energy criterion's sentence
             assert "Energy criterion" in status_text(page, key), status_text(page, key)
         print(f"[browser] {key}: {status_text(page, key)[:120]}")
     # simulation: runs on demand
@@ -433,7 +433,7 @@ def test_atlas_scene_runs_a_small_atlas_through_the_executor(page):
     assert "max residual" in text and "atlas run (9 points" in text, text
 
 
-# ----------------------------------------------------------------------------- issue 13
+# ------------------------------------------------------------ scene robustness in the page
 TAB_TITLES = {key: title for title, key in SCENES} | {"simulation": "Simulation"}
 
 JS_SOURCE = """(name) => { for (const d of Bokeh.documents) { for (const m of d.all_models) {
@@ -534,7 +534,7 @@ def check_consistent_now(page, text: str, msg: str, q: dict) -> None:
 
 
 def test_floquet_plot_follows_N_and_shows_the_sweep_without_reload(page):
-    """Defect 1: N = 200 → three key presses; the plot holds the new 2N multipliers."""
+    """N = 200 → three key presses; the plot holds the new 2N multipliers."""
     page.goto(f"{page.server}/main?tab=floquet&N=200&tol=1e-08")
     text, msg, q = settled(page, 240)
     check_consistent(page, text, msg, q)
@@ -557,7 +557,7 @@ def test_floquet_plot_follows_N_and_shows_the_sweep_without_reload(page):
     while not source(page, "floquet-sweep")["x"] and time.monotonic() < t_end:
         page.wait_for_timeout(200)
     assert len(source(page, "floquet-sweep")["x"]) >= 1  # panel (c) without a reload
-    # the energy criterion on (c) (issue 12): E_ren is monotone along w₊ = 1, so no mark
+    # the energy criterion on (c): E_ren is monotone along w₊ = 1, so no mark
     t_end = time.monotonic() + 60
     while "Energy criterion" not in status_text(page, "floquet") and time.monotonic() < t_end:
         page.wait_for_timeout(200)
@@ -567,7 +567,7 @@ def test_floquet_plot_follows_N_and_shows_the_sweep_without_reload(page):
 
 
 def test_bad_url_values_are_named_and_the_rest_is_kept(page):
-    """Defects 6 and 10: invalid values named with their range, the others kept, the address
+    """Invalid values named with their range, the others kept, the address
     bar rewritten to what is shown; a 5000-digit value is a message, not a blank page."""
     page.goto(f"{page.server}/main?N=-5&V=5.2&tab=phase&b=1e200&mode=bogus&tol=0")
     text, msg, q = settled(page)
@@ -587,7 +587,7 @@ def test_bad_url_values_are_named_and_the_rest_is_kept(page):
 
 
 def test_downloads_record_the_parameters(page):
-    """Defect 11: the profile CSV's header records a, b, w₊, V, N, tol and the version."""
+    """The profile CSV's header records a, b, w₊, V, N, tol and the version."""
     page.goto(f"{page.server}/main?tab=profiles&N=120&tol=1e-08&V=5.1")
     text, msg, q = settled(page, 120)
     with page.expect_download() as dl:
@@ -740,12 +740,12 @@ def test_ten_sessions_without_cross_talk(browser, server):
     assert not app_tracebacks()
 
 
-# ----------------------------------------------------------------------------- issue 16
+# ------------------------------------------------------------------------------ a typed law
 QUARTIC = "w + 10*w**2 - w**3 - 0.01*w**4"
 
 
 def test_typed_law_reaches_every_scene_and_the_url(page):
-    """Issue 16: choose "expression", type the quartic, and every scene renders for it — its
+    """Choose "expression", type the quartic, and every scene renders for it — its
     status has "Time:" and the law in its parameters line, the URL carries law=…, a coefficient
     slider rewrites the law, and the server log has no traceback."""
     open_app(page, FAST)
@@ -984,8 +984,9 @@ def test_a_pathological_law_never_freezes_the_server(browser, server):
 
 
 # ----------------------------------------------------------------------------- ten sessions
-#: the targets on 2 cores (issue: /liveness max 17.6-21.7 s before); asserted as such only with
-#: FPU_STRICT_TIMING=1 (run under `flock /tmp/bench.lock`), else the looser CI bound below
+#: the targets on 2 cores (/liveness max was 17.6-21.7 s when the server computed); asserted as
+#: such only with FPU_STRICT_TIMING=1 (run under `flock /tmp/bench.lock`), else the looser CI
+#: bound below
 LIVENESS_MAX_S, LIVENESS_P95_S = 2.0, 0.5
 LOOSE_MAX_S, LOOSE_P95_S = 8.0, 2.0
 

@@ -1,4 +1,4 @@
-"""Ctrl-C while `fpu warm` compiles (issue 14 item 7): one line on stderr and exit 130 — no
+"""Ctrl-C while `fpu warm` compiles: one line on stderr and exit 130 — no
 traceback from the parent or from the compiling worker processes."""
 
 import os

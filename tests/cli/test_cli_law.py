@@ -1,4 +1,4 @@
-"""`--law EXPR` on the command line (issue 16): any hardening–softening polynomial, parsed by
+"""`--law EXPR` on the command line: any hardening–softening polynomial, parsed by
 SymPy; the numbers are those of the API (fpucore.qc.general is checked against mpmath in
 tests/law/test_law_general.py), refusals are one line on stderr with exit code 2."""
 

@@ -88,7 +88,7 @@ def test_wave_solitary_json():
     assert d["details"]["kind"] == "tensile" and d["details"]["velocity_error"] < 1e-8
 
 
-# --------------------------------------------------------------------------- issue 14
+# ------------------------------------------------------------------------- input checks
 def test_periods_negative_names_periods():
     """--periods -1 was reported as t_end=-0.19… (after solving the wave): now refused first,
     naming --periods as typed."""
@@ -105,7 +105,7 @@ def test_default_time_budget_is_finite():
     assert args.time_budget == 60.0
 
 
-def test_issue_gaussian_runaway_stops_within_time_budget():
+def test_gaussian_runaway_stops_within_time_budget():
     """fpu simulate gaussian --w-B 1 --A 0.5 --L 200 --t-end 10000000 ran for minutes: with
     --time-budget 1 it stops cleanly with the times it reached (exit 1, status "stopped")."""
     rc, out, err = run(

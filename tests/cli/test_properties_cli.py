@@ -1,4 +1,4 @@
-"""Issue 14, "Done when", command line: every ``fpu`` command driven in-process
+"""Property test, command line: every ``fpu`` command driven in-process
 (``fpucore.cli.main(argv)``) with arbitrary option values — huge and tiny numbers, NaN, inf,
 negative numbers in every notation, words, empty strings, missing or repeated options.
 

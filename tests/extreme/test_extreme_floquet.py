@@ -1,4 +1,5 @@
-"""Issue 7, Floquet layer: spectra on stiff and extreme laws, checked against closed forms
+"""Floquet layer at the edges of parameter space: spectra on stiff and extreme laws, checked
+against closed forms
 (constant states, computed here from the dispersion relation) and the quartet structure."""
 
 import math
@@ -90,7 +91,7 @@ def test_huge_chain_is_refused_before_any_work():
 @pytest.mark.parametrize("law,frac", [(STIFF, 0.2), (STIFF, 0.6), (TINY_A, 0.5),
                                       (CubicLaw(-1, 10), 0.02)])  # fmt: skip
 def test_structured_route_agrees_with_dense_on_extreme_laws(law, frac, route, monkeypatch):
-    """Issue 17: both structured routes (the quarter-size reversible one these superkinks take,
+    """Both structured routes (the quarter-size reversible one these superkinks take,
     and the half-size Arnoldi one, forced by hiding the reversor) against dense eigvals on the
     same 𝓜 — max|μ| within the error bar, the same unstable multipliers and classification."""
     if route == "arnoldi":

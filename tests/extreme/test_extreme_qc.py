@@ -1,4 +1,4 @@
-"""Issue 7, QC layer: closed forms at the edges of parameter space, each checked independently
+"""QC layer: closed forms at the edges of parameter space, each checked independently
 (jump-condition residuals, first integral, quadrature of the energy, the mirror symmetry)."""
 
 import math

@@ -1,4 +1,4 @@
-"""Issue 7, simulation layer: long runs (t = 1e4) and stiff laws.
+"""Simulation layer at the edges of parameter space: long runs (t = 1e4) and stiff laws.
 
 Independent checks: step halving (the symplectic energy error must fall like dt^4 and stay
 bounded, not grow), the closed-form superkink velocity (eqs. cubic_cond1/2: a Riemann state w^l

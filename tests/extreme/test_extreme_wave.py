@@ -1,4 +1,4 @@
-"""Issue 7, discrete waves (fpucore.wave, paper §5) at the edges of parameter space.
+"""Discrete waves (fpucore.wave, paper §5) at the edges of parameter space.
 
 Each case is checked twice: by the result's own error budget (residual, dropped equation,
 step-doubling integrator error, tail error — :func:`_own_budget`) and by an independent check:

@@ -1,4 +1,4 @@
-"""Issue 14, "Done when": every public function of fpucore driven with arbitrary inputs (huge and
+"""Property test: every public function of fpucore driven with arbitrary inputs (huge and
 tiny floats, NaN, inf, strings, bools, None, negatives, integers) by hypothesis.
 
 The property, for every call: either a ParameterError naming one of the arguments of the call,
@@ -464,7 +464,7 @@ SIM_KW = mostly(st.just({}), SIM_KW_WILD)
 
 
 def check_simulation(s, t_end) -> None:
-    """A run never goes past the requested end time (issue 14: late_fraction=-1 ran to 2 t_end)."""
+    """A run never goes past the requested end time (late_fraction=-1 once ran to 2 t_end)."""
     event("ran" if s is not None else "refused")  # both occur: --hypothesis-show-statistics
     if s is not None and isinstance(t_end, float):
         assert np.all(s.t <= t_end * (1 + 1e-12) + 1e-12)

@@ -215,7 +215,7 @@ def test_bad_input():
 
 # ----------------------------------------------------------------------------- sweep and cache
 def test_cache_key_covers_inputs_and_code(tmp_path, monkeypatch):
-    """Issue 14 item 4: the on-disk sweep cache is keyed on the inputs and the code version."""
+    """The on-disk sweep cache is keyed on the inputs and the code version."""
     monkeypatch.setenv("FPU_CACHE_DIR", str(tmp_path))
     k1 = fsw.cache_key(LAW, "superkink", [5.5], 80, None, "lower", None, 1e-12)
     k2 = fsw.cache_key(LAW, "superkink", [np.nextafter(5.5, 6.0)], 80, None, "lower", None, 1e-12)

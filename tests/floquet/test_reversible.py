@@ -1,4 +1,4 @@
-"""The quarter-size reversible route (issue 17, :mod:`fpucore.floquet.reversible`).
+"""The quarter-size reversible route (:mod:`fpucore.floquet.reversible`).
 
 References: the pseudo-inverse and the basis built here from their definitions (numpy ``pinv``,
 dense J and reflection), dense LAPACK eigvals on the same monodromy (every λ = μ + 1/μ within

@@ -1,4 +1,4 @@
-"""The structured half-size spectrum (issue 17) against closed forms and the dense reference.
+"""The structured half-size spectrum against closed forms and the dense reference.
 
 References: the constant state's multipliers in closed form (stable and f′ < 0), and dense
 LAPACK eigvals on the same monodromy over the paper's families (superkinks over their velocity

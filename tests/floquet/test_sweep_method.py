@@ -1,4 +1,4 @@
-"""Sweeps take the structured route by default (issue 17): the same rows as the dense reference
+"""Sweeps take the structured route by default: the same rows as the dense reference
 route within the error bars, the same classification, and their own cache entries."""
 
 from __future__ import annotations

@@ -23,7 +23,8 @@ from fpucore.errors import ParameterError
 from fpucore.paper.compare import compare, printed_rounding
 
 ROOT = Path(__file__).resolve().parents[2]
-# the paper's source sits in ../shared beside the checkout (README); a worktree is one level deeper
+# the paper's LaTeX source is not in the repository: ../shared beside the checkout (a worktree is
+# one level deeper); the tests that read it skip without it
 PAPER_TEX = next((p for p in (ROOT.parent / "shared" / "paper.tex",
                               ROOT.parent.parent / "shared" / "paper.tex") if p.exists()),
                  ROOT.parent / "shared" / "paper.tex")  # fmt: skip

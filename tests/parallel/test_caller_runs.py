@@ -1,5 +1,5 @@
 """``Executor(caller_runs=True)``: the calling process computes the jobs no worker has taken yet
-(issue 17, a sweep on K cores = the caller and K - 1 workers).
+(a sweep on K cores = the caller and K - 1 workers).
 
 References: the same items run inline in this process (values, bit-equal), the pids the items
 report (who ran them), and this process's thread budget before the map.  Every wait has a

@@ -1,5 +1,5 @@
 """The execution layer (fpucore.parallel): a pool after a wave solve in the parent (the fork /
-GNU OpenMP deadlock of issue 14 item 5), cancel, exceptions, dead workers, Dask = pool = inline.
+GNU OpenMP deadlock), cancel, exceptions, dead workers, Dask = pool = inline.
 
 Every wait has a timeout, so a regression fails instead of hanging.  Reference values are the
 same computation done in this process (bit-equal: same code, same inputs, one thread).

@@ -1,4 +1,4 @@
-"""The JIT warm-up's partition (issue 17, first start): every route compiles in exactly one group,
+"""The JIT warm-up's partition (first start): every route compiles in exactly one group,
 the essential set (what the server warms before it answers) covers the first page's kernels, and
 ``warm_all(lazy=False)`` runs exactly that set.  References: the route names themselves and the
 server's warm-up (app/warm.py pre-renders the profiles scene: the discrete-wave kernels)."""

@@ -1,4 +1,4 @@
-"""phase_plane(n_grid=100000) asked for 74.5 GiB (issue 14, item 2): refused before allocating,
+"""phase_plane(n_grid=100000) asked for 74.5 GiB: refused before allocating,
 with the estimate and the memory budget."""
 
 import tracemalloc

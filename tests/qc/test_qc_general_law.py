@@ -1,4 +1,4 @@
-"""The public QC functions dispatch on the law (issue 16): the cubic object keeps its closed
+"""The public QC functions dispatch on the law: the cubic object keeps its closed
 forms, any other law goes through fpucore.qc.general.  References: the closed forms (the cubic
 written as a polynomial must reproduce them), the first integral (eq. TW_QC_gen3) on the
 highlighted phase-plane orbits, and the ordering c₊ < V_SK < c₋ of paper §3."""

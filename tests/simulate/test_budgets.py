@@ -1,4 +1,4 @@
-"""Budgets of the simulations (issue 14, items 2 and 3): memory estimated from all sizes together
+"""Budgets of the simulations: memory estimated from all sizes together
 and refused before allocating; a time budget that stops a run cleanly with its partial result;
 slicing the stepping for the time checks changes no number."""
 
@@ -40,7 +40,7 @@ def _refused_without_allocating(fn, name):
 
 
 # --------------------------------------------------------------------------- memory
-def test_issue_riemann_745_gib_refused_up_front_with_estimate_and_limit():
+def test_riemann_745_gib_refused_up_front_with_estimate_and_limit():
     """fpu simulate riemann --w-left 4.6 --w-right 0 --L 1000000 --t-end 0.01 --snapshots 100000
     --max-sites 1000000 died with a 745 GiB MemoryError: each size was in its own range, their
     product was not.  The snapshot field alone is 1e5 × 1e6 × 8 B = 745 GiB."""
@@ -111,7 +111,7 @@ def _partial_result_is_clean(s, t_end):
     assert math.isfinite(s.energy_drift)
 
 
-def test_issue_long_riemann_stops_within_time_budget():
+def test_long_riemann_stops_within_time_budget():
     """riemann(L=10**5, t_end=1e4) ran for minutes (estimated: hours); with a budget of 0.5 s it
     stops after the slice that crosses it (one slice ≈ 0.1 s of work) with the times reached."""
     s = simulate.riemann(LAW, 4.6, 0.0, 100_000, 1.0e4, time_budget_s=0.5)
@@ -120,7 +120,7 @@ def test_issue_long_riemann_stops_within_time_budget():
     assert s.elapsed_s < 30.0  # bounded (the unbounded run takes hours), not a timing test
 
 
-def test_issue_long_gaussian_stops_within_time_budget():
+def test_long_gaussian_stops_within_time_budget():
     """gaussian(w_B=1, A=0.5, L=200, t_end=1e7): small chain, 10^8 steps; the step budget
     (2e7) was the only bound.  The work estimate is made before the run."""
     s = simulate.gaussian(LAW, 1.0, 0.5, 200, 1.0e7, time_budget_s=0.3)

@@ -1,4 +1,4 @@
-"""Property test (issue 14, "Done when"): simulate.riemann and simulate.gaussian driven with
+"""Property test: simulate.riemann and simulate.gaussian driven with
 arbitrary inputs, huge and tiny floats included, under small budgets.  Each call either refuses
 with a ParameterError naming one of its arguments, or returns a result whose arrays and error
 fields are finite (or a stopped run that says why) — never another exception, never a hang."""

@@ -1,4 +1,4 @@
-"""Validation gaps of the simulations (issue 14, items 6 and 8), each a regression test that failed
+"""Validation gaps of the simulations, each a regression test that failed
 before: arguments out of range are refused naming the argument (never a wrong run, an IndexError
 or an AttributeError), and the shape check after K whole periods is never silently skipped."""
 
@@ -111,7 +111,7 @@ wave = pytest.importorskip("fpucore.wave")
 
 @pytest.mark.parametrize("V", [4.805, 5.317])
 def test_seeded_shape_error_present_where_k_periods_overshoot_t_end(V):
-    """V = 4.805 (the issue's case) and another velocity where 50·(1/V) > 50/V: the shape error
+    """V = 4.805 (a reported case) and another velocity where 50·(1/V) > 50/V: the shape error
     after 50 periods is reported, and it is small (reference: the initial profile shifted by
     50 sites, eq. period)."""
     assert 50 * (1.0 / V) > 50.0 / V  # the overshooting case

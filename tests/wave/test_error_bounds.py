@@ -1,4 +1,4 @@
-"""The error bounds of discrete traveling waves (issue 12: profile_error, amplitude_error,
+"""The error bounds of discrete traveling waves (profile_error, amplitude_error,
 energy_error of :class:`fpucore.wave.WaveResult`, computed in :mod:`fpucore.wave.bounds`) against
 the TRUE error, over an extreme suite: near c₊ and c₋, 1e-3 and 1e-9 from V_SK (flat tops, the
 plateau route), superkinks across their V range, and stiff laws (b = 100, a = −0.01, b = 1000).
@@ -302,7 +302,7 @@ def test_energy_bound_against_a_second_summation_of_the_reference(name, law, wp,
 @pytest.mark.parametrize("wp,V", [(1.0, 5.0), (1.0, CP1 * (1 + 1e-2)), (6.0, V_SK6 + 1e-3)])
 def test_energy_doubling_N_changes_less_than_its_error_bar(wp, V):
     """E_ren^D summed relative to the background with the far field added: doubling N moves it
-    by less than the two error bars (issue 12: it used to drift by up to 2.8e-6 relative)."""
+    by less than the two error bars (it used to drift by up to 2.8e-6 relative)."""
     a = wave.solve_solitary(LAW, wp, V)
     b = wave.solve_solitary(LAW, wp, V, N=2 * a.N)
     assert a.converged and b.converged
@@ -319,7 +319,7 @@ def test_default_newton_delivers_1e12_in_the_profile():
 
 
 def test_stiff_law_b1000_converges_at_its_round_off_floor():
-    """Issue 14 item 9: at b = 1000 the ẇ equations carry ~3e-10 of round-off (|f| ≈ 1e8):
+    """At b = 1000 the ẇ equations carry ~3e-10 of round-off (|f| ≈ 1e8):
     the solver accepts the achievable tolerance, says so, and the bound states the cost."""
     wp = _wp(B1000)
     (a, b), (c, d) = qc.solitary_intervals(B1000, wp)

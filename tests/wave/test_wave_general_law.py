@@ -1,5 +1,5 @@
-"""Discrete waves, Floquet spectra and seeded simulations for a law that is not the cubic
-(issue 16): f = w + 10w² − w³ − 0.01w⁴.  References: the period map's own definition checked
+"""Discrete waves, Floquet spectra and seeded simulations for a law that is not the cubic:
+f = w + 10w² − w³ − 0.01w⁴.  References: the period map's own definition checked
 with an independent integrator (scipy DOP853 on the chain written from ``law.f``), the paper's
 traveling-wave check (a seeded run keeps velocity and shape for 50+ periods, eq. period), the
 Hamiltonian quartet symmetry of the monodromy (μ, μ̄, 1/μ, 1/μ̄), and — for the cubic — the

@@ -1,5 +1,6 @@
-"""Issue 14, items 1 and 6: each reproduction of the issue, refused by a ParameterError naming the
-argument (or computed right), checked against closed forms evaluated independently (exact
+"""The computable range of a cubic law and the refusals of out-of-range input: each input that
+once gave an overflow, NaN or crash is refused by a ParameterError naming the argument (or
+computed right), checked against closed forms evaluated independently (exact
 rational arithmetic / mpmath), never against the code's own output."""
 
 from fractions import Fraction
@@ -21,7 +22,7 @@ def refused(name, fn, *args, **kw):
     return exc.value
 
 
-# ----------------------------------------------------------------------------- item 1: extreme laws
+# ----------------------------------------------------------------------------- extreme laws
 @pytest.mark.parametrize("a,b", [(-1.0, 1.4e154), (-1e-300, 1.0), (-1.0, 1e80), (-1e300, 1e-300)])
 def test_laws_beyond_double_precision_are_refused_with_the_range(a, b):
     e = refused("(a, b)", CubicLaw, a, b)
@@ -44,7 +45,7 @@ def test_extreme_but_computable_law_scales_exactly():
 
 
 def test_c_plus_near_alpha_to_an_ulp():
-    """Issue: near α, c+ lost a relative 7.5e-5.  Reference: √f′(w+) in 60-digit arithmetic."""
+    """Near α, c+ once lost a relative 7.5e-5.  Reference: √f′(w+) in 60-digit arithmetic."""
     mp.mp.dps = 60
     for law in (LAW, CubicLaw(-1.0, 100.0), CubicLaw(-0.01, 10.0)):
         for t in (1e-6, 1e-9, 1e-12):
@@ -75,7 +76,7 @@ def test_qc_numbers_with_large_b_match_the_jump_conditions():
     assert sw.converged
 
 
-# ----------------------------------------------------------------------------- item 6: gaps
+# ----------------------------------------------------------------------------- input gaps
 @pytest.mark.parametrize(
     "kw,name",
     [({"tol": 0.0}, "tol"), ({"N": 10**6}, "N"), ({"time_budget_s": -1.0}, "time_budget_s")],

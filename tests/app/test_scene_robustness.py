@@ -1,6 +1,7 @@
-"""One test (or more) per numbered defect of issue 13, without a browser.
+"""The explorer's scenes without a browser: figures updated in place, recovery after failures,
+heavy work in worker processes, URL values, slider consistency, legends, cache keys, downloads.
 
-Each fails on the code before the fix: the references are the paper's closed forms for
+Each failed on the code before its fix: the references are the paper's closed forms for
 a = -1, b = 10 (V_SK = 2√65/3 at w₊ = 1, c₊ = 3√2, c₋ = 11/2; w₊ = 6: V_SK = 7√5/3), the
 count 2N of Floquet multipliers of an N-site chain, fpucore's own N_MIN = 64, and the wave
 types on either side of V_SK (tensile below, compressive above at w₊ < w*, Fig. 4).
@@ -43,8 +44,8 @@ def attached(key: str, **params):
     return st, sc
 
 
-# ------------------------------------------------------------------------------- defect 1
-def test_1_floquet_figure_follows_every_N_and_shows_the_sweep_without_replacing_models():
+# --------------------------------------------------------------- Floquet figure follows N
+def test_floquet_figure_follows_every_N_and_shows_the_sweep_without_replacing_models():
     st, sc = attached("floquet", N=100, tol=1e-8)
     root = sc.plot.object
     for N in (100, 102, 104):
@@ -62,8 +63,8 @@ def test_1_floquet_figure_follows_every_N_and_shows_the_sweep_without_replacing_
     assert sc.plot.object is root  # same figure: its structure never changes
 
 
-# ------------------------------------------------------------------------------- defect 2
-def test_2_scene_recovers_after_a_message_once_a_plot_was_drawn():
+# ----------------------------------------------------- a scene recovers after any failure
+def test_scene_recovers_after_a_message_once_a_plot_was_drawn():
     st, sc = attached("floquet", N=100, tol=1e-8)
     sc.refresh()
     assert sc.last_message is None
@@ -77,7 +78,7 @@ def test_2_scene_recovers_after_a_message_once_a_plot_was_drawn():
     assert sc.last_message is None and sc.plot.visible and sc.renders == 2
 
 
-def test_2_worker_thread_survives_any_exception_and_clears_its_running_flag():
+def test_worker_thread_survives_any_exception_and_clears_its_running_flag():
     st, sc = attached("force")
 
     def boom(*_):
@@ -94,8 +95,8 @@ def test_2_worker_thread_survives_any_exception_and_clears_its_running_flag():
     assert sc.last_message is None and sc.renders == 1
 
 
-# ------------------------------------------------------------------------------- defect 3
-def test_3_heavy_work_runs_in_another_process_and_a_superseded_job_is_killed():
+# --------------------------------------------------------- heavy work in worker processes
+def test_heavy_work_runs_in_another_process_and_a_superseded_job_is_killed():
     compute.CACHE.clear()
     pid = compute.run_job(("pid", time.time()), os.getpid, ()).value
     assert pid != os.getpid()
@@ -118,8 +119,8 @@ def test_3_heavy_work_runs_in_another_process_and_a_superseded_job_is_killed():
     assert latencies and max(latencies) < 0.5  # generous: not a benchmark
 
 
-# ------------------------------------------------------------------------------- defect 4
-def test_4_near_c_plus_the_qc_curve_stays_and_an_N_the_dashboard_can_set_is_advised():
+# ----------------------------------------------------------- near c+: QC curve and advice
+def test_near_c_plus_the_qc_curve_stays_and_an_N_the_dashboard_can_set_is_advised():
     st, sc = attached("profiles", V=4.245, N=200, tol=1e-10)  # needs N > 274 (slow tails)
     sc.refresh()
     assert sc.last_message is None  # no full-scene replacement
@@ -131,7 +132,7 @@ def test_4_near_c_plus_the_qc_curve_stays_and_an_N_the_dashboard_can_set_is_advi
     assert f"N = {need}" in text
 
 
-def test_4_an_unconverged_profile_is_not_drawn():
+def test_an_unconverged_profile_is_not_drawn():
     """README's flat-top example (w₊ = 6, V 1e-11 below 7√5/3) at the default N = 500."""
     st, sc = attached("profiles", w_plus=6.0, V=5.21749194749, N=500, tol=1e-10)
     sc.refresh()
@@ -144,8 +145,8 @@ def test_4_an_unconverged_profile_is_not_drawn():
     assert "N = " in sc.alert.object.split("drawn.")[1]  # an N to try
 
 
-# ------------------------------------------------------------------------------- defect 5
-def test_5_simulation_defaults_run_and_a_failed_run_clears_the_previous_numbers():
+# -------------------------------------------------------------------- simulation defaults
+def test_simulation_defaults_run_and_a_failed_run_clears_the_previous_numbers():
     st, sc = attached("simulation", N=200, tol=1e-8)
     assert sc.L.value >= 900  # TW-seeded needs L >= 900
     sc.t_end.value = 3.0
@@ -160,13 +161,13 @@ def test_5_simulation_defaults_run_and_a_failed_run_clears_the_previous_numbers(
     assert sc.table.object == "" and sc._sim is None and not sc.plot.visible
 
 
-# ------------------------------------------------------------------------------- defect 6
+# ----------------------------------------------------------------------------- URL values
 @pytest.mark.parametrize(
     "name, raw",
     [("N", "-5"), ("N", "100000"), ("N", "101"), ("tol", "0"), ("V", "abc"), ("mode", "bogus")]
     + [("tab", "bogus"), ("a", "nan"), ("b", "1e200")],
 )
-def test_6_bad_url_values_are_named_with_their_range_and_the_others_kept(name, raw):
+def test_bad_url_values_are_named_with_their_range_and_the_others_kept(name, raw):
     query = {"a": "-1.5", "b": "8", "w_plus": "5.5", "V": "4.1", "tab": "phase", name: raw}
     values, errors = parse_url(query)
     assert len(errors) == 1 and f"{name}=" in errors[0] and "valid" in errors[0]
@@ -175,7 +176,7 @@ def test_6_bad_url_values_are_named_with_their_range_and_the_others_kept(name, r
     assert set(kept) <= set(values)
 
 
-def test_6_url_N_within_range_is_what_the_slider_shows():
+def test_url_N_within_range_is_what_the_slider_shows():
     values, errors = parse_url({"N": "3000"})
     assert not errors
     ex = Explorer(ExplorerState(**values))
@@ -183,8 +184,8 @@ def test_6_url_N_within_range_is_what_the_slider_shows():
     assert ex.N.start >= 64 and ex.N.start % 2 == 0 and ex.N.step % 2 == 0
 
 
-# ------------------------------------------------------------------------------- defect 7
-def test_7_solitary_superkink_solitary_returns_to_a_valid_solitary_state():
+# ------------------------------------------------------------ mode and slider consistency
+def test_solitary_superkink_solitary_returns_to_a_valid_solitary_state():
     st = ExplorerState(w_plus=1.0, V=5.2)
     st.mode = "superkink"
     assert st.V == pytest.approx(V_SK1, rel=1e-14)
@@ -192,7 +193,7 @@ def test_7_solitary_superkink_solitary_returns_to_a_valid_solitary_state():
     assert st.V == 5.2 and st.problem() is None
 
 
-def test_7_moving_w_plus_keeps_a_valid_V_and_says_so_when_it_must_move():
+def test_moving_w_plus_keeps_a_valid_V_and_says_so_when_it_must_move():
     st = ExplorerState(w_plus=1.0, V=5.0)
     st.w_plus = 1.2  # 5.0 is still inside (c₊, V_SK): V stays
     assert st.V == 5.0 and st.note == ""
@@ -202,7 +203,7 @@ def test_7_moving_w_plus_keeps_a_valid_V_and_says_so_when_it_must_move():
     assert "V moved from 5.45" in st.note
 
 
-def test_7_slider_and_exact_box_show_the_same_value():
+def test_slider_and_exact_box_show_the_same_value():
     ex = Explorer()
     for V in (5.1, 9.0, 4.3):  # 9.0 is out of range: shown as it is (and explained)
         ex.state.V = V
@@ -212,13 +213,13 @@ def test_7_slider_and_exact_box_show_the_same_value():
     assert ex.V.value == ex.V_exact.value == ex.state.V
 
 
-# ------------------------------------------------------------------------------- defect 8
+# ------------------------------------------------------------------- legends and layering
 def _figures(sc):
     return [m for m in sc.plot.object.select({"type": "Plot"})] if sc.plot.object else []
 
 
 @pytest.mark.parametrize("key", [k for k in BY_KEY if k != "paper"])  # Paper: a list, no plot
-def test_8_legends_sit_outside_the_data(key):
+def test_legends_sit_outside_the_data(key):
     _, sc = attached(key)
     figs = list(sc.plot.object.references()) + (
         list(sc.fig_c.references()) if key == "diagram" else []
@@ -230,7 +231,7 @@ def test_8_legends_sit_outside_the_data(key):
         assert not any(isinstance(x, Legend) for x in p.center), p.title.text
 
 
-def test_8_unit_circle_over_markers_and_image_without_quads():
+def test_unit_circle_over_markers_and_image_without_quads():
     _, fl = attached("floquet")
     rs = [r for r in fl.fig_a.renderers if isinstance(r, GlyphRenderer)]
     assert rs.index(fl.r_circle[0]) > rs.index(fl.r_mu[0])
@@ -238,7 +239,7 @@ def test_8_unit_circle_over_markers_and_image_without_quads():
     assert any(isinstance(r.glyph, Image) for r in sim.fig_img.renderers)
 
 
-def test_8_phase_plane_lists_only_what_it_plots():
+def test_phase_plane_lists_only_what_it_plots():
     st, sc = attached("phase", w_plus=1.0, V=5.0)
     sc.refresh()
     plotted = {
@@ -250,9 +251,9 @@ def test_8_phase_plane_lists_only_what_it_plots():
     assert all(lo <= w <= hi for w in plotted)
 
 
-# ------------------------------------------------------------------------------- defect 9
-def test_9_cache_never_returns_a_result_for_different_inputs():
-    """The issue's two velocities, 2e-13 apart on either side of V_SK (w₊ = 1)."""
+# ----------------------------------------------------------------------------- cache keys
+def test_cache_never_returns_a_result_for_different_inputs():
+    """Two velocities 2e-13 apart on either side of V_SK (w₊ = 1)."""
     V1, V2 = 5.374838498865599, 5.3748384988658
     assert V1 < V_SK1 < V2 or V2 < V_SK1 < V1 or True  # V_SK = 5.3748384988657 (closed form)
     k1 = compute.wave_key(CUBIC, "solitary", 1.0, V1, 400, 1e-10)
@@ -265,8 +266,8 @@ def test_9_cache_never_returns_a_result_for_different_inputs():
     assert kinds == {"tensile", "compressive"}  # below / above V_SK (Fig. 4)
 
 
-# ------------------------------------------------------------------------------- defect 10
-def test_10_odd_inputs_give_messages_not_tracebacks():
+# ------------------------------------------------------------------------------ odd inputs
+def test_odd_inputs_give_messages_not_tracebacks():
     values, errors = parse_url({"N": "9" * 5000, "b": "1e200", "V": "1" * 5000})
     assert len(errors) == 3 and values == {}
     with pytest.raises(compute.ParameterError):
@@ -277,8 +278,8 @@ def test_10_odd_inputs_give_messages_not_tracebacks():
     assert ("b=" in msg or "(a, b)=" in msg) and "1e+200" in msg, msg  # names b and its value
 
 
-# ------------------------------------------------------------------------------- defect 11
-def test_11_profile_download_records_everything_and_holds_the_qc_curve():
+# ------------------------------------------------------- downloads, Copy as Python, titles
+def test_profile_download_records_everything_and_holds_the_qc_curve():
     st, sc = attached("profiles", N=200, tol=1e-10)
     sc.refresh()
     name, buf = sc.download_data()
@@ -292,7 +293,7 @@ def test_11_profile_download_records_everything_and_holds_the_qc_curve():
     assert data.shape == (200, 4) and np.all(np.isfinite(data))
 
 
-def test_11_copy_as_python_reproduces_the_numbers_on_screen():
+def test_copy_as_python_reproduces_the_numbers_on_screen():
     """The force scene's code, run in a fresh interpreter, prints V_SK = 2√65/3 and w₋ = 17/3
     (the paper's closed forms for w₊ = 1)."""
     st, sc = attached("force", w_plus=1.0)
@@ -308,7 +309,7 @@ def test_11_copy_as_python_reproduces_the_numbers_on_screen():
     assert V == pytest.approx(V_SK1, rel=1e-13) and wm == pytest.approx(17 / 3, rel=1e-13)
 
 
-def test_11_simulation_field_is_downloadable_with_its_parameters():
+def test_simulation_field_is_downloadable_with_its_parameters():
     st, sc = attached("simulation")
     sc.kind.value = "riemann"
     sc.L.value, sc.t_end.value = 300, 5.0
@@ -324,7 +325,7 @@ def test_11_simulation_field_is_downloadable_with_its_parameters():
     assert len(rows) - 1 == len(sc._sim[2].t)
 
 
-def test_11_titles_in_words_and_TSW_CSW_spelled_out():
+def test_titles_in_words_and_TSW_CSW_spelled_out():
     ex = Explorer()
     for sc in ex.scenes:
         if sc.key == "paper":  # the Paper tab lists the figures by their labels: no plot

@@ -1,4 +1,4 @@
-"""Issue 14, items 1 and 7 through the command line: extreme laws refused with exit 2 and one
+"""Input checks through the command line: extreme laws refused with exit 2 and one
 line; a bad --out refused before any computation; negative numbers in any notation are values;
 an interrupt gives exit 130 and one line."""
 
