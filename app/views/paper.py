@@ -67,11 +67,16 @@ class PaperScene(Scene):
         return pn.Column(*rows, sizing_mode="stretch_width", css_classes=["paper-list"])
 
     def open(self, label: str) -> None:
-        """Set the state to the scene of figure ``label`` (two updates: the law and mode first,
-        so that the state's tie of V to w₊ in superkink mode acts on the new mode)."""
+        """Set the state to the scene of figure ``label`` in three updates: the tab first, alone,
+        so that a scene not built yet is built and sent to the browser exactly as on a tab
+        click, before any render of it (a render of a scene built in the same update as the
+        parameters sent patches for models the browser did not have yet: "reference … isn't
+        known"); then the law and mode, so that the state's tie of V to w₊ in superkink mode
+        acts on the new mode; then w₊, N and V."""
         tab, mode, w_plus, V, N = FIGURE_STATE[label]
+        self.state.tab = tab
         self.state.param.update(a=-1.0, b=10.0, expression="", mode=mode)
-        new = {"w_plus": w_plus, "N": N, "tab": tab}
+        new = {"w_plus": w_plus, "N": N}
         if V is not None:
             new["V"] = V
         self.state.param.update(**new)

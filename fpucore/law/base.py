@@ -44,7 +44,9 @@ class HardeningSofteningLaw:
     def require_convex(self, name: str, w: float) -> float:
         """Check α < w < β (f′(w) > 0, Φ convex) for a strain argument."""
         w = require_finite(name, w)
-        if not (self.alpha < w < self.beta):
+        # f'(w) > 0 checked too: within an ulp of alpha or beta the rounded endpoint can admit a
+        # w whose f'(w) is already <= 0 (c+ = sqrt(f') would then be 0 or NaN)
+        if not (self.alpha < w < self.beta) or not float(self.df(w)) > 0.0:
             raise ParameterError(
                 name,
                 w,

@@ -277,7 +277,10 @@ print(base, rss(), p.table_bytes)
         f"peak {peak / 2**20:.0f} MiB, estimate {estimate / 2**20:.0f} MiB"
     )
     assert peak <= estimate  # the bound holds (the base measured: ~185 MiB of imports)
-    assert peak - base >= 0.8 * table  # and the table is really what it costs
+    # and it is not loose: within 2x of the peak.  (peak - base is no measure of the table:
+    # ru_maxrss is a maximum, and a large transient peak during the imports - 570 MiB measured
+    # in one full-suite run - is refilled by the table before the maximum moves.)
+    assert estimate <= 2.0 * peak
 
 
 # --- options and the output path ----------------------------------------------------------------

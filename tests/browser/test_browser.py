@@ -1058,7 +1058,16 @@ def test_paper_tab_opens_three_figures(page):
             open_tab(page, "Paper")
             wait_url(page, lambda q: q.get("tab") == "paper")
         page.locator(f".paper-open-{label} button").click()
-        q = wait_url(page, lambda q, t=tab, m=mode: q.get("tab") == t and q.get("mode") == m)
+        # the state changes in steps (tab, then law and mode, then w₊, N, V): wait for the last
+        q = wait_url(
+            page,
+            lambda q, t=tab, m=mode, v=V: (
+                q.get("tab") == t
+                and q.get("mode") == m
+                and q.get("a") == "-1.0"
+                and abs(float(q.get("V", "nan")) - v) < 1e-9
+            ),
+        )
         assert q.get("tab") == tab and q.get("mode") == mode, (label, q)
         assert (float(q["a"]), float(q["b"]), int(q["N"])) == (-1.0, 10.0, 500), q
         assert abs(float(q["V"]) - V) < 1e-9, (label, q["V"])
