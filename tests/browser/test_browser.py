@@ -545,7 +545,7 @@ def test_floquet_plot_follows_N_and_shows_the_sweep_without_reload(page):
     assert q["N"] == "206" and "N = 206: 412 multipliers" in text, text
     check_consistent(page, text, msg, q)
     field = page.locator(".scene-floquet .bk-input-group", has_text="velocities").locator("input")
-    field.fill("3")
+    field.fill("6")  # the total: 3 velocities on each interval
     field.press("Enter")
     inputs_reach_the_server(page)
     page.locator(".floquet-sweep button").click()
