@@ -529,6 +529,19 @@ def check_consistent_now(page, text: str, msg: str, q: dict) -> None:
         assert len(source(page, "force-rayleigh-V")["x"]) == 2
 
 
+def run_floquet_sweep(page, total: int) -> None:
+    """On the open Floquet tab: type the sweep's number of velocities, press Sweep and wait
+    (bounded) until panel (c)'s data reach the browser."""
+    field = page.locator(".scene-floquet .bk-input-group", has_text="velocities").locator("input")
+    field.fill(str(total))
+    field.press("Enter")
+    inputs_reach_the_server(page)
+    page.locator(".floquet-sweep button").click()
+    t_end = time.monotonic() + 240
+    while not source(page, "floquet-sweep")["x"] and time.monotonic() < t_end:
+        page.wait_for_timeout(200)
+
+
 def test_floquet_plot_follows_N_and_shows_the_sweep_without_reload(page):
     """Defect 1: N = 200 → three key presses; the plot holds the new 2N multipliers."""
     page.goto(f"{page.server}/main?tab=floquet&N=200&tol=1e-08")
@@ -544,14 +557,7 @@ def test_floquet_plot_follows_N_and_shows_the_sweep_without_reload(page):
     text, msg, q = settled(page, 240)
     assert q["N"] == "206" and "N = 206: 412 multipliers" in text, text
     check_consistent(page, text, msg, q)
-    field = page.locator(".scene-floquet .bk-input-group", has_text="velocities").locator("input")
-    field.fill("6")  # the total: 3 velocities on each interval
-    field.press("Enter")
-    inputs_reach_the_server(page)
-    page.locator(".floquet-sweep button").click()
-    t_end = time.monotonic() + 240
-    while not source(page, "floquet-sweep")["x"] and time.monotonic() < t_end:
-        page.wait_for_timeout(200)
+    run_floquet_sweep(page, 6)  # the total: 3 velocities on each interval
     assert len(source(page, "floquet-sweep")["x"]) >= 1  # panel (c) without a reload
     # the energy criterion on (c) (issue 12): E_ren is monotone along w₊ = 1, so no mark
     t_end = time.monotonic() + 60
@@ -1169,14 +1175,7 @@ def test_floquet_panels_are_in_the_order_a_b_c_d(page):
     """After a sweep all four panels show, top to bottom (a), (b), (c), (d) ((b) beside (a)
     or below it)."""
     open_floquet(page, FAST)
-    field = page.locator(".scene-floquet .bk-input-group", has_text="velocities").locator("input")
-    field.fill("3")
-    field.press("Enter")
-    inputs_reach_the_server(page)
-    page.locator(".floquet-sweep button").click()
-    t_end = time.monotonic() + 240
-    while not source(page, "floquet-sweep")["x"] and time.monotonic() < t_end:
-        page.wait_for_timeout(200)
+    run_floquet_sweep(page, 3)
     for width in (1500, 1150):
         figs = floquet_figures_at(page, width)
         assert set(figs) == set("abcd"), (width, sorted(figs))
