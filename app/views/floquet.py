@@ -10,8 +10,11 @@ own waves, solid, and the QC family, dotted) with the cross-check of the decisio
 in one line; (d) the decision's evidence, max |μ| − 1 on the window of rings in [N/2, N].
 Headline and sentence of the status are the decision record's (fpucore.floquet.Decision).
 
-The three figures are built once; panel (c) is hidden until a sweep exists (its visibility
-changes, the layout does not).  Spectrum and sweep run in worker processes.
+The four figures are built once, in the order (a), (b), (c), (d); panel (c) is hidden until a
+sweep exists and (d) while the finite-size test has not run (their visibility changes, the layout
+does not).  (a) and (b) have fixed square frames that never stretch or shrink with the page: the
+unit circle stays a circle; when the column is too narrow for both, (b) wraps below (a).
+Spectrum and sweep run in worker processes.
 """
 
 from __future__ import annotations
@@ -19,7 +22,7 @@ from __future__ import annotations
 import numpy as np
 import panel as pn
 from bokeh.layouts import column, row
-from bokeh.models import Whisker
+from bokeh.models import BoxZoomTool, NoOverlap, Whisker
 
 from fpucore import qc
 from fpucore.floquet import CLASSES, changes_summary
@@ -39,6 +42,9 @@ from .bokeh_scene import (
 from .energy_marks import ExtremumMarks, criterion_words, fmt_extremum
 
 TH = np.linspace(0.0, 2.0 * np.pi, 721)
+#: side of the square frames of (a) and (b) (px): both fit side by side in the main column of a
+#: 1500 px wide window (800 px); narrower, (b) wraps below (a)
+SQUARE_PX = 300
 #: the sweep's points by decision: legend words and colour
 CLASS_STYLE = {
     "stable": ("stable (drawn at its error bar)", "#2ca02c"),
@@ -46,6 +52,31 @@ CLASS_STYLE = {
     "unstable": ("unstable", "#d62728"),
     "undetermined": ("not determined at this N", "#7f7f7f"),
 }
+
+
+def square_figure(title: str):
+    """A figure of the complex plane whose frame is SQUARE_PX × SQUARE_PX whatever the layout
+    (with equal x and y spans, a circle is drawn as a circle).
+
+    A figure with ``frame_width``/``frame_height`` alone has BokehJS's "fit" policy, which a
+    flex row grows or shrinks (the unit circle became an ellipse); the "fixed" policy without
+    an outer ``width``/``height`` keeps the frame's size.  Box zoom keeps the aspect too."""
+    fig = new_figure(
+        title,
+        "Re μ",
+        "Im μ",
+        frame_width=SQUARE_PX,
+        frame_height=SQUARE_PX,
+        width=None,
+        height=None,
+        width_policy="fixed",
+        height_policy="fixed",
+        tools=["pan", "wheel_zoom", BoxZoomTool(match_aspect=True), "save", "reset"],
+    )
+    for axis in (fig.xaxis, fig.yaxis):
+        # a label closer than 10 px to the previous one is not drawn (never run together)
+        axis.major_label_policy = NoOverlap(min_distance=10)
+    return fig
 
 
 class FloquetScene(BokehScene):
@@ -59,8 +90,9 @@ class FloquetScene(BokehScene):
     plot_height = 340
 
     def controls(self):
+        # the total: a solitary sweep shares it between its two intervals (_sweep_values)
         self.n_sweep = pn.widgets.IntInput(
-            label="velocities in the sweep", value=12, start=3, end=80, width=200
+            label="velocities in the sweep (total)", value=12, start=3, end=80, width=200
         )
         self.sweep_btn = pn.widgets.Button(
             label="Sweep max |μ| against V", color="primary", css_classes=["floquet-sweep"]
@@ -78,10 +110,11 @@ class FloquetScene(BokehScene):
         self.sweep_btn.on_click(go)
 
     def build(self):
-        # fixed square frames: the unit circle is a circle
-        sq = dict(frame_width=330, frame_height=330)
-        fa = new_figure("(a) Floquet multipliers μ in the complex plane", "Re μ", "Im μ", **sq)
-        fb = new_figure("(b) zoom", "Re μ", "Im μ", **sq)
+        fa = square_figure("(a) Floquet multipliers μ in the complex plane")
+        fb = square_figure("(b) zoom")
+        # (b)'s labels carry 5–8 significant digits: few ticks, and a label that would touch
+        # its neighbour is left out rather than drawn over it
+        fb.xaxis.ticker.desired_num_ticks = 4
         fc = new_figure(
             "(c) largest |μ| − 1 against V along the family",
             "V",
@@ -146,19 +179,25 @@ class FloquetScene(BokehScene):
         )
         add_legend(fd, "right", [("max |μ| − 1 ± error", [self.r_fs[0]])])
         fd.visible = False
-        return column(row(fa, fb), fd, fc, sizing_mode="stretch_width")
+        # flex-wrap: the fixed-size (a) and (b) wrap instead of being squeezed (row's default)
+        squares = row(fa, fb, styles={"flex-wrap": "wrap"})
+        return column(squares, fc, fd, sizing_mode="stretch_width")
 
     def _sweep_values(self):
         s = self.state
         lw = s.law()
-        k = int(self.n_sweep.value or 12)
+        k = int(self.n_sweep.value or 12)  # the total number of velocities
+
+        def midpoints(lo, hi, n):
+            return lo + (hi - lo) * (np.arange(n) + 0.5) / n
+
         if s.mode == "superkink":
-            lo, hi = qc.superkink_velocity_bounds(lw)
-            Vs = lo + (hi - lo) * (np.arange(k) + 0.5) / k
+            Vs = midpoints(*qc.superkink_velocity_bounds(lw), k)
             return "superkink", None, Vs, None, ("lower" if s.w_plus < lw.w_star else "upper")
+        # solitary: tensile (c₊, V_SK) and compressive (V_SK, c₋) share the k velocities, the
+        # odd one to the tensile interval
         (cp, vsk), (_, cm) = qc.solitary_intervals(lw, s.w_plus)
-        t = (np.arange(k) + 0.5) / k
-        Vs = np.concatenate([cp + (vsk - cp) * t, vsk + (cm - vsk) * t])
+        Vs = np.concatenate([midpoints(cp, vsk, k - k // 2), midpoints(vsk, cm, k // 2)])
         return "solitary", s.w_plus, Vs, vsk, "lower"
 
     def _sweep(self, info: Info, up: Updates) -> bool:

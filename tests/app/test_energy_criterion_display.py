@@ -82,7 +82,7 @@ def test_sweep_energy_check_locates_the_discrete_minimum_from_the_sweeps_own_wav
 
 def test_floquet_sweep_panel_shows_the_criterion_and_the_cross_check():
     st, sc = attached("floquet", w_plus=1.0, V=5.0, N=100, tol=1e-8)
-    sc.n_sweep.value = 3
+    sc.n_sweep.value = 6  # total: 3 per interval
     sc._want_sweep = True  # what the Sweep button sets
     sc.refresh()
     assert sc.last_message is None, sc.last_message

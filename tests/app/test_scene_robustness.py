@@ -55,7 +55,7 @@ def test_floquet_figure_follows_every_N_and_shows_the_sweep_without_replacing_mo
         assert len(sc.r_mu[1].data["x"]) == 2 * N  # the plot holds this N's 2N multipliers
         assert f"N = {N}: {2 * N} multipliers" in sc.status.object
     assert not sc.fig_c.visible
-    sc.n_sweep.value = 3
+    sc.n_sweep.value = 6  # total: 3 per interval
     sc._want_sweep = True  # what the Sweep button sets
     sc.refresh()
     assert sc.last_message is None, sc.last_message
