@@ -598,20 +598,30 @@ def widened(x: float, lo: float, hi: float) -> dict:
     return {"start": min(lo, x), "end": max(hi, x)}
 
 
+#: the tick's drawing, constant: a new stylesheet re-renders the slider in the browser, whose
+#: noUiSlider then snaps the state's value to its step and sends that back (an echo that moved a
+#: typed V = 5.2 to 5.200694); the position comes from an inherited CSS variable instead
+TICK_CSS = (
+    ".noUi-base::after { content: ''; position: absolute; pointer-events: none; "
+    "left: calc(var(--fpu-tick, 0%) - 1px); top: -5px; height: calc(100% + 10px); width: 3px; "
+    "background: #d62728; visibility: var(--fpu-tick-visibility, hidden); }"
+)
+
+
 def mark_slider(slider, name: str, mark: str, value: float | None) -> None:
     """A red tick on the slider's track at ``value`` (V_SK on the V slider, w* on the w₊ slider)
     and the label saying so; no tick when the value is off the track."""
+    if slider.stylesheets != [TICK_CSS]:
+        slider.stylesheets = [TICK_CSS]
     lo, hi = float(slider.start), float(slider.end)
     if value is None or not (math.isfinite(value) and lo < value < hi):
-        slider.param.update(label=name, stylesheets=[])
+        slider.param.update(label=name, styles={"--fpu-tick-visibility": "hidden"})
         return
     pct = 100.0 * (value - lo) / (hi - lo)
-    css = (
-        ".noUi-base::after { content: ''; position: absolute; pointer-events: none; "
-        f"left: calc({pct:.4f}% - 1px); top: -5px; height: calc(100% + 10px); width: 3px; "
-        "background: #d62728; }"
+    slider.param.update(
+        label=f"{name} (red tick: {mark} = {value:.6g})",
+        styles={"--fpu-tick": f"{pct:.4f}%", "--fpu-tick-visibility": "visible"},
     )
-    slider.param.update(label=f"{name} (red tick: {mark} = {value:.6g})", stylesheets=[css])
 
 
 def session_query() -> dict[str, str]:

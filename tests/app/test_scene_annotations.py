@@ -76,8 +76,8 @@ def test_sliders_mark_V_SK_and_w_star():
     ex = Explorer(ExplorerState(w_plus=1.0, V=5.0))
     for slider, name, value in ((ex.V, "V_SK", 2 * math.sqrt(65) / 3), (ex.w_plus, "w*", 10 / 3)):
         assert f"{name} = {value:.6g}" in slider.label
-        (css,) = slider.stylesheets
-        pct = float(re.search(r"left: calc\(([0-9.]+)%", css).group(1))
+        assert slider.styles["--fpu-tick-visibility"] == "visible"
+        pct = float(re.fullmatch(r"([0-9.]+)%", slider.styles["--fpu-tick"]).group(1))
         assert pct == pytest.approx(100 * (value - slider.start) / (slider.end - slider.start),
                                     abs=1e-3)  # fmt: skip
     ex.state.w_plus = 2.0  # V_SK moves with w₊; so does its tick
