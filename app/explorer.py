@@ -2,7 +2,7 @@
 
 * Sliders are throttled (they act on release) and keyboard-accessible; each sits next to an
   exact numeric input.  Their ranges follow the theory and are updated from the state: w₊ over
-  (α, β) with w* marked, V over (c₊, c₋) with V_SK marked (solitary mode) or over the superkink
+  (α, β) without w*, V over (c₊, c₋) (solitary mode; V_SK printed in the sidebar) or over the superkink
   bounds of eq. V_bounds_cubic (superkink mode, where V and w₊ are tied).
 * Only the visible scene renders; a parameter change marks the others stale and they render
   when their tab is opened.  A served page is built with the visible scene only (the build runs
@@ -421,11 +421,9 @@ class Explorer:
                 span = hi - lo
                 lo, hi = lo + 1e-6 * span, hi - 1e-6 * span
                 self._put(self.w_plus, st.w_plus, step=span / 2000, **widened(st.w_plus, lo, hi))
-                mark_slider(self.w_plus, "w₊", "w*", summ["w_star"])
             try:
                 lo, hi = st.V_range()
                 self._put(self.V, st.V, step=(hi - lo) / 4000, **widened(st.V, lo, hi))
-                mark_slider(self.V, "V", "V_SK", summ.get("V_SK"))
             except Exception:  # noqa: BLE001 - w_plus invalid: keep the V slider where it was
                 pass
             self.w_plus_exact.value = st.w_plus
@@ -596,32 +594,6 @@ def widened(x: float, lo: float, hi: float) -> dict:
     if not math.isfinite(x):
         return {"start": lo, "end": hi}
     return {"start": min(lo, x), "end": max(hi, x)}
-
-
-#: the tick's drawing, constant: a new stylesheet re-renders the slider in the browser, whose
-#: noUiSlider then snaps the state's value to its step and sends that back (an echo that moved a
-#: typed V = 5.2 to 5.200694); the position comes from an inherited CSS variable instead
-TICK_CSS = (
-    ".noUi-base::after { content: ''; position: absolute; pointer-events: none; "
-    "left: calc(var(--fpu-tick, 0%) - 1px); top: -5px; height: calc(100% + 10px); width: 3px; "
-    "background: #d62728; visibility: var(--fpu-tick-visibility, hidden); }"
-)
-
-
-def mark_slider(slider, name: str, mark: str, value: float | None) -> None:
-    """A red tick on the slider's track at ``value`` (V_SK on the V slider, w* on the w₊ slider)
-    and the label saying so; no tick when the value is off the track."""
-    if slider.stylesheets != [TICK_CSS]:
-        slider.stylesheets = [TICK_CSS]
-    lo, hi = float(slider.start), float(slider.end)
-    if value is None or not (math.isfinite(value) and lo < value < hi):
-        slider.param.update(label=name, styles={"--fpu-tick-visibility": "hidden"})
-        return
-    pct = 100.0 * (value - lo) / (hi - lo)
-    slider.param.update(
-        label=f"{name} (red tick: {mark} = {value:.6g})",
-        styles={"--fpu-tick": f"{pct:.4f}%", "--fpu-tick-visibility": "visible"},
-    )
 
 
 def session_query() -> dict[str, str]:

@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import atexit
 import logging
-import multiprocessing
 import os
 import subprocess
 import sys
@@ -34,11 +33,6 @@ from fpucore.warm import warm_all  # noqa: E402
 # the thread budget (fpucore/parallel/threads.py): the server computes for several sessions at
 # once, so one BLAS/OpenMP thread per computation; parallelism comes from processes (Executor)
 apply_thread_policy(1)
-# Numba guards its threading layer with a multiprocessing RLock (a named semaphore) when the
-# default start method forks, and a server stopped by a signal left it to the resource tracker
-# ("leaked semaphore" in the log).  The server's pools use explicit contexts, so the default
-# may be spawn (as in the workers, fpucore/parallel/worker.py).
-multiprocessing.set_start_method("spawn", force=True)
 
 DEFAULT_SCENES = "force,phase,profiles,diagram,simulation"
 WARM_LAW = "w + 10*w**2 - w**3 - 0.01*w**4"

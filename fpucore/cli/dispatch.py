@@ -8,7 +8,6 @@ one-line message on stderr.
 from __future__ import annotations
 
 import importlib
-import multiprocessing
 import os
 import signal
 import sys
@@ -59,11 +58,6 @@ def build_parser() -> Parser:
 def main(argv: list[str] | None = None) -> int:
     try:
         args = build_parser().parse_args(argv)  # --help exits here: no NumPy/Numba imported
-        # Numba guards its threading layer with a multiprocessing RLock (a named semaphore) when
-        # the start method forks; a command ended by a signal (the server stopping its
-        # background `fpu warm`, Ctrl-C) then left it to the resource tracker ("leaked
-        # semaphore").  The CLI owns its process and starts its pools with explicit contexts.
-        multiprocessing.set_start_method("spawn", force=True)
         load_stack()
         from fpucore.parallel.threads import apply_thread_policy, default_threads
 
