@@ -2,8 +2,8 @@
 
 * Sliders are throttled (they act on release) and keyboard-accessible; each sits next to an
   exact numeric input.  Their ranges follow the theory and are updated from the state: w₊ over
-  (α, β) without w*, V over (c₊, c₋) (solitary mode; V_SK printed in the sidebar) or over the superkink
-  bounds of eq. V_bounds_cubic (superkink mode, where V and w₊ are tied).
+  (α, β) without w*, V over (c₊, c₋) (solitary mode; V_SK printed in the sidebar) or over the
+  superkink bounds of eq. V_bounds_cubic (superkink mode, where V and w₊ are tied).
 * Only the visible scene renders; a parameter change marks the others stale and they render
   when their tab is opened.  A served page is built with the visible scene only (the build runs
   on the server's event loop, which ten sessions' builds held for up to 20 s); a hidden scene
