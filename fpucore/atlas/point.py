@@ -59,7 +59,8 @@ FIELDS: dict[str, tuple[str, object]] = {
     "n_unstable": ("i8", -1),
     "n_trivial": ("i8", -1),
     "trivial_split": ("f8", math.nan),
-    "verdict": ("<U640", ""),  # the decision's sentence (fpucore.floquet.finite_size.Decision)
+    # the decision's sentence (fpucore.floquet.finite_size.Decision, at most SENTENCE_CHARS)
+    "verdict": ("<U640", ""),
     "classification": ("<U32", ""),
     "headline": ("<U64", ""),
     "floquet_converged": ("bool", False),
