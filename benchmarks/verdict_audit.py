@@ -353,6 +353,52 @@ def _changes(sel) -> int:
     return sum((a == "unstable") != (b == "unstable") for a, b in zip(c, c[1:], strict=False))
 
 
+def audit_comparison(verdict: str, why: str, ours: float | None = None,
+                     error: float | None = None, paper: float | None = None,
+                     rounding: float | None = None) -> list[str]:  # fmt: skip
+    """Problems of one paper comparison (fpucore.paper.Comparison or a row of
+    docs/paper_comparison.md): "agrees" must mean |ours − paper| ≤ error + half a unit of the
+    paper's last printed digit (a value) or ours ± error on the stated side (a bound), checked
+    on the numbers printed in ``why`` and, when given, on the raw numbers."""
+    bad = []
+    agrees = verdict.strip("* ").startswith("agrees")
+    m = re.search(r"= (" + _NUM + r") (≤|>) error (" + _NUM + r") \+ printed rounding (" + _NUM
+                  + r")", why)  # fmt: skip
+    b = re.search(r"ours ([+−-]) error = (" + _NUM + r") (<|≥|>|≤) (" + _NUM + r")", why)
+    if m:
+        d, rel, e, r = float(m[1]), m[2], float(m[3]), float(m[4])
+        holds = d <= (e + r) * 1.05 + 1e-300  # printed to 2-3 digits
+        if agrees and (rel != "≤" or not holds):
+            bad.append(f"'agrees' but {m[0]}")
+        if not agrees and rel == "≤":
+            bad.append(f"'disagrees' but {m[0]}")
+    elif b:
+        x, rel, p = float(b[2]), b[3], float(b[4])
+        ok = (x < p) if rel in ("<", "≥") else (x > p)
+        if agrees != ok:
+            bad.append(f"{verdict!r} but {b[0]}")
+    else:
+        bad.append(f"comparison without its numbers: {why!r}")
+    if None not in (ours, error, paper, rounding) and m:
+        true = abs(ours - paper) <= abs(error) + rounding
+        if true != agrees:
+            bad.append(f"{verdict!r} but |{ours!r} − {paper!r}| vs {error!r} + {rounding!r}")
+    if _ABS.search(why):
+        bad.append(f"a negative absolute value: {why!r}")
+    return bad
+
+
+def audit_comparison_table(text: str) -> list[str]:
+    """Problems of the generated table docs/paper_comparison.md, row by row."""
+    bad = []
+    for line in text.splitlines():
+        cells = [c.strip() for c in line.strip().strip("|").split(" | ")]
+        if len(cells) == 8 and cells[5].strip("* ") in ("agrees", "disagrees"):
+            bad += [f"{cells[0]} {cells[1]}: {x}" for x in audit_comparison(cells[5],
+                    cells[6].replace("\\|", "|"))]  # fmt: skip
+    return bad
+
+
 # the paper's cases (a = −1, b = 10; §6) and other laws, as `fpu floquet sweep` arguments
 _SW1 = (
     "4.3134030504 4.4549277768 4.5964525033 4.7379772298 4.8795019562 5.0210266827 "

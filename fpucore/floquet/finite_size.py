@@ -32,13 +32,25 @@ structured route (quarter-size for the paper's reversible waves), and three phys
 
 Decision (one record, :class:`Decision`): "stable" if e(N) is within its error bar;
 "finite_size" if the excess is absent on a ring of the window or dips (1), or its envelope decays
-(2): p ≥ ``DECAY_P`` = 0.5 and the excess at N at most (N_first/N)^0.5 (71 % at N_first = N/2)
-of the largest on the window — a drop no converged mode shows; "unstable" only if the excess
-is present on every ring and has converged (3); otherwise — and whenever fewer than
-``MIN_POINTS`` lengths could be computed — "undetermined", with the computation that would
+(2): p ≥ ``DECAY_P`` = 0.5, the excess at N at most (N_first/N)^0.5 (71 % at N_first = N/2)
+of the largest on the window — a drop no converged mode shows — and the envelope starting in the
+first half of the window (log N): a fall over the last rings after a rise is no trend (measured:
+superkink V = 5.6 at N = 500 rises from 4.0e-5 at 250 to 9.7e-5 at 450, then 6.2e-5 at 500;
+"undetermined" there, "decays" at N = 1000); "unstable" only if the excess
+is present on every ring and has converged (3) and no ring of the window is missing (a wave
+that could not be rebuilt on one: "undetermined", reason "missing_rings"); otherwise — and
+whenever fewer than ``MIN_POINTS`` lengths could be computed — "undetermined", with the
+computation that would
 decide it ("compute at N ≥ 2N": a resonance's envelope halves, a mode's growth stays).
 Every "unstable" therefore rests on an excess that did not change by more than 10 % while the
 ring doubled in length.
+
+Words (:class:`Decision`): every sentence prints the points it rests on and says only what
+they show — "decays" with the measured fall from the largest excess to the one at N, an envelope
+exponent only with an error bar smaller than itself (a two-point envelope has none), "not
+determined" with how far the excess falls and why that is no decay, and what would decide it.
+benchmarks/verdict_audit.py re-derives each claim from the printed numbers (tests:
+tests/floquet/test_verdict_audit.py).
 
 Limitation: a genuine instability weaker than a coexisting ring resonance hides under it until
 N is large enough for the resonance to fall below it (the envelope then flattens at its growth).
@@ -53,8 +65,9 @@ mode has an eigenvector partly on the core and partly on the ring, so a core fra
 own threshold and an inverse iteration on the 2N × 2N monodromy per multiplier — the window
 answers the same question (does it depend on the ring?) directly.
 The energy criterion (:mod:`fpucore.floquet.energy`) is the consistency check of a sweep: a
-change of stability of the family needs an extremum of E_ren(V); changes of class elsewhere are
-finite-size effects (:func:`fpucore.floquet.energy.stability_changes`, summarised in one line by
+change of stability through the translation mode needs an extremum of E_ren(V); a change of
+class elsewhere is an oscillatory instability or a finite-size effect the window did not resolve,
+to be checked at 2N (:func:`fpucore.floquet.energy.stability_changes`, summarised in one line by
 :func:`fpucore.floquet.energy.changes_summary`).
 
 Cost (benchmarks/bench_floquet.py, part D): the five shorter spectra are Σ(N_k/N)³ ≈ 1.9
