@@ -99,10 +99,17 @@ def test_sweep_panel_says_which_velocities_are_missing_and_why(real, monkeypatch
 
     rc, fc = real
     V = np.array([5.0, 5.2, 5.4])
+
+    def missing(V, message):  # a row of a velocity without a spectrum (sweep's own shape)
+        return {"V": V, "max_modulus": None, "max_modulus_away_from_1": None, "error": None,
+                "n_unstable": 0, "classification": None, "headline": None,
+                "verdict": "not computed", "converged": False, "wave_converged": False,
+                "message": message}  # fmt: skip
+
     rows = [
-        sweeps._nan_row(5.0, "wave not converged: Newton stalled"),
-        sweeps._nan_row(5.2, "time budget of 1 s exceeded after 1 of 3 velocities"),
-        {**sweeps._nan_row(5.4, ""), "max_modulus": 1.0005, "max_modulus_away_from_1": 1.0005,
+        missing(5.0, "wave not converged: Newton stalled"),
+        missing(5.2, "time budget of 1 s exceeded after 1 of 3 velocities"),
+        {**missing(5.4, ""), "max_modulus": 1.0005, "max_modulus_away_from_1": 1.0005,
          "error": 1e-11, "n_unstable": 2, "classification": "finite_size", "converged": True,
          "wave_converged": True, "verdict": "x", "headline": "finite-size artefact (x)"},
     ]  # fmt: skip
