@@ -27,6 +27,7 @@ import traceback
 import numpy as np
 
 from fpucore.errors import ParameterError
+from fpucore.floquet.finite_size import SENTENCE_CHARS
 from fpucore.floquet.multipliers import spectrum
 from fpucore.wave import solve_solitary, solve_superkink
 from fpucore.wave.continuation import family_interval, qc_shift_predictor
@@ -59,7 +60,8 @@ FIELDS: dict[str, tuple[str, object]] = {
     "n_unstable": ("i8", -1),
     "n_trivial": ("i8", -1),
     "trivial_split": ("f8", math.nan),
-    "verdict": ("<U640", ""),  # the decision's sentence (fpucore.floquet.finite_size.Decision)
+    # the decision's sentence (fpucore.floquet.finite_size.Decision: at most SENTENCE_CHARS)
+    "verdict": (f"<U{SENTENCE_CHARS}", ""),
     "classification": ("<U32", ""),
     "headline": ("<U64", ""),
     "floquet_converged": ("bool", False),

@@ -269,6 +269,7 @@ def spectrum(
     tf = time.perf_counter()
     pts = [(N, excess, error)]
     why = "finite_size=False"
+    missing: list[int] = []  # rings of the window whose wave could not be rebuilt
     if finite_size and excess > error:
         lengths = chain_lengths(N, min_chain(r))
         why = "" if lengths else f"N = {N} is too short for a window of rings in [N/2, N]"
@@ -276,6 +277,7 @@ def spectrum(
             r_k, reason = base_at(r, n_k)
             if r_k is None:
                 why = reason
+                missing.append(int(n_k))
                 continue
             # the shorter rings only supply max|μ| − 1: the structured route (quarter size for
             # the paper's reversible waves; agreement with dense within the error bar tested)
@@ -289,7 +291,7 @@ def spectrum(
     fs_N = np.array([p[0] for p in pts], dtype=np.int64)
     fs_e = np.array([p[1] for p in pts])
     fs_err = np.array([p[2] for p in pts])
-    decision, fit = decide(fs_N, fs_e, fs_err, growth, why, min_chain(r))
+    decision, fit = decide(fs_N, fs_e, fs_err, growth, why, min_chain(r), missing_N=missing)
     cls = decision.classification
     verdict = decision.sentence
     finite_s = time.perf_counter() - tf
