@@ -12,6 +12,7 @@ from __future__ import annotations
 import io
 import math
 import tokenize
+from fractions import Fraction
 
 from fpucore.errors import ParameterError
 from fpucore.law.expression_bounds import MAX_LENGTH, abbreviate, screen
@@ -32,6 +33,71 @@ _DIGITS = 30  # precision of constants such as sqrt(2), pi (the coefficients are
 def _numeric(fn):
     """``fn`` evaluated to a :data:`_DIGITS`-digit number (its argument is a number)."""
     return lambda *args: fn(*args).evalf(_DIGITS)
+
+
+def _numeric_constants(expr):
+    """``expr`` with every maximal constant subexpression that is not a rational evaluated to
+    :data:`_DIGITS` digits (top-down: a constant is evaluated once, as a whole)."""
+    if expr.is_number:
+        return expr if expr.is_Rational else expr.evalf(_DIGITS)
+    if not expr.args:
+        return expr
+    return expr.func(*(_numeric_constants(a) for a in expr.args))
+
+
+def _laurent(expr, w, refuse) -> dict[int, Fraction]:
+    """The exact coefficients {power of w: Fraction} of a sum, product or integer power of w and
+    numbers (the parsed text after :func:`_numeric_constants`; powers bounded by the screen)."""
+    if expr == w:
+        return {1: Fraction(1)}
+    if expr.is_number:
+        if expr.is_Rational:
+            return {0: Fraction(int(expr.p), int(expr.q))}
+        if expr.is_Float and expr.is_finite:
+            sign, man, exp, _ = expr._mpf_  # the Float's exact binary value
+            c = Fraction(-man if sign else man) * Fraction(2) ** exp
+            return {0: c}
+        import sympy  # loaded already by law_from_expression
+
+        if expr.has(sympy.zoo, sympy.oo, -sympy.oo, sympy.nan):
+            refuse("non-finite coefficient")
+        refuse(f"a coefficient is not real: {str(expr)[:40]}")
+    if expr.is_Add or expr.is_Mul:
+        out = _laurent(expr.args[0], w, refuse)
+        for arg in expr.args[1:]:
+            out = (_add if expr.is_Add else _mul)(out, _laurent(arg, w, refuse))
+        return out
+    if expr.is_Pow and expr.exp.is_Integer:
+        base, n = _laurent(expr.base, w, refuse), int(expr.exp)
+        if n < 0:
+            nonzero = [(k, c) for k, c in base.items() if c]
+            if len(nonzero) != 1:  # refused by the screen before; a safeguard
+                refuse(f"not a polynomial in w: {abbreviate(str(expr), 60)}")
+            ((k, c),) = nonzero
+            return {k * n: c**n}
+        out = {0: Fraction(1)}
+        for _ in range(n):
+            out = _mul(out, base)
+        return out
+    refuse(
+        f"not a polynomial in w: {abbreviate(str(expr), 60)} (functions of w, negative or "
+        "fractional powers are not allowed)"
+    )
+
+
+def _add(p: dict, q: dict) -> dict:
+    out = dict(p)
+    for k, c in q.items():
+        out[k] = out.get(k, 0) + c
+    return out
+
+
+def _mul(p: dict, q: dict) -> dict:
+    out: dict[int, Fraction] = {}
+    for i, a in p.items():
+        for j, b in q.items():
+            out[i + j] = out.get(i + j, 0) + a * b
+    return out
 
 
 def law_from_expression(expression: str) -> PolynomialLaw:
@@ -111,38 +177,40 @@ def law_from_expression(expression: str) -> PolynomialLaw:
             transformations=standard_transformations + (convert_xor, implicit_multiplication),
             evaluate=True,
         )
-        expr = sympy.expand(sympy.sympify(expr))
+        # every constant that is not a rational becomes a 30-digit number, as pi, E and the
+        # functions already are: (w + 2**(1/2) + 3**(1/2) + ...)**16 would otherwise expand into
+        # products of surds (0.8 s for four surds to the 10th power)
+        expr = _numeric_constants(sympy.sympify(expr))
     except Exception as exc:  # SymPy raises SyntaxError, TypeError, TokenError, SympifyError...
         raise ParameterError(
             "expression", expression, _VALID, f"could not parse: {type(exc).__name__}: {exc}"
         ) from None
-    if expr.has(sympy.zoo, sympy.oo, -sympy.oo, sympy.nan):
-        raise ParameterError("expression", expression, _VALID, "non-finite coefficient")
-    if not expr.is_polynomial(w):
-        raise ParameterError(
-            "expression", expression, _VALID,
-            f"not a polynomial in w: {expr} (functions of w, negative or fractional powers "
-            "are not allowed)",
-        )  # fmt: skip
-    poly = sympy.Poly(expr, w)
+
+    def refuse(reason: str):
+        raise ParameterError("expression", abbreviate(expression), _VALID, reason)
+
+    # expanded by exact arithmetic on the coefficients (Fractions: a Float is its exact binary
+    # value), not by sympy.expand: its symbolic terms cost ~1 ms each, so (w+1)*(w+2)*...*(w+16)
+    # took 0.1-0.15 s and a few such products a second; here at most 33 powers of w per node
+    terms = _laurent(expr, w, refuse)
+    if any(k < 0 for k, c in terms.items() if c):
+        refuse(
+            f"not a polynomial in w: {abbreviate(str(expr), 60)} (functions of w, negative or "
+            "fractional powers are not allowed)"
+        )
     coeffs = []
-    for (k,), ck in sorted(poly.terms()):
-        z = complex(sympy.N(ck, 17))
-        if z.imag != 0.0:
-            raise ParameterError(
-                "expression",
-                expression,
-                _VALID,
-                f"coefficient of w^{k} is not real: {str(ck)[:40]}",
-            )
-        if not math.isfinite(z.real):
-            raise ParameterError(
-                "expression", expression, _VALID,
-                f"non-finite coefficient of w^{k}: {str(ck)[:24]}... overflows float64",
-            )  # fmt: skip
+    for k, ck in sorted(terms.items()):
+        try:
+            z = float(ck)
+        except OverflowError:
+            z = math.inf
+        if not math.isfinite(z):
+            refuse(f"non-finite coefficient of w^{k}: {str(ck)[:24]}... overflows float64")
         while len(coeffs) < k + 1:
             coeffs.append(0.0)
-        coeffs[k] = z.real
+        coeffs[k] = z
+    while coeffs and coeffs[-1] == 0.0:
+        coeffs.pop()
     if not coeffs:
         raise ParameterError("expression", expression, _VALID, "the expression is zero")
     if coeffs[0] != 0.0:
