@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import io
 import math
+import operator
 import tokenize
 from fractions import Fraction
 
@@ -30,73 +31,98 @@ _VALID = (
 _DIGITS = 30  # precision of constants such as sqrt(2), pi (the coefficients are then rounded)
 
 
+_PREC = 128  # bits of an inexact coefficient (SymPy's 30-digit constants carry 100)
+
+
 def _numeric(fn):
-    """``fn`` evaluated to a :data:`_DIGITS`-digit number (its argument is a number)."""
-    return lambda *args: fn(*args).evalf(_DIGITS)
+    """``fn`` of a number, unevaluated (SymPy's ``sqrt(9...9)`` would try to factor its argument:
+    80 ms for 200 digits), then evaluated numerically to :data:`_DIGITS` digits."""
+    return lambda *args, **_: fn(*args, evaluate=False).evalf(_DIGITS)
 
 
-def _numeric_constants(expr):
-    """``expr`` with every maximal constant subexpression that is not a rational evaluated to
-    :data:`_DIGITS` digits (top-down: a constant is evaluated once, as a whole)."""
-    if expr.is_number:
-        return expr if expr.is_Rational else expr.evalf(_DIGITS)
-    if not expr.args:
-        return expr
-    return expr.func(*(_numeric_constants(a) for a in expr.args))
+def _laurent(expr, w, refuse) -> dict:
+    """The coefficients {power of w: c} of the parsed, unevaluated text: sums, products and
+    powers of w and numbers (the screen has bounded them).  A coefficient is exact (Fraction)
+    while every number it comes from is rational, else an mpmath number of :data:`_PREC` bits:
+    an exact product of floats would grow without bound (the screen sizes only rationals)."""
+    import mpmath  # with SymPy, on first use
 
-
-def _laurent(expr, w, refuse) -> dict[int, Fraction]:
-    """The exact coefficients {power of w: Fraction} of a sum, product or integer power of w and
-    numbers (the parsed text after :func:`_numeric_constants`; powers bounded by the screen)."""
     if expr == w:
         return {1: Fraction(1)}
-    if expr.is_number:
-        if expr.is_Rational:
-            return {0: Fraction(int(expr.p), int(expr.q))}
-        if expr.is_Float and expr.is_finite:
-            sign, man, exp, _ = expr._mpf_  # the Float's exact binary value
-            c = Fraction(-man if sign else man) * Fraction(2) ** exp
-            return {0: c}
-        import sympy  # loaded already by law_from_expression
-
-        if expr.has(sympy.zoo, sympy.oo, -sympy.oo, sympy.nan):
-            refuse("non-finite coefficient")
-        refuse(f"a coefficient is not real: {str(expr)[:40]}")
+    if expr.is_Rational:
+        return {0: Fraction(int(expr.p), int(expr.q))}
+    if expr.is_Float and expr.is_finite:
+        return {0: mpmath.mpf(expr)}
     if expr.is_Add or expr.is_Mul:
         out = _laurent(expr.args[0], w, refuse)
         for arg in expr.args[1:]:
             out = (_add if expr.is_Add else _mul)(out, _laurent(arg, w, refuse))
         return out
-    if expr.is_Pow and expr.exp.is_Integer:
-        base, n = _laurent(expr.base, w, refuse), int(expr.exp)
-        if n < 0:
-            nonzero = [(k, c) for k, c in base.items() if c]
-            if len(nonzero) != 1:  # refused by the screen before; a safeguard
-                refuse(f"not a polynomial in w: {abbreviate(str(expr), 60)}")
-            ((k, c),) = nonzero
-            return {k * n: c**n}
-        out = {0: Fraction(1)}
-        for _ in range(n):
-            out = _mul(out, base)
-        return out
+    if expr.is_Pow:
+        base, exp = _laurent(expr.base, w, refuse), _laurent(expr.exp, w, refuse)
+        e = exp.get(0, Fraction(0))
+        if any(c for k, c in exp.items() if k != 0):
+            refuse(f"not a polynomial in w: {abbreviate(str(expr), 60)} (exponent depends on w)")
+        if e == int(e):
+            return _power(base, int(e), expr, refuse)
+        if any(c for k, c in base.items() if k != 0):
+            refuse(f"not a polynomial in w: {abbreviate(str(expr), 60)} (a fractional power)")
+        b = _mp(base.get(0, Fraction(0)))
+        if b < 0:
+            refuse(f"a coefficient is not real: {abbreviate(str(expr), 40)}")
+        if b == 0 and e < 0:
+            refuse("non-finite coefficient")
+        return {0: _mp(b) ** _mp(e)}
+    if expr.is_number and not expr.is_finite:
+        refuse("non-finite coefficient")
+    if expr.is_number and expr.is_real is False:
+        refuse(f"a coefficient is not real: {str(expr)[:40]}")
     refuse(
         f"not a polynomial in w: {abbreviate(str(expr), 60)} (functions of w, negative or "
         "fractional powers are not allowed)"
     )
 
 
+def _mp(x):
+    import mpmath
+
+    return mpmath.mpf(x.numerator) / x.denominator if isinstance(x, Fraction) else x
+
+
+def _num(op, a, b):
+    if isinstance(a, Fraction) and isinstance(b, Fraction):
+        return op(a, b)
+    return op(_mp(a), _mp(b))
+
+
 def _add(p: dict, q: dict) -> dict:
     out = dict(p)
     for k, c in q.items():
-        out[k] = out.get(k, 0) + c
+        out[k] = _num(operator.add, out[k], c) if k in out else c
     return out
 
 
 def _mul(p: dict, q: dict) -> dict:
-    out: dict[int, Fraction] = {}
+    out: dict = {}
     for i, a in p.items():
         for j, b in q.items():
-            out[i + j] = out.get(i + j, 0) + a * b
+            c = _num(operator.mul, a, b)
+            out[i + j] = _num(operator.add, out[i + j], c) if i + j in out else c
+    return out
+
+
+def _power(base: dict, n: int, expr, refuse) -> dict:
+    if n < 0:
+        nonzero = [(k, c) for k, c in base.items() if c]
+        if not nonzero:
+            refuse(f"non-finite coefficient: {abbreviate(str(expr), 40)} divides by zero")
+        if len(nonzero) != 1:  # refused by the screen before (a negative power of a sum)
+            refuse(f"not a polynomial in w: {abbreviate(str(expr), 60)}")
+        ((k, c),) = nonzero
+        return {k * n: c**n}  # c != 0; a Fraction's negative power is exact
+    out = {0: Fraction(1)}
+    for _ in range(n):  # n <= MAX_EXPONENT (a number) or MAX_DEGREE (an expression in w)
+        out = _mul(out, base)
     return out
 
 
@@ -153,6 +179,7 @@ def law_from_expression(expression: str) -> PolynomialLaw:
     screen(expression, toks, _VALID, _FUNCS, _CONSTS)
     # SymPy (~0.3 s) is imported on first use, not by every `import fpucore`: the CLI, the
     # server and each worker pool start without it unless a law is typed
+    import mpmath
     import sympy
     from sympy.parsing.sympy_parser import (
         convert_xor,
@@ -167,20 +194,21 @@ def law_from_expression(expression: str) -> PolynomialLaw:
     # thousands of symbolic terms; numbers merge, so the expansion stays at degree + 1 terms
     names = {"w": w, "pi": sympy.pi.evalf(_DIGITS), "E": sympy.E.evalf(_DIGITS)}
     names.update({n: _numeric(getattr(sympy, "Abs" if n == "abs" else n)) for n in _FUNCS})
-    glob = {n: getattr(sympy, n) for n in ("Integer", "Float", "Rational", "Symbol")}
+    glob = {
+        n: getattr(sympy, n)
+        for n in ("Integer", "Float", "Rational", "Symbol", "Add", "Mul", "Pow")
+    }
     glob["__builtins__"] = {}
     try:
+        # unevaluated: SymPy's own evaluation of 9...9**(1/2) factors the integer (80 ms for 200
+        # digits) and its expand() costs ~1 ms a term ((w+1)*...*(w+16): 0.1-0.15 s)
         expr = parse_expr(
             text,
             local_dict=names,
             global_dict=glob,
             transformations=standard_transformations + (convert_xor, implicit_multiplication),
-            evaluate=True,
+            evaluate=False,
         )
-        # every constant that is not a rational becomes a 30-digit number, as pi, E and the
-        # functions already are: (w + 2**(1/2) + 3**(1/2) + ...)**16 would otherwise expand into
-        # products of surds (0.8 s for four surds to the 10th power)
-        expr = _numeric_constants(sympy.sympify(expr))
     except Exception as exc:  # SymPy raises SyntaxError, TypeError, TokenError, SympifyError...
         raise ParameterError(
             "expression", expression, _VALID, f"could not parse: {type(exc).__name__}: {exc}"
@@ -189,10 +217,9 @@ def law_from_expression(expression: str) -> PolynomialLaw:
     def refuse(reason: str):
         raise ParameterError("expression", abbreviate(expression), _VALID, reason)
 
-    # expanded by exact arithmetic on the coefficients (Fractions: a Float is its exact binary
-    # value), not by sympy.expand: its symbolic terms cost ~1 ms each, so (w+1)*(w+2)*...*(w+16)
-    # took 0.1-0.15 s and a few such products a second; here at most 33 powers of w per node
-    terms = _laurent(expr, w, refuse)
+    # expanded here, exactly while the numbers are rational (module docstring of _laurent)
+    with mpmath.workprec(_PREC):
+        terms = _laurent(sympy.sympify(expr), w, refuse)
     if any(k < 0 for k, c in terms.items() if c):
         refuse(
             f"not a polynomial in w: {abbreviate(str(expr), 60)} (functions of w, negative or "
