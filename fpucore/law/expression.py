@@ -227,6 +227,8 @@ def law_from_expression(expression: str) -> PolynomialLaw:
         )
     coeffs = []
     for k, ck in sorted(terms.items()):
+        if k < 0:  # a zero coefficient of a negative power (0/w)
+            continue
         try:
             z = float(ck)
         except OverflowError:

@@ -332,6 +332,8 @@ HOLES = [
     "w + 10*w**2 - w**3 + 1e-9*(w + 2**(1/2)+3**(1/3)+5**(1/5)+(-2)**(1/3)+log(-3))**16",
     "w + 10*w**2 - w**3 + 1e-40*" + "*".join(f"(w+{k}.1)" for k in range(1, 17)),  # 0.15 s
     "w + 10*w**2 - w**3 + 1e-40*(w+pi)**16",
+    "(0)/(w)",  # a zero coefficient of w^-1: IndexError in the coefficient list
+    "(" + "9" * 200 + ")**(1/2)",  # SymPy's evaluation factors the integer: 80 ms
 ]
 
 
