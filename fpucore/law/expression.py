@@ -2,8 +2,9 @@
 
 The text is tokenized (standard library) and only numbers, the operators + - * / ** ^ ( ), the
 variable ``w`` and a few function names (so that ``sin(w)`` is reported as *not a polynomial*
-rather than as an unknown name) reach SymPy's parser, which expands it; the coefficients must be
-real and finite and the constant term zero.  The result is a :class:`.PolynomialLaw`, whose
+rather than as an unknown name) reach SymPy's parser, unevaluated, after the bounds of
+:mod:`.expression_bounds`; the text is then expanded by exact rational arithmetic (inexact numbers
+at 128 bits), not by SymPy; the coefficients must be real and finite and the constant term zero.  The result is a :class:`.PolynomialLaw`, whose
 construction checks the hardening–softening hypotheses of paper §2.
 """
 
