@@ -4,17 +4,16 @@ The text is tokenized (standard library) and only numbers, the operators + - * /
 variable ``w`` and a few function names (so that ``sin(w)`` is reported as *not a polynomial*
 rather than as an unknown name) reach SymPy's parser, unevaluated, after the bounds of
 :mod:`.expression_bounds`; the text is then expanded by exact rational arithmetic (inexact numbers
-at 128 bits), not by SymPy; the coefficients must be real and finite and the constant term zero.  The result is a :class:`.PolynomialLaw`, whose
-construction checks the hardening–softening hypotheses of paper §2.
+at 128 bits), not by SymPy; the coefficients must be real and finite and the constant term
+zero.  The result is a :class:`.PolynomialLaw`, whose construction checks the
+hardening–softening hypotheses of paper §2.
 """
 
 from __future__ import annotations
 
 import io
 import math
-import operator
 import tokenize
-from fractions import Fraction
 
 from fpucore.errors import ParameterError
 from fpucore.law.expression_bounds import MAX_LENGTH, abbreviate, screen
@@ -32,99 +31,10 @@ _VALID = (
 _DIGITS = 30  # precision of constants such as sqrt(2), pi (the coefficients are then rounded)
 
 
-_PREC = 128  # bits of an inexact coefficient (SymPy's 30-digit constants carry 100)
-
-
 def _numeric(fn):
     """``fn`` of a number, unevaluated (SymPy's ``sqrt(9...9)`` would try to factor its argument:
     80 ms for 200 digits), then evaluated numerically to :data:`_DIGITS` digits."""
     return lambda *args, **_: fn(*args, evaluate=False).evalf(_DIGITS)
-
-
-def _laurent(expr, w, refuse) -> dict:
-    """The coefficients {power of w: c} of the parsed, unevaluated text: sums, products and
-    powers of w and numbers (the screen has bounded them).  A coefficient is exact (Fraction)
-    while every number it comes from is rational, else an mpmath number of :data:`_PREC` bits:
-    an exact product of floats would grow without bound (the screen sizes only rationals)."""
-    import mpmath  # with SymPy, on first use
-
-    if expr == w:
-        return {1: Fraction(1)}
-    if expr.is_Rational:
-        return {0: Fraction(int(expr.p), int(expr.q))}
-    if expr.is_Float and expr.is_finite:
-        return {0: mpmath.mpf(expr)}
-    if expr.is_Add or expr.is_Mul:
-        out = _laurent(expr.args[0], w, refuse)
-        for arg in expr.args[1:]:
-            out = (_add if expr.is_Add else _mul)(out, _laurent(arg, w, refuse))
-        return out
-    if expr.is_Pow:
-        base, exp = _laurent(expr.base, w, refuse), _laurent(expr.exp, w, refuse)
-        e = exp.get(0, Fraction(0))
-        if any(c for k, c in exp.items() if k != 0):
-            refuse(f"not a polynomial in w: {abbreviate(str(expr), 60)} (exponent depends on w)")
-        if e == int(e):
-            return _power(base, int(e), expr, refuse)
-        if any(c for k, c in base.items() if k != 0):
-            refuse(f"not a polynomial in w: {abbreviate(str(expr), 60)} (a fractional power)")
-        b = _mp(base.get(0, Fraction(0)))
-        if b < 0:
-            refuse(f"a coefficient is not real: {abbreviate(str(expr), 40)}")
-        if b == 0 and e < 0:
-            refuse("non-finite coefficient")
-        return {0: _mp(b) ** _mp(e)}
-    if expr.is_number and not expr.is_finite:
-        refuse("non-finite coefficient")
-    if expr.is_number and expr.is_real is False:
-        refuse(f"a coefficient is not real: {str(expr)[:40]}")
-    refuse(
-        f"not a polynomial in w: {abbreviate(str(expr), 60)} (functions of w, negative or "
-        "fractional powers are not allowed)"
-    )
-
-
-def _mp(x):
-    import mpmath
-
-    return mpmath.mpf(x.numerator) / x.denominator if isinstance(x, Fraction) else x
-
-
-def _num(op, a, b):
-    if isinstance(a, Fraction) and isinstance(b, Fraction):
-        return op(a, b)
-    return op(_mp(a), _mp(b))
-
-
-def _add(p: dict, q: dict) -> dict:
-    out = dict(p)
-    for k, c in q.items():
-        out[k] = _num(operator.add, out[k], c) if k in out else c
-    return out
-
-
-def _mul(p: dict, q: dict) -> dict:
-    out: dict = {}
-    for i, a in p.items():
-        for j, b in q.items():
-            c = _num(operator.mul, a, b)
-            out[i + j] = _num(operator.add, out[i + j], c) if i + j in out else c
-    return out
-
-
-def _power(base: dict, n: int, expr, refuse) -> dict:
-    if n < 0:
-        nonzero = [(k, c) for k, c in base.items() if c]
-        if not nonzero:
-            refuse(f"non-finite coefficient: {abbreviate(str(expr), 40)} divides by zero")
-        if len(nonzero) != 1:  # refused by the screen before (a negative power of a sum)
-            refuse(f"not a polynomial in w: {abbreviate(str(expr), 60)}")
-        ((k, c),) = nonzero
-        return {k * n: c**n}  # c != 0; a Fraction's negative power is exact
-    out = {0: Fraction(1)}
-    for _ in range(n):  # n <= MAX_EXPONENT (a number) or MAX_DEGREE (an expression in w)
-        out = _mul(out, base)
-    return out
 
 
 def law_from_expression(expression: str) -> PolynomialLaw:
@@ -180,7 +90,6 @@ def law_from_expression(expression: str) -> PolynomialLaw:
     screen(expression, toks, _VALID, _FUNCS, _CONSTS)
     # SymPy (~0.3 s) is imported on first use, not by every `import fpucore`: the CLI, the
     # server and each worker pool start without it unless a law is typed
-    import mpmath
     import sympy
     from sympy.parsing.sympy_parser import (
         convert_xor,
@@ -188,6 +97,8 @@ def law_from_expression(expression: str) -> PolynomialLaw:
         parse_expr,
         standard_transformations,
     )
+
+    from fpucore.law.expansion import expand
 
     w = sympy.Symbol("w", real=True)
     # constants become 30-digit numbers at once (the screen has refused functions of w): a power
@@ -219,8 +130,7 @@ def law_from_expression(expression: str) -> PolynomialLaw:
         raise ParameterError("expression", abbreviate(expression), _VALID, reason)
 
     # expanded here, exactly while the numbers are rational (module docstring of _laurent)
-    with mpmath.workprec(_PREC):
-        terms = _laurent(sympy.sympify(expr), w, refuse)
+    terms = expand(sympy.sympify(expr), w, refuse)
     if any(k < 0 for k, c in terms.items() if c):
         refuse(
             f"not a polynomial in w: {abbreviate(str(expr), 60)} (functions of w, negative or "
