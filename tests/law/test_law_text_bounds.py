@@ -247,6 +247,11 @@ def _literal(draw) -> str:
 
 
 def _exponent(draw) -> str:
+    kind = draw(st.sampled_from(["list", "int", "frac"]))
+    if kind == "int":
+        return f"({draw(st.integers(-40, 3000))})"
+    if kind == "frac":
+        return f"({draw(st.integers(-50, 50))}/{draw(st.integers(1, 13))})"
     return draw(
         st.sampled_from(["2", "3", "16", "17", "-1", "-16", "(1/2)", "(1/3)", "0.5", "666",
                          "1100", "1101", "10**12", "9**9**9", "(-1)", "(10**100)", "(2**64)"])
@@ -271,11 +276,11 @@ def _extend(children):
             return "(" + "".join(draw(st.sampled_from("+-")) + p for p in parts) + ")"
         if kind == "product":
             parts = draw(st.lists(children, min_size=2, max_size=17))
-            return "*".join(f"({p})" for p in parts)
+            return draw(st.sampled_from(["*", ""])).join(f"({p})" for p in parts)  # or implicit
         if kind == "quot":
             return f"({draw(children)})/({draw(children)})"
-        if kind == "power":
-            return f"({draw(children)})**{_exponent(draw)}"
+        if kind == "power":  # ** or ^ (SymPy's convert_xor)
+            return f"({draw(children)}){draw(st.sampled_from(['**', '^']))}{_exponent(draw)}"
         if kind == "func":
             fn = draw(st.sampled_from(["sin", "cos", "exp", "log", "sqrt", "tanh", "abs"]))
             return f"{fn}({draw(children)})"
