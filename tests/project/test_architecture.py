@@ -46,6 +46,8 @@ LATE_OK: set[tuple[str, str]] = {
         "from sympy.parsing.sympy_parser import convert_xor, implicit_multiplication, "
         "parse_expr, standard_transformations",
     ),
+    # its exact expansion (mpmath at module level) with SymPy, only when a law is typed
+    ("fpucore/law/expression.py", "from fpucore.law.expansion import expand"),
     ("fpucore/atlas/store.py", "import xarray"),
     ("fpucore/atlas/store.py", "import zarr"),
     # the one place fpucore draws (fpu paper, Jupyter): HoloViews / Bokeh only when a figure is
