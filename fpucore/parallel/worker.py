@@ -2,7 +2,8 @@
 
 Protocol on the worker's duplex pipe.  Parent → worker:
 ``(job_id, fn, args, kwargs, wants_progress)``, or ``None`` to exit.  Worker → parent:
-``("progress", job_id, frac)`` (at most every ``PROGRESS_INTERVAL_S``, and the final 1.0) and
+``("progress", job_id, frac)`` (at most every ``PROGRESS_INTERVAL_S``, except a step of at least
+``PROGRESS_STEP`` and the final 1.0, which are sent at once) and
 ``("done", job_id, ok, value_or_exception)``.
 """
 
@@ -18,6 +19,9 @@ from fpucore.parallel.jobs import RemoteError
 from fpucore.parallel.threads import apply_thread_policy
 
 PROGRESS_INTERVAL_S = 0.1
+#: a step this large is news (a job's next stage): sent at once, not left to the throttle — a
+#: long uninterrupted call after it (a LAPACK eigenvalue solve) would otherwise hide it
+PROGRESS_STEP = 0.05
 
 
 def portable_exception(exc: BaseException) -> BaseException:
@@ -34,13 +38,15 @@ def portable_exception(exc: BaseException) -> BaseException:
 
 def progress_sender(conn, job_id: int):
     """A ``progress(frac)`` callable sending throttled progress messages to the parent."""
-    last = [0.0]
+    last = [0.0, 0.0]  # time and value of the last message sent
 
     def progress(frac: float) -> None:
         now = time.monotonic()
-        if frac >= 1.0 or now - last[0] >= PROGRESS_INTERVAL_S:
-            last[0] = now
-            conn.send(("progress", job_id, float(frac)))
+        frac = float(frac)
+        step = abs(frac - last[1]) >= PROGRESS_STEP
+        if frac >= 1.0 or step or now - last[0] >= PROGRESS_INTERVAL_S:
+            last[0], last[1] = now, frac
+            conn.send(("progress", job_id, frac))
 
     return progress
 
