@@ -1309,6 +1309,7 @@ def test_copy_as_python_confirms_or_opens_the_code_where_there_is_no_clipboard(p
     assert "monospace" in style[0] and style[1] == "pre", style
     for box in (".in-V input", ".in-wplus input"):
         cut = page.locator(box).evaluate(
-            "(el) => { el.value = '-5.3748384988656987e-10'; return el.scrollWidth > el.clientWidth; }"
+            "(el) => { el.value = '-5.3748384988656987e-10'; "
+            "return el.scrollWidth > el.clientWidth; }"
         )
         assert not cut, box
