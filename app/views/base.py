@@ -521,6 +521,16 @@ class Scene(pn.viewable.Viewer):
         except ParameterError as exc:
             self._show_message(str(exc), "warning")
             return None
+        except compute.CancelledError:
+            # the worker pool was shut down under the job (the server is stopping; run_job
+            # cancels nothing a caller still waits for): not a failure of the app
+            if not self.session_closed:
+                self._show_message(
+                    "Stopped: the server's worker processes were shut down. Press the button or "
+                    "change a parameter to compute again.",
+                    "info",
+                )
+            return None
         except Exception as exc:  # the server keeps serving; the log keeps the traceback
             if self.session_closed:  # the models were emptied under the render: not a failure
                 return None

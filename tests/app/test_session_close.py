@@ -88,3 +88,26 @@ def test_request_after_the_session_closed_starts_no_render(caplog):
         assert sc.wait_idle(10.0)
     assert sc.renders == renders
     assert not [r for r in caplog.records if r.levelno >= logging.WARNING], caplog.text
+
+
+def test_a_job_stopped_by_the_server_shutting_down_logs_no_traceback(caplog):
+    """The server stopping (SIGTERM: atexit shuts the worker pool down) while a Floquet job
+    runs for a session: the scene says it was stopped, and the log has no 'scene failed'
+    traceback (it had one in the server log of every run stopped mid-job)."""
+    import time
+
+    from app import compute
+
+    sc = BY_KEY["floquet"](ExplorerState(N=1200, tol=1e-10))
+    sc.request()
+    t_end = time.monotonic() + 240
+    while not sc.progress_text.visible and time.monotonic() < t_end:
+        time.sleep(0.05)
+    assert compute.jobs_in_flight() >= 1
+    with caplog.at_level(logging.ERROR, logger="fpu-explorer"):
+        compute.shutdown_executor()
+        assert sc.wait_idle(30)
+    assert not [r for r in caplog.records if r.levelno >= logging.ERROR], caplog.text
+    assert (sc.last_message or "").startswith("Stopped: the server's worker processes"), (
+        sc.last_message
+    )
