@@ -1285,7 +1285,7 @@ def test_v_sk_and_w_star_are_marked_under_their_sliders_and_a_typed_V_stays_exac
             break
         page.wait_for_timeout(100)
     assert x == pytest.approx(x0 + width * (want - lo) / (hi - lo), abs=3.0)
-    assert f"V_SK = {want:.6g}" in page.locator(".mark-V").first.inner_text()
+    assert f"V_SK = {want:.6g}" in page.locator(".mark-V .mark-label").first.inner_text()
     typed = "5.51234567"  # in (c₊, V_SK) = (5.385, 5.705) at w₊ = 2, off the slider's grid
     inp = page.locator(".in-V input")
     inp.fill(typed)
