@@ -67,6 +67,14 @@ _SPECTRUM_RATE: list[float] = []
 _RATE_LOCK = threading.Lock()
 
 
+def spectrum_time_estimate(N: int) -> float | None:
+    """Seconds a dense spectrum of a chain of N sites should take here, from the last one
+    computed (None before the first)."""
+    with _RATE_LOCK:
+        rate = _SPECTRUM_RATE[-1] if _SPECTRUM_RATE else None
+    return None if rate is None else rate * (2.0 * N) ** 3
+
+
 class SpectrumProgress:
     """The Floquet job's progress for a scene's ``set_progress(done, stage=...)``: the stage and
     its fraction from the worker (:func:`~app.compute.jobs.stage_of`); during the eigenvalues,
@@ -83,10 +91,8 @@ class SpectrumProgress:
         if stage != self.stage:
             self.stage, self.t_stage = stage, now
         if stage == "Floquet spectrum" and done < 1.0:
-            with _RATE_LOCK:
-                rate = _SPECTRUM_RATE[-1] if _SPECTRUM_RATE else None
-            if rate is not None:
-                expected = rate * (2.0 * self.N) ** 3
+            expected = spectrum_time_estimate(self.N)
+            if expected is not None:
                 done = max(done, min(0.95, (now - self.t_stage) / max(expected, 1e-3)))
         self.progress(done, stage=stage)
 
