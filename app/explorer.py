@@ -2,8 +2,9 @@
 
 * Sliders are throttled (they act on release) and keyboard-accessible; each sits next to an
   exact numeric input.  Their ranges follow the theory and are updated from the state: w₊ over
-  (α, β) without w*, V over (c₊, c₋) (solitary mode; V_SK printed in the sidebar) or over the
-  superkink bounds of eq. V_bounds_cubic (superkink mode, where V and w₊ are tied).
+  (α, β) without w*, V over (c₊, c₋) (solitary mode) or over the superkink bounds of eq.
+  V_bounds_cubic (superkink mode, where V and w₊ are tied); w* and V_SK are marked under their
+  sliders by panes of their own (app/slider_marks.py: the slider models are never touched).
 * Only the visible scene renders; a parameter change marks the others stale and they render
   when their tab is opened.  A served page is built with the visible scene only (the build runs
   on the server's event loop, which ten sessions' builds held for up to 20 s); a hidden scene
@@ -38,6 +39,7 @@ from fpucore.errors import ParameterError
 from fpucore.law import PolynomialLaw, expression_of
 
 from . import compute
+from .slider_marks import SliderMark
 from .state import (
     A_RANGE,
     B_RANGE,
@@ -155,6 +157,9 @@ class Explorer:
             format="0.00000",
             **mk,
         )
+        # V_SK under the V slider, w* under the w₊ slider: panes of their own (slider_marks)
+        self.w_plus_mark = SliderMark("w*", "mark-wplus")
+        self.V_mark = SliderMark("V_SK", "mark-V")
         # one per row, full sidebar width: room for a float's 17 significant digits
         self.w_plus_exact = pn.widgets.FloatInput(
             label="w₊ (exact)", value=st.w_plus, css_classes=["in-wplus"],
@@ -421,11 +426,13 @@ class Explorer:
                 span = hi - lo
                 lo, hi = lo + 1e-6 * span, hi - 1e-6 * span
                 self._put(self.w_plus, st.w_plus, step=span / 2000, **widened(st.w_plus, lo, hi))
+            self.w_plus_mark.show(summ.get("w_star"), self.w_plus.start, self.w_plus.end)
             try:
                 lo, hi = st.V_range()
                 self._put(self.V, st.V, step=(hi - lo) / 4000, **widened(st.V, lo, hi))
             except Exception:  # noqa: BLE001 - w_plus invalid: keep the V slider where it was
                 pass
+            self.V_mark.show(summ.get("V_SK"), self.V.start, self.V.end)
             self.w_plus_exact.value = st.w_plus
             self.V_exact.value = st.V
             self.ranges.object = self._ranges_text(summ)
@@ -548,7 +555,9 @@ class Explorer:
             self.law_text,
             self.coeff_box,
             self.w_plus,
+            self.w_plus_mark.pane,
             self.V,
+            self.V_mark.pane,
             self.w_plus_exact,
             self.V_exact,
             self.ranges,

@@ -353,6 +353,7 @@ class Scene(pn.viewable.Viewer):
         # resources (server-relative, not CDN) and schedules model updates on its event loop
         self._doc = pn.state.curdoc
         self._served = self._doc is not None and self._doc.session_context is not None
+        self._connected = False  # a browser has had this session open (see session_closed)
         self._lock = threading.Lock()
         self._pending = False
         self._running = False
@@ -413,7 +414,23 @@ class Scene(pn.viewable.Viewer):
         Bokeh then clears every model's properties, so they read as class defaults (a figure's
         Range1d becomes a DataRange1d, a renderer loses its glyph): a render still running for
         that session must neither read nor write them, and nobody is left to see a message."""
-        return self._served and self._doc.session_context is None
+        if not self._served:
+            return False
+        ctx = self._doc.session_context
+        if ctx is None:
+            return True
+        # The browser left: its websocket closed, but Bokeh destroys the session only when it
+        # has been unused for --unused-session-lifetime (15 s, checked every 17 s), and a job
+        # ran on for up to half a minute for nobody.  A served page never reconnects to its
+        # session (a reload opens a new one), so once connected, no connection means gone.
+        session = getattr(ctx, "_session", None)
+        n = getattr(session, "connection_count", None)
+        if n is None:
+            return False
+        if n > 0:
+            self._connected = True
+            return False
+        return self._connected
 
     def cancel(self) -> None:
         """The Cancel button: stop waiting for the running job (killed if nobody else waits)."""
@@ -520,6 +537,16 @@ class Scene(pn.viewable.Viewer):
             return None
         except ParameterError as exc:
             self._show_message(str(exc), "warning")
+            return None
+        except compute.CancelledError:
+            # the worker pool was shut down under the job (the server is stopping; run_job
+            # cancels nothing a caller still waits for): not a failure of the app
+            if not self.session_closed:
+                self._show_message(
+                    "Stopped: the server's worker processes were shut down. Press the button or "
+                    "change a parameter to compute again.",
+                    "info",
+                )
             return None
         except Exception as exc:  # the server keeps serving; the log keeps the traceback
             if self.session_closed:  # the models were emptied under the render: not a failure
