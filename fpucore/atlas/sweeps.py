@@ -1,6 +1,8 @@
 """Sweeps of the Floquet spectrum along wave families (paper Figs. floquet_SK, floquet_cubicSW).
 
-A sweep is a one-row atlas (:func:`fpucore.atlas.run` with ``floquet=True``): every velocity is one
+A sweep is a one-row atlas (:func:`fpucore.atlas.run` with ``floquet=True``), so it lives in the
+atlas stage (``fpucore.floquet.sweep`` names it for older callers, see :mod:`fpucore.floquet`):
+every velocity is one
 task (``CHUNK`` = 1) on a worker of the execution layer (:mod:`fpucore.parallel`; all cores, one
 BLAS thread each): its wave solved from the QC guess and its spectrum computed.  A sweep that
 starts its own pool computes in the calling process too (``caller_runs``: K cores = the caller
