@@ -67,8 +67,25 @@ def _sw_iv(law, w_plus):
     return qc.solitary_intervals(law, w_plus)
 
 
+def _continued() -> dict:
+    """Solitary waves next to V_SK that Newton from the QC guess misses: continuation in V from
+    the family's easy end (wave.continuation.continue_to), also on stiff laws (b = 100, 1000,
+    a = -0.01) where the round-off floor of the step count matters."""
+    out = {}
+    for a, b in ((-1.0, 10.0), (-1.0, 100.0), (-0.01, 1.0), (-1.0, 1000.0)):
+        law = CubicLaw(a, b)
+        for w_plus in (1.0, 6.0):
+            _, (lo, hi) = qc.solitary_intervals(law, w_plus)
+            for f in (1e-5, 1e-3):
+                V = lo + f * (hi - lo)
+                out[f"continued_{a:g}_{b:g}_w{w_plus:g}_{f:g}"] = (
+                    lambda law=law, w_plus=w_plus, V=V: wave.solve_solitary(law, w_plus, V)
+                )
+    return out
+
+
 def cases() -> dict:
-    c = _waves()
+    c = _waves() | _continued()
     sk64 = lambda: wave.solve_superkink(LAW, 5.6, N=64)  # noqa: E731
     sw80 = lambda: wave.solve_solitary(LAW, 1.0, 4.8, N=80)  # noqa: E731
     c |= {

@@ -38,7 +38,6 @@ from pathlib import Path
 import numpy as np
 from tqdm import tqdm
 
-from fpucore.atlas.point import spec_of
 from fpucore.atlas.run import run as run_atlas
 from fpucore.atlas.store import fpucore_version
 from fpucore.errors import ParameterError, require_finite, require_int
@@ -48,6 +47,7 @@ from fpucore.jit_cache import source_hash
 from fpucore.law import require_law
 from fpucore.parallel import Executor
 from fpucore.parallel.threads import on_budget
+from fpucore.wave.setup import spec_of
 
 SWEEP_MAX_V = 10_000  # velocities per sweep
 CHUNK = 1  # velocities per task (fixed: results must not depend on the number of workers)

@@ -24,6 +24,7 @@ from fpucore.wave.family import Family, solitary_family, superkink_family
 from fpucore.wave.setup import (
     M_STEPS,
     Spec,
+    Tolerances,
     build_system,
     choose_K,
     choose_m,
@@ -32,6 +33,8 @@ from fpucore.wave.setup import (
     required_N,
     resize,
     solitary_spec,
+    spec_of,
+    strain_scale,
     superkink_spec,
 )
 
@@ -47,6 +50,7 @@ __all__ = [
     "solitary_family",
     "M_STEPS",
     "Spec",
+    "Tolerances",
     "build_system",
     "choose_K",
     "choose_m",
@@ -55,5 +59,7 @@ __all__ = [
     "required_N",
     "resize",
     "solitary_spec",
+    "spec_of",
+    "strain_scale",
     "superkink_spec",
 ]

@@ -31,8 +31,8 @@ from fpucore.result import Result, status_of
 from fpucore.wave import bounds as wb
 from fpucore.wave import period_map as pm
 from fpucore.wave import tails as wt
-from fpucore.wave.attempt import Solved, Tolerances, WaveSolve
-from fpucore.wave.setup import Spec, solitary_spec, superkink_spec
+from fpucore.wave.attempt import Solved, WaveSolve
+from fpucore.wave.setup import Spec, Tolerances, solitary_spec, superkink_spec
 
 
 @dataclass(frozen=True)
@@ -290,7 +290,7 @@ def solve_superkink(
     tol: relative to the strain scale s = max(1, |w_left|, |w_right|) — Newton accepts residual
     <= tol·s and then steps on until its next correction is <= tol·s or stops shrinking
     (round-off); the step count m keeps the step-doubling error below the same bound
-    (:class:`fpucore.wave.attempt.Tolerances`).  Where round-off exceeds tol·s (stiff laws) the
+    (:class:`fpucore.wave.setup.Tolerances`).  Where round-off exceeds tol·s (stiff laws) the
     achievable level is used and reported (``residual_floor``, ``message``).  The result carries
     bounds against the infinite chain's exact wave (``profile_error`` …, :mod:`.bounds`).
     Non-convergence returns converged=False with the reason in ``message``.
