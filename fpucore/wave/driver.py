@@ -24,7 +24,8 @@ from typing import ClassVar
 import numpy as np
 
 from fpucore import qc
-from fpucore.errors import ParameterError, require_finite, require_int
+from fpucore.budget import require_time_budget
+from fpucore.errors import ParameterError, require_finite, require_int, require_tol
 from fpucore.law import require_law
 from fpucore.parallel.threads import on_budget
 from fpucore.result import Result, status_of
@@ -256,16 +257,11 @@ def _check_common(law, tol, jacobian, max_iter, time_budget_s, predictor):
     require_law(law)
     if predictor is not None and not callable(predictor):
         raise ParameterError("predictor", type(predictor).__name__, "None or a callable N -> x0")
-    tol = require_finite("tol", tol)
-    if not (1e-15 <= tol <= 1e-3):
-        raise ParameterError("tol", tol, "[1e-15, 1e-3]")
+    tol = require_tol(tol)
     if not isinstance(jacobian, str) or jacobian not in ("exact", "fd"):
         raise ParameterError("jacobian", jacobian, "'exact' or 'fd'")
     require_int("max_iter", max_iter, 1, 1000)
-    time_budget_s = require_finite("time_budget_s", time_budget_s)
-    if time_budget_s <= 0:
-        raise ParameterError("time_budget_s", time_budget_s, "> 0")
-    return tol, time_budget_s
+    return tol, require_time_budget(time_budget_s, none_ok=False)
 
 
 # =============================================================================== public API
