@@ -89,6 +89,4 @@ def n_needed(lw, mode, w_plus, V, tol: float) -> int:
     0.1·tol·scale, eq. fixedBCs), at least the smallest N it accepts (tails cut at 1e-6 of the
     amplitude).  Closed-form QC tails only: cheap."""
     lw, spec = spec_of(lw, mode, w_plus, V)
-    n_auto = wave.required_N(lw, spec, wave.Tolerances.of(spec, tol).tail_tol)
-    n_fit = wave.required_N(lw, spec, 1e-6 * spec.amplitude_qc)
-    return int(max(n_auto, n_fit))
+    return int(max(wave.auto_N(lw, spec, tol), wave.smallest_N(lw, spec)))

@@ -117,10 +117,20 @@ def required_N(law, spec: Spec, tail_tol: float) -> int:
     return wt.auto_N(L)
 
 
+def auto_N(law, spec: Spec, tol: float) -> int:
+    """The chain ``N=None`` chooses: tails resolved to the solve's tail tolerance."""
+    return required_N(law, spec, Tolerances.of(spec, tol).tail_tol)
+
+
+def smallest_N(law, spec: Spec) -> int:
+    """The shortest chain accepted for the wave: its tails cut at 1e-6 of the amplitude."""
+    return required_N(law, spec, 1e-6 * spec.amplitude_qc)
+
+
 def choose_N(law, spec: Spec, N, tol) -> int:
     """Automatic N, or validate the user's N against the wave's width."""
     if N is None:
-        N_auto = required_N(law, spec, Tolerances.of(spec, tol).tail_tol)
+        N_auto = auto_N(law, spec, tol)
         if N_auto > wt.N_MAX:
             raise ParameterError(
                 "V",
@@ -135,7 +145,7 @@ def choose_N(law, spec: Spec, N, tol) -> int:
     N = int(N)
     if N % 2 or not (wt.N_MIN <= N <= wt.N_MAX):
         raise ParameterError("N", N, f"an even integer in [{wt.N_MIN}, {wt.N_MAX}]")
-    N_fit = required_N(law, spec, 1e-6 * spec.amplitude_qc)
+    N_fit = smallest_N(law, spec)
     if N < N_fit:
         raise ParameterError(
             "N",
