@@ -33,8 +33,8 @@ import panel as pn
 from panel.io.state import set_curdoc
 
 import fpucore
-from fpucore.cli.common import jsonable
 from fpucore.errors import ParameterError
+from fpucore.result import jsonable
 
 from .. import compute
 from ..compute import Computed

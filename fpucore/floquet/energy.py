@@ -314,7 +314,7 @@ class StabilityChange:
 
 
 def stability_changes(law, w_plus: float, V, classification, criterion: EnergyCriterion):
-    """Cross-check of a sweep's classifications (fpucore.floquet.sweep rows, any order) against
+    """Cross-check of a sweep's classifications (fpucore.atlas.sweep rows, any order) against
     the energy criterion: every change across the stable/unstable line between neighbouring
     classified velocities of one interval, and whether an extremum of E_ren explains it.  A
     change no extremum explains is not a change of stability through the translation mode:
