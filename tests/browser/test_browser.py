@@ -614,10 +614,7 @@ def test_state_walk(page):
     t_end = time.monotonic() + 150  # bounded: the step count adapts to the machine
     steps, kinds = 0, {}
     history: list[str] = []
-    # at most 150 steps: step 159 of this seed types V = 5.2 in superkink mode and the state
-    # ends at V = 5.200694 (w₊ moved to a slider grid point: a known echo, open in the notes;
-    # walks ended before that step until page builds became lazy)
-    while steps < 150 and time.monotonic() < t_end:
+    while steps < 300 and time.monotonic() < t_end:
         r = rng.random()
         if r < 0.45:
             kind = "slider"
@@ -678,6 +675,93 @@ def test_state_walk(page):
     print(f"[browser] state walk: {steps} steps {kinds}")
     # bounded by time: on 2 cores shared with other jobs ~40 steps fit, on an idle machine 300
     assert steps >= 20 and len(kinds) >= 4
+
+
+JS_WIDGET_VALUE = """(cls) => { for (const d of Bokeh.documents) { for (const m of d.all_models) {
+  if ((m.css_classes || []).includes(cls) && 'value_throttled' in m) return m.value;
+} } return null; }"""
+
+
+def widget_value(page, css_class: str) -> float:
+    """The value of the browser's model of a sidebar widget (slider or number box)."""
+    return page.evaluate(JS_WIDGET_VALUE, css_class)
+
+
+def type_into(page, css_class: str, text: str, url_name: str, url_value: str) -> tuple:
+    """Type ``text`` + Enter into a box; wait (bounded) until the URL shows ``url_value`` and the
+    page settles; then a pause in which a late echo would arrive.  (status, message, query)"""
+    box = page.locator(f".{css_class} input")
+    box.fill(text)
+    box.press("Enter")
+    wait_url(page, lambda q: q.get(url_name) == url_value, 20.0)
+    page.wait_for_timeout(500)
+    return settled(page)
+
+
+def press_on_slider(page, css_class: str, key: str) -> dict:
+    """Focus a slider's handle and press ``key``; wait (bounded) for the URL to change."""
+    before = query(page)
+    page.locator(f".{css_class} .noUi-handle").first.focus()
+    page.keyboard.press(key)
+    wait_url(page, lambda q: q != before, 20.0)
+    page.wait_for_timeout(500)
+    return settled(page)[2]
+
+
+def test_a_value_typed_again_after_the_state_moved_is_kept(page):
+    """A box or slider returned by the user to the value it last sent, after the state had moved
+    it elsewhere, still reaches the state.  (Panel never sent value_throttled to the browser:
+    its stale copy equalled the new value, so nothing was sent — the state walk's V = 5.2 typed
+    a second time stayed at 5.200694 while the box showed 5.2.)  Checked after each step: the
+    URL, the box, the slider and the plot's parameters line show the same value."""
+
+    def agree(name: str, box_class: str, slider_class: str, text, msg, q) -> None:
+        x = float(q[name])
+        assert float(page.locator(f".{box_class} input").input_value()) == x, (name, q)
+        assert widget_value(page, box_class) == x, (name, q)
+        assert widget_value(page, slider_class) == pytest.approx(x, rel=1e-12), (name, q)
+        assert stamp(q) in text, (text, q)
+        check_consistent(page, text, msg, q)
+
+    # superkink mode: V typed (the w₊ slider follows off its grid), moved by a slider step, typed
+    # again; then w₊ the same way with a value off its slider's grid
+    page.goto(f"{page.server}/main?a=-1&b=10&w_plus=1&mode=superkink&tab=force&{FAST}")
+    settled(page)
+    for name, box, slider, typed in (
+        ("V", "in-V", "w-V", "5.2"),
+        ("w_plus", "in-wplus", "w-wplus", "0.61234567"),
+    ):
+        text, msg, q = type_into(page, box, typed, name, typed)
+        assert q[name] == typed, q  # no slider snapped it and sent it back
+        agree(name, box, slider, text, msg, q)
+        q = press_on_slider(page, slider, "ArrowRight")
+        assert q[name] != typed, q
+        text, msg, q = type_into(page, box, typed, name, typed)
+        assert q[name] == typed, (name, q)
+        agree(name, box, slider, text, msg, q)
+    # a slider sent to its end, moved by its box, and sent to its end again (solitary V, N)
+    page.goto(f"{page.server}/main?a=-1&b=10&w_plus=1&V=5&mode=solitary&tab=force&{FAST}")
+    settled(page)
+    for name, box, slider, typed in (("V", "in-V", "w-V", "5.1"), ("N", "in-N", "w-N", "120")):
+        end = press_on_slider(page, slider, "End")[name]
+        assert end != typed
+        type_into(page, box, typed, name, typed)
+        text, msg, q = settled(page)
+        q = press_on_slider(page, slider, "End")
+        assert q[name] == end, (name, end, q)
+        assert widget_value(page, slider) == float(end)
+        assert float(page.locator(f".{box} input").input_value()) == float(end), (name, q)
+    # a coefficient slider of a typed law: to its end, the law typed again, to its end again
+    page.locator(".w-law-kind button", has_text="expression").click()
+    law = "w + 10*w**2 - w**3"
+    type_into(page, "in-law", law, "law", law)
+    moved = press_on_slider(page, "w-c2", "End")["law"]
+    assert moved != law
+    type_into(page, "in-law", law, "law", law)
+    q = press_on_slider(page, "w-c2", "End")
+    assert q["law"] == moved, (moved, q)
+    assert page.locator(".in-law input").input_value() == moved
+    assert not app_tracebacks()
 
 
 def _liveness(server: str) -> float:
