@@ -528,7 +528,11 @@ def check_consistent_now(page, text: str, msg: str, q: dict) -> None:
         assert (dots > 0) == ("discrete amplitude" in text), (dots, text)
         assert len(source(page, "profile-qc")["x"]) > 0
     elif scene == "force" and q["mode"] == "solitary" and "current V not drawn" not in msg:
-        assert len(source(page, "force-rayleigh-V")["x"]) == 2
+        line = source(page, "force-rayleigh-V")
+        assert len(line["x"]) == 2
+        # the Rayleigh line of the URL's V: slope V² (f(w₊) + V² (w − w₊))
+        (x0, x1), (y0, y1) = line["x"], line["y"]
+        assert (y1 - y0) / (x1 - x0) == pytest.approx(float(q["V"]) ** 2, rel=1e-9), (line, q)
 
 
 def run_floquet_sweep(page, total: int) -> None:
@@ -1177,6 +1181,7 @@ def test_ten_sessions_stay_responsive_and_consistent(browser, server):
             text, msg, q = settled(pg, 120)
             box = pg.locator(".in-V input").input_value()
             assert float(box) == float(q["V"]), (k, box, q["V"], text)
+            assert widget_value(pg, "w-V") == float(q["V"]), (k, q["V"])  # and the slider
             check_consistent(pg, text, msg, q)
     finally:
         for pg in pages:
