@@ -214,6 +214,11 @@ _MD_BLOCK = re.compile(r"(?m)^([ \t]*)([#+=-])")
 _MD_NUMBERED = re.compile(r"(?m)^([ \t]*\d+)([.)])")
 
 
+#: the options of a Markdown pane that shows md_literal text: no math and no linkify (which
+#: turned "evil.com", "//host" or "a@b.co" in a URL value, and "x.py" in a store path, into links)
+LITERAL_MD = {"disable_math": True, "renderer_options": {"linkify": False}}
+
+
 def md_literal(text) -> str:
     """``text`` for a Markdown pane, shown exactly as typed and never as markup.
 
@@ -278,10 +283,10 @@ class Scene(pn.viewable.Viewer):
             alert_type="warning",
             visible=False,
             css_classes=["scene-message"],
-            disable_math=True,
+            **LITERAL_MD,
         )
         self.status = pn.pane.Markdown(
-            "", css_classes=["scene-status"], sizing_mode="stretch_width", disable_math=True
+            "", css_classes=["scene-status"], sizing_mode="stretch_width", **LITERAL_MD
         )
         self.progress = pn.indicators.Progress(
             value=-1, max=100, visible=False, sizing_mode="stretch_width", bar_color="info"
@@ -623,7 +628,10 @@ class Scene(pn.viewable.Viewer):
             self.hide_plot()
             stamp = md_literal(self._stamp)
             self.status.object = f"_no plot: see the message_\n\n<small>Parameters: {stamp}</small>"
-            self.code.value = python_preamble(self.state) + f"# nothing shown: {text}\n"
+            # every line a comment: a message repeats user text, which may hold line breaks
+            # (a store path from a link), and the code is meant to be pasted and run
+            said = "".join(f"# {line}\n" for line in f"nothing shown: {text}".splitlines())
+            self.code.value = python_preamble(self.state) + said
             self.download.disabled = True  # nothing to download until a plot is shown
         except Exception:  # noqa: BLE001
             log.exception("scene %s: showing the message failed", self.key)
@@ -656,6 +664,7 @@ class Scene(pn.viewable.Viewer):
         try:
             name, buf = self.download_data()
         except (SceneMessage, ParameterError) as exc:
-            buf, name = io.StringIO(f"# {exc}\n"), f"{self.key}-unavailable.txt"
+            said = "".join(f"# {line}\n" for line in str(exc).splitlines())
+            buf, name = io.StringIO(said), f"{self.key}-unavailable.txt"
         self.download.filename = name
         return buf
