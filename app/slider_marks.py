@@ -1,9 +1,10 @@
 """A named mark under a slider's track: V_SK under the V slider, w* under the w₊ slider.
 
 The mark is its own small HTML pane placed right below the slider, never a change of the slider
-model: any change of a slider's label, stylesheet or styles re-rendered it in the browser, whose
-noUiSlider then snapped the state's value to its step and sent that back (a typed V = 5.2
-became 5.200694).  Only this pane re-renders when the mark moves.
+model: a change of a slider's label, stylesheet or styles re-renders it in the browser, and a
+mark that moves with w₊ would do that on every state change.  Only this pane re-renders when the
+mark moves.  (A typed V = 5.2 that ended at 5.200694 was a stale ``value_throttled`` in the
+browser, fixed in app/explorer.py, not a snap of the re-rendered slider.)
 
 Geometry (measured in Chromium): a Panel slider with horizontal margin 10 px draws its track
 (``.noUi-base``) inside a 1 px border, so a value at fraction x of (start, end) sits at
