@@ -16,6 +16,7 @@ a plot.  In superkink mode V and w_plus are tied: moving one moves the other alo
 
 from __future__ import annotations
 
+import contextlib
 import math
 import os
 from pathlib import Path
@@ -168,6 +169,15 @@ class ExplorerState(param.Parameterized):
             )
 
     # ------------------------------------------------------------------ coupling
+    @contextlib.contextmanager
+    def _untied(self):
+        """Updates made by the coupling itself: :meth:`_tie` ignores them (no re-entry)."""
+        self._tying = True
+        try:
+            yield
+        finally:
+            self._tying = False
+
     def _tie(self, *events):
         if self._tying:
             return
@@ -209,11 +219,8 @@ class ExplorerState(param.Parameterized):
                 moved.append(f"V from {self.V:.8g} to {new['V']:.8g}")
         if not new:
             return
-        self._tying = True
-        try:
+        with self._untied():
             self.param.update(**new)
-        finally:
-            self._tying = False
         self.note = "new law: " + " and ".join(moved) + " (outside the new law's ranges)"
 
     def _back_to_solitary(self) -> None:
@@ -231,11 +238,8 @@ class ExplorerState(param.Parameterized):
             return
         else:
             newV = 0.5 * (cp + vsk)
-        self._tying = True
-        try:
+        with self._untied():
             self.V = newV
-        finally:
-            self._tying = False
 
     def _tie_superkink(self, from_V: bool) -> None:
         """Keep V = V_SK(w_plus) (or w_plus = w_+(V) on the same branch) in superkink mode."""
@@ -248,11 +252,8 @@ class ExplorerState(param.Parameterized):
                 new = {"V": qc.superkink_from_w_plus(lw, self.w_plus).V}
         except ParameterError:
             return  # leave the invalid value in place: problem() explains it
-        self._tying = True
-        try:
+        with self._untied():
             self.param.update(**new)
-        finally:
-            self._tying = False
 
     def _remap_V(self, old_w_plus: float) -> None:
         """Solitary mode: when w_plus moves, V stays where it is if it is still valid; only if
@@ -275,11 +276,8 @@ class ExplorerState(param.Parameterized):
             return
         newV = lo + s * (hi - lo)
         if math.isfinite(newV) and lo < newV < hi:
-            self._tying = True
-            try:
+            with self._untied():
                 self.V = newV
-            finally:
-                self._tying = False
             self.note = (
                 f"V moved from {V:.8g} to {newV:.8g}: {V:.8g} is outside ({lo:.8g}, {hi:.8g}) "
                 f"at w₊ = {self.w_plus:.8g}"
@@ -289,12 +287,9 @@ class ExplorerState(param.Parameterized):
     def pick(self, w_plus: float, V: float, N: int | None = None) -> None:
         """Set (w_plus, V) at once (and N, when given), e.g. from a click on the existence
         diagram or an atlas cell; V < 0 clicks (the diagram is symmetric) are mirrored to V > 0."""
-        self._tying = True
-        try:
+        with self._untied():
             extra = {} if N is None else {"N": int(N)}
             self.param.update(w_plus=float(w_plus), V=abs(float(V)), **extra)
-        finally:
-            self._tying = False
         if self.mode == "superkink":
             self._tie_superkink(from_V=False)
 
