@@ -378,6 +378,32 @@ class DiagramScene(BokehScene):
         )
         return "diagram.csv", as_csv(cols, hdr + "\n" + self.python_code())
 
+    def notebook_plot(self) -> str:
+        code = (
+            "import numpy as np\nimport matplotlib.pyplot as plt\n\n"
+            "fig, (ax1, ax2, ax3) = plt.subplots(1, 3, figsize=(14, 4))\n"
+            "for V, amp, E in ((fam.V_below, fam.amp_below, fam.energy_below),\n"
+            "                  (fam.V_above, fam.amp_above, fam.energy_above)):\n"
+            "    ax1.plot(V, amp)\n"
+            "    ax2.plot(V, E)\n"
+            "E = np.r_[fam.energy_below, fam.energy_above]\n"
+            "lo, hi = np.quantile(E, [0.08, 0.92])\n"
+            "ax2.set_ylim(lo - 0.3 * (hi - lo), hi + 0.3 * (hi - lo))\n"
+        )
+        if getattr(self, "_rows", None):
+            code += (
+                "ax1.plot([r.V for r in rows], [r.amplitude for r in rows], 'ko')\n"
+                "ax2.plot([r.V for r in rows], [r.energy for r in rows], 'ko')\n"
+            )
+        return code + (
+            "for ax in (ax1, ax2):\n"
+            "    ax.axvline(fam.V_SK, color='r', ls='--')\n"
+            "ax1.set(xlabel='V', ylabel='amplitude')\n"
+            "ax2.set(xlabel='V', ylabel='E_ren')\n"
+            "ax3.plot(d.w_plus, d.V_SK, 'r', d.w_plus, d.c_plus, 'b', d.w_plus, d.c_minus, 'g')\n"
+            "ax3.set(xlabel='w₊', ylabel='V', title='existence')\n"
+        )
+
     def python_code(self) -> str:
         s = self.state
         try:

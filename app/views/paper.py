@@ -49,6 +49,7 @@ class PaperScene(Scene):
         "`fpu paper --out report.html`; the table: docs/paper_comparison.md._"
     )
     cheap = True
+    exports = False  # a list of buttons, no figure
 
     def make_plot(self):
         rows = []

@@ -284,6 +284,22 @@ class SimulationScene(BokehScene):
         )
         return code
 
+    def notebook_plot(self) -> str:
+        if self._sim is None:
+            return ""
+        return (
+            "import numpy as np\nimport matplotlib.pyplot as plt\n\n"
+            "z, t, n = np.asarray(sim.snapshots), np.asarray(sim.t), np.asarray(sim.sites)\n"
+            "fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(9, 7))\n"
+            "im = ax1.imshow(z, origin='lower', aspect='auto', extent=(n[0], n[-1], t[0], t[-1]))\n"
+            "fig.colorbar(im, ax=ax1, label='w')\n"
+            "ax1.set(xlabel='site n', ylabel='time t')\n"
+            "ax2.plot(n, z[0], '--', color='gray', label='t = 0')\n"
+            "ax2.plot(n, z[-1], 'k', label=f't = {t[-1]:.4g}')\n"
+            "ax2.set(xlabel='site n', ylabel='w')\n"
+            "ax2.legend()\n"
+        )
+
     def download_data(self):
         if self._sim is None:
             raise SceneMessage("no simulation yet")
