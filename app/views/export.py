@@ -288,6 +288,7 @@ def _draw_figure(ax, fig) -> None:
 
 def figure_bytes(models, fmt: str, title: str = "") -> bytes:
     """The visible figures under ``models`` drawn with Matplotlib, as SVG or PNG bytes."""
+    from matplotlib import rc_context
     from matplotlib.figure import Figure
 
     if fmt not in FORMATS:
@@ -305,7 +306,9 @@ def figure_bytes(models, fmt: str, title: str = "") -> bytes:
         for ax, f in zip(axes, row):
             _draw_figure(ax, f)
     buf = io.BytesIO()
-    mfig.savefig(buf, format=fmt, metadata=_metadata(fmt))
+    # every sample drawn, as on screen (Matplotlib's path simplification would drop vertices)
+    with rc_context({"path.simplify": False}):
+        mfig.savefig(buf, format=fmt, metadata=_metadata(fmt))
     return buf.getvalue()
 
 

@@ -61,6 +61,7 @@ LATE_OK: set[tuple[str, str]] = {
     ("fpucore/paper/notebook.py", "import nbformat"),
     # the explorer's "Download figure / notebook": Matplotlib (~0.4 s) and nbformat (~0.1 s)
     # when a file is built, not at every server start
+    ("app/views/export.py", "from matplotlib import rc_context"),
     ("app/views/export.py", "from matplotlib.figure import Figure"),
     ("app/views/export.py", "from matplotlib.colors import ListedColormap"),
     ("app/views/export.py", "import nbformat"),
