@@ -287,7 +287,7 @@ class SimulationScene(BokehScene):
                     tt, ww = site_overlay(r, t_c, wv.velocity < 0)
                     near = np.abs(tt - t_c) <= WINDOW_SITES / V
                     x, y = tt[near], ww[near]
-                    title += f", w_B = {wv.background:.5g}"
+                    title += f", w_B = {fmt_pm(wv.background, wv.background_error)}"
             self._probe_waves.append((site, wv, call))
             up.set(fig, visible=True)
             up.set(fig.title, text=title)

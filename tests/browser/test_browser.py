@@ -1322,3 +1322,20 @@ def test_branch_view_click_opens_the_wave(page):
     q = wait_url(page, lambda q: abs(float(q.get("V", "nan")) - V) < 1e-9)
     assert float(q["V"]) == pytest.approx(V, abs=1e-9)
     assert not app_tracebacks()
+
+
+def test_tracked_sites_on_the_simulation_scene(page):
+    """Simulation, Riemann data with a tracked site (Fig. Riemann1 (c)): panel (c) shows the
+    site's history and the wave computed at the measured V and w_B."""
+    page.goto(f"{page.server}/main?tab=simulation&N=300&tol=1e-08")
+    page.locator(".scene-simulation .scene-message").get_by_text("Run simulation").wait_for()
+    field = page.locator(".scene-simulation .bk-input-group", has_text="tracked sites")
+    field.locator("input").fill("280")
+    field.locator("input").press("Enter")
+    text = run_riemann(page, t_end="20", L="400")
+    assert "wave at V = 4.6" in text, text
+    site, tw = source(page, "sim-probe-0"), source(page, "sim-probe-wave-0")
+    assert len(site["x"]) > 100 and len(tw["x"]) > 10
+    assert abs(max(site["y"]) - max(tw["y"])) < 0.1  # the crests meet (4.5 high)
+    page.screenshot(path="/tmp/fpu-simulation-tracked.png", full_page=True)
+    assert not app_tracebacks()
