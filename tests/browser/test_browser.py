@@ -1060,6 +1060,11 @@ def test_paper_tab_opens_three_figures(page):
         ("superkink", "force", "superkink", 2 * 65**0.5 / 3, "Time:"),
         ("stabSW", "simulation", "solitary", 5.2174919476, "Run simulation"),
     ]
+    # each figure's comparison row is filled (from fpu paper's cache, or the command to run)
+    page.locator(".paper-cmp-pplane").get_by_text("fpu paper", exact=False).or_(
+        page.locator(".paper-cmp-pplane").get_by_text("agree", exact=False)
+    ).first.wait_for()
+    page.screenshot(path="/tmp/fpu-paper-tab.png", full_page=False)
     for label, tab, mode, V, shows in cases:
         if query(page).get("tab") != "paper":
             open_tab(page, "Paper")
