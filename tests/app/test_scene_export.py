@@ -189,3 +189,13 @@ def test_a_discrete_wave_notebook_reproduces_the_screen(tmp_path):
     _, residual, amplitude = line.split()
     assert float(amplitude) == pytest.approx(r.amplitude, rel=1e-12)  # on screen: the amplitude
     assert float(residual) < 1e-9
+
+
+@pytest.mark.parametrize("key", ["force", "phase", "profiles", "diagram"])
+def test_every_notebook_cell_is_python_and_every_figure_exports(key):
+    sc = scene(key)
+    nb = json.loads(sc.export_notebook())
+    for cell in nb["cells"]:
+        if cell["cell_type"] == "code":
+            compile("".join(cell["source"]), f"{key} cell", "exec")  # a SyntaxError fails
+    assert any(True for _ in ET.fromstring(sc.export_figure("svg")).iter(f"{SVG}path"))
