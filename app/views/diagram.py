@@ -214,6 +214,8 @@ class DiagramScene(BokehScene):
             return
         doc = self._doc
         with set_curdoc(doc) if doc is not None else nullcontext():
+            if self.state.mode != "solitary":  # the branch is the solitary family's
+                self.state.mode = "solitary"
             self.state.pick(self._branch.w_plus, V)
 
     def branch_point(self, x, y) -> float | None:

@@ -62,3 +62,7 @@ def test_a_click_on_a_point_opens_that_wave_and_elsewhere_nothing(classified):
     sc._on_branch_tap(Tap(sc.fig_e, x=near[0], y=near[1]))
     assert sc.state.V == x and sc.state.w_plus == 1.0  # that wave is the current one
     assert np.isfinite(sc.state.V)
+    # in superkink mode a click opens the solitary wave too (the branch is the solitary family's)
+    sc.state.mode = "superkink"
+    sc._on_branch_tap(Tap(sc.fig_e, x=near[0], y=near[1]))
+    assert sc.state.mode == "solitary" and sc.state.V == x

@@ -105,10 +105,11 @@ def test_code_cells_keep_a_comment_with_its_computation():
 
 def test_held_profiles_survive_slider_moves_and_clear():
     sc = scene("profiles")
-    assert sc.held.hold()  # V = 5.0
+    assert sc.held.hold()  # V = 5.0; the hold re-renders in the scene's worker
+    assert sc.wait_idle()
     sc.state.V = 5.2
     sc.refresh()
-    assert sc.held.hold()
+    assert sc.held.hold() and sc.wait_idle()
     sc.state.V = 4.8
     sc.refresh()
     srcs = [sc.held.lines[k][1] for k in range(2)]
@@ -179,7 +180,7 @@ def test_a_phase_plane_notebook_reproduces_the_screen(tmp_path):
 
 def test_a_discrete_wave_notebook_reproduces_the_screen(tmp_path):
     sc = scene("profiles", N=128, discrete=True)
-    sc.held.hold()
+    assert sc.held.hold() and sc.wait_idle()
     sc.state.V = 5.2
     sc.refresh()
     r = sc._discrete
