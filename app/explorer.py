@@ -2,8 +2,9 @@
 
 * Sliders are throttled (they act on release) and keyboard-accessible; each sits next to an
   exact numeric input.  Their ranges follow the theory and are updated from the state: w₊ over
-  (α, β) without w*, V over (c₊, c₋) (solitary mode; V_SK printed in the sidebar) or over the
-  superkink bounds of eq. V_bounds_cubic (superkink mode, where V and w₊ are tied).
+  (α, β) without w*, V over (c₊, c₋) (solitary mode) or over the superkink bounds of eq.
+  V_bounds_cubic (superkink mode, where V and w₊ are tied); w* and V_SK are marked under their
+  sliders by panes of their own (app/slider_marks.py: the slider models are never touched).
 * Only the visible scene renders; a parameter change marks the others stale and they render
   when their tab is opened.  A served page is built with the visible scene only (the build runs
   on the server's event loop, which ten sessions' builds held for up to 20 s); a hidden scene
@@ -32,12 +33,14 @@ import urllib.parse
 
 import panel as pn
 import param
+from bokeh.core.property.descriptors import UnsetValueError
 from panel.io.state import set_curdoc
 
 from fpucore.errors import ParameterError
 from fpucore.law import PolynomialLaw, expression_of
 
 from . import compute
+from .slider_marks import SliderMark
 from .state import (
     A_RANGE,
     B_RANGE,
@@ -51,7 +54,7 @@ from .state import (
     url_query,
 )
 from .views import SCENES
-from .views.base import md_literal
+from .views.base import LITERAL_MD, md_literal
 
 log = logging.getLogger("fpu-explorer")
 
@@ -61,6 +64,60 @@ MAX_COEFF_SLIDERS = 8
 CSS = """
 .scene-status p { margin: 0.2em 0; font-size: 0.92em; }
 """
+
+
+class _ThrottledInStep:
+    """A widget whose browser-side ``value_throttled`` follows every value the server sets.
+
+    With ``pn.extension(throttled=True)`` a slider or number box reaches the server only
+    through ``value_throttled`` (its bare ``value`` events are dropped), and BokehJS sends a
+    property only when it changes.  Panel never sends ``value_throttled`` to the browser, so
+    the browser kept the user's last value: after the state moved the widget elsewhere (a
+    typed V moves the V slider, a slider moves the V box), a user action that returned it to
+    that last value changed nothing in the browser's ``value_throttled``, nothing was sent,
+    and the widget showed a value the state, URL and plot did not have (the state walk: V = 5.2
+    typed a second time kept V = 5.200694; a slider released where it was last released).
+    Here each value sent to the browser carries the same ``value_throttled``."""
+
+    def _update_model(self, events, msg, root, model, doc, comm) -> None:
+        value = msg.get("value", _UNSET)
+        super()._update_model(events, msg, root, model, doc, comm)
+        if value is _UNSET or "value_throttled" not in model.properties():
+            return
+        try:
+            old = model.value_throttled
+        except UnsetValueError:  # a number box's, until the browser first sets it
+            old = None
+        if old == value:
+            return
+        ref = root.ref["id"]
+        # marked as the server's own change, as Panel marks the properties it sets, so its
+        # change handler does not take it for a browser event
+        self._changing[ref] = pending = ["value_throttled"]
+        try:
+            model.lookup("value_throttled")._set(model, old, value)  # Readonly: no setattr
+        finally:
+            if self._changing.get(ref) is pending:
+                del self._changing[ref]
+
+
+_UNSET = object()
+
+
+class FloatSlider(_ThrottledInStep, pn.widgets.FloatSlider):
+    pass
+
+
+class IntSlider(_ThrottledInStep, pn.widgets.IntSlider):
+    pass
+
+
+class FloatInput(_ThrottledInStep, pn.widgets.FloatInput):
+    pass
+
+
+class IntInput(_ThrottledInStep, pn.widgets.IntInput):
+    pass
 
 
 class Explorer:
@@ -89,7 +146,7 @@ class Explorer:
             alert_type="warning",
             visible=bool(url_errors),
             css_classes=["url-message"],
-            disable_math=True,
+            **LITERAL_MD,
             sizing_mode="stretch_width",
         )
         self.tabs = pn.Tabs(
@@ -114,7 +171,7 @@ class Explorer:
             css_classes=["w-mode"],
         )
         mk = dict(sizing_mode="stretch_width", show_value=True)
-        self.a = pn.widgets.FloatSlider(
+        self.a = FloatSlider(
             label="a",
             start=A_RANGE[0],
             end=A_RANGE[1],
@@ -124,7 +181,7 @@ class Explorer:
             format="0.00",
             **mk,
         )
-        self.b = pn.widgets.FloatSlider(
+        self.b = FloatSlider(
             label="b",
             start=B_RANGE[0],
             end=B_RANGE[1],
@@ -135,7 +192,7 @@ class Explorer:
             **mk,
         )
         self._build_law_widgets()
-        self.w_plus = pn.widgets.FloatSlider(
+        self.w_plus = FloatSlider(
             label="w₊",
             start=0.0,
             end=1.0,
@@ -145,7 +202,7 @@ class Explorer:
             format="0.0000",
             **mk,
         )
-        self.V = pn.widgets.FloatSlider(
+        self.V = FloatSlider(
             label="V",
             start=0.0,
             end=1.0,
@@ -155,18 +212,21 @@ class Explorer:
             format="0.00000",
             **mk,
         )
+        # V_SK under the V slider, w* under the w₊ slider: panes of their own (slider_marks)
+        self.w_plus_mark = SliderMark("w*", "mark-wplus")
+        self.V_mark = SliderMark("V_SK", "mark-V")
         # one per row, full sidebar width: room for a float's 17 significant digits
-        self.w_plus_exact = pn.widgets.FloatInput(
+        self.w_plus_exact = FloatInput(
             label="w₊ (exact)", value=st.w_plus, css_classes=["in-wplus"],
             sizing_mode="stretch_width",
         )  # fmt: skip
-        self.V_exact = pn.widgets.FloatInput(
+        self.V_exact = FloatInput(
             label="V (exact)", value=st.V, css_classes=["in-V"], sizing_mode="stretch_width"
         )
         self.ranges = pn.pane.Markdown(
-            "", css_classes=["ranges"], sizing_mode="stretch_width", disable_math=True
+            "", css_classes=["ranges"], sizing_mode="stretch_width", **LITERAL_MD
         )
-        self.N = pn.widgets.IntSlider(
+        self.N = IntSlider(
             label="N (sites, even)",
             start=N_RANGE[0],
             end=N_RANGE[1],
@@ -176,7 +236,7 @@ class Explorer:
             **mk,
         )
         # N typed exactly (the slider's step at 4000 sites is coarse); the state evens it
-        self.N_exact = pn.widgets.IntInput(
+        self.N_exact = IntInput(
             label="N (type)", value=int(st.N), step=2, css_classes=["in-N"], width=110
         )
         self.tol = pn.widgets.DiscreteSlider(
@@ -356,7 +416,7 @@ class Explorer:
         sliders = []
         for k, c in enumerate(coeffs):
             lo, hi = coeff_range(c)
-            sl = pn.widgets.FloatSlider(
+            sl = FloatSlider(
                 label=f"c{k + 1} (w^{k + 1})" if k else "c1 (w) = f′(0)",
                 start=lo,
                 end=hi,
@@ -421,11 +481,13 @@ class Explorer:
                 span = hi - lo
                 lo, hi = lo + 1e-6 * span, hi - 1e-6 * span
                 self._put(self.w_plus, st.w_plus, step=span / 2000, **widened(st.w_plus, lo, hi))
+            self.w_plus_mark.show(summ.get("w_star"), self.w_plus.start, self.w_plus.end)
             try:
                 lo, hi = st.V_range()
                 self._put(self.V, st.V, step=(hi - lo) / 4000, **widened(st.V, lo, hi))
             except Exception:  # noqa: BLE001 - w_plus invalid: keep the V slider where it was
                 pass
+            self.V_mark.show(summ.get("V_SK"), self.V.start, self.V.end)
             self.w_plus_exact.value = st.w_plus
             self.V_exact.value = st.V
             self.ranges.object = self._ranges_text(summ)
@@ -548,7 +610,9 @@ class Explorer:
             self.law_text,
             self.coeff_box,
             self.w_plus,
+            self.w_plus_mark.pane,
             self.V,
+            self.V_mark.pane,
             self.w_plus_exact,
             self.V_exact,
             self.ranges,

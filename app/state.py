@@ -324,9 +324,16 @@ def resolve_atlas_store(name: str, raw: str) -> Path:
     path; ParameterError naming ``name`` for a path that leaves the root."""
     root = atlas_root()
     text = raw.strip()
-    path = (root / Path(text).expanduser()).resolve()
+    valid = f"a path below {root}"
+    if len(text) > MAX_URL_LAW:  # also typed in the box (a URL value is cut before)
+        raise ParameterError(name, text[:12] + "…", valid, f"longer than {MAX_URL_LAW} characters")
+    try:  # a NUL byte, "~nosuchuser", a name past the file system's limit: refused, not raised
+        path = (root / Path(text).expanduser()).resolve()
+        path.is_dir()
+    except (OSError, ValueError, RuntimeError) as exc:
+        raise ParameterError(name, raw, valid, f"{type(exc).__name__}: {exc}") from None
     if not text or not path.is_relative_to(root):
-        raise ParameterError(name, raw, f"a path below {root}", "stores are read only there")
+        raise ParameterError(name, raw, valid, "stores are read only there")
     return path
 
 

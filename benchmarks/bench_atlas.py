@@ -10,7 +10,7 @@ B. Per-point overhead of the layer — scheduling, serialization, the Zarr write
    point, against a point's cost; process pool and Dask LocalCluster, 1 worker each.  Target ≤ 5%.
 C. Continuation: one solitary-wave line (w₊ = 1, 16 velocities, N = 300, waves only, inline)
    with continuation against cold starts from the QC guess.
-D. ``floquet.sweep`` of 12 superkink velocities at N = 500 on 2 cores as ``fpu floquet sweep``
+D. ``atlas.sweep`` of 12 superkink velocities at N = 500 on 2 cores as ``fpu floquet sweep``
    runs it — a fresh process, the sweep making its own execution (the caller and 1 worker,
    ``caller_runs``), forkserver and worker start-up timed, no cache — against 12 sequential
    spectra in this process, one thread (the sweep before: a loop in one process).  Target ≤ 0.6×.
@@ -142,10 +142,10 @@ def cold_sweep(N: int, nV: int, caller_runs: bool, method: str = "structured") -
     d0, c0, t0 = descendants_cpu(), time.process_time(), time.perf_counter()
     kw = dict(N=N, use_cache=False, method=method)
     if caller_runs:
-        s = floquet.sweep(LAW, "superkink", V, workers=2, **kw)
+        s = atlas.sweep(LAW, "superkink", V, workers=2, **kw)
     else:
         with Executor(workers=2) as ex:
-            s = floquet.sweep(LAW, "superkink", V, executor=ex, **kw)
+            s = atlas.sweep(LAW, "superkink", V, executor=ex, **kw)
     wall = time.perf_counter() - t0
     return {"wall": wall, "caller_cpu": time.process_time() - c0,
             "pool_cpu": descendants_cpu() - d0, "max_modulus": s.max_modulus.tolist(),
@@ -210,7 +210,7 @@ def part_d(N: int = 500, nV: int = 12) -> None:
     with Executor(workers=2) as ex:  # the dashboard's case: pool started and JIT loaded
         warm(ex, 64)
         t1 = time.perf_counter()
-        floquet.sweep(LAW, "superkink", V, N=N, use_cache=False, executor=ex)
+        atlas.sweep(LAW, "superkink", V, N=N, use_cache=False, executor=ex)
         t_warm = time.perf_counter() - t1
     print(f"   again on a running pool (started, JIT loaded: the dashboard's case) {t_warm:.1f} s"
           f" -> ratio {t_warm / t_seq['dense'][0]:.2f}; load average "

@@ -29,8 +29,8 @@ import numpy as np
 import scipy.linalg
 from threadpoolctl import threadpool_limits
 
+from fpucore import atlas, qc, wave
 from fpucore import floquet as fq
-from fpucore import qc, wave
 from fpucore.floquet.monodromy import deflate
 from fpucore.law import CubicLaw, law_from_expression
 
@@ -104,7 +104,7 @@ def part_c(Ns=(200, 300, 500), n_sk: int = 22, n_sw: int = 10) -> None:
           f"{hi:.5f}]")  # fmt: skip
     env = {}
     for N in Ns:
-        sw = fq.sweep(LAW, "superkink", V_sk, N=N, progress=True)
+        sw = atlas.sweep(LAW, "superkink", V_sk, N=N, progress=True)
         env[N] = sw
         print(f"   N={N}: max over V of max|mu|-1 = {np.nanmax(sw.max_modulus - 1):.3e}; "
               f"{sw.elapsed_s:.0f} s ({int(sw.cached.sum())} cached)")  # fmt: skip
@@ -119,7 +119,7 @@ def part_c(Ns=(200, 300, 500), n_sk: int = 22, n_sw: int = 10) -> None:
         (a, b), (c, d) = qc.solitary_intervals(LAW, w_plus)
         V = np.concatenate([np.linspace(a + 0.05 * (b - a), b - 0.004, n_sw),
                             np.linspace(c + 0.004, d - 0.05 * (d - c), n_sw)])  # fmt: skip
-        sw = fq.sweep(LAW, "solitary", np.round(V, 5), w_plus=w_plus, N=500, progress=True)
+        sw = atlas.sweep(LAW, "solitary", np.round(V, 5), w_plus=w_plus, N=500, progress=True)
         mx = np.nanmax(sw.max_modulus)
         print(f"   solitary w+={w_plus}: max over V of max|mu| = {mx:.6f} (paper bound {bound}): "
               f"{'PASS' if mx < bound else 'FAIL'}; V_SK = {b:.6f}")  # fmt: skip

@@ -156,15 +156,22 @@ def require_memory(
     return limit
 
 
-def require_time_budget(value: float | None, name: str = "time_budget_s") -> float | None:
-    """``None`` (no limit) or a finite number of seconds > 0."""
-    if value is None:
+def require_time_budget(
+    value: float | None, name: str = "time_budget_s", none_ok: bool = True
+) -> float | None:
+    """``None`` (no limit; refused when not ``none_ok``) or a finite number of seconds in
+    (0, 1e9]: the one time-budget rule of every solver."""
+    valid = "None (no limit) or seconds in (0, 1e9]" if none_ok else "seconds in (0, 1e9]"
+    if value is None and none_ok:
         return None
     if isinstance(value, bool):
-        raise ParameterError(name, value, "None (no limit) or seconds in (0, 1e9]")
-    x = require_finite(name, value)
+        raise ParameterError(name, value, valid)
+    try:
+        x = require_finite(name, value)
+    except ParameterError:  # NaN, inf, a string: the same rule in the refusal
+        raise ParameterError(name, value, valid) from None
     if not (0.0 < x <= 1e9):
-        raise ParameterError(name, x, "None (no limit) or seconds in (0, 1e9]")
+        raise ParameterError(name, x, valid)
     return x
 
 

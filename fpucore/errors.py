@@ -75,13 +75,29 @@ def require_finite(name: str, value: float) -> float:
 
 
 def require_int(name: str, value, lo: int, hi: int) -> int:
-    """Return ``int(value)`` for an integer (Python or NumPy, not bool) in [lo, hi], else raise."""
+    """Return ``int(value)`` for an integer (Python or NumPy, not bool) in [lo, hi], else raise.
+
+    The one rule for counts (N, m, L, n_snapshots, max_steps, ...): a float is refused even when
+    its value is whole (``500.0``), as a string or a bool is — a count given as a float is a
+    caller's mistake (the CLI parses integers; JSON keeps 500 and 500.0 apart)."""
     # numbers.Integral: Python and NumPy integers (numpy.bool_ is not one)
     if isinstance(value, bool) or not isinstance(value, numbers.Integral):
         raise ParameterError(name, value, f"an integer in [{lo}, {hi}]")
     if not lo <= int(value) <= hi:
         raise ParameterError(name, int(value), f"an integer in [{lo}, {hi}]")
     return int(value)
+
+
+TOL_RANGE = (1e-15, 1e-3)
+"""Relative residual tolerances of wave solves (and so of sweeps and atlases) accepted."""
+
+
+def require_tol(tol, name: str = "tol") -> float:
+    """A wave solve's relative tolerance: a finite float in :data:`TOL_RANGE`."""
+    x = require_finite(name, tol)
+    if not (TOL_RANGE[0] <= x <= TOL_RANGE[1]):
+        raise ParameterError(name, x, f"[{TOL_RANGE[0]:g}, {TOL_RANGE[1]:g}]")
+    return x
 
 
 def fmt_interval(lo: float, hi: float, open_: bool = True) -> str:

@@ -12,8 +12,10 @@ Every result is a frozen dataclass that mixes in :class:`Result` and has
   docstring says otherwise).
 
 ``as_dict()`` is generated from the dataclass fields (plus the names in ``DERIVED``), so a field
-added to a result appears in the CLI's JSON without a hand-kept list.  A caller that wants
-strictness calls :meth:`Result.require_converged`, which raises
+added to a result appears in the CLI's JSON without a hand-kept list; :func:`jsonable` turns it
+(or any nest of dicts, lists, NumPy scalars and arrays) into what ``json.dumps`` takes — the one
+conversion used by the CLI, the dashboard's downloads, the sweeps' rows and the atlas store.
+A caller that wants strictness calls :meth:`Result.require_converged`, which raises
 :class:`fpucore.errors.ConvergenceError` with the result's message.  This module imports only
 :mod:`fpucore.errors` (it is imported by all).
 """
@@ -21,6 +23,7 @@ strictness calls :meth:`Result.require_converged`, which raises
 from __future__ import annotations
 
 import dataclasses
+import math
 from typing import Any, ClassVar
 
 import numpy as np
@@ -37,7 +40,28 @@ def status_of(converged: bool, stopped: bool = False) -> str:
     return "stopped" if stopped else "not_converged"
 
 
-def _plain(value: Any, arrays: bool) -> tuple[bool, Any]:
+def jsonable(obj):
+    """Recursively convert NumPy scalars and arrays to Python values, tuples to lists and
+    non-finite floats to None, for ``json.dumps`` (and for comparing stored with fresh values)."""
+    if isinstance(obj, dict):
+        return {str(k): jsonable(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [jsonable(v) for v in obj]
+    if isinstance(obj, np.ndarray):
+        return jsonable(obj.tolist())
+    if isinstance(obj, (np.floating, float)):
+        x = float(obj)
+        return x if math.isfinite(x) else None
+    if isinstance(obj, (np.integer,)):
+        return int(obj)
+    if isinstance(obj, np.bool_):
+        return bool(obj)
+    if isinstance(obj, np.str_):
+        return str(obj)
+    return obj
+
+
+def _field_value(value: Any, arrays: bool) -> tuple[bool, Any]:
     """(keep, value) for one field: nested results become dicts, law objects their description,
     complex arrays are split by the caller; arrays are dropped when ``arrays`` is False."""
     if isinstance(value, Result):
@@ -69,7 +93,7 @@ class Result:
         for f in dataclasses.fields(self):  # type: ignore[arg-type]
             if f.name in self.EXCLUDE:
                 continue
-            keep, v = _plain(getattr(self, f.name), arrays)
+            keep, v = _field_value(getattr(self, f.name), arrays)
             if not keep:
                 continue
             if isinstance(v, np.ndarray) and np.iscomplexobj(v):

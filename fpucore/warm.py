@@ -25,7 +25,6 @@ import multiprocessing as mp
 import signal
 import time
 from collections.abc import Callable
-from concurrent.futures import ProcessPoolExecutor
 
 from fpucore import floquet, simulate, wave
 from fpucore.law import CubicLaw, ddforce, dforce, force
@@ -99,8 +98,12 @@ LAZY = ("floquet-structured", "simulate", "simulate-dopri5", "simulate-symplecti
 
 def _ignore_interrupt() -> None:
     """Worker initializer: Ctrl-C is the parent's to handle (one line, exit 130), not a traceback
-    from each compiling child."""
+    from each compiling child.  The parent terminates the children on Ctrl-C; "spawn" as their
+    own start method keeps Numba from guarding its threading layer with a named semaphore, which
+    a terminated child would leave to the resource tracker ("leaked semaphore", as in
+    fpucore.parallel.worker)."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    mp.set_start_method("spawn", force=True)
 
 
 def warm_routes(names: tuple[str, ...]) -> float:
@@ -122,9 +125,11 @@ def warm_all(parallel: bool = True, lazy: bool = True) -> list[str]:
     groups = [tuple(n for n in g if lazy or n not in LAZY) for g in GROUPS]
     groups = [g for g in groups if g]
     if parallel and len(groups) > 1:
-        ctx = mp.get_context("spawn")
-        with ProcessPoolExecutor(len(groups), ctx, initializer=_ignore_interrupt) as pool:
-            list(pool.map(warm_routes, groups))
+        # a Pool, not a ProcessPoolExecutor: on Ctrl-C the executor's exit waited for the
+        # children (which ignore SIGINT) to finish compiling — over a minute on a loaded
+        # machine before `fpu: interrupted`; the Pool's exit terminates them at once
+        with mp.get_context("spawn").Pool(len(groups), initializer=_ignore_interrupt) as pool:
+            pool.map(warm_routes, groups)
     # the essential routes first, then LAZY in its order (the serial background warm-up: the
     # half-size Floquet route before the simulation)
     names = tuple(n for g in groups for n in g if n not in LAZY) + (LAZY if lazy else ())

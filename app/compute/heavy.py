@@ -8,7 +8,9 @@ building keys themselves (:mod:`app.compute.jobs` holds the jobs and their keys)
 
 from __future__ import annotations
 
-from collections.abc import Hashable
+import threading
+import time
+from collections.abc import Callable, Hashable
 
 from fpucore.errors import ParameterError
 
@@ -20,6 +22,7 @@ from .jobs import (
     floquet_key,
     simulation_job,
     simulation_key,
+    stage_of,
     sweep_job,
     sweep_key,
     wave_job,
@@ -58,14 +61,56 @@ def discrete_wave_cached(lw, mode, w_plus, V, N, tol) -> bool:
         return False
 
 
+#: seconds per (2N)³ of the last dense spectrum computed here (monodromy, check and
+#: eigenvalues): the time-left estimate of the next one, whose LAPACK call reports nothing
+_SPECTRUM_RATE: list[float] = []
+_RATE_LOCK = threading.Lock()
+
+
+def spectrum_time_estimate(N: int) -> float | None:
+    """Seconds a dense spectrum of a chain of N sites should take here, from the last one
+    computed (None before the first)."""
+    with _RATE_LOCK:
+        rate = _SPECTRUM_RATE[-1] if _SPECTRUM_RATE else None
+    return None if rate is None else rate * (2.0 * N) ** 3
+
+
+class SpectrumProgress:
+    """The Floquet job's progress for a scene's ``set_progress(done, stage=...)``: the stage and
+    its fraction from the worker (:func:`~app.compute.jobs.stage_of`); during the eigenvalues,
+    which report nothing until they end, the fraction is the elapsed share of the time the last
+    spectrum here predicts for this N (at most 95 %), so the bar moves and gives a time left."""
+
+    def __init__(self, progress: Callable, N: int):
+        self.progress, self.N = progress, int(N)
+        self.stage, self.t_stage = "", time.perf_counter()
+
+    def __call__(self, x: float) -> None:
+        stage, done = stage_of(x)
+        now = time.perf_counter()
+        if stage != self.stage:
+            self.stage, self.t_stage = stage, now
+        if stage == "Floquet spectrum" and done < 1.0:
+            expected = spectrum_time_estimate(self.N)
+            if expected is not None:
+                done = max(done, min(0.95, (now - self.t_stage) / max(expected, 1e-3)))
+        self.progress(done, stage=stage)
+
+
 def floquet_spectrum(lw, mode, w_plus, V, N, tol, stop=None, progress=None):
     """(wave Computed, spectrum Computed or None): the wave from the shared cache if there,
-    else wave and spectrum in one worker job."""
+    else wave and spectrum in one worker job.  ``progress(done, stage=...)``: its stages
+    (:data:`~app.compute.jobs.FLOQUET_STAGES`)."""
     wk = wave_key(lw, mode, w_plus, V, N, tol)
     rc = CACHE.lookup(wk)
     args = (lw, mode, w_plus, V, N, tol)
-    c = run_job(floquet_key(*args), floquet_job, args, stop, progress)
+    staged = None if progress is None else SpectrumProgress(progress, N)
+    c = run_job(floquet_key(*args), floquet_job, args, stop, staged)
     r, fr = c.value
+    if fr is not None and not c.cached and fr.method == "dense":
+        spent = fr.monodromy_s + fr.check_s + fr.eig_s
+        with _RATE_LOCK:
+            _SPECTRUM_RATE[:] = [spent / (2.0 * fr.N) ** 3]
     if rc is None:
         CACHE.put(wk, r, r.elapsed_s)
         rc = Computed(r, r.elapsed_s, c.cached)

@@ -23,6 +23,9 @@ __all__ = [
     "wave_call",
     "wave_job",
     "floquet_job",
+    "FLOQUET_STAGES",
+    "stage_progress",
+    "stage_of",
     "fraction",
     "sweep_job",
     "family_job",
@@ -51,10 +54,32 @@ def wave_job(lw, mode: str, w_plus: float, V: float, N: int, tol: float):
     return getattr(wave, name)(*args, **kwargs)
 
 
-def floquet_job(lw, mode: str, w_plus: float, V: float, N: int, tol: float):
-    """(WaveResult, FloquetResult or None if the wave did not converge)."""
+#: the stages of a Floquet job in order (the shorter rings only when the excess needs them)
+FLOQUET_STAGES = ("discrete wave", "Floquet spectrum", "shorter rings")
+
+
+def stage_progress(stage: str, done: float) -> float:
+    """(stage, its fraction done) → the one number the execution layer forwards: stage k of n
+    covers [k/n, (k+1)/n)."""
+    k, n = FLOQUET_STAGES.index(stage), len(FLOQUET_STAGES)
+    return (k + min(max(float(done), 0.0), 0.999)) / n
+
+
+def stage_of(x: float) -> tuple[str, float]:
+    """Inverse of :func:`stage_progress`: (stage, its fraction done)."""
+    n = len(FLOQUET_STAGES)
+    k = min(int(float(x) * n), n - 1)
+    return FLOQUET_STAGES[k], min(float(x) * n - k, 1.0)
+
+
+def floquet_job(lw, mode: str, w_plus: float, V: float, N: int, tol: float, progress=None):
+    """(WaveResult, FloquetResult or None if the wave did not converge).  ``progress`` gets
+    :func:`stage_progress` values: the wave, the spectrum, the shorter rings."""
+    send = None if progress is None else (lambda stage, x: progress(stage_progress(stage, x)))
+    if send is not None:
+        send("discrete wave", 0.0)
     r = wave_job(lw, mode, w_plus, V, N, tol)
-    return r, (fq.spectrum(r) if r.converged else None)
+    return r, (fq.spectrum(r, progress=send) if r.converged else None)
 
 
 def fraction(progress):

@@ -78,10 +78,10 @@ def existence_diagram(lw, n: int = 400) -> Computed:
 
 def spec_of(lw, mode, w_plus, V):
     """fpucore.wave's description (Spec) of the wave the parameters define."""
-    if mode == "superkink":
+    if mode == "superkink":  # the scene's w₊ fixes V and the branch
         sk = qc.superkink_from_w_plus(lw, w_plus)
-        return lw, wave.superkink_spec(lw, sk.V, sk.branch)
-    return lw, wave.solitary_spec(lw, w_plus, V)
+        return lw, wave.spec_of(lw, "superkink", sk.branch, sk.V)
+    return lw, wave.spec_of(lw, "solitary", w_plus, V)
 
 
 def n_needed(lw, mode, w_plus, V, tol: float) -> int:
@@ -89,7 +89,4 @@ def n_needed(lw, mode, w_plus, V, tol: float) -> int:
     0.1·tol·scale, eq. fixedBCs), at least the smallest N it accepts (tails cut at 1e-6 of the
     amplitude).  Closed-form QC tails only: cheap."""
     lw, spec = spec_of(lw, mode, w_plus, V)
-    scale = max(1.0, abs(spec.w_left), abs(spec.w_right))
-    n_auto = wave.required_N(lw, spec, 0.1 * tol * scale)
-    n_fit = wave.required_N(lw, spec, 1e-6 * spec.amplitude_qc)
-    return int(max(n_auto, n_fit))
+    return int(max(wave.auto_N(lw, spec, tol), wave.smallest_N(lw, spec)))

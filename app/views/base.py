@@ -33,8 +33,8 @@ import panel as pn
 from panel.io.state import set_curdoc
 
 import fpucore
-from fpucore.cli.common import jsonable
 from fpucore.errors import ParameterError
+from fpucore.result import jsonable
 
 from .. import compute
 from ..compute import Computed
@@ -215,6 +215,11 @@ _MD_BLOCK = re.compile(r"(?m)^([ \t]*)([#+=-])")
 _MD_NUMBERED = re.compile(r"(?m)^([ \t]*\d+)([.)])")
 
 
+#: the options of a Markdown pane that shows md_literal text: no math and no linkify (which
+#: turned "evil.com", "//host" or "a@b.co" in a URL value, and "x.py" in a store path, into links)
+LITERAL_MD = {"disable_math": True, "renderer_options": {"linkify": False}}
+
+
 def md_literal(text) -> str:
     """``text`` for a Markdown pane, shown exactly as typed and never as markup.
 
@@ -285,10 +290,10 @@ class Scene(pn.viewable.Viewer):
             alert_type="warning",
             visible=False,
             css_classes=["scene-message"],
-            disable_math=True,
+            **LITERAL_MD,
         )
         self.status = pn.pane.Markdown(
-            "", css_classes=["scene-status"], sizing_mode="stretch_width", disable_math=True
+            "", css_classes=["scene-status"], sizing_mode="stretch_width", **LITERAL_MD
         )
         self.progress = pn.indicators.Progress(
             value=-1, max=100, visible=False, sizing_mode="stretch_width", bar_color="info"
@@ -379,6 +384,7 @@ class Scene(pn.viewable.Viewer):
         # resources (server-relative, not CDN) and schedules model updates on its event loop
         self._doc = pn.state.curdoc
         self._served = self._doc is not None and self._doc.session_context is not None
+        self._connected = False  # a browser has had this session open (see session_closed)
         self._lock = threading.Lock()
         self._pending = False
         self._running = False
@@ -439,7 +445,23 @@ class Scene(pn.viewable.Viewer):
         Bokeh then clears every model's properties, so they read as class defaults (a figure's
         Range1d becomes a DataRange1d, a renderer loses its glyph): a render still running for
         that session must neither read nor write them, and nobody is left to see a message."""
-        return self._served and self._doc.session_context is None
+        if not self._served:
+            return False
+        ctx = self._doc.session_context
+        if ctx is None:
+            return True
+        # The browser left: its websocket closed, but Bokeh destroys the session only when it
+        # has been unused for --unused-session-lifetime (15 s, checked every 17 s), and a job
+        # ran on for up to half a minute for nobody.  A served page never reconnects to its
+        # session (a reload opens a new one), so once connected, no connection means gone.
+        session = getattr(ctx, "_session", None)
+        n = getattr(session, "connection_count", None)
+        if n is None:
+            return False
+        if n > 0:
+            self._connected = True
+            return False
+        return self._connected
 
     def cancel(self) -> None:
         """The Cancel button: stop waiting for the running job (killed if nobody else waits)."""
@@ -547,6 +569,16 @@ class Scene(pn.viewable.Viewer):
         except ParameterError as exc:
             self._show_message(str(exc), "warning")
             return None
+        except compute.CancelledError:
+            # the worker pool was shut down under the job (the server is stopping; run_job
+            # cancels nothing a caller still waits for): not a failure of the app
+            if not self.session_closed:
+                self._show_message(
+                    "Stopped: the server's worker processes were shut down. Press the button or "
+                    "change a parameter to compute again.",
+                    "info",
+                )
+            return None
         except Exception as exc:  # the server keeps serving; the log keeps the traceback
             if self.session_closed:  # the models were emptied under the render: not a failure
                 return None
@@ -624,7 +656,10 @@ class Scene(pn.viewable.Viewer):
             self.hide_plot()
             stamp = md_literal(self._stamp)
             self.status.object = f"_no plot: see the message_\n\n<small>Parameters: {stamp}</small>"
-            self.code.value = python_preamble(self.state) + f"# nothing shown: {text}\n"
+            # every line a comment: a message repeats user text, which may hold line breaks
+            # (a store path from a link), and the code is meant to be pasted and run
+            said = "".join(f"# {line}\n" for line in f"nothing shown: {text}".splitlines())
+            self.code.value = python_preamble(self.state) + said
             self.download.disabled = True  # nothing to download until a plot is shown
             for w in self.exporters:
                 w.disabled = True
@@ -659,7 +694,8 @@ class Scene(pn.viewable.Viewer):
         try:
             name, buf = self.download_data()
         except (SceneMessage, ParameterError) as exc:
-            buf, name = io.StringIO(f"# {exc}\n"), f"{self.key}-unavailable.txt"
+            said = "".join(f"# {line}\n" for line in str(exc).splitlines())
+            buf, name = io.StringIO(said), f"{self.key}-unavailable.txt"
         self.download.filename = name
         return buf
 
@@ -715,10 +751,12 @@ class Scene(pn.viewable.Viewer):
             else:
                 buf, name = io.BytesIO(self.export_figure(kind)), f"{self.key}.{kind}"
         except (SceneMessage, ParameterError) as exc:
-            buf, name = io.StringIO(f"# {exc}\n"), f"{self.key}-unavailable.txt"
+            said = "".join(f"# {line}\n" for line in str(exc).splitlines())
+            buf, name = io.StringIO(said), f"{self.key}-unavailable.txt"
         except Exception as exc:  # the server keeps serving; the log keeps the traceback
             log.exception("scene %s: export %s failed", self.key, kind)
-            buf = io.StringIO(f"# export failed: {type(exc).__name__}: {exc}\n")
+            text = f"export failed: {type(exc).__name__}: {exc}"
+            buf = io.StringIO("".join(f"# {line}\n" for line in text.splitlines()))
             name = f"{self.key}-unavailable.txt"
         widget.filename = name
         return buf

@@ -28,7 +28,7 @@ from fpucore import qc
 from fpucore.floquet import CLASSES, changes_summary
 
 from .. import compute
-from .base import Info, SceneMessage, as_json, fmt_num, provenance, python_preamble
+from .base import Info, SceneMessage, as_json, fmt_num, md_literal, provenance, python_preamble
 from .bokeh_scene import (
     BokehScene,
     Updates,
@@ -230,8 +230,21 @@ class FloquetScene(BokehScene):
         hi = float(np.max(y[ok])) * 3.0 if ok.any() else 1e-2
         up.range(self.fig_c.y_range, lo, hi)
         self._energy_criterion(info, up, kind, wp, Vs, (lo, hi))
-        if (~ok).any():
-            info.notes.append(f"sweep: {int((~ok).sum())} velocities did not converge (not drawn)")
+        # a velocity left out of (c): its wave did not converge, or it was never computed (a
+        # sweep stopped early) — two different statements
+        lost = np.array([str(r.get("message") or "").startswith("wave not converged")
+                         for r in sw.rows])  # fmt: skip
+        if (~ok & lost).any():
+            k = int((~ok & lost).sum())
+            info.notes.append(f"sweep: {k} velocit{'y' if k == 1 else 'ies'} did not converge "
+                              "(not drawn)")  # fmt: skip
+        if (~ok & ~lost).any():
+            why = {str(r.get("message") or "not computed") for r, k in zip(sw.rows, ~ok & ~lost)
+                   if k}  # fmt: skip
+            info.notes.append(
+                f"sweep: {int((~ok & ~lost).sum())} of {len(sw.rows)} velocities "
+                f"not computed (not drawn): {md_literal('; '.join(sorted(why))[:200])}"
+            )
         return True
 
     def _energy_criterion(self, info: Info, up: Updates, kind, wp, Vs, ylim) -> None:
@@ -350,8 +363,9 @@ class FloquetScene(BokehScene):
         up.range(self.fig_d.y_range, *finite_extent(ex - er, ex + er, [0.0]), pad=0.1)
         d = fr.decision
         title = f"(d) finite-size window: max |μ| − 1 on rings N = {int(Ns[0])} … {int(Ns[-1])}"
-        if np.isfinite(d.p) and d.p_error < abs(d.p):  # never a fit whose error exceeds it
-            title += f"; envelope ∝ N^−p, p = {d.p:.2f} ± {d.p_error:.2f}"
+        fit = d.fit_words("±")  # "" for a fit without an error bar smaller than its value
+        if fit:
+            title += f"; upper envelope ∝ N^−p, {fit}"
         up.set(self.fig_d.title, text=title)
 
     def python_code(self) -> str:

@@ -79,6 +79,16 @@ def fmt_pm(x: float, err: float) -> str:
     return f"{x:.{d}f} ± {err:.1e}"
 
 
+def tracked_velocities(waves, k: int = 4) -> str:
+    """The status line's velocities: each with its error bar and digits (a DSW edge's V is
+    known to ~1e-4, not to the 6 digits printed before), the count when more are tracked."""
+    if not waves:
+        return "tracked velocities: none"
+    shown = ", ".join(fmt_pm(wv.velocity, wv.velocity_error) for wv in waves[:k])
+    more = f" (and {len(waves) - k} more in the table)" if len(waves) > k else ""
+    return f"tracked velocities: {shown}{more}"
+
+
 def wave_table(waves) -> str:
     """Markdown table of the tracked waves: plain name, V ± error, w_B ± error, the states;
     then one line per kind present saying what it is and what the ± contains."""
@@ -245,7 +255,7 @@ class SimulationScene(BokehScene):
             sites = tuple(int(x) for x in re.split(r"[,\s]+", text) if x)
         except ValueError:
             raise SceneMessage(
-                f"tracked sites: {md_literal(text)} is not a list of site numbers "
+                f"tracked sites: {text} is not a list of site numbers "
                 "(e.g. 100, 200, 3000)"
             ) from None
         if len(sites) > MAX_PROBES:
@@ -381,10 +391,8 @@ class SimulationScene(BokehScene):
         self.table.object = wave_table(sim.waves)
         self._tracked_sites(info, up, sim)
         self._sim = (kind, p, sim)
-        speeds = ", ".join(f"{wv.velocity:.6g}" for wv in sim.waves[:4])
         info.shown = (
-            f"simulation of {KIND_WORDS[kind]} to t = {t[-1]:.4g}; "
-            f"tracked velocities: {speeds or 'none'}"
+            f"simulation of {KIND_WORDS[kind]} to t = {t[-1]:.4g}; {tracked_velocities(sim.waves)}"
         )
         if kind == "seeded":
             info.notes.append(f"seeding wave V = {fmt_num(p['V'])}, N = {p['N']}")

@@ -1,24 +1,22 @@
 """Stability atlas: waves, energies and Floquet multipliers over a grid of the existence region
-(w₊, V) or along the superkink velocities, on a local process pool or a Dask cluster.
+(w₊, V) or along the superkink velocities, on a local process pool or a Dask cluster; sweeps
+of the Floquet spectrum along a family are one-row atlases.
 
 grid (rows × V, chunks = runs of V along a row)  →  point (one chunk on a worker: continuation
 in grid order, wave + spectrum → records named as the CLI's JSON fields)  →  store (Zarr,
 written chunk by chunk, locked, resumable)  →  run (submit through fpucore.parallel, gather,
-AtlasResult)
+AtlasResult)  →  sweeps (max|μ| along V: one row, cached by its inputs and the code)
 
     res = atlas.run(CubicLaw(-1, 10), "solitary", rows="0.2:6.5:40", V=40, N=500,
                     floquet=True, out="atlas.zarr")
+    sw = atlas.sweep(CubicLaw(-1, 10), "superkink", [5.2, 5.5, 5.8], N=500)
 """
 
-# floquet first: its sweeps are atlas runs (floquet.sweeps imports atlas.point and atlas.run),
-# and atlas.point imports floquet.multipliers — loaded in this order, ``import fpucore.atlas`` as
-# a process's first import (the ``fpu atlas`` command; fpucore/__init__ no longer imports the
-# subpackages) finds every name it needs
-import fpucore.floquet  # noqa: F401, I001
 from fpucore.atlas.grid import Grid, make_grid, parse_values, velocity_span
 from fpucore.atlas.point import FIELDS, solve_chunk
 from fpucore.atlas.run import AtlasResult, run
 from fpucore.atlas.store import StoreLock
+from fpucore.atlas.sweeps import SweepResult, sweep
 
 __all__ = [
     "Grid",
@@ -30,4 +28,6 @@ __all__ = [
     "AtlasResult",
     "run",
     "StoreLock",
+    "SweepResult",
+    "sweep",
 ]

@@ -24,13 +24,12 @@ import math
 import time
 import traceback
 
-import numpy as np
-
 from fpucore.errors import ParameterError
+from fpucore.floquet.finite_size import SENTENCE_CHARS
 from fpucore.floquet.multipliers import spectrum
 from fpucore.wave import solve_solitary, solve_superkink
-from fpucore.wave.continuation import family_interval, qc_shift_predictor
-from fpucore.wave.setup import solitary_spec, superkink_spec
+from fpucore.wave.continuation import solve_from_neighbour
+from fpucore.wave.setup import spec_of
 
 # name → (numpy dtype, fill value of a point not computed)
 FIELDS: dict[str, tuple[str, object]] = {
@@ -59,7 +58,8 @@ FIELDS: dict[str, tuple[str, object]] = {
     "n_unstable": ("i8", -1),
     "n_trivial": ("i8", -1),
     "trivial_split": ("f8", math.nan),
-    "verdict": ("<U640", ""),  # the decision's sentence (fpucore.floquet.finite_size.Decision)
+    # the decision's sentence (fpucore.floquet.finite_size.Decision: at most SENTENCE_CHARS)
+    "verdict": (f"<U{SENTENCE_CHARS}", ""),
     "classification": ("<U32", ""),
     "headline": ("<U64", ""),
     "floquet_converged": ("bool", False),
@@ -112,12 +112,6 @@ def add_floquet(rec: dict, fr) -> None:
         rec["status"], rec["message"] = "not_converged", f"spectrum: {fr.message}"[:MESSAGE_CHARS]
 
 
-def spec_of(law, kind: str, row, V: float):
-    if kind == "superkink":
-        return superkink_spec(law, V, row)
-    return solitary_spec(law, row, V)
-
-
 def solve_point(law, kind: str, row, V: float, N: int, tol: float, prev):
     """The wave at (row, V) — from prev = (wave, spec) by the QC-shift predictor when both lie
     on the same velocity interval, else (or if that fails) from the QC guess.  Raises
@@ -129,16 +123,7 @@ def solve_point(law, kind: str, row, V: float, N: int, tol: float, prev):
             return solve_superkink(law, V, row, N, tol, predictor=pred)
         return solve_solitary(law, row, V, N, tol, predictor=pred)
 
-    r = None
-    if prev is not None:
-        r_prev, sp_prev = prev
-        if family_interval(law, sp_prev) == family_interval(law, sp):
-            x_prev = np.empty(2 * r_prev.N)
-            x_prev[0::2], x_prev[1::2] = r_prev.w, r_prev.wdot
-            r = solve(qc_shift_predictor(law, sp, x_prev, r_prev.N, sp_prev))
-    if r is None or not r.converged:
-        r = solve(None)
-    return r, sp
+    return solve_from_neighbour(law, sp, prev, solve), sp
 
 
 def solve_chunk(task: dict, progress=None) -> list[dict]:

@@ -37,7 +37,7 @@ from fpucore.atlas.store import (
     skeleton,
 )
 from fpucore.budget import require_time_budget
-from fpucore.errors import ParameterError, require_finite
+from fpucore.errors import ParameterError, require_tol
 from fpucore.floquet.monodromy import MAX_N
 from fpucore.floquet.multipliers import METHODS
 from fpucore.law import HardeningSofteningLaw
@@ -100,9 +100,7 @@ def check_args(N, tol, time_budget_s, m=None, **flags) -> None:
     checked by their own modules).  flags : name → value of the options that must be bools."""
     if N is not None and not (isinstance(N, (int, np.integer)) and 8 <= N <= MAX_N and N % 2 == 0):
         raise ParameterError("N", N, f"an even integer in [8, {MAX_N}] or None (automatic)")
-    tol = require_finite("tol", tol)
-    if not (1e-15 <= tol <= 1e-3):
-        raise ParameterError("tol", tol, "[1e-15, 1e-3]")
+    require_tol(tol)
     require_time_budget(time_budget_s)
     if m is not None and not (isinstance(m, (int, np.integer)) and not isinstance(m, bool)
                               and 2 <= m <= MAX_STEPS):  # fmt: skip

@@ -41,6 +41,7 @@ from fpucore.atlas.point import FIELDS
 from fpucore.errors import ParameterError
 from fpucore.jit_cache import source_hash
 from fpucore.law import CubicLaw
+from fpucore.result import jsonable
 
 if TYPE_CHECKING:
     import xarray as xr
@@ -191,7 +192,7 @@ def open_existing(path: Path, grid: Grid, attrs: dict):
         raise damaged(path, f"not a readable Zarr group ({type(exc).__name__}: {exc})") from None
     if not stored:
         raise damaged(path, "its attributes (.zattrs) are missing")
-    diff = [k for k in IDENTITY if _plain(stored.get(k)) != _plain(attrs[k])]
+    diff = [k for k in IDENTITY if jsonable(stored.get(k)) != jsonable(attrs[k])]
     if diff:
         what = ", ".join(f"{k}: stored {stored.get(k)!r} vs {attrs[k]!r}" for k in diff)
         raise ParameterError("out", str(path), "a store of the same grid and parameters to "
@@ -218,10 +219,6 @@ def open_existing(path: Path, grid: Grid, attrs: dict):
         raise ParameterError("out", str(path), "a store of the same grid and parameters to "
                              "resume", "the grid differs")  # fmt: skip
     return group
-
-
-def _plain(v):
-    return list(v) if isinstance(v, (list, tuple)) else v
 
 
 def skeleton_rows(grid: Grid) -> np.ndarray:

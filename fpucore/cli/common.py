@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
 import os
 import re
 import sys
@@ -20,23 +19,11 @@ if TYPE_CHECKING:
 
 
 def jsonable(obj):
-    """Recursively convert numpy scalars/arrays and non-finite floats for json.dumps."""
-    import numpy as np
+    """:func:`fpucore.result.jsonable`, imported when a command prints (NumPy stays out of
+    ``fpu --help``)."""
+    from fpucore.result import jsonable as convert
 
-    if isinstance(obj, dict):
-        return {str(k): jsonable(v) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
-        return [jsonable(v) for v in obj]
-    if isinstance(obj, np.ndarray):
-        return jsonable(obj.tolist())
-    if isinstance(obj, (np.floating, float)):
-        x = float(obj)
-        return x if math.isfinite(x) else None
-    if isinstance(obj, (np.integer,)):
-        return int(obj)
-    if isinstance(obj, np.bool_):
-        return bool(obj)
-    return obj
+    return convert(obj)
 
 
 def print_json(obj) -> None:

@@ -107,8 +107,9 @@ def run_one(args) -> int:
     print(f"trivial cluster at 1     : {fr.n_trivial} multipliers, split {fr.trivial_split:.1e} "
           f"(radius {fr.trivial_radius:.0e}, phonon gap {fr.phonon_gap:.1e})")  # fmt: skip
     dec = fr.decision
+    k = fr.n_unstable
     print(f"classification           : {dec.classification} - {dec.headline} "
-          f"({fr.n_unstable} multipliers beyond error)")  # fmt: skip
+          f"({k} multiplier{'' if k == 1 else 's'} beyond error)")  # fmt: skip
     if fr.finite_size_N.size > 1:
         pts = ", ".join(f"N={n}: {e:.3e}" for n, e in zip(fr.finite_size_N, fr.finite_size_excess,
                                                             strict=True))  # fmt: skip
@@ -183,6 +184,9 @@ def run_sweep(args) -> int:
             print(f"{t.N:>5} {row['V']:>12.8g} {f(mm):>11} {f(ma):>11} {e:>9} "
                   f"{row['n_unstable'] or 0:>4}  {cls:<12}  {row['headline'] or row['verdict']}"
                   f"{tag}")  # fmt: skip
+        missing = sum(r["verdict"] == "not computed" for r in t.rows)
+        if missing or t.cached.any():  # a partial or cached table says so
+            print(f"{t.N:>5} {t.message}" + (f" ({missing} not computed)" if missing else ""))
         if args.kind == "solitary" and args.w_plus is not None:
             print(f"{t.N:>5} energy criterion: {_energy_line(law, t)}")
     print(

@@ -6,8 +6,15 @@ waves)  →  structured_kernels → arnoldi_kernels → structured (the half-siz
 →  multipliers (FloquetResult: spectrum, error bars, verdict)
 →  checks (quartet symmetry, homogeneous closed form, phonon gap)  →  finite_size (is an
 excess |μ| − 1 an artefact of the finite ring? the one Decision record)  →  energy (extrema
-of E_ren(V) along solitary families, where stability may change)  →  sweep (max|μ| along V)
+of E_ren(V) along solitary families, where stability may change)
+
+Sweeps of max|μ| along V are one-row atlases and live in the atlas stage
+(:func:`fpucore.atlas.sweep`).  ``floquet.sweep``, ``floquet.SweepResult`` and
+``floquet.sweeps`` still name them for older callers: loaded on first use (PEP 562, as in
+``fpucore/__init__``), so importing this package never imports the atlas above it.
 """
+
+import importlib
 
 from fpucore.floquet.checks import (
     HomogeneousState,
@@ -28,7 +35,6 @@ from fpucore.floquet.monodromy import MAX_N, Monodromy, default_steps, monodromy
 from fpucore.floquet.multipliers import METHODS, FloquetResult, spectrum
 from fpucore.floquet.reversible import reversor_of
 from fpucore.floquet.structured import structured_multipliers
-from fpucore.floquet.sweeps import SweepResult, sweep
 
 __all__ = [
     "HomogeneousState",
@@ -54,6 +60,17 @@ __all__ = [
     "reversor_of",
     "FloquetResult",
     "spectrum",
-    "SweepResult",
-    "sweep",
 ]
+# names of the atlas stage kept for older callers (see the module doc): name → attribute of
+# fpucore.atlas.sweeps (None: the module itself)
+_FROM_ATLAS = {"sweep": "sweep", "SweepResult": "SweepResult", "sweeps": None}
+
+
+def __getattr__(name: str):
+    if name not in _FROM_ATLAS:
+        raise AttributeError(f"module 'fpucore.floquet' has no attribute {name!r}")
+    value = importlib.import_module("fpucore.atlas.sweeps")
+    if _FROM_ATLAS[name] is not None:
+        value = getattr(value, _FROM_ATLAS[name])
+    globals()[name] = value
+    return value

@@ -314,12 +314,13 @@ class StabilityChange:
 
 
 def stability_changes(law, w_plus: float, V, classification, criterion: EnergyCriterion):
-    """Cross-check of a sweep's classifications (fpucore.floquet.sweep rows, any order) against
+    """Cross-check of a sweep's classifications (fpucore.atlas.sweep rows, any order) against
     the energy criterion: every change across the stable/unstable line between neighbouring
     classified velocities of one interval, and whether an extremum of E_ren explains it.  A
-    change no extremum explains is not a change of stability through the translation mode;
-    along a solitary family it is most likely a finite-size misclassification (paper §6: the
-    spurious oscillatory instabilities), to be checked at a larger N.  Returns a list of
+    change no extremum explains is not a change of stability through the translation mode:
+    an oscillatory instability (a complex quartet needs no extremum) or a finite-size effect
+    the window did not resolve (paper §6: the spurious oscillatory instabilities), to be
+    checked at a larger N.  Returns a list of
     :class:`StabilityChange`, in order of V."""
     w_plus = require_finite("w_plus", w_plus)
     V = np.atleast_1d(np.asarray(V, dtype=float))
@@ -353,11 +354,17 @@ def changes_summary(changes: list[StabilityChange]) -> str:
                 "energy criterion.")  # fmt: skip
     at = [c for c in changes if c.explained]
     what = f"{k} change{'s' if k > 1 else ''} of class across the stable/unstable line"
+    # an "unstable" row has passed the window test (present on every ring, converged), so an
+    # unexplained change is not called a finite-size effect: it is no change through the
+    # translation mode, and an oscillatory (complex-quartet) instability needs no extremum
+    other = (
+        "not through the translation mode (that needs dE_ren/dV = 0): an oscillatory "
+        "instability or an unresolved finite-size effect - check those rows at 2N"
+    )
     if not at:
-        return (f"{what}, none at an extremum of E_ren: finite-size effects (a change of "
-                "stability needs dE_ren/dV = 0; check at a larger N).")  # fmt: skip
+        return f"{what}, none at an extremum of E_ren: {other}."
     where = ", ".join(f"{c.extremum_V:.6g}" for c in at)
     rest = k - len(at)
     return (f"{what}, {len(at)} at an extremum of E_ren (V = {where}): consistent with a change "
-            "of stability there" + (f"; {rest} elsewhere: finite-size effects." if rest else ".")
+            "of stability there" + (f"; {rest} elsewhere: {other}." if rest else ".")
             )  # fmt: skip

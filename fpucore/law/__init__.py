@@ -6,6 +6,7 @@ handle ``(law_id, params)`` that the Numba kernels in :mod:`.kernels` take.
     kernels (Numba f, f′, f″ by law_id)  →  base (the hardening–softening class)  →  scale (the
     computable range shared by every law)  →  polynomial (Σ c_k w^k, hypotheses of §2 checked)
     →  cubic  ·  expression_bounds (degree, exponents, sizes of a text, before any algebra)
+    →  expansion (its coefficients by exact arithmetic)
     →  expression (text → law)
 """
 

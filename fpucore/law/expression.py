@@ -2,9 +2,11 @@
 
 The text is tokenized (standard library) and only numbers, the operators + - * / ** ^ ( ), the
 variable ``w`` and a few function names (so that ``sin(w)`` is reported as *not a polynomial*
-rather than as an unknown name) reach SymPy's parser, which expands it; the coefficients must be
-real and finite and the constant term zero.  The result is a :class:`.PolynomialLaw`, whose
-construction checks the hardening–softening hypotheses of paper §2.
+rather than as an unknown name) reach SymPy's parser, unevaluated, after the bounds of
+:mod:`.expression_bounds`; the text is then expanded by exact rational arithmetic (inexact numbers
+at 128 bits), not by SymPy; the coefficients must be real and finite and the constant term
+zero.  The result is a :class:`.PolynomialLaw`, whose construction checks the
+hardening–softening hypotheses of paper §2.
 """
 
 from __future__ import annotations
@@ -30,8 +32,9 @@ _DIGITS = 30  # precision of constants such as sqrt(2), pi (the coefficients are
 
 
 def _numeric(fn):
-    """``fn`` evaluated to a :data:`_DIGITS`-digit number (its argument is a number)."""
-    return lambda *args: fn(*args).evalf(_DIGITS)
+    """``fn`` of a number, unevaluated (SymPy's ``sqrt(9...9)`` would try to factor its argument:
+    80 ms for 200 digits), then evaluated numerically to :data:`_DIGITS` digits."""
+    return lambda *args, **_: fn(*args, evaluate=False).evalf(_DIGITS)
 
 
 def law_from_expression(expression: str) -> PolynomialLaw:
@@ -95,54 +98,59 @@ def law_from_expression(expression: str) -> PolynomialLaw:
         standard_transformations,
     )
 
+    from fpucore.law.expansion import expand
+
     w = sympy.Symbol("w", real=True)
     # constants become 30-digit numbers at once (the screen has refused functions of w): a power
     # of a sum of symbolic constants, (w + sqrt(2) + sqrt(3) + pi + E)**16, expands into
     # thousands of symbolic terms; numbers merge, so the expansion stays at degree + 1 terms
     names = {"w": w, "pi": sympy.pi.evalf(_DIGITS), "E": sympy.E.evalf(_DIGITS)}
     names.update({n: _numeric(getattr(sympy, "Abs" if n == "abs" else n)) for n in _FUNCS})
-    glob = {n: getattr(sympy, n) for n in ("Integer", "Float", "Rational", "Symbol")}
+    glob = {
+        n: getattr(sympy, n)
+        for n in ("Integer", "Float", "Rational", "Symbol", "Add", "Mul", "Pow")
+    }
     glob["__builtins__"] = {}
     try:
+        # unevaluated: SymPy's own evaluation of 9...9**(1/2) factors the integer (80 ms for 200
+        # digits) and its expand() costs ~1 ms a term ((w+1)*...*(w+16): 0.1-0.15 s)
         expr = parse_expr(
             text,
             local_dict=names,
             global_dict=glob,
             transformations=standard_transformations + (convert_xor, implicit_multiplication),
-            evaluate=True,
+            evaluate=False,
         )
-        expr = sympy.expand(sympy.sympify(expr))
     except Exception as exc:  # SymPy raises SyntaxError, TypeError, TokenError, SympifyError...
         raise ParameterError(
             "expression", expression, _VALID, f"could not parse: {type(exc).__name__}: {exc}"
         ) from None
-    if expr.has(sympy.zoo, sympy.oo, -sympy.oo, sympy.nan):
-        raise ParameterError("expression", expression, _VALID, "non-finite coefficient")
-    if not expr.is_polynomial(w):
-        raise ParameterError(
-            "expression", expression, _VALID,
-            f"not a polynomial in w: {expr} (functions of w, negative or fractional powers "
-            "are not allowed)",
-        )  # fmt: skip
-    poly = sympy.Poly(expr, w)
+
+    def refuse(reason: str):
+        raise ParameterError("expression", abbreviate(expression), _VALID, reason)
+
+    # expanded here, exactly while the numbers are rational (module docstring of _laurent)
+    terms = expand(sympy.sympify(expr), w, refuse)
+    if any(k < 0 for k, c in terms.items() if c):
+        refuse(
+            f"not a polynomial in w: {abbreviate(str(expr), 60)} (functions of w, negative or "
+            "fractional powers are not allowed)"
+        )
     coeffs = []
-    for (k,), ck in sorted(poly.terms()):
-        z = complex(sympy.N(ck, 17))
-        if z.imag != 0.0:
-            raise ParameterError(
-                "expression",
-                expression,
-                _VALID,
-                f"coefficient of w^{k} is not real: {str(ck)[:40]}",
-            )
-        if not math.isfinite(z.real):
-            raise ParameterError(
-                "expression", expression, _VALID,
-                f"non-finite coefficient of w^{k}: {str(ck)[:24]}... overflows float64",
-            )  # fmt: skip
+    for k, ck in sorted(terms.items()):
+        if k < 0:  # a zero coefficient of a negative power (0/w)
+            continue
+        try:
+            z = float(ck)
+        except OverflowError:
+            z = math.inf
+        if not math.isfinite(z):
+            refuse(f"non-finite coefficient of w^{k}: {str(ck)[:24]}... overflows float64")
         while len(coeffs) < k + 1:
             coeffs.append(0.0)
-        coeffs[k] = z.real
+        coeffs[k] = z
+    while coeffs and coeffs[-1] == 0.0:
+        coeffs.pop()
     if not coeffs:
         raise ParameterError("expression", expression, _VALID, "the expression is zero")
     if coeffs[0] != 0.0:

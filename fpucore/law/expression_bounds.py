@@ -8,13 +8,21 @@ stream once (a recursive-descent parser of the grammar SymPy is given: numbers, 
 subexpression an upper bound on
 
 * its degree in w (sums: max; products: sum; powers: degree × exponent) — at most
-  :data:`~fpucore.law.polynomial.MAX_DEGREE`;
+  :data:`~fpucore.law.polynomial.MAX_DEGREE` — and its lowest power of w (a quotient by w**k
+  lowers it) — at least −MAX_DEGREE;
+* that it stays a Laurent polynomial in w, whose terms SymPy collects by power: a divisor, or
+  a base raised to a negative power, that depends on w must be a monomial (c·w**k), and a power
+  of an expression in w an integer.  ``(1/(w+1) + 1/(w+2) + … + 1/(w+5))**8`` or
+  ``(w**(1/3) + w**(1/5) + …)**8`` are never polynomials, yet their expansion has as many terms
+  as a multinomial in several variables (8.7 s, 0.3 s; minutes for more terms);
 * the exponent of every power of an expression in w (at most MAX_DEGREE) and of every number
   (at most :data:`MAX_EXPONENT`);
 * the value of every constant subexpression, in floating point: beyond the float range
-  (|x| > 1.8e308, or a nonzero power below 1e-330) it could not be a coefficient of the law;
+  (|x| > 1.8e308, or a nonzero power below 1e-330), complex (``sqrt(-1)``) or undefined (``1/0``)
+  it could not be a coefficient of the law;
 * the digits of its exact (rational) value, which SymPy's exact arithmetic would carry: at most
   :data:`MAX_DIGITS` (``((1 + 10**-15)**1000)**1000`` is a harmless float but 15 million digits);
+  a literal counts the decimal digits of its value in any base (``0x`` + 255 f's has 308);
 * the nesting depth (parentheses, unary signs, chained powers): at most :data:`MAX_DEPTH`, and
   the number of tokens: at most :data:`MAX_TOKENS`;
 
@@ -46,12 +54,17 @@ LOG10_MIN = -330.0  # below the smallest subnormal 4.9e-324: a literal would be 
 class Node:
     """Bounds of a subexpression: ``deg`` (upper bound on the degree in w, 0 for a constant),
     ``val`` (its float value when constant and real, else None), ``digits`` (size of its exact
-    value; 0 once a float enters, as SymPy's Float has fixed precision) and ``text``."""
+    value; 0 once a float enters, as SymPy's Float has fixed precision), ``text``, ``lo`` (lower
+    bound on its lowest power of w), ``hasw`` (it depends on w) and ``mono`` (a monomial c·w**k:
+    a constant, w, and their products, quotients and integer powers)."""
 
     deg: float
     val: float | None
     digits: float
     text: str
+    lo: float = 0.0
+    hasw: bool = False
+    mono: bool = True
 
 
 def _product_val(a: float | None, b: float | None, op: str) -> float | None:
@@ -90,9 +103,17 @@ class _Screen:
                 f"degree {node.deg:.10g} of {abbreviate(node.text, 40)} exceeds the maximum "
                 f"{MAX_DEGREE}"
             )
+        if node.lo < -MAX_DEGREE:
+            self.refuse(
+                f"the power w^{node.lo:.10g} in {abbreviate(node.text, 40)} is below the "
+                f"minimum w^-{MAX_DEGREE}"
+            )
         if node.val is not None:
             if not math.isfinite(node.val):
                 self.refuse(f"the number {abbreviate(node.text, 40)} exceeds the float range")
+        elif not node.hasw:  # complex (sqrt(-1), (-8)**(1/3)), x/0, log(0): never a coefficient;
+            # an imaginary unit would also be a second variable to SymPy's expansion (0.4 s)
+            self.refuse(f"the constant {abbreviate(node.text, 40)} is not a finite real number")
         if node.digits > MAX_DIGITS:
             self.refuse(
                 f"the exact value of {abbreviate(node.text, 40)} would have about "
@@ -109,9 +130,10 @@ class _Screen:
             val = None
             if node.val is not None and rhs.val is not None:
                 val = node.val + rhs.val if op == "+" else node.val - rhs.val
+            hasw = node.hasw or rhs.hasw
             node = self.check(
                 Node(max(node.deg, rhs.deg), val, node.digits + rhs.digits,
-                     f"{node.text}{op}{rhs.text}")
+                     f"{node.text}{op}{rhs.text}", min(node.lo, rhs.lo), hasw, not hasw)
             )  # fmt: skip
         return node
 
@@ -127,12 +149,20 @@ class _Screen:
             else:
                 return node
             rhs = self.factor()
-            # a quotient by an expression in w is a polynomial only if it divides: its degree is
-            # at most the numerator's (SymPy decides whether it is a polynomial)
-            deg = node.deg + rhs.deg if op == "*" else node.deg
+            text = f"{node.text}{op}{rhs.text}"
+            if op == "*":
+                deg, lo = node.deg + rhs.deg, node.lo + rhs.lo
+            else:  # SymPy cancels a monomial divisor term by term, never a sum
+                if not rhs.mono:
+                    self.refuse(
+                        f"not a polynomial in w: {abbreviate(text, 40)} divides by "
+                        f"{abbreviate(rhs.text, 30)}, a sum depending on w (a divisor may "
+                        "depend on w only as c*w**k)"
+                    )
+                deg, lo = node.deg - rhs.lo, node.lo - rhs.deg
             node = self.check(
-                Node(deg, _product_val(node.val, rhs.val, op), node.digits + rhs.digits,
-                     f"{node.text}{op}{rhs.text}")
+                Node(deg, _product_val(node.val, rhs.val, op), node.digits + rhs.digits, text,
+                     lo, node.hasw or rhs.hasw, node.mono and rhs.mono)
             )  # fmt: skip
 
     # factor := ('+'|'-') factor | power
@@ -143,7 +173,8 @@ class _Screen:
             inner = self.factor()
             self.depth -= 1
             val = None if inner.val is None else (-inner.val if op == "-" else inner.val)
-            return Node(inner.deg, val, inner.digits, op + inner.text)
+            return Node(inner.deg, val, inner.digits, op + inner.text, inner.lo, inner.hasw,
+                        inner.mono)  # fmt: skip
         return self.power()
 
     # power := atom (('**'|'^') factor)?   (right-associative; the exponent may carry a sign)
@@ -156,19 +187,30 @@ class _Screen:
         exp = self.factor()
         self.depth -= 1
         text = f"{base.text}**{exp.text}"
-        if exp.deg > 0:
+        if exp.hasw:
             self.refuse(f"the exponent of {abbreviate(text, 40)} depends on w: not a polynomial")
         e = exp.val
         if e is None:
             self.refuse(f"the exponent of {abbreviate(text, 40)} is not a finite real number")
-        if base.deg > 0:
+        if base.hasw:
             if abs(e) > MAX_DEGREE:
                 self.refuse(
-                    f"degree {abs(e) * base.deg:.10g} of {abbreviate(text, 40)} exceeds the "
-                    f"maximum {MAX_DEGREE}"
+                    f"degree {abs(e) * max(base.deg, -base.lo, 1):.10g} of "
+                    f"{abbreviate(text, 40)} exceeds the maximum {MAX_DEGREE}"
                 )
-            return self.check(Node(base.deg * max(e, 0.0), None, base.digits * max(abs(e), 1),
-                                   text))  # fmt: skip
+            if not float(e).is_integer():
+                self.refuse(
+                    f"not a polynomial in w: {abbreviate(text, 40)} is a fractional power of an "
+                    "expression in w"
+                )
+            if e < 0 and not base.mono:
+                self.refuse(
+                    f"not a polynomial in w: {abbreviate(text, 40)} is a negative power of a sum "
+                    "depending on w"
+                )
+            deg, lo = (base.deg * e, base.lo * e) if e >= 0 else (base.lo * e, base.deg * e)
+            return self.check(Node(deg, None, base.digits * max(abs(e), 1), text, lo, True,
+                                   base.mono))  # fmt: skip
         val = None
         b = base.val
         if b is not None and b != 0.0 and abs(b) != 1.0:  # its size first: the real cause
@@ -202,7 +244,7 @@ class _Screen:
             return self.check(_number(t.string, self.refuse))
         if t.type == tokenize.NAME:
             if t.string == "w":
-                return Node(1.0, None, 0.0, "w")
+                return Node(1.0, None, 0.0, "w", 1.0, True, True)
             if t.string in self.consts:
                 return Node(0.0, math.pi if t.string == "pi" else math.e, 0.0, t.string)
             if t.string in self.funcs:
@@ -214,7 +256,7 @@ class _Screen:
                 self.depth -= 1
                 self.expect_close()
                 text = f"{t.string}({arg.text})"
-                if arg.deg > 0:
+                if arg.hasw:
                     self.refuse(
                         f"not a polynomial in w: {abbreviate(text, 40)} (functions of w, negative "
                         "or fractional powers are not allowed)"
@@ -225,7 +267,8 @@ class _Screen:
             inner = self.sum_()
             self.depth -= 1
             self.expect_close()
-            return Node(inner.deg, inner.val, inner.digits, f"({inner.text})")
+            return Node(inner.deg, inner.val, inner.digits, f"({inner.text})", inner.lo,
+                        inner.hasw, inner.mono)  # fmt: skip
         self.refuse(f"could not parse: unexpected '{t.string}'")
 
     def expect_close(self):
@@ -239,21 +282,32 @@ _ATOMS = (tokenize.NUMBER, tokenize.NAME)
 
 
 def _number(text: str, refuse) -> Node:
-    """A literal's float value, refused beyond the float range before any int() conversion."""
-    digits = sum(ch.isdigit() for ch in text)
-    if digits > MAX_LITERAL_DIGITS:
-        refuse(f"the literal {abbreviate(text, 24)} has {digits} digits (at most "
+    """A literal's float value, refused beyond the float range before any int() conversion; an
+    integer's exact size is the decimal digits of its value, whatever its base."""
+    chars = sum(ch.isalnum() for ch in text)  # digits of any base (and the 0x/0o/0b prefix)
+    if chars > MAX_LITERAL_DIGITS:
+        refuse(f"the literal {abbreviate(text, 24)} has {chars} digits (at most "
                f"{MAX_LITERAL_DIGITS}: beyond the float range)")  # fmt: skip
     clean = text.replace("_", "")
+    exact = not any(ch in clean.lower() for ch in ".e") or clean.lower().startswith("0x")
     try:
-        exact = not any(ch in clean.lower() for ch in ".e") or clean.lower().startswith("0x")
-        val = float(int(clean, 0)) if exact else float(clean)
-    except (ValueError, OverflowError):
+        # at most 330 characters: int() is linear in them for a base-2/8/16 literal, and below
+        # CPython's 4300-digit limit for a decimal one
+        n = int(clean, 0) if exact else None
+    except ValueError:
+        refuse(f"could not parse the number {abbreviate(text, 24)}")
+    try:
+        val = float(n) if exact else float(clean)
+    except OverflowError:
+        val = math.inf
+    except ValueError:
         refuse(f"could not parse the number {abbreviate(text, 24)}")
     if not math.isfinite(val):
         refuse(f"the literal {abbreviate(text, 24)} exceeds the float range (|x| <= 1.8e308): "
                "non-finite in double precision")  # fmt: skip
-    return Node(0.0, val, float(digits) if exact else 0.0, text)
+    # decimal digits of the value: 0x + 255 f's is 1 token but 308 digits of SymPy's exact work
+    digits = math.floor(n.bit_length() * math.log10(2)) + 1 if exact else 0.0
+    return Node(0.0, val, float(digits), text)
 
 
 def _function(name: str, x: float | None) -> float | None:

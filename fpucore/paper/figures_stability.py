@@ -1,13 +1,14 @@
 """The Floquet figures (paper §6): floquet_SK, Floquet_example, floquet_cubicSW — moduli of the
-multipliers from fpucore.floquet (sweeps on the structured route, one dense spectrum), compared
-with the bounds the paper prints.  Only moduli are compared, never classification words.
+multipliers from fpucore.floquet (sweeps, fpucore.atlas.sweep, on the structured route; one
+dense spectrum), compared with the bounds the paper prints.  Only moduli are compared, never
+classification words.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from fpucore import floquet, qc, wave
+from fpucore import atlas, floquet, qc, wave
 from fpucore.paper.common import LAW
 from fpucore.paper.compare import compare
 from fpucore.paper.figure import Clock, Panel, series
@@ -20,7 +21,7 @@ def _sweep(kind: str, Vs, w_plus=None):
     """One sweep on the calling process (the report runs figures in parallel already)."""
     ex = Executor(backend="inline")
     try:
-        return floquet.sweep(LAW, kind, list(Vs), w_plus=w_plus, N=N, executor=ex)
+        return atlas.sweep(LAW, kind, list(Vs), w_plus=w_plus, N=N, executor=ex)
     finally:
         ex.shutdown()
 
@@ -61,7 +62,7 @@ def fig_floquet_SK(reduced: bool):
     Vs = np.union1d(SK_V_REDUCED if reduced else SK_V_FULL, [5.57, 5.74])
     sw = _sweep("superkink", Vs)
     V = np.asarray(sw.V)
-    src = f"floquet.sweep(law, 'superkink', V, N={N}).max_modulus"
+    src = f"atlas.sweep(law, 'superkink', V, N={N}).max_modulus"
     panels = (
         Panel(
             f"max |μ| of superkinks, N = {N}",
@@ -162,7 +163,7 @@ def fig_floquet_cubicSW(reduced: bool):
             )
         )
         printed, bound = SW_BOUNDS[w_plus]
-        src = f"floquet.sweep(law, 'solitary', V, w_plus={w_plus:g}, N={N}).max_modulus"
+        src = f"atlas.sweep(law, 'solitary', V, w_plus={w_plus:g}, N={N}).max_modulus"
         comps.append(
             _bound(
                 "floquet_cubicSW",

@@ -12,7 +12,7 @@ Who computes.  A pool's workers, K on K cores, one thread each — and, with
 ``Executor(..., caller_runs=True)``, the calling process as one of the K: it starts K - 1
 workers in the background and, while it waits for results (``map``, ``next_done``), takes jobs
 no worker has taken yet and runs them itself under the same thread policy (``thread_policy(1)``
-for the job only).  Sweeps that start their own pool (``floquet.sweep``, ``fpu floquet sweep``)
+for the job only).  Sweeps that start their own pool (``atlas.sweep``, ``fpu floquet sweep``)
 use it: the caller computes at once instead of idling through the pool's start, and one process
 fewer pays the worker start-up (forkserver import + loading Numba's cache, ~1.2 s).  A server
 never does: the dashboard's process only serves, its long-lived pool computes.

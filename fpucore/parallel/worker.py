@@ -2,7 +2,8 @@
 
 Protocol on the worker's duplex pipe.  Parent → worker:
 ``(job_id, fn, args, kwargs, wants_progress)``, or ``None`` to exit.  Worker → parent:
-``("progress", job_id, frac)`` (at most every ``PROGRESS_INTERVAL_S``, and the final 1.0) and
+``("progress", job_id, frac)`` (at most every ``PROGRESS_INTERVAL_S``, except a step of at least
+``PROGRESS_STEP`` and the final 1.0, which are sent at once) and
 ``("done", job_id, ok, value_or_exception)``.
 """
 
@@ -18,6 +19,11 @@ from fpucore.parallel.jobs import RemoteError
 from fpucore.parallel.threads import apply_thread_policy
 
 PROGRESS_INTERVAL_S = 0.1
+#: the default start method inside a worker (see worker_main): its locks are anonymous
+WORKER_START_METHOD = "fork" if "fork" in mp.get_all_start_methods() else "spawn"
+#: a step this large is news (a job's next stage): sent at once, not left to the throttle — a
+#: long uninterrupted call after it (a LAPACK eigenvalue solve) would otherwise hide it
+PROGRESS_STEP = 0.05
 
 
 def portable_exception(exc: BaseException) -> BaseException:
@@ -34,13 +40,15 @@ def portable_exception(exc: BaseException) -> BaseException:
 
 def progress_sender(conn, job_id: int):
     """A ``progress(frac)`` callable sending throttled progress messages to the parent."""
-    last = [0.0]
+    last = [0.0, 0.0]  # time and value of the last message sent
 
     def progress(frac: float) -> None:
         now = time.monotonic()
-        if frac >= 1.0 or now - last[0] >= PROGRESS_INTERVAL_S:
-            last[0] = now
-            conn.send(("progress", job_id, float(frac)))
+        frac = float(frac)
+        step = abs(frac - last[1]) >= PROGRESS_STEP
+        if frac >= 1.0 or step or now - last[0] >= PROGRESS_INTERVAL_S:
+            last[0], last[1] = now, frac
+            conn.send(("progress", job_id, frac))
 
     return progress
 
@@ -50,11 +58,15 @@ def worker_main(conn, n_threads: int = 1) -> None:
     parent's business (it cancels or shuts down): a worker ignores SIGINT, so an interrupted
     sweep never records a point as failed with KeyboardInterrupt."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
-    # Numba guards the start of its threading layer with a multiprocessing RLock (a named
-    # semaphore) whenever the start method has "fork" in it.  A worker never starts processes,
-    # and one terminated at shutdown left that semaphore to the resource tracker, which printed a
-    # "leaked semaphore" warning after Ctrl-C on `fpu floquet sweep`.
-    mp.set_start_method("spawn", force=True)
+    # Locks made with the default context in a worker must be anonymous semaphores.  The worker
+    # inherits "forkserver" (or "spawn"), whose locks are named and registered with the resource
+    # tracker; a worker killed mid-job (Cancel, a superseded job, shutdown) never unregisters
+    # them, and the tracker prints "There appear to be N leaked semaphore objects" when the
+    # parent exits.  Such locks come from libraries: Numba's threading-layer RLock, numcodecs'
+    # Blosc mutex (an atlas or sweep store written here).  A "fork" lock is unlinked at once
+    # (nothing to leak); a worker never starts processes of its own with the default context
+    # (fpucore's pools name theirs), so "fork" is never used to start anything here.
+    mp.set_start_method(WORKER_START_METHOD, force=True)
     apply_thread_policy(n_threads)
     while True:
         try:

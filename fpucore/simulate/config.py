@@ -14,7 +14,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from fpucore.budget import fmt_bytes, require_memory, require_time_budget
-from fpucore.errors import ParameterError, require_finite
+from fpucore.errors import ParameterError, require_finite, require_int
 from fpucore.law import HardeningSofteningLaw, require_law
 from fpucore.simulate.steppers import H_OMEGA_AT_1E10, METHODS, STEPPERS
 
@@ -33,20 +33,6 @@ def require_positive(name: str, x, hi: float = 1e9) -> float:
     if not (0.0 < x <= hi):
         raise ParameterError(name, x, f"(0, {hi:g}]")
     return x
-
-
-def require_int(name: str, x, lo: int, hi: int) -> int:
-    """An integer in [lo, hi] (a float with an integer value is accepted; bools are not)."""
-    valid = f"an integer in [{lo}, {hi}]"
-    if isinstance(x, bool):
-        raise ParameterError(name, x, valid)
-    try:
-        xi = int(x)
-    except (TypeError, ValueError, OverflowError):
-        raise ParameterError(name, x, valid) from None
-    if xi != x or not (lo <= xi <= hi):
-        raise ParameterError(name, x, valid)
-    return xi
 
 
 def restoring_interval(law: HardeningSofteningLaw) -> tuple[float, float]:

@@ -61,7 +61,7 @@ from typing import ClassVar
 
 import numpy as np
 
-from fpucore.errors import ParameterError, require_finite
+from fpucore.errors import ParameterError, require_finite, require_int
 from fpucore.law import HardeningSofteningLaw
 from fpucore.parallel.threads import on_budget
 from fpucore.result import Result, status_of
@@ -71,7 +71,6 @@ from fpucore.simulate.config import (
     GUARDS,
     MAX_L,
     configure,
-    require_int,
     require_positive,
     restoring_interval,
 )
@@ -169,13 +168,7 @@ TrackedWave = tracking.TrackedWave
 
 # --------------------------------------------------------------------------- validation
 def _require_L(L) -> int:
-    try:
-        Li = int(L)
-    except (TypeError, ValueError, OverflowError):
-        raise ParameterError("L", L, f"an integer in [16, {MAX_L}]") from None
-    if Li != L or not (16 <= Li <= MAX_L):
-        raise ParameterError("L", L, f"an integer in [16, {MAX_L}]")
-    return Li
+    return require_int("L", L, 16, MAX_L)
 
 
 def _threshold(threshold, scale: float) -> float:

@@ -1,8 +1,8 @@
 """Runge–Kutta tableaux as data, validated when built, in one registry.
 
     dop853_data (coefficients)  →  rk (explicit RK: DOP853, RK4)  →  embedded (adaptive pairs:
-    DOP853 8(5,3), DOPRI5 5(4))  ·  rkn_order (exact order conditions)  →  rkn (Runge–Kutta–
-    Nyström pairs: RKN12(10), RKN8(6))
+    DOP853 8(5,3), DOPRI5 5(4))  →  rkn (Runge–Kutta–Nyström pairs: RKN12(10), RKN8(6); their
+    exact order conditions are test support, tests/support/rkn_order.py)
 
 ``get(family, name)`` is the one lookup: family ``"rk"`` (fixed-step, used by the period map and
 the Floquet tangent flow), ``"embedded"`` (adaptive first-order chain steppers) or ``"rkn"``

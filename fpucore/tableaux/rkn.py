@@ -21,7 +21,7 @@ Tableaux (Dormand, El-Mikkawy & Prince, IMA J. Numer. Anal. 7, 1987):
 
 The coefficients were taken from the tableaux of OrdinaryDiffEq.jl (MIT) and are checked in the
 tests against the RKN order conditions (one per special Nyström tree,
-:mod:`fpucore.tableaux.rkn_order`) in exact rational arithmetic: every condition up to the stated
+tests/support/rkn_order.py) in exact rational arithmetic: every condition up to the stated
 order holds (to 1e-16 for DPRKN12's double-precision weights) and some condition of the next order
 fails."""
 

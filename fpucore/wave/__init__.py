@@ -24,6 +24,8 @@ from fpucore.wave.family import Family, solitary_family, superkink_family
 from fpucore.wave.setup import (
     M_STEPS,
     Spec,
+    Tolerances,
+    auto_N,
     build_system,
     choose_K,
     choose_m,
@@ -31,7 +33,10 @@ from fpucore.wave.setup import (
     qc_guess,
     required_N,
     resize,
+    smallest_N,
     solitary_spec,
+    spec_of,
+    strain_scale,
     superkink_spec,
 )
 
@@ -47,6 +52,8 @@ __all__ = [
     "solitary_family",
     "M_STEPS",
     "Spec",
+    "Tolerances",
+    "auto_N",
     "build_system",
     "choose_K",
     "choose_m",
@@ -54,6 +61,9 @@ __all__ = [
     "qc_guess",
     "required_N",
     "resize",
+    "smallest_N",
     "solitary_spec",
+    "spec_of",
+    "strain_scale",
     "superkink_spec",
 ]

@@ -1,9 +1,9 @@
 """One discrete-wave solve as an object: the attempt logic of :mod:`.driver` (paper §5).
 
-:class:`Tolerances` holds every tolerance of a solve, derived in one place from the user's
-relative ``tol`` and the strain scale.  :class:`WaveSolve` holds what one solve works with (law,
-spec, N, m, K, the tolerances, the time budget, the Newton history, the routes taken) and has one
-method per route or rescue:
+:class:`~fpucore.wave.setup.Tolerances` holds every tolerance of a solve, derived in one place
+(:mod:`.setup`) from the user's relative ``tol`` and the strain scale.  :class:`WaveSolve` holds
+what one solve works with (law, spec, N, m, K, the tolerances, the time budget, the Newton
+history, the routes taken) and has one method per route or rescue:
 
     solve()          the whole solve: ordinary() or plateau(), then refine_m(), check_plateau()
     embedded()       flat tops on a chain longer than they need: solved on the N they need,
@@ -36,10 +36,13 @@ from fpucore.wave import plateau as wp
 from fpucore.wave import tails as wt
 from fpucore.wave.continuation import continue_to
 from fpucore.wave.setup import (
+    FLOOR_FACTOR,
     M_STEPS,
     Spec,
+    Tolerances,
     build_system,
     choose_K,
+    choose_m_floor,
     choose_N,
     qc_guess,
     required_N,
@@ -48,42 +51,10 @@ from fpucore.wave.setup import (
 )
 from fpucore.wave.system import NewtonOutcome, WaveSystem, newton
 
-FLOOR_FACTOR = 4.0  # accept residuals / step-doubling errors up to this × the round-off level
 #: flat tops (QC γ·x_f ≥ wp.GX_FALLBACK) are solved to at least this tol: their plateau length
 #: is fixed only by the last digits of the residual (σ_min ∝ |V − V_SK|); measured at
 #: V_SK − 1e-11, N = 64: tol 1e-10 gives profile_error 0.65, tol 1e-12 gives 0.05
 FLAT_TOP_TOL = 1e-12
-
-
-@dataclass(frozen=True)
-class Tolerances:
-    """Every tolerance of one solve (absolute unless said), from the user's relative ``tol``.
-
-    scale     strain scale s = max(1, |w_left|, |w_right|): round-off of eq. nonlin_system
-              grows with |w| (b = 100 or a = −0.01 stagnate at ~3e-14·s).
-    res_tol   Newton accepts max-norm residual ≤ res_tol = tol·s (raised to the round-off
-              level of the system where that is larger: see :class:`WaveSolve`).
-    step_tol  Newton keeps stepping until its next correction (strain units, max(|δw|, T|δẇ|))
-              is ≤ step_tol = tol·s, or the corrections stop shrinking (round-off).
-    int_tol   step count m: step-doubling error of the period map ≤ int_tol = tol·s.
-    tail_tol  automatic N: the tails decay to tail_tol = 0.1·tol·s at the chain's ends.
-    tail_ok   a converged wave whose tails miss the boundary states by more than
-              1e-5·A_QC + 1e3·tol·s is another wave (rejected).
-    """
-
-    tol: float
-    scale: float
-    res_tol: float
-    step_tol: float
-    int_tol: float
-    tail_tol: float
-    tail_ok: float
-
-    @classmethod
-    def of(cls, spec: Spec, tol: float) -> Tolerances:
-        s = max(1.0, abs(spec.w_left), abs(spec.w_right))
-        t = tol * s
-        return cls(tol, s, t, t, t, 0.1 * t, 1e-5 * spec.amplitude_qc + 1e3 * t)
 
 
 @dataclass(frozen=True)
@@ -102,21 +73,6 @@ class Solved:
     note: str = ""
     front_uncertainty: float = math.nan
     bounds: object = None  # wb.WaveBounds computed by the route itself (embedded flat tops)
-
-
-def choose_m_floor(law, spec: Spec, x: np.ndarray, int_tol: float, m_min: int = 6) -> int:
-    """Smallest m in M_STEPS (≥ m_min) whose step-doubling error at x is ≤ max(int_tol,
-    FLOOR_FACTOR × round-off level of the map): no more steps once round-off dominates."""
-    w, wd = x[0::2], x[1::2]
-    T = 1.0 / spec.V
-    for m in M_STEPS:
-        if m < m_min:
-            continue
-        e = pm.step_doubling_error(law, w, wd, T, m, spec.w_left, spec.w_right)
-        floor = max(pm.roundoff_level(law, w, wd, T, 2 * m))
-        if e <= max(int_tol, FLOOR_FACTOR * floor):
-            return m
-    return M_STEPS[-1]
 
 
 @dataclass
@@ -328,7 +284,7 @@ class WaveSolve:
         if self.predictor is not None:
             return out
         x_c, N_c, note = continue_to(
-            self.law, self.spec, self.tol, self.jacobian, self.left(), self.max_iter
+            self.law, self.spec, self.tols, self.jacobian, self.left, self.max_iter
         )
         self.routes.append(note)
         if x_c is None:

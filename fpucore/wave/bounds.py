@@ -43,6 +43,7 @@ from dataclasses import replace as _replace
 import numpy as np
 
 from fpucore.wave import tails as wt
+from fpucore.wave.setup import strain_scale
 from fpucore.wave.system import WaveSystem, solve_with
 
 SAFETY = 2.0  # on the first-order terms (linearisation, chord Jacobian, tail extrapolation)
@@ -151,7 +152,7 @@ def noise_sample(S: WaveSystem, x: np.ndarray, F: np.ndarray, seed: int = 12345)
     difference (F(x+η) − 2F(x) + F(x−η))/√6 cancels the linear part exactly and the quadratic
     part is ~|η|²|F″| ≈ 1e-18 (|η| ≈ 1e-9 in strain units, random signs, fixed seed), so what
     remains are three independent round-off patterns (variance 6σ²)."""
-    s = max(1.0, abs(S.w_left), abs(S.w_right))
+    s = strain_scale(S.w_left, S.w_right)
     rng = np.random.default_rng(seed)
     eta = 1e-9 * s * rng.choice([-1.0, 1.0], size=x.size)
     eta[1::2] *= S.V  # ẇ in strain per period time

@@ -13,21 +13,21 @@ then march to the target with adaptive steps (halve on failure, grow on success)
 
 from __future__ import annotations
 
-import time
+from collections.abc import Callable
 
 import numpy as np
 
 from fpucore import qc
 from fpucore.wave.setup import (
     Spec,
+    Tolerances,
     build_system,
     choose_K,
     choose_m,
     qc_guess,
     required_N,
     resize,
-    solitary_spec,
-    superkink_spec,
+    spec_of,
 )
 from fpucore.wave.system import newton
 
@@ -41,9 +41,7 @@ def family_interval(law, spec) -> tuple[float, float]:
 
 def respec(law, spec: Spec, V: float) -> Spec:
     """The same wave (kind, branch or w₊) at another velocity."""
-    if spec.kind == "superkink":
-        return superkink_spec(law, V, spec.branch)
-    return solitary_spec(law, spec.w_plus, V)
+    return spec_of(law, spec.kind, spec.row, V)
 
 
 def qc_shift_predictor(law, spec_new, x_old: np.ndarray, N_old: int, spec_old):
@@ -54,6 +52,30 @@ def qc_shift_predictor(law, spec_new, x_old: np.ndarray, N_old: int, spec_old):
         return x + qc_guess(spec_new, N) - qc_guess(spec_old, N)
 
     return predict
+
+
+def neighbour_predictor(law, prev, spec: Spec):
+    """The QC-shift predictor at spec from its converged neighbour prev = (wave, its spec), or
+    None when there is none or it lies on another velocity interval of the family."""
+    if prev is None:
+        return None
+    r_prev, sp_prev = prev
+    if family_interval(law, sp_prev) != family_interval(law, spec):
+        return None
+    x_prev = np.empty(2 * r_prev.N)
+    x_prev[0::2], x_prev[1::2] = r_prev.w, r_prev.wdot
+    return qc_shift_predictor(law, spec, x_prev, r_prev.N, sp_prev)
+
+
+def solve_from_neighbour(law, spec: Spec, prev, solve):
+    """One step of a family walk (wave families, atlas rows): ``solve(predictor)`` from the
+    neighbour's predictor (:func:`neighbour_predictor`), again from the QC guess
+    (``solve(None)``) if there is none or it does not converge."""
+    pred = neighbour_predictor(law, prev, spec)
+    r = solve(pred) if pred is not None else None
+    if r is None or not r.converged:
+        r = solve(None)
+    return r
 
 
 def _easy_end(law, spec) -> float:
@@ -67,22 +89,28 @@ def _easy_end(law, spec) -> float:
 
 
 def continue_to(
-    law, spec, tol, jacobian, budget_s, max_iter: int = 40, max_steps: int = 80, N_cap: int = 4000
+    law,
+    spec,
+    tols: Tolerances,
+    jacobian,
+    left: Callable[[], float],
+    max_iter: int = 40,
+    max_steps: int = 80,
+    N_cap: int = 4000,
 ):
     """March in V from a velocity where the QC guess converges to spec.V.
 
     Start candidates lie towards the family's easy end (:func:`_easy_end`), then towards the middle
     of the interval.  The path runs on the shortest chain that holds both ends (automatic N,
-    at most N_cap sites).  Returns (x, N, note) with x the interleaved state at spec.V on N sites,
-    or (None, 0, note) on failure.
+    at most N_cap sites).  tols : the solve's tolerances (:class:`Tolerances` of spec; its
+    residual, step-count and tail tolerances serve every point of the path); left() : the
+    seconds left of the solve's time budget.  Returns (x, N, note) with x the interleaved state
+    at spec.V on N sites, or (None, 0, note) on failure.
     """
 
-    t0 = time.perf_counter()
     lo, hi = family_interval(law, spec)
     easy, mid = _easy_end(law, spec), 0.5 * (lo + hi)
-    left = lambda: budget_s - (time.perf_counter() - t0)  # noqa: E731
-    scale = max(1.0, abs(spec.w_left), abs(spec.w_right))
-    N_t = required_N(law, spec, 0.1 * tol * scale)
+    N_t = required_N(law, spec, tols.tail_tol)
     start = None
     for target, frac in ((easy, 0.3), (easy, 0.6), (easy, 0.85), (mid, 0.3), (mid, 0.7)):
         if left() <= 0:
@@ -91,14 +119,16 @@ def continue_to(
         if not lo < Vs < hi:
             continue
         sp = respec(law, spec, Vs)
-        N = max(N_t, required_N(law, sp, 0.1 * tol * scale))
+        N = max(N_t, required_N(law, sp, tols.tail_tol))
         if N > N_cap:
             continue
         x0 = qc_guess(sp, N)
-        m = choose_m(law, sp, x0, N, tol * scale)
+        # choose_m, not the main route's choose_m_floor: on stiff laws (b = 1000) the floor picks
+        # fewer steps and the path (not the converged wave's accuracy) changes; kept as it was
+        m = choose_m(law, sp, x0, N, tols.int_tol)
         K = choose_K(law, sp, x0, m)
         o = newton(
-            build_system(law, sp, N, m, K), x0, tol * scale, max_iter, jacobian, max(1.0, left())
+            build_system(law, sp, N, m, K), x0, tols.res_tol, max_iter, jacobian, max(1.0, left())
         )
         if o.converged:
             start = (sp, o.x, N, m, K)
@@ -132,7 +162,7 @@ def continue_to(
         o = newton(
             build_system(law, sp1, N, m, K),
             pred,
-            tol * scale,
+            tols.res_tol,
             min(25, max_iter),
             jacobian,
             max(1.0, left()),

@@ -24,15 +24,16 @@ from typing import ClassVar
 import numpy as np
 
 from fpucore import qc
-from fpucore.errors import ParameterError, require_finite, require_int
+from fpucore.budget import require_time_budget
+from fpucore.errors import ParameterError, require_finite, require_int, require_tol
 from fpucore.law import require_law
 from fpucore.parallel.threads import on_budget
 from fpucore.result import Result, status_of
 from fpucore.wave import bounds as wb
 from fpucore.wave import period_map as pm
 from fpucore.wave import tails as wt
-from fpucore.wave.attempt import Solved, Tolerances, WaveSolve
-from fpucore.wave.setup import Spec, solitary_spec, superkink_spec
+from fpucore.wave.attempt import Solved, WaveSolve
+from fpucore.wave.setup import Spec, Tolerances, solitary_spec, superkink_spec
 
 
 @dataclass(frozen=True)
@@ -256,16 +257,11 @@ def _check_common(law, tol, jacobian, max_iter, time_budget_s, predictor):
     require_law(law)
     if predictor is not None and not callable(predictor):
         raise ParameterError("predictor", type(predictor).__name__, "None or a callable N -> x0")
-    tol = require_finite("tol", tol)
-    if not (1e-15 <= tol <= 1e-3):
-        raise ParameterError("tol", tol, "[1e-15, 1e-3]")
+    tol = require_tol(tol)
     if not isinstance(jacobian, str) or jacobian not in ("exact", "fd"):
         raise ParameterError("jacobian", jacobian, "'exact' or 'fd'")
     require_int("max_iter", max_iter, 1, 1000)
-    time_budget_s = require_finite("time_budget_s", time_budget_s)
-    if time_budget_s <= 0:
-        raise ParameterError("time_budget_s", time_budget_s, "> 0")
-    return tol, time_budget_s
+    return tol, require_time_budget(time_budget_s, none_ok=False)
 
 
 # =============================================================================== public API
@@ -290,7 +286,7 @@ def solve_superkink(
     tol: relative to the strain scale s = max(1, |w_left|, |w_right|) — Newton accepts residual
     <= tol·s and then steps on until its next correction is <= tol·s or stops shrinking
     (round-off); the step count m keeps the step-doubling error below the same bound
-    (:class:`fpucore.wave.attempt.Tolerances`).  Where round-off exceeds tol·s (stiff laws) the
+    (:class:`fpucore.wave.setup.Tolerances`).  Where round-off exceeds tol·s (stiff laws) the
     achievable level is used and reported (``residual_floor``, ``message``).  The result carries
     bounds against the infinite chain's exact wave (``profile_error`` …, :mod:`.bounds`).
     Non-convergence returns converged=False with the reason in ``message``.

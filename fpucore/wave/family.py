@@ -11,7 +11,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from fpucore.errors import ParameterError
-from fpucore.wave.continuation import family_interval, qc_shift_predictor
+from fpucore.wave.continuation import solve_from_neighbour
 from fpucore.wave.driver import solve_solitary, solve_superkink
 from fpucore.wave.setup import solitary_spec, superkink_spec
 
@@ -81,14 +81,7 @@ def _family_wrap(law, specs, solve, kind, progress):
     t0 = time.perf_counter()
     results, prev = [], None
     for i, sp in enumerate(specs):
-        r = None
-        if prev is not None and family_interval(law, prev[1]) == family_interval(law, sp):
-            r_prev, sp_prev = prev
-            x_prev = np.empty(2 * r_prev.N)
-            x_prev[0::2], x_prev[1::2] = r_prev.w, r_prev.wdot
-            r = solve(sp.V, qc_shift_predictor(law, sp, x_prev, r_prev.N, sp_prev))
-        if r is None or not r.converged:
-            r = solve(sp.V, None)
+        r = solve_from_neighbour(law, sp, prev, lambda pred, V=sp.V: solve(V, pred))
         results.append(r)
         prev = (r, sp) if r.converged else None
         if progress is not None:

@@ -1,6 +1,8 @@
 """What a discrete-wave solve is set up from (paper §5): the wave's specification (boundary
-states, pinning, QC guess, eqs. fixedBCs, SKsoln_cubic, SWsoln_cubic), the chain length N from
-the tail decay, the RK step count m by step doubling, the tangent window K, and the Newton system.
+states, pinning, QC guess, eqs. fixedBCs, SKsoln_cubic, SWsoln_cubic; built by :func:`spec_of`
+from (kind, row, V)), its strain scale and the tolerances derived from it (:class:`Tolerances`),
+the chain length N from the tail decay, the RK step count m by step doubling, the tangent window
+K, and the Newton system.
 
 Shared by the driver (:mod:`.driver`), continuation (:mod:`.continuation`), families and the
 Floquet sweep; it imports none of them.
@@ -20,6 +22,13 @@ from fpucore.wave.system import WaveSystem
 
 M_STEPS = (6, 8, 10, 12, 14, 16, 20, 24, 32, 40, 48, 64, 80, 96, 128)
 """Candidate RK steps per period, tried in order by :func:`choose_m`."""
+FLOOR_FACTOR = 4.0  # accept residuals / step-doubling errors up to this × the round-off level
+
+
+def strain_scale(w_left: float, w_right: float) -> float:
+    """s = max(1, |w_left|, |w_right|): the round-off of eq. nonlin_system grows with |w|, so
+    every tolerance of a solve is relative to s (:class:`Tolerances`)."""
+    return max(1.0, abs(w_left), abs(w_right))
 
 
 @dataclass(frozen=True)
@@ -36,6 +45,25 @@ class Spec:
     qcw: object  # QC object with profile/dprofile
     amplitude_qc: float
     branch: str | None
+
+    @property
+    def row(self):
+        """What fixes the family besides V: the branch of a superkink, w₊ of a solitary wave
+        (:func:`spec_of`'s ``row``, an atlas row)."""
+        return self.branch if self.kind == "superkink" else self.w_plus
+
+    @property
+    def scale(self) -> float:
+        """The strain scale (:func:`strain_scale`) of the boundary states."""
+        return strain_scale(self.w_left, self.w_right)
+
+
+def spec_of(law, kind: str, row, V: float) -> Spec:
+    """The wave of ``kind`` at velocity V on the family ``row`` (the branch of a superkink, w₊
+    of a solitary wave).  Raises ParameterError outside the existence region."""
+    if kind == "superkink":
+        return superkink_spec(law, V, row)
+    return solitary_spec(law, row, V)
 
 
 def superkink_spec(law, V, branch) -> Spec:
@@ -89,11 +117,20 @@ def required_N(law, spec: Spec, tail_tol: float) -> int:
     return wt.auto_N(L)
 
 
+def auto_N(law, spec: Spec, tol: float) -> int:
+    """The chain ``N=None`` chooses: tails resolved to the solve's tail tolerance."""
+    return required_N(law, spec, Tolerances.of(spec, tol).tail_tol)
+
+
+def smallest_N(law, spec: Spec) -> int:
+    """The shortest chain accepted for the wave: its tails cut at 1e-6 of the amplitude."""
+    return required_N(law, spec, 1e-6 * spec.amplitude_qc)
+
+
 def choose_N(law, spec: Spec, N, tol) -> int:
     """Automatic N, or validate the user's N against the wave's width."""
-    scale = max(1.0, abs(spec.w_left), abs(spec.w_right))
     if N is None:
-        N_auto = required_N(law, spec, 0.1 * tol * scale)
+        N_auto = auto_N(law, spec, tol)
         if N_auto > wt.N_MAX:
             raise ParameterError(
                 "V",
@@ -108,7 +145,7 @@ def choose_N(law, spec: Spec, N, tol) -> int:
     N = int(N)
     if N % 2 or not (wt.N_MIN <= N <= wt.N_MAX):
         raise ParameterError("N", N, f"an even integer in [{wt.N_MIN}, {wt.N_MAX}]")
-    N_fit = required_N(law, spec, 1e-6 * spec.amplitude_qc)
+    N_fit = smallest_N(law, spec)
     if N < N_fit:
         raise ParameterError(
             "N",
@@ -143,11 +180,57 @@ def choose_m(law, spec: Spec, x: np.ndarray, N: int, int_tol: float, m_min: int 
     return M_STEPS[-1]
 
 
+def choose_m_floor(law, spec: Spec, x: np.ndarray, int_tol: float, m_min: int = 6) -> int:
+    """Smallest m in M_STEPS (≥ m_min) whose step-doubling error at x is ≤ max(int_tol,
+    FLOOR_FACTOR × round-off level of the map): no more steps once round-off dominates."""
+    w, wd = x[0::2], x[1::2]
+    T = 1.0 / spec.V
+    for m in M_STEPS:
+        if m < m_min:
+            continue
+        e = pm.step_doubling_error(law, w, wd, T, m, spec.w_left, spec.w_right)
+        floor = max(pm.roundoff_level(law, w, wd, T, 2 * m))
+        if e <= max(int_tol, FLOOR_FACTOR * floor):
+            return m
+    return M_STEPS[-1]
+
+
 def choose_K(law, spec: Spec, x: np.ndarray, m: int) -> int:
     res = pm.integrate(
         law, x[0::2], x[1::2], 1.0 / spec.V, m, spec.w_left, spec.w_right, store_df=True
     )
     return pm.spread_radius(res, level=1e-18) + 2
+
+
+@dataclass(frozen=True)
+class Tolerances:
+    """Every tolerance of one solve (absolute unless said), from the user's relative ``tol``.
+
+    scale     strain scale s = max(1, |w_left|, |w_right|) (:func:`strain_scale`): round-off of
+              eq. nonlin_system grows with |w| (b = 100 or a = −0.01 stagnate at ~3e-14·s).
+    res_tol   Newton accepts max-norm residual ≤ res_tol = tol·s (raised to the round-off
+              level of the system where that is larger: see :class:`.attempt.WaveSolve`).
+    step_tol  Newton keeps stepping until its next correction (strain units, max(|δw|, T|δẇ|))
+              is ≤ step_tol = tol·s, or the corrections stop shrinking (round-off).
+    int_tol   step count m: step-doubling error of the period map ≤ int_tol = tol·s.
+    tail_tol  automatic N: the tails decay to tail_tol = 0.1·tol·s at the chain's ends.
+    tail_ok   a converged wave whose tails miss the boundary states by more than
+              1e-5·A_QC + 1e3·tol·s is another wave (rejected).
+    """
+
+    tol: float
+    scale: float
+    res_tol: float
+    step_tol: float
+    int_tol: float
+    tail_tol: float
+    tail_ok: float
+
+    @classmethod
+    def of(cls, spec: Spec, tol: float) -> Tolerances:
+        s = spec.scale
+        t = tol * s
+        return cls(tol, s, t, t, t, 0.1 * t, 1e-5 * spec.amplitude_qc + 1e3 * t)
 
 
 def build_system(law, spec: Spec, N: int, m: int, K: int) -> WaveSystem:

@@ -21,6 +21,7 @@ from bokeh.document import Document  # noqa: E402
 from app import compute  # noqa: E402
 from app.state import ExplorerState  # noqa: E402
 from app.views import SCENES  # noqa: E402
+from benchmarks.verdict_audit import audit_sentence  # noqa: E402
 from fpucore.floquet import finite_size as fs  # noqa: E402
 
 BY_KEY = {cls.key: cls for cls in SCENES}
@@ -63,6 +64,9 @@ def test_status_words_agree_with_the_numbers(cls, real, monkeypatch):
     status = sc.status.object
     bold = [b for b in re.findall(r"\*\*(.+?)\*\*", status) if b != "Shown:"]
     assert bold[0] == d.headline and f"**{d.headline}**: {d.sentence}" in status
+    # every word of the rendered headline and sentence agrees with the numbers printed in it
+    shown = status.split(f"**{bold[0]}**: ", 1)[1].split("\n")[0]
+    assert audit_sentence(shown, bold[0], cls) == [], shown
     # the headline's first word is the sentence's
     assert d.sentence.split(":")[0].split()[0] == d.headline.split()[0]
     # (d) draws exactly the points the sentence quotes
@@ -82,5 +86,85 @@ def test_status_words_agree_with_the_numbers(cls, real, monkeypatch):
         assert np.ptp(e) > 0.1 * e[-1] and e[-1] == e.max()  # neither converged nor decaying
         assert f"compute at N >= {2 * N}" in status
     title = sc.fig_d.title.text
-    for p, dp in re.findall(r"p = ([-\d.]+) ± ([-\d.]+)", title):
+    for p, dp in re.findall(r"p = ([-\d.]+) ± ([-\d.e+]+)", title):
         assert float(dp) < abs(float(p))
+
+
+def test_sweep_panel_says_which_velocities_are_missing_and_why(real, monkeypatch):
+    """A sweep row left out of (c) is named for what happened to it: a wave that did not
+    converge, or a velocity never computed (a sweep stopped early) — the old note called every
+    missing row "did not converge"."""
+    from app.compute.cache import Computed
+    from fpucore.floquet import sweeps
+
+    rc, fc = real
+    V = np.array([5.0, 5.2, 5.4])
+
+    def missing(V, message):  # a row of a velocity without a spectrum (sweep's own shape)
+        return {"V": V, "max_modulus": None, "max_modulus_away_from_1": None, "error": None,
+                "n_unstable": 0, "classification": None, "headline": None,
+                "verdict": "not computed", "converged": False, "wave_converged": False,
+                "message": message}  # fmt: skip
+
+    rows = [
+        missing(5.0, "wave not converged: Newton stalled"),
+        missing(5.2, "time budget of 1 s exceeded after 1 of 3 velocities"),
+        {**missing(5.4, ""), "max_modulus": 1.0005, "max_modulus_away_from_1": 1.0005,
+         "error": 1e-11, "n_unstable": 2, "classification": "finite_size", "converged": True,
+         "wave_converged": True, "verdict": "x", "headline": "finite-size artefact (x)"},
+    ]  # fmt: skip
+    sw = sweeps.SweepResult(
+        kind="superkink", N=N, w_plus=None, V=V,
+        max_modulus=np.array([np.nan, np.nan, 1.0005]),
+        max_modulus_away_from_1=np.array([np.nan, np.nan, 1.0005]),
+        error=np.array([np.nan, np.nan, 1e-11]), n_unstable=np.array([0, 0, 2]),
+        converged=np.array([False, False, True]), cached=np.zeros(3, bool), rows=rows,
+        classification=("", "", "finite_size"),
+    )  # fmt: skip
+    monkeypatch.setattr(compute, "floquet_spectrum", lambda *a, **k: (rc, fc))
+    monkeypatch.setattr(compute, "floquet_sweep", lambda *a, **k: Computed(sw, 0.1, False))
+    st = ExplorerState(N=N, tol=1e-8)
+    sc = BY_KEY["floquet"](st)
+    sc.panel.get_root(Document())
+    sc.n_sweep.value = 3
+    sc._want_sweep = True
+    sc.refresh()
+    status = sc.status.object
+    assert "sweep: 1 velocity did not converge" in status
+    assert "sweep: 1 of 3 velocities not computed (not drawn): time budget" in status
+    assert sum(len(src.data["x"]) for _, src in sc.r_cls.values()) == 1
+
+
+MEASURED = {  # README superkink sweep (measured windows): a rise then a fall, a slow fall, 1/N
+    "V5.6-N500": ([250, 300, 350, 400, 450, 500],
+                  [3.97e-05, 7.25e-05, 8.40e-05, 8.07e-05, 9.68e-05, 6.20e-05]),
+    "V5.3-N200": ([100, 120, 140, 160, 180, 200],
+                  [9.97e-04, 1.03e-03, 9.63e-04, 8.81e-04, 8.89e-04, 8.09e-04]),
+    "V4.8-N500": ([250, 300, 350, 400, 450, 500],
+                  [7.60e-03, 6.36e-03, 5.47e-03, 4.81e-03, 4.28e-03, 3.86e-03]),
+}  # fmt: skip
+
+
+@pytest.mark.parametrize("key", list(MEASURED))
+def test_measured_windows_render_words_that_agree(key, real, monkeypatch):
+    rc, fc = real
+    n, e = (np.asarray(x, float) for x in MEASURED[key])
+    err = np.full(e.size, 1e-10)
+    d, fit = fs.decide(n, e, err, growth_rate=0.01)
+    fr = dataclasses.replace(
+        fc.value, decision=d, classification=d.classification, verdict=d.sentence,
+        finite_size_N=n.astype(np.int64), finite_size_excess=e, finite_size_error=err,
+        finite_size_exponent=fit["p"], finite_size_exponent_error=fit["p_error"],
+    )  # fmt: skip
+    monkeypatch.setattr(compute, "floquet_spectrum",
+                        lambda *a, **k: (rc, dataclasses.replace(fc, value=fr)))  # fmt: skip
+    sc = BY_KEY["floquet"](ExplorerState(N=N, tol=1e-8))
+    sc.panel.get_root(Document())
+    sc.refresh()
+    status = sc.status.object
+    shown = status.split(f"**{d.headline}**: ", 1)[1].split("\n")[0]
+    assert audit_sentence(shown, d.headline, d.classification) == [], shown
+    title = sc.fig_d.title.text
+    assert not re.search(r"± 0\.0*(?![\d.])", title)  # no zero error bar (two-point line)
+    for p, dp in re.findall(r"p = ([-\d.]+) ± ([-\d.e+]+)", title):
+        assert 0 < float(dp) < abs(float(p))

@@ -88,3 +88,58 @@ def test_request_after_the_session_closed_starts_no_render(caplog):
         assert sc.wait_idle(10.0)
     assert sc.renders == renders
     assert not [r for r in caplog.records if r.levelno >= logging.WARNING], caplog.text
+
+
+def test_a_job_stopped_by_the_server_shutting_down_logs_no_traceback(caplog):
+    """The server stopping (SIGTERM: atexit shuts the worker pool down) while a Floquet job
+    runs for a session: the scene says it was stopped, and the log has no 'scene failed'
+    traceback (it had one in the server log of every run stopped mid-job)."""
+    import time
+
+    from app import compute
+
+    sc = BY_KEY["floquet"](ExplorerState(N=1200, tol=1e-10))
+    sc.request()
+    t_end = time.monotonic() + 240
+    while not sc.progress_text.visible and time.monotonic() < t_end:
+        time.sleep(0.05)
+    assert compute.jobs_in_flight() >= 1
+    with caplog.at_level(logging.ERROR, logger="fpu-explorer"):
+        compute.shutdown_executor()
+        assert sc.wait_idle(30)
+    assert not [r for r in caplog.records if r.levelno >= logging.ERROR], caplog.text
+    assert (sc.last_message or "").startswith("Stopped: the server's worker processes"), (
+        sc.last_message
+    )
+
+
+class _ServerSession:
+    """The part of Bokeh's ServerSession the scene reads: its open websocket connections."""
+
+    connection_count = 0
+
+
+def test_a_job_stops_as_soon_as_the_browser_leaves():
+    """The browser closes the page mid-job: its websocket goes (connection count 1 → 0) long
+    before Bokeh destroys the session (unused for 15 s, checked every 17 s).  The job is
+    abandoned — and its worker freed — within a second, not half a minute later."""
+    import time
+
+    from app import compute
+
+    ctx = _SessionContext()
+    ctx._session = _ServerSession()
+    doc, st, sc = served("floquet", ctx, w_plus=1.0, V=5.0, N=1300, tol=1e-10)
+    assert not sc.session_closed  # built, not yet connected: a page being loaded is not gone
+    ctx._session.connection_count = 1  # the page's websocket
+    cancelled = compute.CANCELLED[0]
+    sc.request()
+    t_end = time.monotonic() + 240
+    while not sc.progress_text.visible and time.monotonic() < t_end:
+        time.sleep(0.05)
+    assert compute.jobs_in_flight() >= 1 and not sc.session_closed
+    ctx._session.connection_count = 0  # the browser left; the session is not destroyed yet
+    t0 = time.perf_counter()
+    assert sc.wait_idle(10)
+    assert time.perf_counter() - t0 < 1.0
+    assert sc.session_closed and compute.CANCELLED[0] == cancelled + 1  # its worker was freed

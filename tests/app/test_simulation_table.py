@@ -45,3 +45,20 @@ def test_value_with_error_rounds_to_the_errors_digits():
     assert fmt_pm(-5.6157663, 7.72e-4) == "-5.61577 ± 7.7e-04"
     assert fmt_pm(4.6, 0.0) == "4.6 ± 0"
     assert fmt_pm(1.0, float("nan")).endswith("± ?")
+
+
+def test_status_line_velocities_carry_their_errors():
+    """The status line printed "-5.61577" for the left DSW edge, whose V is known to 7.7e-4:
+    every velocity now comes with its error and the digits the error supports."""
+    from types import SimpleNamespace as W
+
+    from app.views.simulation import tracked_velocities
+
+    waves = [W(velocity=-5.720916787446, velocity_error=2.6e-12),
+             W(velocity=-5.615766265, velocity_error=7.72e-4),
+             W(velocity=4.64032987, velocity_error=1.01e-4)]  # fmt: skip
+    line = tracked_velocities(waves)
+    assert line == ("tracked velocities: -5.720916787446 ± 2.6e-12, -5.61577 ± 7.7e-04, "
+                    "4.64033 ± 1.0e-04")  # fmt: skip
+    assert tracked_velocities([]) == "tracked velocities: none"
+    assert "(and 1 more in the table)" in tracked_velocities(waves * 2, k=5)

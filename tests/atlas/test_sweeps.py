@@ -1,4 +1,4 @@
-"""``fpucore.floquet.sweep`` as a one-row atlas on the execution layer: several chunks on a
+"""``fpucore.atlas.sweep`` as a one-row atlas on the execution layer: several chunks on a
 process pool give the rows of single ``wave``/``floquet`` calls within their error bars, the
 public columns stay, and the inputs that used to give NaN rows are refused."""
 
@@ -7,8 +7,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from fpucore import atlas, wave
 from fpucore import floquet as fq
-from fpucore import wave
 from fpucore.errors import ParameterError
 from fpucore.law import CubicLaw
 from fpucore.parallel import Executor
@@ -20,7 +20,7 @@ def test_pool_sweep_equals_single_calls(tmp_path, monkeypatch):
     monkeypatch.setenv("FPU_CACHE_DIR", str(tmp_path))
     V = [4.9, 5.1, 5.3, 5.5, 5.6, 5.7, 5.75]  # 3 chunks of fsw.CHUNK = 3
     with Executor("process", workers=2) as ex:
-        s = fq.sweep(LAW, "superkink", V, N=64, executor=ex)
+        s = atlas.sweep(LAW, "superkink", V, N=64, executor=ex)
     assert s.converged.all() and not s.cached.any() and len(s.rows) == len(V)
     columns = {"V", "max_modulus", "max_modulus_away_from_1", "error", "symmetry_error",
                "integrator_error", "n_unstable", "n_trivial", "trivial_split", "verdict",
@@ -44,13 +44,13 @@ def test_inputs_that_gave_nan_rows_are_refused(kw, name, tmp_path, monkeypatch):
     monkeypatch.setenv("FPU_CACHE_DIR", str(tmp_path))
     args = {"N": 64, **kw}
     with pytest.raises(ParameterError) as e:
-        fq.sweep(LAW, "superkink", [5.5], **args)
+        atlas.sweep(LAW, "superkink", [5.5], **args)
     assert e.value.name == name
 
 
 def test_time_budget_stops_with_a_message(tmp_path, monkeypatch):
     monkeypatch.setenv("FPU_CACHE_DIR", str(tmp_path))
-    s = fq.sweep(LAW, "superkink", [5.5, 5.6, 5.7, 5.8], N=64, time_budget_s=1e-9,
+    s = atlas.sweep(LAW, "superkink", [5.5, 5.6, 5.7, 5.8], N=64, time_budget_s=1e-9,
                  use_cache=False)  # fmt: skip
     assert "time budget" in s.message
     assert all(np.isnan(s.max_modulus)) or s.converged.sum() < 4

@@ -9,7 +9,7 @@ import mpmath as mp
 import numpy as np
 import pytest
 
-from fpucore import CubicLaw, ParameterError, floquet, qc, wave
+from fpucore import CubicLaw, ParameterError, atlas, floquet, qc, wave
 from fpucore.qc import phase
 
 LAW = CubicLaw(-1.0, 10.0)
@@ -82,7 +82,7 @@ def test_qc_numbers_with_large_b_match_the_jump_conditions():
     [({"tol": 0.0}, "tol"), ({"N": 10**6}, "N"), ({"time_budget_s": -1.0}, "time_budget_s")],
 )
 def test_floquet_sweep_refuses_up_front(kw, name):
-    refused(name, floquet.sweep, LAW, "superkink", [5.2], use_cache=False, **kw)
+    refused(name, atlas.sweep, LAW, "superkink", [5.2], use_cache=False, **kw)
 
 
 @pytest.mark.parametrize("V", [1e300, 1e-300, float("nan"), -1.0])

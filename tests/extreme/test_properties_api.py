@@ -22,6 +22,7 @@ from hypothesis import HealthCheck, event, given, settings
 from hypothesis import strategies as st
 
 from fpucore import CubicLaw, ParameterError, floquet, qc, simulate, wave
+from fpucore.atlas import sweeps
 from fpucore.qc import diagram, phase
 from fpucore.result import Result
 
@@ -428,7 +429,7 @@ def test_floquet_sweep_validation(kind, Vs, N, tol, budget):
     argument; arguments that pass are exactly those the sweep accepts."""
     names = {"kind", "V", "V_values", "N", "tol", "time_budget_s", "w_plus", "branch", "m", "law"}
     try:
-        floquet.sweeps.check_sweep_args(CubicLaw(), kind, Vs, 1.0, N, "lower", None, tol, budget)
+        sweeps.check_sweep_args(CubicLaw(), kind, Vs, 1.0, N, "lower", None, tol, budget)
     except ParameterError as exc:
         assert exc.name in names
 

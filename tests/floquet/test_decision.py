@@ -109,7 +109,7 @@ def test_words_agree_with_the_numbers(e):
     elif d.classification == "finite_size" and d.reason == "dips":
         k = list(d.points_N).index(d.dip_N[0])
         assert printed[k] < 0.5 * min(max(printed[:k]), max(printed[k + 1 :]))
-        assert "comes and goes" in h and f"below {min(printed):.1e}" in s
+        assert "comes and goes" in h and f"below {min(printed):.2e}" in s
     elif d.classification == "finite_size":
         assert printed[-1] < max(printed) and "decays" in h
     elif d.classification == "unstable":
@@ -117,7 +117,7 @@ def test_words_agree_with_the_numbers(e):
         assert "persists" in h
     else:
         assert h == "not determined at N = 500" and "compute at N >= 1000" in s
-    for p, dp in re.findall(r"p = ([-\d.]+) \+/- ([-\d.]+)", s):
+    for p, dp in re.findall(r"p = ([-\d.]+) \+/- ([-\d.e+]+)", s):
         assert float(dp) < abs(float(p))
     j = json.loads(json.dumps(d.as_dict()))
     assert j["headline"] == h and j["sentence"] == s and j["classification"] in fs.CLASSES

@@ -9,7 +9,7 @@ V ≈ 0.76–0.77; the spectra on both sides of it are finite-size artefacts onl
 translation pair stays on the unit circle: no change of stability is seen across the extremum
 (the criterion is necessary, not sufficient).
 
-Cross-check along sweeps (fpucore.floquet.sweep at N = 200, its rows carry each wave's E_ren and
+Cross-check along sweeps (fpucore.atlas.sweep at N = 200, its rows carry each wave's E_ren and
 classification; fpucore.floquet.stability_changes): every change across the stable/unstable line
 between neighbouring velocities must lie at an extremum of E_ren.  Measured: at N = 200 there is
 no such change on the three families tested.  (At N = 100 the three-ring finite-size test —
@@ -24,8 +24,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from fpucore import atlas, qc, wave
 from fpucore import floquet as fq
-from fpucore import qc, wave
 from fpucore.errors import ParameterError
 from fpucore.law import CubicLaw
 from fpucore.parallel import Executor
@@ -160,7 +160,7 @@ def test_classification_along_a_sweep_changes_only_at_an_energy_extremum(
     w_plus, Vs, tmp_path, monkeypatch, soft_coarse
 ):
     monkeypatch.setenv("FPU_CACHE_DIR", str(tmp_path))
-    sw = fq.sweep(LAW, "solitary", Vs, w_plus=w_plus, N=200, executor=Executor("inline"),
+    sw = atlas.sweep(LAW, "solitary", Vs, w_plus=w_plus, N=200, executor=Executor("inline"),
                   use_cache=False)  # fmt: skip
     assert sw.converged.all() and all(c in fq.CLASSES for c in sw.classification)
     # the rows' energies are the waves' own: one direct solve at the same V and N

@@ -15,9 +15,9 @@ from scipy.optimize import linear_sum_assignment
 
 from fpucore import floquet as fq
 from fpucore import wave
+from fpucore.atlas import sweeps as fsw
 from fpucore.cli import main as cli_main
 from fpucore.errors import ParameterError
-from fpucore.floquet import sweeps as fsw
 from fpucore.law import CubicLaw
 
 LAW = CubicLaw(-1.0, 10.0)
@@ -229,15 +229,15 @@ def test_sweep_is_cached_and_reports_progress(tmp_path, monkeypatch):
     monkeypatch.setenv("FPU_CACHE_DIR", str(tmp_path))
     calls = []
     V = [5.45, 5.5]
-    s1 = fq.sweep(LAW, "superkink", V, N=64, progress=lambda *a: calls.append(a))
+    s1 = fsw.sweep(LAW, "superkink", V, N=64, progress=lambda *a: calls.append(a))
     assert [c[0] for c in calls] == [1, 2] and not s1.cached.any()
     assert np.all(s1.converged) and np.all(np.isfinite(s1.max_modulus))
     assert np.all(s1.error < 1e-9)
-    s2 = fq.sweep(LAW, "superkink", V, N=64)
+    s2 = fsw.sweep(LAW, "superkink", V, N=64)
     assert s2.cached.all()
     assert np.array_equal(s1.max_modulus, s2.max_modulus)
     monkeypatch.setattr(fsw, "source_hash", lambda: "0123456789ab")  # the code changed: a miss
-    s3 = fq.sweep(LAW, "superkink", V, N=64)
+    s3 = fsw.sweep(LAW, "superkink", V, N=64)
     assert not s3.cached.any() and np.array_equal(s1.max_modulus, s3.max_modulus)
     out = tmp_path / "t.csv"
     s2.to_csv(out)
@@ -247,11 +247,11 @@ def test_sweep_is_cached_and_reports_progress(tmp_path, monkeypatch):
 
 def test_sweep_bad_input():
     with pytest.raises(ParameterError, match="w_plus"):
-        fq.sweep(LAW, "solitary", [5.0])
+        fsw.sweep(LAW, "solitary", [5.0])
     with pytest.raises(ParameterError, match="V="):
-        fq.sweep(LAW, "superkink", [5.5, 7.0], N=64)
+        fsw.sweep(LAW, "superkink", [5.5, 7.0], N=64)
     with pytest.raises(ParameterError, match="kind"):
-        fq.sweep(LAW, "breather", [5.5])
+        fsw.sweep(LAW, "breather", [5.5])
 
 
 # ----------------------------------------------------------------------------- CLI

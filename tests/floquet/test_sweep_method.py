@@ -7,9 +7,8 @@ import numpy as np
 import pytest
 
 from fpucore import atlas
-from fpucore import floquet as fq
+from fpucore.atlas import sweeps
 from fpucore.errors import ParameterError
-from fpucore.floquet import sweeps
 from fpucore.law import CubicLaw
 from fpucore.parallel import Executor
 
@@ -22,7 +21,7 @@ LAW = CubicLaw(-1.0, 10.0)
 ])  # fmt: skip
 def test_structured_sweep_equals_the_dense_sweep(kind, V, w_plus, tmp_path, monkeypatch):
     monkeypatch.setenv("FPU_CACHE_DIR", str(tmp_path))
-    run = lambda method: fq.sweep(LAW, kind, V, w_plus=w_plus, N=160, method=method,  # noqa: E731
+    run = lambda method: atlas.sweep(LAW, kind, V, w_plus=w_plus, N=160, method=method,  # noqa: E731
                                   executor=Executor(backend="inline"))  # fmt: skip
     s, d = run("structured"), run("dense")
     assert s.method == "structured" and d.method == "dense"
@@ -38,7 +37,7 @@ def test_the_method_is_part_of_the_cache_key_and_checked():
     args = (LAW, "superkink", [5.5], 64, None, "lower", None, 1e-12)
     assert sweeps.cache_key(*args, "dense") != sweeps.cache_key(*args, "structured")
     with pytest.raises(ParameterError) as e:
-        fq.sweep(LAW, "superkink", [5.5], N=64, method="eig")
+        atlas.sweep(LAW, "superkink", [5.5], N=64, method="eig")
     assert e.value.name == "method"
     with pytest.raises(ParameterError) as e:
         atlas.run(LAW, "superkink", V=[5.5], N=64, floquet=True, floquet_method="eig")

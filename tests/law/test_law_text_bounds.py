@@ -28,17 +28,19 @@ TIMEOUT_S = 10.0  # a worker that has not answered by then has hung
 # the worker: reads one JSON line (mode, text), answers the refusal (or law) and its time
 WORKER = r"""
 import json, sys, time, io, contextlib
+from sympy.core.cache import clear_cache
 from fpucore.errors import ParameterError
 from fpucore.law import law_from_expression
 from fpucore.cli import main
 for line in sys.stdin:
     mode, text = json.loads(line)
     err = io.StringIO()
+    clear_cache()  # each try as new to SymPy as an attacker's next string: no cached subresult
     t0 = time.perf_counter()
     try:
         if mode == "api":
             law = law_from_expression(text)
-            out = {"ok": True, "law": law.expression}
+            out = {"ok": True, "law": law.expression, "name": None}
         else:
             with contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
                 rc = main(["qc", "--w-plus", "0.5", "--law=" + text])
@@ -212,3 +214,134 @@ def test_degree_limit_is_the_same_for_text_and_coefficients():
         law_from_expression("w + 10*w**2 - w**3 - 1e-20*w**17")
     with pytest.raises(ValueError, match="degree <= 16"):
         PolynomialLaw((1.0, 10.0, -1.0) + (0.0,) * 13 + (-1e-20,))
+
+
+# ------------------------------------------------------------------ the grammar, adversarially
+# Every text the screen's grammar admits, drawn recursively with the sizes an attacker would
+# pick: literals in every base up to beyond the float range, exponents from 0 to 10**12 (also
+# negative, fractional, towers), products and powers of sums, functions of huge constants,
+# quotients, long sums.  Whatever the text, the API answers (a law or a ParameterError, never
+# another exception) within the budget: a refusal in <= 50 ms, and an acceptance within the same
+# budget (a legitimate law is built in ~1-10 ms).  The suite runs a moderate number of examples;
+# FPU_LAW_FUZZ=N runs N (the hunt for holes: see the module's git log for the figures).
+
+
+def _literal(draw) -> str:
+    kind = draw(st.sampled_from(["small", "dec", "hex", "oct", "bin", "float", "exp", "long"]))
+    if kind == "small":
+        return str(draw(st.integers(0, 20)))
+    n = draw(st.integers(1, 420))  # digits: up to beyond the float range
+    if kind == "dec":
+        return "9" * n
+    if kind == "hex":
+        return "0x" + "f" * n
+    if kind == "oct":
+        return "0o" + "7" * n
+    if kind == "bin":
+        return "0b" + "1" * n
+    if kind == "float":
+        return "1." + "0" * (n - 1) + "1"
+    if kind == "long":
+        return "0." + "3" * n
+    return f"1e{draw(st.sampled_from(['', '-']))}{draw(st.integers(0, 400))}"
+
+
+def _exponent(draw) -> str:
+    kind = draw(st.sampled_from(["list", "int", "frac"]))
+    if kind == "int":
+        return f"({draw(st.integers(-40, 3000))})"
+    if kind == "frac":
+        return f"({draw(st.integers(-50, 50))}/{draw(st.integers(1, 13))})"
+    return draw(
+        st.sampled_from(["2", "3", "16", "17", "-1", "-16", "(1/2)", "(1/3)", "0.5", "666",
+                         "1100", "1101", "10**12", "9**9**9", "(-1)", "(10**100)", "(2**64)"])
+    )  # fmt: skip
+
+
+@st.composite
+def _atom(draw) -> str:
+    kind = draw(st.sampled_from(["w", "w", "lit", "lit", "const"]))
+    if kind == "w":
+        return "w"
+    if kind == "const":
+        return draw(st.sampled_from(["pi", "E"]))
+    return _literal(draw)
+
+
+def _extend(children):
+    def build(draw) -> str:
+        kind = draw(st.sampled_from(["sum", "product", "power", "power", "func", "neg", "quot"]))
+        if kind == "sum":
+            parts = draw(st.lists(children, min_size=2, max_size=8))
+            return "(" + "".join(draw(st.sampled_from("+-")) + p for p in parts) + ")"
+        if kind == "product":
+            parts = draw(st.lists(children, min_size=2, max_size=17))
+            return draw(st.sampled_from(["*", ""])).join(f"({p})" for p in parts)  # or implicit
+        if kind == "quot":
+            return f"({draw(children)})/({draw(children)})"
+        if kind == "power":  # ** or ^ (SymPy's convert_xor)
+            return f"({draw(children)}){draw(st.sampled_from(['**', '^']))}{_exponent(draw)}"
+        if kind == "func":
+            fn = draw(st.sampled_from(["sin", "cos", "exp", "log", "sqrt", "tanh", "abs"]))
+            return f"{fn}({draw(children)})"
+        return f"-({draw(children)})"
+
+    return st.composite(build)()
+
+
+GRAMMAR = st.recursive(_atom(), _extend, max_leaves=60)
+
+
+@st.composite
+def adversarial(draw) -> str:
+    """A grammar text, often embedded in a legitimate law (the screen must judge each part)."""
+    bad = draw(GRAMMAR)
+    return draw(st.sampled_from([bad, f"w + 10*w**2 - w**3 + {bad}", f"w*({bad})",
+                                 f"w + 10*w**2 - w**3 + 1e-30*({bad})*w"]))  # fmt: skip
+
+
+def answered_fast(worker, text: str) -> None:
+    """The API's answer (a law or a ParameterError: the expression's or the law's checks) in
+    <= LIMIT_S, best of three; a refusal also through the CLI (exit 2, one line)."""
+    best = float("inf")
+    for _ in range(3):
+        api = worker.ask("api", text)
+        assert api["ok"] or api["name"] is not None, (text, api)  # a ParameterError
+        best = min(best, api["s"])
+        if best <= LIMIT_S:
+            break
+    assert best <= LIMIT_S, (text, best, api)
+    if not api["ok"]:
+        cli = worker.ask("cli", text)
+        assert cli["rc"] == 2 and cli["error"].count("\n") == 1, (text, cli)
+        assert "Traceback" not in cli["error"]
+
+
+@settings(
+    max_examples=int(os.environ.get("FPU_LAW_FUZZ", "150")),
+    deadline=None,
+    suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow,
+                           HealthCheck.data_too_large],
+)  # fmt: skip
+@given(adversarial())
+def test_any_grammar_text_is_answered_fast(worker, text):
+    answered_fast(worker, text)
+
+
+# holes the grammar found in the screen of an earlier version, each seconds to minutes of SymPy
+HOLES = [
+    "(1+1/0x" + "f" * 255 + ")**666*w + 10*w**2 - w**3",  # a literal sized by its characters
+    "w + (1/(w+1)+1/(w+2)+1/(w+3)+1/(w+4)+1/(w+5))**8",  # quotients by sums: 8.7 s
+    "w + ((w+1)**-1+(w+2)**-1+(w+3)**-1+(w+4)**-1)**8",  # negative powers of sums: 2.2 s
+    "(w**(1/3)+w**(1/5)+w**(1/7)+w**(1/11))**8",  # fractional powers of w
+    "w + 10*w**2 - w**3 + 1e-9*(w + 2**(1/2)+3**(1/3)+5**(1/5)+(-2)**(1/3)+log(-3))**16",
+    "w + 10*w**2 - w**3 + 1e-40*" + "*".join(f"(w+{k}.1)" for k in range(1, 17)),  # 0.15 s
+    "w + 10*w**2 - w**3 + 1e-40*(w+pi)**16",
+    "(0)/(w)",  # a zero coefficient of w^-1: IndexError in the coefficient list
+    "(" + "9" * 200 + ")**(1/2)",  # SymPy's evaluation factors the integer: 80 ms
+]
+
+
+@pytest.mark.parametrize("text", HOLES, ids=[t[:24] for t in HOLES])
+def test_former_holes_are_answered_fast(worker, text):
+    answered_fast(worker, text)

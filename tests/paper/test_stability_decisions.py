@@ -16,8 +16,8 @@ import json
 import numpy as np
 import pytest
 
+from fpucore import atlas, qc, wave
 from fpucore import floquet as fq
-from fpucore import qc, wave
 from fpucore.cli import main as cli_main
 from fpucore.law import CubicLaw, PolynomialLaw
 
@@ -65,7 +65,7 @@ def test_solitary_families_have_no_unstable_row(w_plus, bound, tmp_path, monkeyp
     (cp, vsk), (_, cm) = qc.solitary_intervals(LAW, w_plus)
     t = np.array([0.25, 0.5, 0.75, 0.97])
     Vs = np.concatenate([cp + (vsk - cp) * t, vsk + (cm - vsk) * (1.0 - t)])
-    sw = fq.sweep(LAW, "solitary", Vs, w_plus=w_plus, N=500, use_cache=False)
+    sw = atlas.sweep(LAW, "solitary", Vs, w_plus=w_plus, N=500, use_cache=False)
     assert sw.converged.all()
     assert "unstable" not in sw.classification, [r["verdict"] for r in sw.rows]
     assert np.nanmax(sw.max_modulus) < bound
@@ -73,7 +73,7 @@ def test_solitary_families_have_no_unstable_row(w_plus, bound, tmp_path, monkeyp
 
 
 def _unstable_survive_doubling(law, kind, Vs, w_plus=None, N=200):
-    sw = fq.sweep(law, kind, Vs, w_plus=w_plus, N=N, use_cache=False)
+    sw = atlas.sweep(law, kind, Vs, w_plus=w_plus, N=N, use_cache=False)
     assert sw.converged.any()
     for V, c in zip(sw.V, sw.classification, strict=True):
         if c != "unstable":

@@ -16,10 +16,11 @@ import time
 
 import numba
 import numpy as np
+import probes
 import pytest
 from threadpoolctl import threadpool_info
 
-from fpucore import floquet as fq
+from fpucore import atlas
 from fpucore.errors import ParameterError
 from fpucore.law import CubicLaw
 from fpucore.parallel import (
@@ -28,7 +29,6 @@ from fpucore.parallel import (
     WorkerDied,
     apply_thread_policy,
     cores,
-    probes,
 )
 
 T = 180  # s: generous (a cold Numba cache compiles in the workers), never reached when healthy
@@ -143,11 +143,11 @@ def test_bad_caller_runs_is_refused():
 
 
 def test_sweep_on_its_own_execution_equals_inline():
-    """floquet.sweep without an executor (the caller and a worker compute) gives bit-equal rows
+    """atlas.sweep without an executor (the caller and a worker compute) gives bit-equal rows
     to the same sweep run inline in this process."""
     law, V = CubicLaw(-1.0, 10.0), [5.0, 5.2, 5.4, 5.6]
-    own = fq.sweep(law, "superkink", V, N=64, use_cache=False, workers=2)
-    ref = fq.sweep(law, "superkink", V, N=64, use_cache=False, executor=Executor("inline"))
+    own = atlas.sweep(law, "superkink", V, N=64, use_cache=False, workers=2)
+    ref = atlas.sweep(law, "superkink", V, N=64, use_cache=False, executor=Executor("inline"))
     assert own.message == ref.message and own.converged.all()
     np.testing.assert_array_equal(own.max_modulus, ref.max_modulus)
     np.testing.assert_array_equal(own.error, ref.error)

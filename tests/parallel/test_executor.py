@@ -15,11 +15,12 @@ import time
 from pathlib import Path
 
 import numba
+import probes
 import pytest
 
 from fpucore.errors import ParameterError
 from fpucore.law import CubicLaw
-from fpucore.parallel import Cancelled, Executor, WorkerDied, apply_thread_policy, probes
+from fpucore.parallel import Cancelled, Executor, WorkerDied, apply_thread_policy
 from fpucore.wave import solve_superkink
 
 T = 180  # s: generous (a cold Numba cache compiles in the workers), never reached when healthy
@@ -175,7 +176,7 @@ def test_dask_local_cluster_equals_pool_and_inline(pool):
 
 EXIT_SCRIPT = """
 from fpucore.parallel import Executor
-from fpucore.parallel.probes import sleep
+from probes import sleep
 
 if __name__ == "__main__":
     ex = Executor(backend="process", workers=2)
@@ -194,7 +195,7 @@ def test_exit_right_after_cancelling_is_quiet(tmp_path):
     script = tmp_path / "exit_after_cancel.py"
     script.write_text(EXIT_SCRIPT)
     root = Path(__file__).resolve().parents[2]
-    env = dict(os.environ, PYTHONPATH=str(root))
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(root), str(root / "tests" / "support")]))
     for _ in range(8):
         out = subprocess.run(
             [sys.executable, str(script)], capture_output=True, text=True, timeout=25, env=env

@@ -1,9 +1,14 @@
 """The package layout is the flow of the paper, and stays clean (checked with the standard
 library's ``ast``, nothing imported):
 
-* the import graph of fpucore's and app's modules has no cycles (an edge goes to the module
-  named, not to its parent package's ``__init__``, which is how Python resolves a submodule
-  import);
+* the import graph of fpucore's and app's modules has no cycles.  An import of ``a.b.c`` runs
+  ``a/__init__`` and ``a/b/__init__`` first, so it is an edge to each of those packages too —
+  except the importer's own enclosing packages, which are already being imported when it runs;
+* the stages (fpucore's subpackages, :data:`STAGES`) form no cycle either: a module of one stage
+  that imports another stage makes the whole first stage depend on the second (importing any
+  module of it may run the other's ``__init__``), so a stage cycle is an import cycle waiting for
+  the right first import;
+* ``parallel`` (the execution layer) depends on no stage above ``law``;
 * no import inside a function, except the allow-listed optional dependencies;
 * no private name (``_x``) of one module is used by another, in fpucore, app or the tests;
 * fpucore never imports a UI package.
@@ -15,8 +20,6 @@ import ast
 import subprocess
 import sys
 from pathlib import Path
-
-import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
 PKG = ROOT / "fpucore"
@@ -46,6 +49,8 @@ LATE_OK: set[tuple[str, str]] = {
         "from sympy.parsing.sympy_parser import convert_xor, implicit_multiplication, "
         "parse_expr, standard_transformations",
     ),
+    # its exact expansion (mpmath at module level) with SymPy, only when a law is typed
+    ("fpucore/law/expression.py", "from fpucore.law.expansion import expand"),
     ("fpucore/atlas/store.py", "import xarray"),
     ("fpucore/atlas/store.py", "import zarr"),
     # the one place fpucore draws (fpu paper, Jupyter): HoloViews / Bokeh only when a figure is
@@ -109,15 +114,70 @@ def _imports(mod: str, tree: ast.AST):
                 yield base, a.name, node
 
 
+def _parents(mod: str) -> list[str]:
+    """The packages whose ``__init__`` runs before ``mod``: a.b.c → [a, a.b]."""
+    parts = mod.split(".")
+    return [".".join(parts[:k]) for k in range(1, len(parts))]
+
+
 def _edges() -> dict[str, set[str]]:
     g: dict[str, set[str]] = {m: set() for m in MODULES}
     for mod, path in MODULES.items():
+        own = set(_parents(mod))  # already in sys.modules while mod runs
         for base, name, _ in _imports(mod, ast.parse(path.read_text())):
             if name and f"{base}.{name}" in MODULES:
-                g[mod].add(f"{base}.{name}")  # from pkg import submodule
+                target = f"{base}.{name}"  # from pkg import submodule
             elif base in MODULES:
-                g[mod].add(base)
+                target = base
+            else:
+                continue
+            g[mod].add(target)
+            g[mod] |= {p for p in _parents(target) if p in MODULES and p not in own and p != mod}
     return g
+
+
+def _stage(mod: str) -> str | None:
+    """The stage of an fpucore module (its subpackage; a top-level module is its own stage)."""
+    parts = mod.split(".")
+    if parts[0] != "fpucore" or len(parts) == 1:
+        return None
+    return parts[1]
+
+
+def _stage_edges() -> dict[str, set[str]]:
+    g: dict[str, set[str]] = {}
+    for mod, targets in _edges().items():
+        s = _stage(mod)
+        if s is None:
+            continue
+        g.setdefault(s, set())
+        for t in targets:
+            st = _stage(t)
+            if st is not None and st != s:
+                g[s].add(st)
+    return g
+
+
+def _first_cycle(g: dict[str, set[str]]) -> list[str] | None:
+    state: dict[str, int] = {}
+    stack: list[str] = []
+
+    def visit(m: str) -> list[str] | None:
+        state[m] = 1
+        stack.append(m)
+        for n in sorted(g.get(m, ())):
+            if state.get(n) == 1:
+                return stack[stack.index(n) :] + [n]
+            if n not in state and (c := visit(n)):
+                return c
+        stack.pop()
+        state[m] = 2
+        return None
+
+    for m in sorted(g):
+        if m not in state and (c := visit(m)):
+            return c
+    return None
 
 
 def test_the_folder_reads_as_the_flow_of_the_paper():
@@ -139,25 +199,30 @@ def test_the_folder_reads_as_the_flow_of_the_paper():
 
 
 def test_import_graph_has_no_cycles():
-    g = _edges()
-    state: dict[str, int] = {}
-    stack: list[str] = []
+    cycle = _first_cycle(_edges())
+    assert cycle is None, "import cycle: " + " -> ".join(cycle or [])
 
-    def visit(m: str) -> None:
-        state[m] = 1
-        stack.append(m)
-        for n in sorted(g[m]):
-            if state.get(n) == 1:
-                cycle = stack[stack.index(n) :] + [n]
-                pytest.fail("import cycle: " + " -> ".join(cycle))
-            if n not in state:
-                visit(n)
-        stack.pop()
-        state[m] = 2
 
-    for m in sorted(g):
-        if m not in state:
-            visit(m)
+def test_an_import_runs_its_parent_packages():
+    """The graph has the edges Python takes: atlas/point.py's ``from fpucore.floquet.multipliers
+    import spectrum`` runs ``fpucore/floquet/__init__`` first; its own package is no edge."""
+    g = _edges()["fpucore.atlas.point"]
+    assert {"fpucore.floquet.multipliers", "fpucore.floquet"} <= g
+    assert "fpucore.atlas" not in g and "fpucore" not in g
+
+
+def test_stages_form_no_cycle():
+    g = _stage_edges()
+    assert set(STAGES) <= set(g), sorted(g)
+    cycle = _first_cycle(g)
+    assert cycle is None, "stage cycle: " + " -> ".join(cycle or [])
+
+
+def test_the_execution_layer_sits_on_the_force_law_only():
+    """parallel/ runs any job; it knows no wave, spectrum or atlas (test support lives in
+    tests/, not in the stage)."""
+    allowed = {"law", "errors", "budget", "result", "jit_cache"}
+    assert _stage_edges()["parallel"] <= allowed, _stage_edges()["parallel"]
 
 
 def test_common_modules_import_nothing_back():

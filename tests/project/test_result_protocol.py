@@ -8,8 +8,7 @@ import numpy as np
 import pytest
 
 from fpucore import ConvergenceError, CubicLaw, floquet, qc, simulate, wave
-from fpucore.cli.common import jsonable
-from fpucore.result import STATUSES, Result
+from fpucore.result import STATUSES, Result, jsonable
 
 LAW = CubicLaw()
 

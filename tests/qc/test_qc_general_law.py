@@ -9,9 +9,8 @@ import numpy as np
 import pytest
 
 from fpucore import CubicLaw, ParameterError, law_from_expression, qc
-from fpucore.cli.common import jsonable
 from fpucore.qc import closed_forms, general
-from fpucore.result import STATUSES, Result
+from fpucore.result import STATUSES, Result, jsonable
 
 QUARTIC = law_from_expression("w + 10*w**2 - w**3 - 0.01*w**4")
 CUBIC = CubicLaw(-1.0, 10.0)

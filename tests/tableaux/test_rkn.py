@@ -6,13 +6,13 @@ from fractions import Fraction
 
 import numpy as np
 import pytest
+import rkn_order
 from scipy.integrate import solve_ivp
 
 from fpucore.law import CubicLaw
 from fpucore.simulate import kernels as ck
 from fpucore.simulate import rkn as crk
 from fpucore.simulate.layout import Chain, Control, Observer, RknPair, Work
-from fpucore.tableaux import rkn_order
 from fpucore.tableaux.rkn import DPRKN8, DPRKN12, RKN
 
 LAW = CubicLaw(-1.0, 10.0)

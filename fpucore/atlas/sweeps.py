@@ -1,6 +1,8 @@
 """Sweeps of the Floquet spectrum along wave families (paper Figs. floquet_SK, floquet_cubicSW).
 
-A sweep is a one-row atlas (:func:`fpucore.atlas.run` with ``floquet=True``): every velocity is one
+A sweep is a one-row atlas (:func:`fpucore.atlas.run` with ``floquet=True``), so it lives in the
+atlas stage (``fpucore.floquet.sweep`` names it for older callers, see :mod:`fpucore.floquet`):
+every velocity is one
 task (``CHUNK`` = 1) on a worker of the execution layer (:mod:`fpucore.parallel`; all cores, one
 BLAS thread each): its wave solved from the QC guess and its spectrum computed.  A sweep that
 starts its own pool computes in the calling process too (``caller_runs``: K cores = the caller
@@ -36,16 +38,18 @@ from pathlib import Path
 import numpy as np
 from tqdm import tqdm
 
-from fpucore.atlas.point import spec_of
 from fpucore.atlas.run import run as run_atlas
 from fpucore.atlas.store import fpucore_version
-from fpucore.errors import ParameterError, require_finite, require_int
+from fpucore.budget import require_time_budget
+from fpucore.errors import ParameterError, require_finite, require_int, require_tol
 from fpucore.floquet.monodromy import MAX_N
 from fpucore.floquet.multipliers import METHODS
 from fpucore.jit_cache import source_hash
 from fpucore.law import require_law
 from fpucore.parallel import Executor
 from fpucore.parallel.threads import on_budget
+from fpucore.result import jsonable
+from fpucore.wave.setup import spec_of
 
 SWEEP_MAX_V = 10_000  # velocities per sweep
 CHUNK = 1  # velocities per task (fixed: results must not depend on the number of workers)
@@ -152,19 +156,6 @@ def _csv(v) -> str:
     return '"' + s.replace('"', "'") + '"' if ("," in s or '"' in s) else s
 
 
-def _plain(x):
-    if isinstance(x, (np.bool_, bool)):
-        return bool(x)
-    if isinstance(x, np.integer):
-        return int(x)
-    if isinstance(x, (float, np.floating)):
-        x = float(x)
-        return x if math.isfinite(x) else None
-    if isinstance(x, np.str_):
-        return str(x)
-    return x
-
-
 def tqdm_progress(n: int, desc: str = "floquet sweep") -> Callable:
     """A ``progress(i, n, V, row)`` callback drawing a tqdm bar on stderr."""
     bar = tqdm(total=n, desc=desc, unit="V", dynamic_ncols=True)
@@ -191,11 +182,11 @@ def _row(V: float, rec: dict) -> dict:
         row = _nan_row(V, rec["message"] or "not computed")
         if rec["status"] == "not_converged":
             row["message"] = f"wave not converged: {rec['message']}"
-        row["wave_residual"] = _plain(rec["residual"])
-        row["elapsed_s"] = _plain(rec["elapsed_s"]) or 0.0
+        row["wave_residual"] = jsonable(rec["residual"])
+        row["elapsed_s"] = jsonable(rec["elapsed_s"]) or 0.0
         return row
     row = {"V": float(V)}
-    row.update({k: _plain(rec[src]) for k, src in _FROM_ATLAS.items()})
+    row.update({k: jsonable(rec[src]) for k, src in _FROM_ATLAS.items()})
     return row
 
 
@@ -227,14 +218,10 @@ def check_sweep_args(law, kind, V_values, w_plus, N, branch, m, tol, time_budget
         raise ParameterError("N", N, f"an even integer in [8, {MAX_N}]")
     if m is not None:
         m = require_int("m", m, 2, 20000)
-    tol = require_finite("tol", tol)
-    if not 1e-15 <= tol <= 1e-3:
-        raise ParameterError("tol", tol, "[1e-15, 1e-3]", "wave residual tolerance")
+    tol = require_tol(tol)
     if not isinstance(method, str) or method not in METHODS:
         raise ParameterError("method", method, " | ".join(repr(x) for x in METHODS))
-    time_budget_s = require_finite("time_budget_s", time_budget_s)
-    if time_budget_s <= 0:
-        raise ParameterError("time_budget_s", time_budget_s, "> 0 seconds")
+    time_budget_s = require_time_budget(time_budget_s, none_ok=False)
     return w_plus, Vs, N, m, tol, time_budget_s
 
 

@@ -8,8 +8,10 @@ number of vertices and γ(t) the usual tree density, the method has order p iff
     Σ_i b′_i Φ_i(t) = 1/γ(t)               for ρ(t) ≤ p       (velocity weights)
     Σ_i b_i  Φ_i(t) = 1/((ρ(t)+1) γ(t))    for ρ(t) ≤ p − 1   (position weights).
 
-Tree counts by order 1…10: 1, 1, 2, 3, 6, 10, 20, 36, 72, 137.  Used by the tests to check the
-tableaux of :mod:`fpucore.tableaux.rkn` coefficient by coefficient.
+Tree counts by order 1…10: 1, 1, 2, 3, 6, 10, 20, 36, 72, 137.  Test support (not part of
+fpucore): tests/tableaux/test_rkn.py checks the tableaux of :mod:`fpucore.tableaux.rkn`
+coefficient by coefficient with it (imported as ``rkn_order``: pytest puts tests/support on
+``sys.path``, pyproject's ``pythonpath``).
 """
 
 from __future__ import annotations

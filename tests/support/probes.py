@@ -1,5 +1,9 @@
-"""Small jobs that check a backend (picklable, module-level): echo, sleep, fail, die, report the
-thread budget.  Used by the tests of fpucore.parallel and by ``Executor`` health checks."""
+"""Test support for tests/parallel (not part of fpucore): small jobs that check a backend
+(picklable, module-level): echo, sleep, fail, die, report the thread budget, solve a wave.
+
+Imported as ``probes``: pytest puts tests/support on ``sys.path`` (pyproject's ``pythonpath``),
+and the pool's and Dask's worker processes inherit the parent's ``sys.path``, so they unpickle
+these jobs by that name."""
 
 from __future__ import annotations
 
