@@ -261,6 +261,10 @@ class AtlasScene(BokehScene):
         lines += [f"{k}={a[k]!r}" for k in keys if k in a]
         return "\n".join(lines)
 
+    def notebook_plot(self) -> str:
+        name = "ds" if self._source and self._source != "background run" else "res.dataset"
+        return f"{name}['amplitude'].plot(x='w_plus', y='V')\n"
+
     def python_code(self) -> str:
         if self._source and self._source != "background run":
             return python_preamble(self.state) + (

@@ -38,7 +38,8 @@ from fpucore.result import jsonable
 
 from .. import compute
 from ..compute import Computed
-from ..state import ExplorerState
+from ..state import URL_ATTRS, URL_PARAMS, ExplorerState
+from . import export
 
 log = logging.getLogger("fpu-explorer")
 
@@ -241,13 +242,17 @@ def md_literal(text) -> str:
     return _MD_NUMBERED.sub(r"\1\\\2", escaped)  # "1." → "1\." (no list item)
 
 
+def law_source(state: ExplorerState) -> str:
+    """The fpucore call that makes the state's law (as in "Copy as Python")."""
+    if state.expression:
+        return f"fpucore.law_from_expression({state.expression!r})"
+    return f"CubicLaw(a={float(state.a)!r}, b={float(state.b)!r})"
+
+
 def python_preamble(state: ExplorerState) -> str:
     """First lines of every scene's "copy as Python" code: the imports and ``law``, built by the
     same fpucore call as the app's (CubicLaw, or fpucore.law_from_expression of the text)."""
-    if state.expression:
-        make = f"law = fpucore.law_from_expression({state.expression!r})\n"
-    else:
-        make = f"law = CubicLaw(a={float(state.a)!r}, b={float(state.b)!r})\n"
+    make = f"law = {law_source(state)}\n"
     return (
         f"# reproduces the fpu-explorer view; generated with fpucore {fpucore.__version__}\n"
         "import fpucore\n"
@@ -273,6 +278,8 @@ class Scene(pn.viewable.Viewer):
     plot_height = 560
     #: cheap enough (QC, cached) to render synchronously while the page is being built
     cheap = False
+    #: the scene draws figures: "Download figure" (SVG, PNG) and "Download notebook"
+    exports = True
 
     def __init__(self, state: ExplorerState, **params):
         super().__init__(**params)
@@ -307,6 +314,24 @@ class Scene(pn.viewable.Viewer):
             color="light",
             css_classes=["scene-download"],
         )
+        # the scene as drawn (its last render, nothing recomputed) and a notebook of its code
+        self.exporters = []
+        if self.exports:
+            self.fig_svg, self.fig_png, self.notebook = (
+                pn.widgets.FileDownload(
+                    callback=lambda kind=kind: self._export(kind),
+                    filename=f"{self.key}.{ext}",
+                    label=label,
+                    color="light",
+                    css_classes=[f"scene-export-{kind}"],
+                )
+                for kind, ext, label in (
+                    ("svg", "svg", "Figure SVG"),
+                    ("png", "png", "Figure PNG"),
+                    ("notebook", "ipynb", "Notebook"),
+                )
+            )
+            self.exporters = [self.fig_svg, self.fig_png, self.notebook]
         self.code = pn.widgets.TextAreaInput(
             value="",
             height=220,
@@ -333,6 +358,7 @@ class Scene(pn.viewable.Viewer):
             self.cancel_btn,
             *self.controls(),
             pn.Row(self.download, self.copy_btn),
+            *([pn.Row(*self.exporters)] if self.exporters else []),
             self.code_card,
             width=330,
         )
@@ -574,6 +600,8 @@ class Scene(pn.viewable.Viewer):
             self._write_status(info, t0)
             self.code.value = self.python_code()
             self.download.disabled = False
+            for w in self.exporters:
+                w.disabled = False
         except Exception as exc:
             if self.session_closed:
                 return None
@@ -633,6 +661,8 @@ class Scene(pn.viewable.Viewer):
             said = "".join(f"# {line}\n" for line in f"nothing shown: {text}".splitlines())
             self.code.value = python_preamble(self.state) + said
             self.download.disabled = True  # nothing to download until a plot is shown
+            for w in self.exporters:
+                w.disabled = True
         except Exception:  # noqa: BLE001
             log.exception("scene %s: showing the message failed", self.key)
 
@@ -667,4 +697,66 @@ class Scene(pn.viewable.Viewer):
             said = "".join(f"# {line}\n" for line in str(exc).splitlines())
             buf, name = io.StringIO(said), f"{self.key}-unavailable.txt"
         self.download.filename = name
+        return buf
+
+    # ------------------------------------------------------------------ export
+    def figure_models(self) -> list:
+        """The Bokeh models the scene draws (BokehScene: its figures); [] for none."""
+        return []
+
+    def notebook_plot(self) -> str:
+        """The notebook's last cell: Matplotlib code drawing what the code cells computed."""
+        return ""
+
+    def url_query(self) -> str:
+        """The state as the URL's query string (what a link to this view carries)."""
+        parts = []
+        for name in URL_PARAMS:
+            v = self.key if name == "tab" else getattr(self.state, URL_ATTRS.get(name, name))
+            if v != "" and v is not None:
+                parts.append(f"{name}={v!r}" if isinstance(v, float) else f"{name}={v}")
+        return "&".join(parts)
+
+    def export_figure(self, fmt: str) -> bytes:
+        """The scene's figures as drawn (the models of the last render), SVG or PNG bytes."""
+        if self.last_info is None:
+            raise SceneMessage("nothing drawn yet")
+        try:
+            return export.figure_bytes(
+                self.figure_models(), fmt, f"fpu-explorer {self.title}: {self._stamp}"
+            )
+        except LookupError as exc:
+            raise SceneMessage(f"no figure: {exc}") from None
+
+    def export_notebook(self) -> str:
+        """A notebook of the current view: the state, the code of "Copy as Python" (one cell
+        per computation) and a plot cell (JSON text)."""
+        if self.last_info is None:
+            raise SceneMessage("nothing shown yet")
+        shown = self.status.object.split("<small>")[0].strip()
+        intro = (
+            f"{self.caption}\n\nThe fpu-explorer view **{self.title}** with `?{self.url_query()}`"
+            f" (fpucore {fpucore.__version__}). On screen when exported:\n\n{shown}\n\n"
+            "Run all cells: they compute the same numbers with fpucore and draw them."
+        )
+        return export.notebook_json(
+            f"fpu-explorer: {self.title}", intro, self.python_code(), self.notebook_plot()
+        )
+
+    def _export(self, kind: str):
+        widget = {"svg": self.fig_svg, "png": self.fig_png, "notebook": self.notebook}[kind]
+        try:
+            if kind == "notebook":
+                buf, name = io.StringIO(self.export_notebook()), f"{self.key}.ipynb"
+            else:
+                buf, name = io.BytesIO(self.export_figure(kind)), f"{self.key}.{kind}"
+        except (SceneMessage, ParameterError) as exc:
+            said = "".join(f"# {line}\n" for line in str(exc).splitlines())
+            buf, name = io.StringIO(said), f"{self.key}-unavailable.txt"
+        except Exception as exc:  # the server keeps serving; the log keeps the traceback
+            log.exception("scene %s: export %s failed", self.key, kind)
+            text = f"export failed: {type(exc).__name__}: {exc}"
+            buf = io.StringIO("".join(f"# {line}\n" for line in text.splitlines()))
+            name = f"{self.key}-unavailable.txt"
+        widget.filename = name
         return buf

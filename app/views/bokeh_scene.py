@@ -203,6 +203,11 @@ class BokehScene(Scene):
         """Put the built models into the panes (once, at construction)."""
         self.plot.object = self._root
 
+    def figure_models(self) -> list:
+        """The main pane's model and every further figure pane's (e.g. a clickable diagram)."""
+        extra = [p.object for p in self._extra if isinstance(p, pn.pane.Bokeh)]
+        return [self._root, *extra]
+
     def publish(self, upd: Updates) -> None:
         self.plot.visible = True
         for pane in self._extra:

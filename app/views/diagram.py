@@ -7,6 +7,11 @@ marked; on (b) the extrema of E_ren^QC (and of the discrete E_ren once its dots 
 where by the energy criterion the family's stability can change.  (c) the existence diagram
 V vs w₊ (Fig. SWvelocities_cubic) with TSW (dark) and CSW
 (light) regions; a click picks (w₊, V).
+
+Branch view (Figs. floquet_cubicSW, stabSW as MatCont/AUTO draw branches): on demand the Floquet
+sweep of the family at the discrete velocities classifies each wave (stable, finite-size
+artefact, unstable, not determined: fpucore.floquet's decision); its discrete E_ren is drawn on
+(b) in the class's colour, and a click on a point makes that wave the current one (V).
 """
 
 from __future__ import annotations
@@ -18,6 +23,8 @@ import panel as pn
 from bokeh.events import Tap
 from bokeh.layouts import row
 from panel.io.state import set_curdoc
+
+from fpucore.floquet import CLASSES
 
 from .. import compute
 from ..compute import exact
@@ -36,6 +43,7 @@ from .bokeh_scene import (
     new_figure,
 )
 from .energy_marks import ExtremumMarks, criterion_words, fmt_extremum
+from .floquet import CLASS_STYLE
 
 TSW, CSW = "#6a51a3", "#cbc9e2"
 CSW_LINE = "#9e9ac8"
@@ -62,16 +70,30 @@ class DiagramScene(BokehScene):
             label="Add discrete points", color="primary", css_classes=["diagram-discrete"]
         )
         hint = pn.pane.Markdown("_Click the existence diagram (c) to pick (w₊, V)._")
-        return [hint, self.n_discrete, self.discrete_btn]
+        self.classify_btn = pn.widgets.Button(
+            label="Classify stability (Floquet)", css_classes=["diagram-classify"]
+        )
+        branch = pn.pane.Markdown(
+            "_Branch view: the Floquet sweep at the same velocities colours the discrete E_ren "
+            "on (b) by stability; click a point to open that wave._"
+        )
+        return [hint, self.n_discrete, self.discrete_btn, branch, self.classify_btn]
 
     def _extra_watch(self):
         self._want_discrete = False
+        self._want_branch = False
+        self._branch = None
 
         def go(_):
             self._want_discrete = True
             self.request()
 
+        def classify(_):
+            self._want_branch = True
+            self.request()
+
         self.discrete_btn.on_click(go)
+        self.classify_btn.on_click(classify)
 
     def extra_panes(self):
         """The existence diagram has its own pane; a click on it picks (w₊, V)."""
@@ -106,6 +128,16 @@ class DiagramScene(BokehScene):
             [("E_ren^QC extremum", self.ext_qc.renderers),
              ("discrete E_ren extremum", self.ext_d.renderers)],
         )  # fmt: skip
+        # branch view: the sweep's waves on (b), one renderer per stability class
+        self.r_branch = {}
+        for c in CLASSES:
+            r = add_points(fe, "circle", 9, color=CLASS_STYLE[c][1], line_color="black")
+            r[1].name = f"diagram-branch-{c}"  # read by the tests
+            self.r_branch[c] = r
+        self.branch_legend = add_legend(
+            fe, "right", [(CLASS_STYLE[c][0], [self.r_branch[c][0]]) for c in CLASSES]
+        )
+        fe.on_event(Tap, self._on_branch_tap)
         pa = self.panels["amp"]
         self.amp_legend = add_legend(
             fa,
@@ -174,6 +206,72 @@ class DiagramScene(BokehScene):
         with set_curdoc(doc) if doc is not None else nullcontext():
             self.state.pick(x, y)
 
+    def _on_branch_tap(self, event: Tap) -> None:
+        """A click on (b) near a classified wave opens it (state.pick(w₊, V)); elsewhere it
+        does nothing.  Runs on the session's loop, like the existence diagram's click."""
+        V = self.branch_point(event.x, event.y)
+        if V is None:
+            return
+        doc = self._doc
+        with set_curdoc(doc) if doc is not None else nullcontext():
+            if self.state.mode != "solitary":  # the branch is the solitary family's
+                self.state.mode = "solitary"
+            self.state.pick(self._branch.w_plus, V)
+
+    def branch_point(self, x, y) -> float | None:
+        """V of the classified wave nearest to (x, y) on (b), if within 3 % of both axes' spans
+        (a click, not anywhere on the panel); None otherwise."""
+        sw = self._branch
+        if sw is None or x is None or y is None:
+            return None
+        xs, ys = self.fig_e.x_range, self.fig_e.y_range
+        dx = (np.asarray(sw.V, float) - x) / max(xs.end - xs.start, 1e-300)
+        dy = (np.asarray(sw.energy, float) - y) / max(ys.end - ys.start, 1e-300)
+        d = np.where(np.isfinite(dx) & np.isfinite(dy), np.hypot(dx, dy), np.inf)
+        k = int(np.argmin(d)) if d.size else -1
+        return float(sw.V[k]) if k >= 0 and d[k] < 0.03 else None
+
+    def _velocities(self, fam) -> list[float]:
+        """The velocities of the discrete dots and of the branch view: k midpoints per
+        interval (c₊, V_SK) and (V_SK, c₋)."""
+        k = int(self.n_discrete.value)
+        t = (np.arange(k) + 0.5) / k
+        Vs = []
+        for lo, hi in ((fam.c_plus, fam.V_SK), (fam.V_SK, fam.c_minus)):
+            Vs += list(lo + (hi - lo) * t)
+        return Vs
+
+    def _branch_view(self, info: Info, up: Updates, fam) -> None:
+        """The family's Floquet sweep (on demand, or when cached) on (b), coloured by class."""
+        s = self.state
+        args = (s.law(), "solitary", s.w_plus, self._velocities(fam), s.N, "lower")
+        self._branch = None
+        if self._want_branch or compute.floquet_sweep_cached(*args):
+            self._want_branch = False
+            c = compute.floquet_sweep(
+                *args, stop=self.superseded, progress=self.stage_progress("Floquet sweep")
+            )
+            self._branch = c.value
+            info.time(f"Floquet sweep ({len(args[3])} V)", c)
+        sw = self._branch
+        cls = np.array([c or "" for c in sw.classification]) if sw is not None else np.array([])
+        for c, (r, src) in self.r_branch.items():
+            if sw is None:
+                sel = np.zeros(0, bool)
+                up.data(src, x=[], y=[])
+            else:
+                E = np.asarray(sw.energy, float)
+                sel = (cls == c) & np.isfinite(E)
+                up.data(src, x=np.asarray(sw.V, float)[sel], y=E[sel])
+            up.show(r, self.branch_legend[CLASSES.index(c)], bool(sel.any()))
+        if sw is not None:
+            counts = {c: int((cls == c).sum()) for c in CLASSES if (cls == c).any()}
+            words = ", ".join(f"{n} {CLASS_STYLE[c][0].split(' (')[0]}" for c, n in counts.items())
+            info.notes.append(f"branch view (N = {int(s.N)}): {words}; click a point to open it")
+            err = np.asarray(sw.error, float)
+            if np.isfinite(err).any():
+                info.error("max |μ| error bound (sweep)", float(np.nanmax(err)))
+
     def _existence(self, info: Info, up: Updates) -> None:
         s = self.state
         lw = s.law()
@@ -202,11 +300,7 @@ class DiagramScene(BokehScene):
 
     def _discrete_points(self, info: Info, fam):
         s = self.state
-        Vs = []
-        k = int(self.n_discrete.value)
-        for lo, hi in ((fam.c_plus, fam.V_SK), (fam.V_SK, fam.c_minus)):
-            t = (np.arange(k) + 0.5) / k
-            Vs += list(lo + (hi - lo) * t)
+        Vs = self._velocities(fam)
         key_args = (s.law(), s.w_plus, Vs, s.N, s.tol)
         if not self._want_discrete and not compute.discrete_family_cached(*key_args):
             info.notes.append("discrete dots: press 'Add discrete points'")
@@ -299,6 +393,7 @@ class DiagramScene(BokehScene):
             f"current V = {fmt_num(s.V)}"
         )
         self._energy_criterion(info, up, elim, bool(self._rows))
+        self._branch_view(info, up, fam)
         return up
 
     def _energy_criterion(self, info: Info, up: Updates, ylim, with_discrete: bool) -> None:
@@ -368,6 +463,13 @@ class DiagramScene(BokehScene):
         if ed is not None:
             cols["E_discrete_extremum_V"] = ed.extrema_V
             cols["E_discrete_extremum_V_error"] = ed.extrema_V_error
+        sw = getattr(self, "_branch", None)
+        if sw is not None:
+            cols["V_branch"] = np.asarray(sw.V, float)
+            cols["E_branch"] = np.asarray(sw.energy, float)
+            cols["max_modulus_branch"] = np.asarray(sw.max_modulus, float)
+            cols["max_modulus_error_branch"] = np.asarray(sw.error, float)
+            # the classes (text) go in the header, in the order of V_branch
         d = getattr(self, "_exist", None)
         if d is not None:
             cols.update(w_plus=d.w_plus, c_plus=d.c_plus, V_SK=d.V_SK, c_minus=d.c_minus)
@@ -375,8 +477,42 @@ class DiagramScene(BokehScene):
             self.state,
             f"QC solitary family for w_plus={fam.w_plus!r} (c_plus={fam.c_plus!r}, "
             f"V_SK={fam.V_SK!r}, c_minus={fam.c_minus!r}); existence diagram columns",
+            **({"branch_classification": list(sw.classification)} if sw is not None else {}),
         )
         return "diagram.csv", as_csv(cols, hdr + "\n" + self.python_code())
+
+    def notebook_plot(self) -> str:
+        code = (
+            "import numpy as np\nimport matplotlib.pyplot as plt\n\n"
+            "fig, (ax1, ax2, ax3) = plt.subplots(1, 3, figsize=(14, 4))\n"
+            "for V, amp, E in ((fam.V_below, fam.amp_below, fam.energy_below),\n"
+            "                  (fam.V_above, fam.amp_above, fam.energy_above)):\n"
+            "    ax1.plot(V, amp)\n"
+            "    ax2.plot(V, E)\n"
+            "E = np.r_[fam.energy_below, fam.energy_above]\n"
+            "lo, hi = np.quantile(E, [0.08, 0.92])\n"
+            "ax2.set_ylim(lo - 0.3 * (hi - lo), hi + 0.3 * (hi - lo))\n"
+        )
+        if getattr(self, "_rows", None):
+            code += (
+                "ax1.plot([r.V for r in rows], [r.amplitude for r in rows], 'ko')\n"
+                "ax2.plot([r.V for r in rows], [r.energy for r in rows], 'ko')\n"
+            )
+        if getattr(self, "_branch", None) is not None:
+            code += (
+                "colors = {'stable': 'g', 'finite_size': 'b', 'unstable': 'r', "
+                "'undetermined': 'gray'}\n"
+                "for V, E, c in zip(sw.V, sw.energy, sw.classification):\n"
+                "    ax2.plot(V, E, 'o', color=colors.get(c, 'k'), mec='k')\n"
+            )
+        return code + (
+            "for ax in (ax1, ax2):\n"
+            "    ax.axvline(fam.V_SK, color='r', ls='--')\n"
+            "ax1.set(xlabel='V', ylabel='amplitude')\n"
+            "ax2.set(xlabel='V', ylabel='E_ren')\n"
+            "ax3.plot(d.w_plus, d.V_SK, 'r', d.w_plus, d.c_plus, 'b', d.w_plus, d.c_minus, 'g')\n"
+            "ax3.set(xlabel='w₊', ylabel='V', title='existence')\n"
+        )
 
     def python_code(self) -> str:
         s = self.state
@@ -399,5 +535,14 @@ class DiagramScene(BokehScene):
                 f"rows = wave.solitary_family(law, {float(s.w_plus)!r}, {Vs!r}, "
                 f"N={int(s.N)}, tol={float(s.tol)!r}).results\n"
                 "print([(r.V, r.amplitude, r.energy) for r in rows])\n"
+            )
+        sw = getattr(self, "_branch", None)
+        if sw is not None:
+            Vs = [float(v) for v in sw.V]
+            code += (
+                "# branch view: the family's Floquet sweep, classified\n"
+                f"sw = floquet.sweep(law, kind='solitary', V_values={Vs!r}, "
+                f"w_plus={float(sw.w_plus)!r}, N={int(s.N)}, branch='lower')\n"
+                "print(list(zip(sw.V, sw.energy, sw.classification)))\n"
             )
         return code

@@ -443,3 +443,21 @@ class FloquetScene(BokehScene):
                 "cross_check": changes_summary(changes),
             }  # fmt: skip
         return "floquet.json", as_json(out)
+
+    def notebook_plot(self) -> str:
+        code = (
+            "import numpy as np\nimport matplotlib.pyplot as plt\n\n"
+            "mu = np.asarray(fr.multipliers)\n"
+            "th = np.linspace(0, 2 * np.pi, 721)\n"
+            "fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(12, 5))\n"
+            "ax1.plot(mu.real, mu.imag, 'x')\n"
+            "ax1.plot(np.cos(th), np.sin(th), 'r')\n"
+            "ax1.set(aspect='equal', xlabel='Re μ', ylabel='Im μ', title='Floquet multipliers')\n"
+        )
+        if self._sweep_result is not None:
+            return code + (
+                "y = np.maximum(np.asarray(sw.max_modulus) - 1, np.maximum(sw.error, 1e-16))\n"
+                "ax2.semilogy(sw.V, y, 'o-')\n"
+                "ax2.set(xlabel='V', ylabel='max |μ| − 1', title='sweep')\n"
+            )
+        return code + "ax2.set_visible(False)\n"

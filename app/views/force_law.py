@@ -199,6 +199,21 @@ class ForceLawScene(BokehScene):
         hdr = provenance(self.state, self._header) + "\n" + self.python_code()
         return "force_law.csv", as_csv(self._data, hdr)
 
+    def notebook_plot(self) -> str:
+        return (
+            "import numpy as np\nimport matplotlib.pyplot as plt\n\n"
+            "w = np.linspace(law.alpha - 0.5, law.beta + 0.5, 801) if np.isfinite(law.alpha) "
+            "else np.linspace(sk.w_minus - 1, law.beta + 1, 801)\n"
+            "x = np.array([sk.w_plus, sk.w_minus])\n"
+            "fig, ax = plt.subplots(figsize=(8, 4.5))\n"
+            "ax.plot(w, law.f(w), label='f(w)')\n"
+            "ax.plot(x, law.f(sk.w_plus) + sk.V**2 * (x - sk.w_plus), 'r--', "
+            "label=f'Rayleigh line V = {sk.V:.6g}')\n"
+            "ax.plot(x, law.f(x), 'ko')\n"
+            "ax.set(xlabel='w', ylabel='f(w)', title='force law and the superkink')\n"
+            "ax.legend()\n"
+        )
+
     def python_code(self) -> str:
         s = self.state
         code = python_preamble(s) + (

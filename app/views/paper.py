@@ -3,16 +3,19 @@ a button that sets the explorer's state (law, mode, w₊, V, N, tab) to the scen
 the URL follows the state as for any other change.
 
 The full reproduction of each figure with the comparison table is ``fpu paper --out report.html``
-(and docs/paper_comparison.md); this scene only links the figures to the live scenes.
+(and docs/paper_comparison.md).  Under each figure, its comparison row — the paper's numbers
+beside ours with error bar and verdict — is read from fpucore.paper's result cache when a
+``fpu paper`` run has computed it for the current fpucore source (nothing is computed here);
+otherwise the row says which command fills it.
 """
 
 from __future__ import annotations
 
 import panel as pn
 
-from fpucore.paper import FIGURES
+from fpucore.paper import FIGURES, report
 
-from .base import Info, Scene, md_literal
+from .base import Info, Scene, fmt_num, md_literal
 
 #: w₊ ahead of the superkink V = 5.2 (the paper's example, Figs. Floquet_example, stabSK (b)):
 #: qc.superkink_from_V(CubicLaw(-1, 10), 5.2).w_plus — the state sets V = V_SK(w₊) from it
@@ -49,10 +52,13 @@ class PaperScene(Scene):
         "`fpu paper --out report.html`; the table: docs/paper_comparison.md._"
     )
     cheap = True
+    exports = False  # a list of buttons, no figure
 
     def make_plot(self):
         rows = []
         self.buttons: dict[str, pn.widgets.Button] = {}
+        self.cmp_panes: dict[str, pn.pane.Markdown] = {}
+        self._cmp_version, self._cmp_results = None, {}
         for label, fig in FIGURES.items():
             btn = pn.widgets.Button(
                 name=f"Show Fig. {fig.number}",
@@ -63,8 +69,33 @@ class PaperScene(Scene):
             btn.on_click(lambda _e, lab=label: self.open(lab))
             self.buttons[label] = btn
             text = f"**Fig. {fig.number}** `{label}` ({fig.section}) — {md_literal(fig.caption)}"
-            rows.append(pn.Row(btn, pn.pane.Markdown(text, sizing_mode="stretch_width")))
+            cmp = pn.pane.Markdown(
+                "", sizing_mode="stretch_width", css_classes=[f"paper-cmp-{label}"], margin=(0, 10)
+            )
+            self.cmp_panes[label] = cmp
+            rows.append(pn.Row(btn, pn.Column(pn.pane.Markdown(text), cmp,
+                                              sizing_mode="stretch_width")))  # fmt: skip
         return pn.Column(*rows, sizing_mode="stretch_width", css_classes=["paper-list"])
+
+    def comparison_rows(self) -> dict[str, str]:
+        """Per figure, its comparisons from fpucore.paper's cache (full size first, else the
+        reduced run), or the command that computes them.  A result read once is kept for this
+        fpucore source; a missing one is looked for again at every render (a run in another
+        terminal fills the cache)."""
+        version = report.code_version()
+        if self._cmp_version != version:
+            self._cmp_version, self._cmp_results = version, {}
+        out = {}
+        for label in FIGURES:
+            r = self._cmp_results.get(label)
+            if r is None:
+                r = report.load_cached(label, False, version) or report.load_cached(
+                    label, True, version
+                )
+                if r is not None:
+                    self._cmp_results[label] = r
+            out[label] = comparison_markdown(label, r)
+        return out
 
     def open(self, label: str) -> None:
         """Set the state to the scene of figure ``label`` in three updates: the tab first, alone,
@@ -84,13 +115,39 @@ class PaperScene(Scene):
     def render(self, info: Info):
         """The list does not change; an invalid current state is named above it (the buttons
         set valid parameters)."""
-        info.shown = f"{len(FIGURES)} figures of the paper"
+        rows = self.comparison_rows()
+        n = len(self._cmp_results)
+        info.shown = f"{len(FIGURES)} figures of the paper; compared with our numbers: {n}"
+        if n < len(FIGURES):
+            info.notes.append(
+                "figures without a comparison row: `fpu paper --out report.html` computes all "
+                "(cached; the rows appear at the next render)"
+            )
         problem = self.state.problem()
         if problem is not None:
             info.warning = (
                 f"The current parameters show no wave: {problem} A figure sets valid ones."
             )
-        return None
+        return rows
 
-    def publish(self, obj) -> None:
-        """The list is static: nothing to update."""
+    def publish(self, rows) -> None:
+        """The comparison rows (the list itself is static)."""
+        for label, text in rows.items():
+            if self.cmp_panes[label].object != text:
+                self.cmp_panes[label].object = text
+
+
+def comparison_markdown(label: str, r) -> str:
+    """One figure's comparison row: each printed number beside ours ± error and the verdict."""
+    if r is None:
+        return f"<small>_not compared yet: `fpu paper --figure {label}` computes it_</small>"
+    parts = []
+    for c in r.comparisons:
+        mark = "✓" if c.agrees else "✗"
+        parts.append(
+            f"{mark} {md_literal(c.quantity)}: paper {md_literal(c.printed)}, ours "
+            f"{fmt_num(c.ours, 8)} ± {c.error:.1g}"
+        )
+    size = " (reduced)" if r.reduced else ""
+    head = f"**{r.n_agree}/{len(r.comparisons)} agree**{size}, computed in {r.elapsed_s:.1f} s"
+    return "<small>" + head + " · " + " · ".join(parts) + "</small>"

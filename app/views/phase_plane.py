@@ -17,8 +17,9 @@ from bokeh.events import Tap
 
 from .. import compute
 from ..compute import exact
-from .base import Info, SceneMessage, as_csv, fmt_num, provenance, python_preamble
+from .base import Info, SceneMessage, as_csv, fmt_num, law_source, provenance, python_preamble
 from .bokeh_scene import BokehScene, Updates, add_legend, add_line, add_points, new_figure
+from .held import Held, HeldCurves
 
 ORBIT_COLORS = {"kink": "#d62728", "antikink": "#2ca02c"}
 MAX_CLICKED = 8  # orbits drawn through clicked points at once (the oldest goes first)
@@ -72,21 +73,43 @@ class PhasePlaneScene(BokehScene):
             add_points(fig, marker, 14, color=color, line_width=3)
             for _, marker, color in POINT_STYLES
         ]
+        held = self.held.build(fig, "phase-held")
         items = add_legend(
             fig,
             "right",
             [("orbit", [r]) for r, _ in self.r_orbits]
             + [(kind, [r]) for (kind, _, _), (r, _) in zip(POINT_STYLES, self.r_points)]
-            + [("orbit through a click", [self.r_clicked[0], self.r_seeds[0]])],
+            + [("orbit through a click", [self.r_clicked[0], self.r_seeds[0]])]
+            + held,
         )
-        self.orbit_items, self.point_items = items[:2], items[2:-1]
-        self.clicked_item = items[-1]
+        n = 2 + len(POINT_STYLES)
+        self.orbit_items, self.point_items = items[:2], items[2:n]
+        self.clicked_item, self.held_items = items[n], items[n + 1 :]
         return fig
 
     def controls(self):
         self.clear_btn = pn.widgets.Button(label="Clear orbits", css_classes=["phase-clear"])
+        self.held = HeldCurves(self.request, "phase")
+        self.held.set_source(self._to_hold)
         return [pn.pane.Markdown("_Click in the plane: the orbit through that point._"),
-                self.clear_btn]  # fmt: skip
+                self.clear_btn, pn.pane.Markdown("_Hold keeps the current orbit on the plot "
+                                                 "while V and w₊ move._"),
+                *self.held.widgets()]  # fmt: skip
+
+    def _to_hold(self) -> Held | None:
+        """The orbit(s) on screen (last render's phase plane) as a held curve."""
+        pp = getattr(self, "_pp", None)
+        if self.last_info is None or pp is None or not pp.orbits:
+            return None
+        s = self.state
+        xs, ys = [], []
+        for o in pp.orbits:
+            xs += [o.w, [np.nan]]
+            ys += [o.wp, [np.nan]]
+        wp, V = float(s.w_plus), float(s.V)
+        code = f"held.append(phase.phase_plane({{law}}, {wp!r}, {V!r}, n_grid=241))"
+        x, y, none = np.concatenate(xs[:-1]), np.concatenate(ys[:-1]), np.empty(0)
+        return Held(f"V = {V:.6g}, w₊ = {wp:.6g}", x, y, none, none, code, law_source(s))
 
     def _extra_watch(self) -> None:
         self.clicks: list[tuple[float, float]] = []
@@ -163,6 +186,7 @@ class PhasePlaneScene(BokehScene):
         up.data(self.r_seeds[1], x=[p[0] for p in seeds], y=[p[1] for p in seeds])
         up.show(self.r_clicked[0], self.clicked_item, bool(seeds))
         up.show(self.r_seeds[0], None, bool(seeds))
+        self.held.update(up, self.held_items)
         up.range(self.fig.x_range, pp.w[0], pp.w[-1])
         up.range(self.fig.y_range, pp.wp[0], pp.wp[-1])
 
@@ -182,8 +206,31 @@ class PhasePlaneScene(BokehScene):
         for o in pp.orbits:
             cols[f"{o.name} w"] = o.w
             cols[f"{o.name} w'"] = o.wp
+        cols |= self.held.columns()
         hdr = provenance(self.state, f"phase-plane orbits ({pp.regime})")
         return "phase_orbits.csv", as_csv(cols, hdr + "\n" + self.python_code())
+
+    def notebook_plot(self) -> str:
+        return (
+            "import numpy as np\nimport matplotlib.pyplot as plt\n\n"
+            "fig, ax = plt.subplots(figsize=(8, 5))\n"
+            "levels = np.unique(np.r_[np.quantile(pp.H, np.linspace(0.02, 0.6, 12)), "
+            "pp.separatrix_levels])\n"
+            "ax.contour(pp.w, pp.wp, pp.H, levels=levels, colors='gray', linewidths=0.8)\n"
+            "for orbit in pp.orbits:\n"
+            "    ax.plot(orbit.w, orbit.wp, lw=3, label=orbit.name)\n"
+            "for c in pp.critical_points:\n"
+            "    ax.plot(c.w, 0.0, 'x' if c.kind == 'saddle' else 'o', color='k')\n"
+            + (
+                "for k, hp in enumerate(held):\n"
+                "    for orbit in hp.orbits:\n"
+                "        ax.plot(orbit.w, orbit.wp, '--', label=f'held {k}: V = {hp.V:.6g}')\n"
+                if self.held.items
+                else ""
+            )
+            + "ax.set(xlabel='w', ylabel=\"w'\", title='phase plane (QC)')\n"
+            "ax.legend()\n"
+        )
 
     def python_code(self) -> str:
         s = self.state
@@ -195,4 +242,4 @@ class PhasePlaneScene(BokehScene):
         )
         for w0, wp0 in self.clicks:  # the orbits through the clicked points
             code += f"o = phase.orbit_through(law, {wv}, {w0!r}, {wp0!r}, (pp.w[0], pp.w[-1]))\n"
-        return code
+        return code + self.held.code(law_source(s))

@@ -14,7 +14,16 @@ import panel as pn
 from .. import compute
 from ..compute import exact
 from ..state import N_RANGE
-from .base import Info, SceneMessage, as_csv, fmt_num, md_literal, provenance, python_preamble
+from .base import (
+    Info,
+    SceneMessage,
+    as_csv,
+    fmt_num,
+    law_source,
+    md_literal,
+    provenance,
+    python_preamble,
+)
 from .bokeh_scene import (
     BokehScene,
     Updates,
@@ -24,6 +33,7 @@ from .bokeh_scene import (
     finite_extent,
     new_figure,
 )
+from .held import Held, HeldCurves
 
 
 def n_advice(need: int, N: int) -> str:
@@ -50,7 +60,9 @@ class ProfilesScene(BokehScene):
     def controls(self):
         self.show_discrete = pn.widgets.Checkbox(label="discrete wave (N, tol)", value=True)
         self.show_fronts = pn.widgets.Checkbox(label="kink/antikink fronts near V_SK", value=True)
-        return [self.show_discrete, self.show_fronts]
+        self.held = HeldCurves(self.request, "profiles")
+        self.held.set_source(self._to_hold)
+        return [self.show_discrete, self.show_fronts, *self.held.widgets()]
 
     def _extra_watch(self):
         for w in (self.show_discrete, self.show_fronts):
@@ -71,6 +83,7 @@ class ProfilesScene(BokehScene):
             fig, "circle", 6, fill_color="white", line_color="black", line_width=1
         )
         self.r_qc[1].name, self.r_dots[1].name = "profile-qc", "profile-discrete"
+        held = self.held.build(fig, "profile-held")
         self.legend = add_legend(
             fig,
             "right",
@@ -78,9 +91,36 @@ class ProfilesScene(BokehScene):
                 ("QC", [self.r_qc[0]]),
                 ("kink / antikink fronts", [r for r, _ in self.r_fronts]),
                 ("discrete", [self.r_dots[0]]),
+                *held,
             ],
         )
+        self.held_items = self.legend[3:]
         return fig
+
+    def _to_hold(self) -> Held | None:
+        """The curve on screen (last render's data) as a held curve."""
+        cols = getattr(self, "_cols", None)
+        if self.last_info is None or not cols:
+            return None
+        s, r = self.state, getattr(self, "_discrete", None)
+        wp, V = float(s.w_plus), float(s.V)
+        if s.mode == "superkink":
+            qcall, label = f"qc.superkink_from_w_plus({{law}}, {wp!r})", f"superkink V = {V:.6g}"
+        else:
+            qcall, label = f"qc.solitary({{law}}, {wp!r}, {V!r})", f"V = {V:.6g}"
+        label += f", w₊ = {wp:.6g}"
+        dcall = "None"
+        px = py = np.empty(0)
+        if r is not None:
+            name, args, kwargs = compute.wave_call(s.law(), s.mode, s.w_plus, s.V, s.N, s.tol)
+            pos = ", ".join(repr(float(x)) for x in args[1:])
+            kw = ", ".join(f"{k}={v!r}" for k, v in kwargs.items())
+            dcall = f"wave.{name}({{law}}, {pos}, {kw})"
+            sel = np.abs(r.n) <= self._half
+            px, py = r.n[sel].astype(float), r.w[sel]
+            label += f", N = {r.N}"
+        code = f"held.append(({qcall}, {dcall}))"
+        return Held(label, cols["xi"], cols["w_qc"], px, py, code, law_source(s))
 
     def _qc_part(self, info: Info, up: Updates):
         s = self.state
@@ -103,6 +143,7 @@ class ProfilesScene(BokehScene):
                 f"amplitude {fmt_num(qcw.amplitude)}"
             )
         half = min(half, 0.5 * self.state.N) if self.show_discrete.value else half
+        self._half = half
         xi = np.linspace(-half, half, 1601)
         wq = qcw.profile(xi)
         key = (s.mode, compute.law_key(lw), exact(s.w_plus), exact(s.V), exact(half))
@@ -145,8 +186,9 @@ class ProfilesScene(BokehScene):
             n = w = np.empty(0)
         up.data(self.r_dots[1], x=n, y=w)
         up.show(self.r_dots[0], self.legend[2], len(n) > 0)
+        held = self.held.update(up, self.held_items)
         up.range(self.fig.x_range, -half, half)
-        up.range(self.fig.y_range, *finite_extent(*ys, w), pad=0.06)
+        up.range(self.fig.y_range, *finite_extent(*ys, w, *held), pad=0.06)
         return up
 
     def render(self, info: Info):
@@ -206,6 +248,28 @@ class ProfilesScene(BokehScene):
         info.shown = what + f"; discrete {amp}"
         return self._frame(up, half, ys, r.n[sel].astype(float), r.w[sel])
 
+    def notebook_plot(self) -> str:
+        half = getattr(self, "_half", 25.0)
+        code = (
+            "import numpy as np\nimport matplotlib.pyplot as plt\n\n"
+            f"xi = np.linspace({-half!r}, {half!r}, 1601)\n"
+            "fig, ax = plt.subplots(figsize=(9, 4.5))\n"
+            "ax.plot(xi, q.profile(xi), lw=2.5, label='QC')\n"
+        )
+        if self.show_discrete.value and getattr(self, "_discrete", None) is not None:
+            code += "ax.plot(r.n, r.w, 'o', mfc='white', mec='black', label='discrete')\n"
+        if self.held.items:
+            code += (
+                "for k, (hq, hr) in enumerate(held):\n"
+                "    ax.plot(xi, hq.profile(xi), '--', label=f'held {k}: V = {hq.V:.6g}')\n"
+                "    if hr is not None:\n"
+                "        ax.plot(hr.n, hr.w, '.', color=ax.lines[-1].get_color())\n"
+            )
+        return code + (
+            f"ax.set(xlim=({-half!r}, {half!r}), xlabel='ξ', ylabel='w', title='strain profile')\n"
+            "ax.legend()\n"
+        )
+
     def python_code(self) -> str:
         s = self.state
         code = python_preamble(s)
@@ -223,7 +287,7 @@ class ProfilesScene(BokehScene):
                 "print(r.converged, r.residual, r.amplitude)\n"
                 "w_qc = q.profile(r.n)  # the QC curve at the sites\n"
             )
-        return code
+        return code + self.held.code(law_source(s))
 
     def download_data(self):
         r = getattr(self, "_discrete", None)
@@ -238,8 +302,10 @@ class ProfilesScene(BokehScene):
                 converged=bool(r.converged),
             )
             cols = {"n": r.n, "w": r.w, "wdot": r.wdot, "w_qc": qcw.profile(r.n.astype(float))}
+            cols |= self.held.columns()
             return "profile_discrete.csv", as_csv(cols, hdr + "\n" + self.python_code())
         if getattr(self, "_cols", None):
             hdr = provenance(self.state, "QC profile w(xi)")
-            return "profile_qc.csv", as_csv(self._cols, hdr + "\n" + self.python_code())
+            cols = self._cols | self.held.columns()
+            return "profile_qc.csv", as_csv(cols, hdr + "\n" + self.python_code())
         raise SceneMessage("nothing shown yet")

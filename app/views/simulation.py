@@ -5,22 +5,34 @@ Space-time image of the strain w_n(t) for data seeded by the current discrete tr
 final profiles, and the table of the waves the tracker found with their measured velocities.
 Runs only when "Run" is pressed, in a worker process (progress and Cancel).  The image is a
 Bokeh ``image`` glyph (one texture, no per-cell quads: no moiré).
+
+Tracked sites (Fig. Riemann1 (c)–(e)): for each site typed in "tracked sites", its history
+w_k(t) (the run's probes) against the traveling wave fpucore.wave computes at the velocity and
+background the tracker measured for the last wave to pass that site, placed at its passage
+(eq. TWansatz, ξ = n − Vt; fpucore.paper.figures_dynamics' site_overlay and passage_time).
 """
 
 from __future__ import annotations
 
 import io
 import math
+import re
 
 import numpy as np
 import panel as pn
-from bokeh.layouts import column
+from bokeh.layouts import column, row
 from bokeh.models import ColorBar, ColumnDataSource, LinearColorMapper
 from bokeh.palettes import Viridis256
+
+from fpucore import qc
+from fpucore.paper.figures_dynamics import WINDOW_SITES, passage_time, site_overlay
 
 from .. import compute
 from .base import Info, SceneMessage, fmt_num, md_literal, provenance, python_preamble
 from .bokeh_scene import BokehScene, Updates, add_legend, add_line, new_figure
+
+MAX_PROBES = 3  # tracked-site panels drawn (the paper's (c), (d), (e))
+SHORT_NAMES = {"dsw_edge": "DSW edge", "solitary": "solitary wave"}  # panel titles
 
 KIND_WORDS = {
     "seeded": "the current traveling wave (TW-seeded)",
@@ -41,6 +53,20 @@ WAVE_NAMES = {
     ),
     "front": ("front", "a jump between two states on the same side of w*"),
 }
+
+
+def last_to_pass(waves, site: int, t_end: float):
+    """The tracked wave that passed ``site`` last before t_end (its straight path through
+    ``position`` at t_end, at its measured velocity), or None: the wave a site's history ends
+    with (Fig. Riemann1: site 200 sees the superkink, then the left DSW edge)."""
+    best, t_best = None, -np.inf
+    for w in waves:
+        if not (np.isfinite(w.velocity) and w.velocity != 0 and np.isfinite(w.position)):
+            continue
+        t = t_end + (site - w.position) / w.velocity
+        if 0.0 <= t <= t_end and t > t_best:
+            best, t_best = w, t
+    return best
 
 
 def fmt_pm(x: float, err: float) -> str:
@@ -121,6 +147,12 @@ class SimulationScene(BokehScene):
             value="bounded",
             width=290,
         )
+        self.probes = pn.widgets.TextInput(
+            name="tracked sites (e.g. 100, 200, 3000 for L = 3600)",
+            value="",
+            placeholder="site numbers, comma-separated",
+            width=290,
+        )
         self.run_btn = pn.widgets.Button(
             label="Run simulation", color="primary", css_classes=["simulation-run"]
         )
@@ -130,6 +162,7 @@ class SimulationScene(BokehScene):
             pn.Row(self.w_l, self.w_r),
             pn.Row(self.w_B, self.A),
             self.guard,
+            self.probes,
             self.run_btn,
         ]
 
@@ -173,18 +206,36 @@ class SimulationScene(BokehScene):
             sizing_mode="stretch_width",
             height=220,
         )
+        self.fig_probe, self.r_probe, self.r_probe_wave, self.probe_legend = [], [], [], []
+        for k in range(MAX_PROBES):
+            f = new_figure(f"({'cde'[k]}) site", "t", "w", height=240, width=300,
+                           sizing_mode="stretch_width")  # fmt: skip
+            site = add_line(f, "black", 1.5)
+            site[1].name = f"sim-probe-{k}"  # read by the tests
+            tw = add_line(f, "#d62728", 2.0, "dashed")
+            tw[1].name = f"sim-probe-wave-{k}"
+            entries = [("w_k(t)", [site[0]]), ("TW at measured V, w_B", [tw[0]])]
+            self.probe_legend.append(add_legend(f, "below", entries))
+            f.visible = False
+            self.fig_probe.append(f)
+            self.r_probe.append(site)
+            self.r_probe_wave.append(tw)
         self.fig_img, self.fig_prof = fi, fp
         self.r_first = add_line(fp, "gray", 1.5, "dashed")
         self.r_last = add_line(fp, "black", 1.5)
         self.prof_legend = add_legend(
             fp, "right", [("t = 0", [self.r_first[0]]), ("final", [self.r_last[0]])]
         )
-        return column(fi, fp, sizing_mode="stretch_width")
+        probes = row(*self.fig_probe, sizing_mode="stretch_width")
+        return column(fi, fp, probes, sizing_mode="stretch_width")
 
     def _job(self):
         s = self.state
         kind = self.kind.value
         p = {"L": int(self.L.value), "t_end": float(self.t_end.value), "guard": self.guard.value}
+        sites = self._probe_sites()
+        if sites:
+            p["probes"] = sites
         if kind == "riemann":
             p.update(w_left=float(self.w_l.value), w_right=float(self.w_r.value))
         elif kind == "gaussian":
@@ -194,6 +245,87 @@ class SimulationScene(BokehScene):
                 raise SceneMessage(s.problem())
             p.update(mode=s.mode, w_plus=s.w_plus, V=s.V, N=int(s.N), tol=s.tol)
         return kind, p
+
+    def _probe_sites(self) -> tuple[int, ...]:
+        """The typed sites (fpucore checks them against L when the run starts)."""
+        text = self.probes.value.strip()
+        if not text:
+            return ()
+        try:
+            sites = tuple(int(x) for x in re.split(r"[,\s]+", text) if x)
+        except ValueError:
+            raise SceneMessage(
+                f"tracked sites: {text} is not a list of site numbers "
+                "(e.g. 100, 200, 3000)"
+            ) from None
+        if len(sites) > MAX_PROBES:
+            raise SceneMessage(f"tracked sites: at most {MAX_PROBES} (the panels (c)–(e))")
+        return sites
+
+    def _tracked_sites(self, info: Info, up: Updates, sim) -> None:
+        """Panels (c)–(e): each tracked site's history against the wave computed at the
+        measured V and w_B of the last tracked wave to pass it."""
+        sites = list(np.asarray(getattr(sim, "probe_sites", []), int))
+        self._probe_waves = []
+        s = self.state
+        for k in range(MAX_PROBES):
+            fig = self.fig_probe[k]
+            if k >= len(sites):
+                up.set(fig, visible=False)
+                continue
+            site, t = sites[k], np.asarray(sim.probe_t, float)
+            w_k = np.asarray(sim.probe_series[k], float)
+            wv = last_to_pass(sim.waves, site, float(t[-1]))
+            x, y, title, call = np.empty(0), np.empty(0), f"({'cde'[k]}) site {site}", None
+            keep = np.ones(t.size, bool)
+            if wv is None:
+                info.notes.append(f"site {site}: no tracked wave passed it")
+            else:
+                try:
+                    r, call = self._wave_at(wv, info)
+                except compute.ParameterError as exc:
+                    r = None
+                    info.notes.append(
+                        f"site {site}: no traveling wave at the measured V = "
+                        f"{wv.velocity:.6g}, w_B = {wv.background:.6g}: {md_literal(exc)}"
+                    )
+                V = abs(wv.velocity)
+                t_c = passage_time(s.law(), t, w_k, wv)
+                keep = np.abs(t - t_c) <= WINDOW_SITES / V
+                title += f": {SHORT_NAMES.get(wv.kind, wv.kind)} V = {wv.velocity:.6g}"
+                if r is not None and r.converged:
+                    tt, ww = site_overlay(r, t_c, wv.velocity < 0)
+                    near = np.abs(tt - t_c) <= WINDOW_SITES / V
+                    x, y = tt[near], ww[near]
+                    title += f", w_B = {fmt_pm(wv.background, wv.background_error)}"
+            self._probe_waves.append((site, wv, call))
+            up.set(fig, visible=True)
+            up.set(fig.title, text=title)
+            up.data(self.r_probe[k][1], x=t[keep], y=w_k[keep])
+            up.data(self.r_probe_wave[k][1], x=x, y=y)
+            up.show(self.r_probe_wave[k][0], self.probe_legend[k][1], len(x) > 0)
+            ys = np.concatenate([w_k[keep], y])
+            up.range(fig.x_range, float(t[keep][0]), float(t[keep][-1]))
+            up.range(fig.y_range, float(ys.min()), float(ys.max()), pad=0.08)
+
+    def _wave_at(self, wv, info: Info):
+        """The discrete traveling wave at a tracked wave's measured V (and w_B): a superkink of
+        that velocity, or the solitary wave on the measured background.  (WaveResult, the
+        fpucore call as text)."""
+        s = self.state
+        V = abs(float(wv.velocity))
+        if wv.kind == "superkink":
+            sk = qc.superkink_from_V(s.law(), V)
+            mode, w_plus = "superkink", sk.w_plus
+        else:
+            mode, w_plus = "solitary", float(wv.background)
+        c = compute.discrete_wave(s.law(), mode, w_plus, V, s.N, s.tol, stop=self.superseded)
+        r = c.value
+        info.time(f"wave at V = {V:.6g}", c)
+        name, args, kwargs = compute.wave_call(s.law(), mode, w_plus, V, s.N, s.tol)
+        pos = ", ".join(repr(float(x)) for x in args[1:])
+        kw = ", ".join(f"{k}={v!r}" for k, v in kwargs.items())
+        return r, f"wave.{name}(law, {pos}, {kw})"
 
     def render(self, info: Info):
         # a failed or superseded run must not leave the previous run's numbers on screen
@@ -257,6 +389,7 @@ class SimulationScene(BokehScene):
         up.range(self.fig_prof.x_range, n[0], n[-1])
         up.range(self.fig_prof.y_range, float(snaps.min()), float(snaps.max()), pad=0.05)
         self.table.object = wave_table(sim.waves)
+        self._tracked_sites(info, up, sim)
         self._sim = (kind, p, sim)
         info.shown = (
             f"simulation of {KIND_WORDS[kind]} to t = {t[-1]:.4g}; {tracked_velocities(sim.waves)}"
@@ -290,7 +423,26 @@ class SimulationScene(BokehScene):
         code += (
             "print(sim.energy_drift, [(w.kind, w.velocity, w.velocity_error) for w in sim.waves])\n"
         )
+        for k, (site, _, call) in enumerate(getattr(self, "_probe_waves", [])):
+            if call is not None:  # the wave at the measured V, w_B of the wave passing the site
+                code += f"tw{k} = {call}  # site {site}\nprint(tw{k}.converged, tw{k}.V)\n"
         return code
+
+    def notebook_plot(self) -> str:
+        if self._sim is None:
+            return ""
+        return (
+            "import numpy as np\nimport matplotlib.pyplot as plt\n\n"
+            "z, t, n = np.asarray(sim.snapshots), np.asarray(sim.t), np.asarray(sim.sites)\n"
+            "fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(9, 7))\n"
+            "im = ax1.imshow(z, origin='lower', aspect='auto', extent=(n[0], n[-1], t[0], t[-1]))\n"
+            "fig.colorbar(im, ax=ax1, label='w')\n"
+            "ax1.set(xlabel='site n', ylabel='time t')\n"
+            "ax2.plot(n, z[0], '--', color='gray', label='t = 0')\n"
+            "ax2.plot(n, z[-1], 'k', label=f't = {t[-1]:.4g}')\n"
+            "ax2.set(xlabel='site n', ylabel='w')\n"
+            "ax2.legend()\n"
+        )
 
     def download_data(self):
         if self._sim is None:

@@ -84,7 +84,7 @@ def fig_stabSW(reduced: bool):
 RIEMANN = {"w_left": 4.6, "w_right": 0.0, "L": 3600, "t_end": 300.0, "probes": (100, 200, 3000)}
 
 
-def _overlay(r, t_c: float, moving_left: bool):
+def site_overlay(r, t_c: float, moving_left: bool):
     """Times at which a fixed site sees the wave's profile points w(n), crest / pinning point
     (n = 0) passing at t_c: w_k(t) = w(±V (t − t_c)) (eq. TWansatz, ξ = n − Vt)."""
     t = t_c + r.n / r.V if moving_left else t_c - r.n / r.V
@@ -95,7 +95,7 @@ def _overlay(r, t_c: float, moving_left: bool):
 WINDOW_SITES = 25.0  # half-width of panels (c)–(e) in sites passed
 
 
-def _first_crest(t, w_k, background: float, amplitude: float) -> float:
+def first_crest(t, w_k, background: float, amplitude: float) -> float:
     """Time of the first crest of a pulse passing a site: after the site has been at the
     background (the superkink passed site 200 first), the first time w − w_B exceeds half the
     amplitude (signed), then the extremum within the next half period of the crest."""
@@ -113,6 +113,15 @@ def _first_crest(t, w_k, background: float, amplitude: float) -> float:
     while j + 1 < dev.size and dev[j + 1] >= dev[j]:  # climb to the crest
         j += 1
     return float(t[j])
+
+
+def passage_time(law, t, w_k, w) -> float:
+    """When the tracked wave ``w`` passes the site whose history is w_k(t): a superkink when
+    w_k first crosses w* (its pinning point w(0) = w*), a pulse at its first crest."""
+    if w.kind == "superkink":
+        side = np.sign(np.asarray(w_k) - law.w_star)
+        return float(t[np.argmax(side != side[0])])
+    return first_crest(t, w_k, w.background, w.amplitude)
 
 
 def fig_Riemann1(reduced: bool):
@@ -180,13 +189,12 @@ def fig_Riemann1(reduced: bool):
             V = abs(w.velocity)
             if w.kind == "superkink":
                 r = wave.solve_superkink(LAW, V)
-                t_c = float(t[np.argmax(w_k < LAW.w_star)])  # pinning w(0) = w*
             else:
                 r = wave.solve_solitary(LAW, w.background, V)
-                t_c = _first_crest(t, w_k, w.background, w.amplitude)
+            t_c = passage_time(LAW, t, w_k, w)
             keep = np.abs(t - t_c) <= WINDOW_SITES / V
             if r.converged:
-                tt, ww = _overlay(r, t_c, w.velocity < 0)
+                tt, ww = site_overlay(r, t_c, w.velocity < 0)
                 near = np.abs(tt - t_c) <= WINDOW_SITES / V
                 name = (
                     "superkink"

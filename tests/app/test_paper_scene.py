@@ -10,9 +10,14 @@ import pytest
 pytest.importorskip("panel")
 
 from app.explorer import Explorer  # noqa: E402
-from app.state import TABS, url_query  # noqa: E402
-from app.views.paper import FIGURE_STATE, W_PLUS_5_2  # noqa: E402
+from app.state import (  # noqa: E402
+    TABS,
+    ExplorerState,  # noqa: E402
+    url_query,
+)
+from app.views.paper import FIGURE_STATE, W_PLUS_5_2, PaperScene  # noqa: E402
 from fpucore import paper  # noqa: E402
+from fpucore.paper import report  # noqa: E402
 
 
 def v_sk(w_plus: float, a: float = -1.0, b: float = 10.0) -> float:
@@ -61,3 +66,22 @@ def test_each_figure_gives_a_valid_state():
     for label in FIGURE_STATE:
         ex.by_key["paper"].open(label)
         assert ex.state.problem() is None, label
+
+
+def test_a_figure_computed_by_fpu_paper_shows_its_comparison_row(tmp_path, monkeypatch):
+    """The row under a figure is the cached fpu paper result's comparisons (paper vs ours);
+    a figure not computed yet names the command instead."""
+
+    monkeypatch.setenv("FPU_CACHE_DIR", str(tmp_path))
+    sc = PaperScene(ExplorerState())
+    sc.refresh()
+    assert "fpu paper --figure pplane" in sc.cmp_panes["pplane"].object
+    (r,), missing, _ = report.compute_many(["pplane"], reduced=True, workers=1)
+    assert not missing
+    sc.refresh()  # the next render finds it
+    row = sc.cmp_panes["pplane"].object
+    assert f"{r.n_agree}/{len(r.comparisons)} agree" in row
+    for c in r.comparisons:  # V_SK = 2√65/3 and w₋ = 17/3 beside ours
+        assert f"paper {c.printed}" in row and f"{c.ours:.8g}" in row
+    assert v_sk(1.0) == pytest.approx(r.comparisons[0].ours, abs=1e-12)
+    assert "fpu paper --figure superkink" in sc.cmp_panes["superkink"].object

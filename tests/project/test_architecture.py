@@ -64,6 +64,12 @@ LATE_OK: set[tuple[str, str]] = {
     ("app/compute/laws.py", "import sympy"),
     # nbformat only when a notebook is written (fpu paper --out x.ipynb)
     ("fpucore/paper/notebook.py", "import nbformat"),
+    # the explorer's "Download figure / notebook": Matplotlib (~0.4 s) and nbformat (~0.1 s)
+    # when a file is built, not at every server start
+    ("app/views/export.py", "from matplotlib import rc_context"),
+    ("app/views/export.py", "from matplotlib.figure import Figure"),
+    ("app/views/export.py", "from matplotlib.colors import ListedColormap"),
+    ("app/views/export.py", "import nbformat"),
 }
 PLOTTING = {key for key in LATE_OK if key[0] == "fpucore/paper/plot.py"}
 # the CLI's commands import the scientific stack when they run: `fpu ... --help` stays < 0.3 s

@@ -1,0 +1,202 @@
+"""Export where users work: every scene's "Figure SVG / PNG" is the scene as drawn (its Bokeh
+models' data redrawn server side, no browser) and its "Notebook" runs top to bottom in a fresh
+kernel and prints the numbers on screen; "Hold" keeps curves over slider moves until "Clear"."""
+
+from __future__ import annotations
+
+import json
+import re
+import xml.etree.ElementTree as ET
+
+import numpy as np
+import pytest
+
+pytest.importorskip("panel")
+pytest.importorskip("matplotlib")
+
+from app.state import ExplorerState  # noqa: E402
+from app.views import SCENES  # noqa: E402
+from app.views.export import code_cells  # noqa: E402
+from fpucore import qc  # noqa: E402
+from fpucore.law import CubicLaw  # noqa: E402
+
+BY_KEY = {cls.key: cls for cls in SCENES}
+SVG = "{http://www.w3.org/2000/svg}"
+LAW = CubicLaw(a=-1.0, b=10.0)
+
+
+def scene(key: str, discrete: bool = False, **state):
+    """A scene rendered once (the profiles scene: QC only unless ``discrete``)."""
+    sc = BY_KEY[key](ExplorerState(**state))
+    if key == "profiles":
+        sc.show_discrete.value = discrete
+    sc.refresh()
+    assert sc.last_message is None, sc.last_message
+    return sc
+
+
+def download(widget) -> tuple[str, bytes | str]:
+    buf = widget.callback()
+    return widget.filename, buf.getvalue()
+
+
+def group_vertices(svg: bytes, gid: str) -> list[int]:
+    """Number of vertices of each path in the SVG group ``gid``."""
+    root = ET.fromstring(svg)
+    groups = [g for g in root.iter(f"{SVG}g") if g.get("id") == gid]
+    assert groups, f"no group {gid!r} in the SVG"
+    return [len(re.findall(r"[ML]", p.get("d", ""))) for p in groups[0].iter(f"{SVG}path")]
+
+
+def test_the_figure_svg_is_valid_xml_with_the_drawn_curve():
+    sc = scene("profiles")
+    name, svg = download(sc.fig_svg)
+    assert name == "profiles.svg"
+    assert ET.fromstring(svg).tag == f"{SVG}svg"
+    # the QC curve as drawn: one path through all 1601 samples of the scene's source
+    xi = sc.r_qc[1].data["x"]
+    assert len(xi) == 1601
+    assert max(group_vertices(svg, "profile-qc")) == len(xi)
+    name, png = download(sc.fig_png)
+    assert name == "profiles.png" and png[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_every_figure_of_a_multi_figure_scene_is_exported():
+    sc = scene("diagram")  # (a), (b) in the main pane, (c) in its own pane
+    svg = sc.export_figure("svg")
+    titles = [t for t in re.findall(rb"<!-- (.*?) -->", svg)]
+    text = b" ".join(titles)
+    for title in (b"(a) amplitude", b"(b) renormalized energy", b"(c) where solitary"):
+        assert title in text, title
+    # the existence diagram's current point is where the state is
+    assert group_vertices(svg, "diagram-current")
+
+
+def test_no_export_while_a_message_is_shown():
+    sc = BY_KEY["profiles"](ExplorerState(V=99.0))
+    sc.refresh()
+    assert sc.last_message
+    assert sc.fig_svg.disabled and sc.fig_png.disabled and sc.notebook.disabled
+    name, text = download(sc.notebook)
+    assert name == "profiles-unavailable.txt" and "nothing shown" in text
+    sc.state.V = 5.0
+    sc.refresh()
+    assert not (sc.fig_svg.disabled or sc.fig_png.disabled or sc.notebook.disabled)
+
+
+def test_the_notebook_cells_are_the_copy_as_python_code():
+    sc = scene("profiles", N=128)
+    nb = json.loads(sc.export_notebook())
+    code = [c for c in nb["cells"] if c["cell_type"] == "code"]
+    src = ["".join(c["source"]) for c in code]
+    assert "\n".join(src[:-1]) == sc.python_code().rstrip("\n")  # exactly the copied code
+    assert src[0].rstrip().endswith("law = CubicLaw(a=-1.0, b=10.0)")  # imports and the law
+    assert src[1].startswith("q = qc.solitary(law, 1.0, 5.0)")  # one computation per cell
+    assert "plt" in src[-1]  # the plot cell
+    md = "".join(nb["cells"][0]["source"])
+    assert "tab=profiles" in md and "amplitude" in md  # the state and what was on screen
+
+
+def test_code_cells_keep_a_comment_with_its_computation():
+    code = "import x\nlaw = L()\n# the family\nfam = f(law)\nprint(fam)\nd = g(law)\n"
+    assert code_cells(code) == ["import x\nlaw = L()", "# the family\nfam = f(law)\nprint(fam)",
+                                "d = g(law)"]  # fmt: skip
+
+
+def test_held_profiles_survive_slider_moves_and_clear():
+    sc = scene("profiles")
+    assert sc.held.hold()  # V = 5.0; the hold re-renders in the scene's worker
+    assert sc.wait_idle()
+    sc.state.V = 5.2
+    sc.refresh()
+    assert sc.held.hold() and sc.wait_idle()
+    sc.state.V = 4.8
+    sc.refresh()
+    srcs = [sc.held.lines[k][1] for k in range(2)]
+    for src, V in zip(srcs, (5.0, 5.2)):
+        x = np.asarray(src.data["x"])
+        exact = qc.solitary(LAW, 1.0, V).profile(x)  # the closed form at the held V
+        assert np.max(np.abs(np.asarray(src.data["y"]) - exact)) < 1e-12
+    assert [r.visible for r in (sc.held.lines[0][0], sc.held.lines[1][0])] == [True, True]
+    assert not sc.held.lines[2][0].visible
+    # the current curve moved on; the held ones are in the code, the CSV and the figure
+    assert "held.append((qc.solitary(law, 1.0, 5.2), None))" in sc.python_code()
+    _, csv = sc.download_data()
+    assert "held V = 5.2, w₊ = 1 y" in csv.getvalue()
+    svg = sc.export_figure("svg")
+    assert max(group_vertices(svg, "profile-held-1")) == 1601
+    sc.held.clear_btn.clicks += 1  # "Clear held"
+    sc.wait_idle()
+    assert not sc.held.items
+    assert all(not ln[0].visible for ln in sc.held.lines)
+    assert "held" not in sc.python_code()
+
+
+def test_held_orbits_on_the_phase_plane():
+    sc = scene("phase")
+    orbit = np.asarray(sc.r_orbits[0][1].data["x"])
+    sc.held.hold_btn.clicks += 1  # "Hold curve"
+    sc.wait_idle()
+    sc.state.V = 5.2
+    sc.refresh()
+    held = np.asarray(sc.held.lines[0][1].data["x"])
+    assert np.array_equal(held[: len(orbit)], orbit)  # the orbit drawn at V = 5, kept
+    assert "held.append(phase.phase_plane(law, 1.0, 5.0, n_grid=241))" in sc.python_code()
+
+
+def _outputs(nb) -> str:
+    out = []
+    for cell in nb.cells:
+        for o in cell.get("outputs", []):
+            out.append(o.get("text", ""))
+            if o.get("output_type") == "error":
+                out.append(f"ERROR {o.get('ename')}: {o.get('evalue')}")
+    return "\n".join(out)
+
+
+def run_notebook(sc, tmp_path):
+    nbformat = pytest.importorskip("nbformat")
+    nbclient = pytest.importorskip("nbclient")
+    pytest.importorskip("ipykernel")
+    nb = nbformat.reads(sc.export_notebook(), as_version=4)
+    nbclient.NotebookClient(nb, timeout=600, kernel_name="python3",
+                            resources={"metadata": {"path": str(tmp_path)}}).execute()  # fmt: skip
+    text = _outputs(nb)
+    assert "ERROR" not in text, text[-2000:]
+    assert any(o.get("output_type") == "display_data" for o in nb.cells[-1].outputs)  # the plot
+    return text
+
+
+def test_a_phase_plane_notebook_reproduces_the_screen(tmp_path):
+    sc = scene("phase", V=5.2)
+    text = run_notebook(sc, tmp_path)
+    pp = sc._pp
+    printed = repr([(c.kind, c.w) for c in pp.critical_points]).replace("np.float64(", "")
+    line = next(ln for ln in text.splitlines() if ln.startswith(pp.regime))
+    got = [float(v) for v in re.findall(r"-?\d+\.\d+(?:e-?\d+)?", line)]
+    want = [float(v) for v in re.findall(r"-?\d+\.\d+(?:e-?\d+)?", printed)]
+    assert got == pytest.approx(want, rel=1e-13, abs=1e-13) and len(got) == 3
+
+
+def test_a_discrete_wave_notebook_reproduces_the_screen(tmp_path):
+    sc = scene("profiles", N=128, discrete=True)
+    assert sc.held.hold() and sc.wait_idle()
+    sc.state.V = 5.2
+    sc.refresh()
+    r = sc._discrete
+    assert r is not None and r.converged
+    text = run_notebook(sc, tmp_path)
+    line = next(ln for ln in text.splitlines() if ln.startswith("True "))
+    _, residual, amplitude = line.split()
+    assert float(amplitude) == pytest.approx(r.amplitude, rel=1e-12)  # on screen: the amplitude
+    assert float(residual) < 1e-9
+
+
+@pytest.mark.parametrize("key", ["force", "phase", "profiles", "diagram"])
+def test_every_notebook_cell_is_python_and_every_figure_exports(key):
+    sc = scene(key)
+    nb = json.loads(sc.export_notebook())
+    for cell in nb["cells"]:
+        if cell["cell_type"] == "code":
+            compile("".join(cell["source"]), f"{key} cell", "exec")  # a SyntaxError fails
+    assert any(True for _ in ET.fromstring(sc.export_figure("svg")).iter(f"{SVG}path"))
