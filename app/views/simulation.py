@@ -255,8 +255,7 @@ class SimulationScene(BokehScene):
             sites = tuple(int(x) for x in re.split(r"[,\s]+", text) if x)
         except ValueError:
             raise SceneMessage(
-                f"tracked sites: {text} is not a list of site numbers "
-                "(e.g. 100, 200, 3000)"
+                f"tracked sites: {text} is not a list of site numbers (e.g. 100, 200, 3000)"
             ) from None
         if len(sites) > MAX_PROBES:
             raise SceneMessage(f"tracked sites: at most {MAX_PROBES} (the panels (c)–(e))")
