@@ -1,0 +1,15 @@
+"""Checks on a scene object shared by the app tests (tests/support is on the test path)."""
+
+import time
+
+
+def assert_cancel_answers_within(sc, limit_s: float = 1.0) -> None:
+    """Press Cancel on a scene with a running job: "Cancelled" is shown within ``limit_s``,
+    and the worker then goes idle with the progress text hidden."""
+    t0 = time.perf_counter()
+    sc.cancel()
+    while not (sc.last_message or "").startswith("Cancelled") and time.perf_counter() - t0 < 10:
+        time.sleep(0.01)
+    assert (sc.last_message or "").startswith("Cancelled")
+    assert time.perf_counter() - t0 < limit_s
+    assert sc.wait_idle(10) and not sc.progress_text.visible
