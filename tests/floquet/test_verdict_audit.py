@@ -27,6 +27,7 @@ from fpucore import floquet as fq
 from fpucore import wave
 from fpucore.atlas.point import FIELDS
 from fpucore.cli import main as cli_main
+from fpucore.floquet import decision
 from fpucore.floquet import finite_size as fs
 from fpucore.floquet.monodromy import MAX_N
 from fpucore.law import CubicLaw
@@ -57,7 +58,7 @@ ERR = 1e-10
 
 def _decide(n, e, err=ERR):
     n, e = np.asarray(n, float), np.asarray(e, float)
-    return fs.decide(n, e, np.full(n.size, err), growth_rate=0.01)[0]
+    return decision.decide(n, e, np.full(n.size, err), growth_rate=0.01)[0]
 
 
 @pytest.mark.parametrize("key", list(MEASURED), ids=[f"N{n}-V{v}" for n, v in MEASURED])
@@ -169,7 +170,7 @@ def test_random_windows_words_agree_with_their_numbers(n_top, e, gone, k):
 def test_missing_ring_keeps_a_persisting_excess_undetermined():
     """A ring of the window whose wave could not be rebuilt: "unstable" needs every ring."""
     n = np.array([100, 120, 140, 180, 200], float)
-    d, _ = fs.decide(n, np.full(5, 1e-3), np.full(5, ERR), 0.01, "N=160: wave not converged",
+    d, _ = decision.decide(n, np.full(5, 1e-3), np.full(5, ERR), 0.01, "N=160: wave not converged",
                      missing_N=[160])  # fmt: skip
     assert (d.classification, d.reason) == ("undetermined", "missing_rings")
     assert "N = 160" in d.sentence and "compute at N >= 400" in d.sentence
