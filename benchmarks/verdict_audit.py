@@ -215,7 +215,7 @@ def _audit_finite_size(s: str, N, e, tiny) -> list[str]:
 
 
 def audit_decision(d) -> list[str]:
-    """Problems of a :class:`fpucore.floquet.finite_size.Decision`: its texts against the
+    """Problems of a :class:`fpucore.floquet.decision.Decision`: its texts against the
     numbers they print and against the record's own points and error bars."""
     bad = audit_sentence(d.sentence, d.headline, d.classification,
                          tiny=max(d.points_error, default=TINY))  # fmt: skip
