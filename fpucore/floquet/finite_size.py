@@ -234,7 +234,7 @@ def classify(N: np.ndarray, e: np.ndarray, err: np.ndarray) -> dict:
     2), envelope_N, envelope_early (the envelope starts by √(N_first·N)), peak_N (where e is
     largest), drop = 1 − e(N)/max e and drop_needed = 1 − (N_first/N)^DECAY_P, spread,
     e_inf ± e_inf_error (e∞ + C/N over the window, reported only), checked (≥ MIN_POINTS
-    lengths), and the legacy flags shrinks / intermittent."""
+    lengths), shrinks (the decay test passed) and intermittent (an absent excess or a dip)."""
     N = np.asarray(N, float)
     e = np.asarray(e, float)
     err = np.asarray(err, float)
