@@ -28,7 +28,7 @@ from fpucore.qc.general_speeds import (
 @dataclass(frozen=True)
 class QCSuperkinkGeneral(QCSuperkink):
     """QC superkink of any law: the fields of :class:`fpucore.qc.QCSuperkink` plus error bars;
-    the profile comes from the first integral by quadrature (module docstring).
+    the profile comes from the first integral by quadrature (the method: :mod:`fpucore.qc.general`).
 
     ``p`` = half the decay rate ahead, √(12(V² − f′(w₊)))/(2V) (the p of eq. SKsoln_cubic);
     ``p_minus`` the same behind (equal to p for the cubic only).  ``xi_error`` bounds the error
