@@ -46,6 +46,7 @@ from scipy.optimize import brentq
 from fpucore import qc
 from fpucore.wave import period_map as pm
 from fpucore.wave import tails as wt
+from fpucore.wave.setup import Spec
 from fpucore.wave.system import WaveSystem
 
 FRONT_MAX = 1.0  # sites: a larger round-off error bar on the fronts is reported as failure
@@ -284,9 +285,11 @@ class PlateauPath:
     start_delta: float
 
 
-def start_delta(law, w_plus: float, v_sk: float, sgn: float, gx: float) -> float:
-    """δ on the given side of V_SK where the QC half-plateau γ·x_f equals gx (bisection in ln δ)."""
-    (a, b), (c, d) = qc.solitary_intervals(law, w_plus)
+def start_delta(spec: Spec, sgn: float, gx: float) -> float:
+    """δ on the side sgn of V_SK (of spec's w₊) where the QC half-plateau γ·x_f equals gx
+    (bisection in ln δ)."""
+    law, w_plus, v_sk = spec.law, spec.w_plus, spec.v_sk
+    (a, b), (c, d) = spec.intervals()
     far = (b - a) if sgn < 0 else (d - c)
     lo, hi = math.log(1e-15 * v_sk), math.log(0.5 * far)
 
@@ -321,9 +324,11 @@ def translate_fronts(S: WaveSystem, x: np.ndarray, delta: float) -> np.ndarray:
 
 
 def continue_in_mass(
-    law, w_plus, V_target, x0, V0, N, m, K, tol, deadline, max_steps: int = 40
+    spec: Spec, x0, V0, N, m, K, tol, deadline, max_steps: int = 40
 ) -> PlateauPath:
-    """March in plateau mass M from the converged wave (x0, V0) to V_target (same side of V_SK).
+    """March in plateau mass M from the converged wave (x0, V0) to V_target = spec.V (same side
+    of V_SK, same w₊) on N sites with m RK steps, window K; tol : residual tolerance; deadline :
+    ``time.perf_counter()`` time limit.
 
     Predictor: both discrete fronts translated by ΔM/(2A) sites (:func:`translate_fronts`; the
     QC-difference and linear-tangent predictors were measured to allow only |Δs| ≲ 1 per step,
@@ -332,7 +337,7 @@ def continue_in_mass(
     the ordinary residual at V_target of the current state is ≤ tol/4 (then the caller's fixed-V
     polish takes no step) or when the secant cannot move M any more (round-off floor of the
     plateau length)."""
-    v_sk = qc.sound_speeds(law, w_plus)[1]
+    law, w_plus, V_target, v_sk = spec.law, spec.w_plus, spec.V, spec.v_sk
     sgn = 1.0 if V_target > v_sk else -1.0
     fam = _Family(law, w_plus, v_sk, sgn, N, m, K)
     n = np.arange(N) - N // 2
