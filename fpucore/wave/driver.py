@@ -7,9 +7,11 @@ map (eqs. period, nonlin_map, nonlin_system, fixedBCs).
 Route: QC closed form (eqs. SKsoln_cubic, SWsoln_cubic) → initial guess w_n(0) = w_QC(n), ẇ_n(0) =
 −V w_QC′(n) (ansatz ξ = n − V t) → damped Newton with the exact banded Jacobian
 (:mod:`fpucore.wave.system`), stopping on the size of the correction.  If that fails: solve on the
-shorter automatic chain and grow N, then continuation in V from a velocity where the QC guess
-converges (:mod:`fpucore.wave.continuation`); flat tops near V_SK by continuation in plateau mass
-(:mod:`fpucore.wave.plateau`) — the attempt logic is :class:`fpucore.wave.attempt.WaveSolve`.
+shorter automatic chain and grow N (or, on a short chain, solve long and cut), then continuation
+in V from a velocity where the QC guess converges (:mod:`fpucore.wave.continuation`); flat tops
+near V_SK by continuation in plateau mass (:mod:`fpucore.wave.plateau`) — the attempt logic is
+:class:`fpucore.wave.attempt.WaveSolve`, everything derived from the wave alone (tolerances, N,
+m, K, the system) is a method of its :class:`fpucore.wave.setup.Spec`.
 Error bounds against the infinite chain's exact wave: :mod:`fpucore.wave.bounds`.
 N=None picks N from the wave's width (:mod:`fpucore.wave.tails`).  The RK step count m is chosen by
 step doubling so the integrator error stays at the tolerance, and re-checked at the solution."""

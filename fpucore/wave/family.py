@@ -59,7 +59,7 @@ def superkink_family(
     def solve(sp, pred):
         return solve_superkink(law, sp.V, branch, N, tol, predictor=pred)
 
-    return _walk(specs, solve, "superkink", progress)
+    return _family_wrap(specs, solve, "superkink", progress)
 
 
 def solitary_family(
@@ -73,10 +73,10 @@ def solitary_family(
     def solve(sp, pred):
         return solve_solitary(law, w_plus, sp.V, N, tol, predictor=pred)
 
-    return _walk(specs, solve, "solitary", progress)
+    return _family_wrap(specs, solve, "solitary", progress)
 
 
-def _walk(specs, solve, kind, progress):
+def _family_wrap(specs, solve, kind, progress):
     """Solve specs in order (``solve(spec, predictor)``), each from the previous converged wave
     on the same velocity interval (:func:`.continuation.solve_from_neighbour`)."""
     t0 = time.perf_counter()

@@ -274,8 +274,10 @@ def _tangent(fam: _Family, x, s):
 # =============================================================================== the route
 @dataclass(frozen=True)
 class PlateauPath:
-    """Outcome of :func:`continue_in_mass`.  x : state at V (or at the closest V reached);
-    points : list of (δ, M, front) along the path; reached : V of the last converged point."""
+    """Outcome of :func:`continue_in_mass`.  x : state at V (None if the start wave was lost);
+    V : the velocity of x (the target, or the closest V reached); converged : whether the path
+    reached the target; note : how; points : (δ, M, front sites) along the path; start_delta :
+    δ = |V − V_SK| of the start wave."""
 
     x: np.ndarray | None
     V: float
