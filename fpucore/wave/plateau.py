@@ -290,13 +290,13 @@ class PlateauPath:
 def start_delta(spec: Spec, sgn: float, gx: float) -> float:
     """δ on the side sgn of V_SK (of spec's w₊) where the QC half-plateau γ·x_f equals gx
     (bisection in ln δ)."""
-    law, w_plus, v_sk = spec.law, spec.w_plus, spec.v_sk
+    v_sk = spec.v_sk
     (a, b), (c, d) = spec.intervals()
     far = (b - a) if sgn < 0 else (d - c)
     lo, hi = math.log(1e-15 * v_sk), math.log(0.5 * far)
 
     def h(s):
-        return qc_half_plateau(qc.solitary(law, w_plus, v_sk + sgn * math.exp(s))) - gx
+        return qc_half_plateau(spec.at(v_sk + sgn * math.exp(s)).qcw) - gx
 
     if h(hi) > 0 or h(lo) < 0:
         return math.exp(hi) if h(hi) > 0 else math.exp(lo)
@@ -339,9 +339,9 @@ def continue_in_mass(
     the ordinary residual at V_target of the current state is ≤ tol/4 (then the caller's fixed-V
     polish takes no step) or when the secant cannot move M any more (round-off floor of the
     plateau length)."""
-    law, w_plus, V_target, v_sk = spec.law, spec.w_plus, spec.V, spec.v_sk
+    V_target, v_sk = spec.V, spec.v_sk
     sgn = 1.0 if V_target > v_sk else -1.0
-    fam = _Family(law, w_plus, v_sk, sgn, N, m, K)
+    fam = _Family(spec.law, spec.w_plus, v_sk, sgn, N, m, K)
     n = np.arange(N) - N // 2
     s = fam.s(V0)
     M = float(x0[0::2].sum() - N * fam.w_B(V0))
@@ -352,7 +352,7 @@ def continue_in_mass(
     pts = [(math.exp(s), M, front_position(x[0::2], n, fam.w_B(fam.V(s))))]
     s_t = fam.s(V_target)
     S_t = fam.system(V_target)
-    lam = wt.decay_rate(law, x[N], V0)
+    lam = wt.decay_rate(spec.law, x[N], V0)
     ds_max = min(DS_MAX, 1.6 * lam)  # front step |Δ| = |Δs|/(2λ) ≤ 0.8 site
     ds_cap = ds_max
     prev, steps = None, 0
