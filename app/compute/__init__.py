@@ -94,6 +94,8 @@ from .qc_calls import (
     spec_of,
 )
 from .requests import (
+    SMALL_ATLAS_N,
+    SMALL_ATLAS_POINTS,
     AtlasRequest,
     Call,
     GaussianRequest,
@@ -159,6 +161,8 @@ __all__ = [
     "GaussianRequest",
     "SeededRequest",
     "AtlasRequest",
+    "SMALL_ATLAS_POINTS",
+    "SMALL_ATLAS_N",
     # jobs and keys
     "wave_call",
     "wave_job",

@@ -132,8 +132,7 @@ def atlas_job(lw, req: AtlasRequest, progress=None):
     after the other in this worker (a pool worker may not start a pool of its own; the server's
     pool spreads the sessions' jobs over the cores).  ``progress``: the fraction of points
     done, after each chunk (a row of the grid).  Returns the AtlasResult."""
-    send = None if progress is None else (lambda done, total, failed: progress(done / total))
-    return req.call().run(lw, executor=Executor(backend="inline"), progress=send)
+    return req.call().run(lw, executor=Executor(backend="inline"), progress=fraction(progress))
 
 
 # --------------------------------------------------------------------------- keys

@@ -25,7 +25,6 @@ from fpucore.errors import ParameterError
 
 from .. import compute
 from ..compute import Computed
-from ..compute.requests import SMALL_ATLAS_N, SMALL_ATLAS_POINTS
 from ..state import N_RANGE, resolve_atlas_store
 from .base import Info, SceneMessage, as_csv, md_literal, python_preamble
 from .bokeh_scene import BokehScene, Updates, new_figure
@@ -79,11 +78,12 @@ class AtlasScene(BokehScene):
             value=self.state.atlas, width=280,
         )  # fmt: skip
         self.quantity = pn.widgets.Select(name="quantity", options=list(QUANTITIES), width=200)
-        lo, hi = SMALL_ATLAS_POINTS
+        lo, hi = compute.SMALL_ATLAS_POINTS
         self.n_w = pn.widgets.IntInput(name="w₊ rows", value=8, start=lo, end=hi, width=130)
         self.n_V = pn.widgets.IntInput(name="velocities", value=8, start=lo, end=hi, width=130)
-        self.N_run = pn.widgets.IntInput(name="N", value=200, start=SMALL_ATLAS_N[0],
-                                         end=SMALL_ATLAS_N[1], step=20, width=130)  # fmt: skip
+        N_lo, N_hi = compute.SMALL_ATLAS_N
+        self.N_run = pn.widgets.IntInput(name="N", value=200, start=N_lo, end=N_hi, step=20,
+                                         width=130)  # fmt: skip
         self.run_btn = pn.widgets.Button(
             label="Run a small atlas (with Floquet)", color="primary", css_classes=["atlas-run"]
         )

@@ -61,7 +61,7 @@ def test_a_superkink_atlas_has_branches_for_rows(tmp_path):
     assert data.ok.all() and data.N == 64 and not data.floquet
     assert np.isnan(data.max_modulus).all()  # computed without Floquet
     with pytest.raises(ParameterError, match="superkink atlas is over V only"):
-        data.w_plus
+        _ = data.w_plus
 
 
 def test_what_is_not_an_atlas_store_is_refused_naming_the_path(tmp_path):
