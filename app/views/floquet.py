@@ -315,7 +315,7 @@ class FloquetScene(BokehScene):
         up = Updates()
         mu = np.asarray(fr.multipliers)
         unstable = np.asarray(fr.unstable)
-        key = compute.floquet_key(s.law(), s.mode, s.w_plus, s.V, s.N, s.tol)
+        key = compute.floquet_key(s.law(), compute.WaveRequest(s.mode, s.w_plus, s.V, s.N, s.tol))
         up.data(self.r_mu[1], key, x=mu.real, y=mu.imag)
         up.data(self.r_unst[1], key, x=unstable.real, y=unstable.imag)
         up.show(self.r_unst[0], self.legend_a[1], unstable.size > 0)
@@ -370,11 +370,9 @@ class FloquetScene(BokehScene):
 
     def python_code(self) -> str:
         s = self.state
-        name, args, kwargs = compute.wave_call(s.law(), s.mode, s.w_plus, s.V, s.N, s.tol)
-        pos = ", ".join(repr(float(x)) for x in args[1:])
-        kw = ", ".join(f"{k}={v!r}" for k, v in kwargs.items())
+        req = compute.WaveRequest(s.mode, s.w_plus, s.V, s.N, s.tol)
         code = python_preamble(s) + (
-            f"r = wave.{name}(law, {pos}, {kw})\n"
+            f"r = {compute.wave_call(s.law(), req).code()}\n"
             "print(r.converged, r.residual)\n"
             "fr = floquet.spectrum(r)\n"
             "print(len(fr.multipliers), fr.max_modulus, fr.error, fr.classification)\n"
