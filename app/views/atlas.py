@@ -263,16 +263,19 @@ class AtlasScene(BokehScene):
 
     def notebook_plot(self) -> str:
         name = "ds" if self._source and self._source != "background run" else "res.dataset"
-        return f"{name}['amplitude'].plot(x='w_plus', y='V')\n"
+        return f"{name}[{QUANTITIES[self.quantity.value]!r}].plot(x='w_plus', y='V')\n"
 
     def python_code(self) -> str:
+        var = QUANTITIES[self.quantity.value]  # the numbers on screen, (w₊, V) rows
         if self._source and self._source != "background run":
             return python_preamble(self.state) + (
                 f"import xarray as xr\nds = xr.open_zarr({self._source!r}, consolidated=False)\n"
+                f"print(ds[{var!r}].values.tolist())\n"
             )
         return python_preamble(self.state) + (
             "from fpucore import atlas\n"
             f"res = atlas.run(law, 'solitary', rows='{self._rows}', V={int(self.n_V.value)}, "
             f"N={int(self.N_run.value)}, floquet=True, finite_size=False)\n"
             "print(res.dataset)\n"
+            f"print(res.dataset[{var!r}].values.tolist())\n"
         )
