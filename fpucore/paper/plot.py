@@ -13,6 +13,7 @@ browser — Bokeh's own SVG/PNG export needs a webdriver).
 from __future__ import annotations
 
 import html
+import io
 from pathlib import Path
 
 import numpy as np
@@ -129,19 +130,14 @@ def thumbnail(result: FigureResult, path: str | Path, width: int = THUMB_WIDTH) 
     """Write a small PNG of the whole figure, exactly ``width`` px wide (Matplotlib, resampled
     with Lanczos by Pillow and reduced to a 256-colour palette: a few tens of kB), for the
     explorer's list of figures (docs/figures/<label>.png).  Returns the path."""
-    import io
-
     from PIL import Image
 
     if not (isinstance(width, int) and 64 <= width <= 2000):
         raise ParameterError("width", width, "an integer in [64, 2000] px")
     hv = ui()[0]
     buf = io.BytesIO()
-    fig = hv.render(plot(result, "matplotlib"), backend="matplotlib")
-    fig.savefig(buf, format="png", dpi=100, bbox_inches="tight", pad_inches=0.05)  # the title
-    import matplotlib.pyplot as plt
-
-    plt.close(fig)
+    # HoloViews' renderer draws with bbox "tight" (the title kept) and closes its figure
+    hv.save(plot(result, "matplotlib"), buf, backend="matplotlib", fmt="png", dpi=100)
     buf.seek(0)
     with Image.open(buf) as im:
         im = im.convert("RGB")
