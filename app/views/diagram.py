@@ -293,7 +293,9 @@ class DiagramScene(BokehScene):
         self._branch = None
         want = self._want_branch and s.mode == "solitary"
         if want or compute.floquet_sweep_cached(*args):
-            self._want_branch = False
+            # the request is the mode's own: a cached solitary sweep redrawn in superkink mode
+            # leaves the button's request to the superkink sweep
+            self._want_branch = self._want_branch and not want
             c = compute.floquet_sweep(
                 *args, stop=self.superseded, progress=self.stage_progress("Floquet sweep")
             )
@@ -342,7 +344,7 @@ class DiagramScene(BokehScene):
             args = None
         want = self._want_branch and s.mode == "superkink" and args is not None
         if args is not None and (want or compute.floquet_sweep_cached(*args)):
-            self._want_branch = False
+            self._want_branch = self._want_branch and not want
             c = compute.floquet_sweep(
                 *args, stop=self.superseded, progress=self.stage_progress("superkink sweep")
             )
@@ -387,6 +389,7 @@ class DiagramScene(BokehScene):
             err = np.asarray(sw.error, float)
             if np.isfinite(err).any():
                 info.error("max |μ| error bound (superkink sweep)", float(np.nanmax(err)))
+        self._want_branch = False  # a request neither view could serve (no valid family) ends
 
     def _existence(self, info: Info, up: Updates) -> None:
         s = self.state

@@ -274,17 +274,30 @@ def test_an_atlas_notebook_reproduces_the_map(tmp_path):
 
 @pytest.mark.slow
 def test_a_diagrams_notebook_reproduces_the_dots_and_the_branch_view(tmp_path):
-    """The Diagrams scene with discrete dots and the branch view (4 velocities, N = 64): the
-    notebook's c₊, V_SK, c₋, the dots' amplitude and E_ren and the sweep's classes are the
-    screen's."""
+    """The Diagrams scene with discrete dots and both branch views (4 velocities each, N = 64):
+    the notebook's c₊, V_SK, c₋, the dots' amplitude and E_ren, the solitary sweep's classes and
+    the superkink sweep's amplitudes, max|μ| and classes are the screen's."""
     sc = BY_KEY["diagram"](ExplorerState(N=64))
     sc.n_discrete.value = 2
     sc._want_discrete = sc._want_branch = True  # both buttons
     sc.refresh()
     assert sc.last_message is None, sc.last_message
+    # superkink mode (V = V_SK(1)): the button sweeps the superkinks (d); the solitary family's
+    # dots and branch (same w₊, cached) stay
+    sc.state.mode = "superkink"
+    assert sc.wait_idle(600)
+    sc.classify_btn.clicks += 1
+    assert sc.wait_idle(600)
+    assert sc.last_message is None, sc.last_message
     fam, rows, sw = sc._fam, sc._rows, sc._branch
-    assert len(rows) == 4 and sw is not None
+    assert len(rows) == 4 and sw is not None and sc._sk_branch is not None
+    sk, amp, _ = sc._sk_branch
     text = run_notebook(sc, tmp_path)
+    line = [ln for ln in text.splitlines() if ln.startswith("[(") and "np.float64" not in ln][-1]
+    assert re.findall(r"'(\w+)'", line) == list(sk.classification)
+    got = np.array(numbers(line), float).reshape(len(sk.V), 3)  # V, |w₋ − w₊|, max|μ|
+    assert np.max(np.abs(got[:, 0] - sk.V)) == 0.0 and np.max(np.abs(got[:, 1] - amp)) < 1e-12
+    assert np.max(np.abs(got[:, 2] - sk.max_modulus)) < 1e-12
     got = numbers(printed_line(text, f"{fam.c_plus!r}"[:5]))
     assert got == pytest.approx([fam.c_plus, fam.V_SK, fam.c_minus], abs=1e-14)
     dots = numbers(printed_line(text, "[(4."))
