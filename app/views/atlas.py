@@ -35,6 +35,8 @@ QUANTITIES = {
     "amplitude": lambda d: d.amplitude,
     "E_ren": lambda d: d.energy,
 }
+#: the AtlasData field each quantity is computed from (what "Copy as Python" prints)
+FIELDS = {"max |μ| − 1": "max_modulus", "amplitude": "amplitude", "E_ren": "energy"}
 FLOQUET_QUANTITY = "max |μ| − 1"
 RUN = "background run"  # the source of the atlas on screen when it is the button's run
 
@@ -261,12 +263,16 @@ class AtlasScene(BokehScene):
         return "\n".join(lines)
 
     def notebook_plot(self) -> str:
-        return "data.dataset['amplitude'].plot(x='w_plus', y='V')\n"
+        var = FIELDS[self.quantity.value]
+        return f"data.dataset[{var!r}].plot(x='w_plus', y='V')\n"
 
     def python_code(self) -> str:
+        var = FIELDS[self.quantity.value]  # the numbers on screen, (w₊, V) rows
         code = python_preamble(self.state) + "from fpucore import atlas\n"
         if self._source and self._source != RUN:
-            return code + f"data = atlas.open_atlas({self._source!r})\n"
+            return code + (
+                f"data = atlas.open_atlas({self._source!r})\nprint(data.{var}.tolist())\n"
+            )
         try:  # the run on screen, else the one the button would start
             req = self._run[0] if self._run else self.atlas_request()
         except ParameterError as exc:
@@ -274,5 +280,6 @@ class AtlasScene(BokehScene):
         return code + (
             f"res = {req.call().code()}\n"
             "data = atlas.atlas_data(res.dataset)\n"
-            "print(res.message, data.max_modulus[data.ok])\n"
+            "print(res.message)\n"
+            f"print(data.{var}.tolist())\n"
         )

@@ -384,7 +384,7 @@ class FloquetScene(BokehScene):
             code += (
                 f"sw = floquet.sweep(law, kind={kind!r}, V_values={[float(v) for v in Vs]!r}, "
                 f"w_plus={wp!r}, N={int(s.N)}, branch={branch!r})\n"
-                "print(sw.V, sw.max_modulus)\n"
+                "print(sw.V.tolist(), sw.max_modulus.tolist(), list(sw.classification))\n"
             )
             if kind == "solitary":
                 code += (
