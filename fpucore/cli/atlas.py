@@ -69,11 +69,11 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
-    from tqdm import tqdm
+    from tqdm import tqdm  # heavy: tqdm
 
-    from fpucore import atlas
-    from fpucore.atlas.store import check_out
-    from fpucore.parallel import apply_thread_policy
+    from fpucore import atlas  # heavy: Numba, xarray
+    from fpucore.atlas.store import check_out  # heavy: Numba
+    from fpucore.parallel import apply_thread_policy  # heavy: Numba
 
     law = law_from_args(args)
     check_out(args.out)  # before anything is computed
