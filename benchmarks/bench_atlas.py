@@ -149,7 +149,8 @@ def cold_sweep(N: int, nV: int, caller_runs: bool, method: str = "structured") -
     wall = time.perf_counter() - t0
     return {"wall": wall, "caller_cpu": time.process_time() - c0,
             "pool_cpu": descendants_cpu() - d0, "max_modulus": s.max_modulus.tolist(),
-            "error": s.error.tolist(), "classification": list(s.classification)}  # fmt: skip
+            "error": s.max_modulus_error.tolist(),
+            "classification": list(s.classification)}  # fmt: skip
 
 
 def run_cold_sweep(N: int, nV: int, caller_runs: bool, method: str = "structured") -> dict:

@@ -123,7 +123,9 @@ def part_c(Ns=(200, 300, 500), n_sk: int = 22, n_sw: int = 10) -> None:
         mx = np.nanmax(sw.max_modulus)
         print(f"   solitary w+={w_plus}: max over V of max|mu| = {mx:.6f} (paper bound {bound}): "
               f"{'PASS' if mx < bound else 'FAIL'}; V_SK = {b:.6f}")  # fmt: skip
-        rows = zip(sw.V, sw.max_modulus, sw.max_modulus_away_from_1, sw.error, strict=True)
+        rows = zip(
+            sw.V, sw.max_modulus, sw.max_modulus_away_from_1, sw.max_modulus_error, strict=True
+        )
         for V_, m_, a_, e_ in rows:
             print(f"     V={V_:.5f}  max|mu|-1={m_ - 1:.3e}  away from 1: {a_ - 1:.3e}  "
                   f"error={e_:.1e}")  # fmt: skip

@@ -119,7 +119,7 @@ def floquet_spectrum(lw, mode, w_plus, V, N, tol, stop=None, progress=None):
 
 
 def floquet_sweep(lw, kind, w_plus, V_values, N, branch="lower", stop=None, progress=None):
-    """max |μ| against V for the family (fpucore.floquet.sweep) in a worker process."""
+    """max |μ| against V for the family (fpucore.atlas.sweep) in a worker process."""
     Vs = [float(v) for v in V_values]
     key = sweep_key(lw, kind, w_plus, Vs, N, branch)
     return run_job(key, sweep_job, (lw, kind, w_plus, Vs, int(N), branch), stop, progress)

@@ -268,7 +268,7 @@ class DiagramScene(BokehScene):
             counts = {c: int((cls == c).sum()) for c in CLASSES if (cls == c).any()}
             words = ", ".join(f"{n} {CLASS_STYLE[c][0].split(' (')[0]}" for c, n in counts.items())
             info.notes.append(f"branch view (N = {int(s.N)}): {words}; click a point to open it")
-            err = np.asarray(sw.error, float)
+            err = np.asarray(sw.max_modulus_error, float)
             if np.isfinite(err).any():
                 info.error("max |μ| error bound (sweep)", float(np.nanmax(err)))
 
@@ -468,7 +468,7 @@ class DiagramScene(BokehScene):
             cols["V_branch"] = np.asarray(sw.V, float)
             cols["E_branch"] = np.asarray(sw.energy, float)
             cols["max_modulus_branch"] = np.asarray(sw.max_modulus, float)
-            cols["max_modulus_error_branch"] = np.asarray(sw.error, float)
+            cols["max_modulus_error_branch"] = np.asarray(sw.max_modulus_error, float)
             # the classes (text) go in the header, in the order of V_branch
         d = getattr(self, "_exist", None)
         if d is not None:
@@ -541,7 +541,8 @@ class DiagramScene(BokehScene):
             Vs = [float(v) for v in sw.V]
             code += (
                 "# branch view: the family's Floquet sweep, classified\n"
-                f"sw = floquet.sweep(law, kind='solitary', V_values={Vs!r}, "
+                "from fpucore.atlas import sweep\n"
+                f"sw = sweep(law, kind='solitary', V_values={Vs!r}, "
                 f"w_plus={float(sw.w_plus)!r}, N={int(s.N)}, branch='lower')\n"
                 "print(list(zip(sw.V, sw.energy, sw.classification)))\n"
             )

@@ -11,9 +11,12 @@ Each spectrum takes the structured route by default (``method``; the quarter-siz
 for the paper's families, max|μ| and classification equal to dense within the error bar).
 One task per velocity keeps the workers balanced (spectra near the sonic end cost more: their
 finite-size test runs); continuation along V measured no gain (benchmarks/README.md, atlas part C).
-One row per V is kept: V, max |μ|, max |μ| away from the trivial cluster, the error bar, the
-verdict, the three-way classification, and the wave's E_ren with its error bar (solitary families:
-the energy criterion, :func:`fpucore.floquet.criterion_from_samples`, reads them). Running the same
+One row per V is kept: V and the point's atlas record, under the atlas's names
+(:data:`fpucore.atlas.point.FIELDS`: the spectrum's error bar is ``max_modulus_error``, the wave's
+``converged`` and ``energy``, ``energy_error`` beside the spectrum's ``floquet_converged``,
+``verdict``, ``classification``, …; solitary families: the energy criterion,
+:func:`fpucore.floquet.criterion_from_samples`, reads them).  The JSON of ``fpu floquet sweep``
+and its CSV columns are these rows.  Running the same
 sweep at several N measures the N-dependence of the spurious oscillatory instabilities.
 
 Cache.  With ``use_cache`` the sweep is an atlas store in ``$FPU_CACHE_DIR/floquet`` (default
@@ -32,12 +35,14 @@ import math
 import os
 import shutil
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
+from typing import ClassVar
 
 import numpy as np
 from tqdm import tqdm
 
+from fpucore.atlas.point import FIELDS, empty_record
 from fpucore.atlas.run import run as run_atlas
 from fpucore.atlas.store import fpucore_version
 from fpucore.budget import require_time_budget
@@ -48,27 +53,12 @@ from fpucore.jit_cache import source_hash
 from fpucore.law import require_law
 from fpucore.parallel import Executor
 from fpucore.parallel.threads import on_budget
-from fpucore.result import jsonable
+from fpucore.result import Result, jsonable, status_of
 from fpucore.wave.setup import spec_of
 
 SWEEP_MAX_V = 10_000  # velocities per sweep
 CHUNK = 1  # velocities per task (fixed: results must not depend on the number of workers)
-_ROW_KEYS = (
-    "V", "max_modulus", "max_modulus_away_from_1", "error", "symmetry_error", "integrator_error",
-    "n_unstable", "n_trivial", "trivial_split", "verdict", "wave_converged", "wave_residual",
-    "converged", "elapsed_s", "message", "classification", "headline", "energy", "energy_error",
-)  # fmt: skip
-# sweep row key ← atlas record field
-_FROM_ATLAS = {
-    "max_modulus": "max_modulus", "max_modulus_away_from_1": "max_modulus_away_from_1",
-    "error": "max_modulus_error", "symmetry_error": "symmetry_error",
-    "integrator_error": "floquet_integrator_error", "n_unstable": "n_unstable",
-    "n_trivial": "n_trivial", "trivial_split": "trivial_split", "verdict": "verdict",
-    "wave_converged": "converged", "wave_residual": "residual", "converged": "floquet_converged",
-    "elapsed_s": "elapsed_s", "message": "message", "classification": "classification",
-    "headline": "headline",
-    "energy": "energy", "energy_error": "energy_error",
-}  # fmt: skip
+COLUMNS = ("V", *FIELDS)  # a sweep row: the velocity and its atlas record (fpucore.atlas.point)
 
 
 def cache_dir() -> Path:
@@ -103,43 +93,56 @@ def cache_path(key: dict) -> Path:
 
 
 @dataclass(frozen=True)
-class SweepResult:
-    """max |μ| along a family.  Arrays (n,) in the order of V; error is each row's error bar
-    (:attr:`fpucore.floquet.FloquetResult.error`); NaN where the wave did not converge.
-    cached : rows read from the cache store (computed by an earlier run).
-    energy, energy_error : (n,) the waves' E_ren and its bound (eq. Eren_D); classification :
-    (n,) "stable" | "finite_size" | "unstable" ("" where not computed).  method : the spectra's
-    eigenvalue route ("structured" | "dense")."""
+class SweepResult(Result):
+    """max |μ| along a family: a one-row atlas, its records named as the atlas's
+    (:data:`fpucore.atlas.point.FIELDS`).
+
+    rows : one dict per V, in the order of V — ``V`` and the point's atlas record (``status``,
+    ``message``, the wave's ``converged``, ``residual``, ``energy``, ``energy_error``, …, the
+    spectrum's ``max_modulus``, ``max_modulus_error`` (its error bar,
+    :attr:`fpucore.floquet.FloquetResult.error`), ``floquet_converged``, ``verdict``,
+    ``classification``, ``headline``, …; ``status`` "" for a velocity never computed).
+    V, max_modulus, max_modulus_away_from_1, max_modulus_error, energy, energy_error : (n,)
+    arrays of those columns, NaN where nothing was computed; n_unstable : (n,) int (0 there);
+    floquet_converged : (n,) bool, the spectrum converged; cached : (n,) bool, the row was read
+    from the cache store (computed by an earlier run); classification : (n,) "stable" |
+    "finite_size" | "unstable" | "undetermined" ("" where not computed).  method : the spectra's
+    eigenvalue route ("structured" | "dense").
+    converged : every velocity has a converged spectrum; stopped : the time budget ended the
+    sweep (rows left not computed)."""
 
     kind: str
     N: int
     w_plus: float | None
+    method: str
     V: np.ndarray
     max_modulus: np.ndarray
     max_modulus_away_from_1: np.ndarray
-    error: np.ndarray
+    max_modulus_error: np.ndarray
     n_unstable: np.ndarray
-    converged: np.ndarray
+    floquet_converged: np.ndarray
     cached: np.ndarray
-    rows: list = field(default_factory=list)
-    elapsed_s: float = 0.0
-    message: str = ""
-    energy: np.ndarray = field(default_factory=lambda: np.zeros(0))
-    energy_error: np.ndarray = field(default_factory=lambda: np.zeros(0))
-    classification: tuple = ()
-    method: str = "structured"
+    energy: np.ndarray
+    energy_error: np.ndarray
+    classification: tuple
+    rows: list
+    converged: bool
+    stopped: bool
+    message: str
+    elapsed_s: float
 
-    def as_dict(self) -> dict:
-        return {"kind": self.kind, "N": self.N, "w_plus": self.w_plus, "method": self.method,
-                "rows": self.rows, "elapsed_s": self.elapsed_s,
-                "message": self.message}  # fmt: skip
+    ERROR_FIELDS: ClassVar = ("max_modulus_error", "energy_error")
+
+    @property
+    def status(self) -> str:
+        return status_of(self.converged, self.stopped)
 
     def to_csv(self, path_or_file) -> None:
-        cols = ["N", *_ROW_KEYS, "cached"]
+        """One line per row: the columns :data:`COLUMNS` (the atlas's names) and ``cached``."""
+        cols = [*COLUMNS, "cached"]
         lines = [",".join(cols)]
         for row, c in zip(self.rows, self.cached, strict=True):
-            vals = [self.N, *(row.get(k) for k in _ROW_KEYS), bool(c)]
-            lines.append(",".join(_csv(v) for v in vals))
+            lines.append(",".join(_csv(v) for v in [*(row[k] for k in COLUMNS), bool(c)]))
         text = "\n".join(lines) + "\n"
         if hasattr(path_or_file, "write"):
             path_or_file.write(text)
@@ -169,24 +172,12 @@ def tqdm_progress(n: int, desc: str = "floquet sweep") -> Callable:
     return cb
 
 
-def _nan_row(V: float, message: str) -> dict:
-    row = {k: None for k in _ROW_KEYS}
-    row.update(V=float(V), n_unstable=0, n_trivial=0, verdict="not computed",
-               wave_converged=False, converged=False, elapsed_s=0.0, message=message)  # fmt: skip
-    return row
-
-
-def _row(V: float, rec: dict) -> dict:
-    """The sweep row of one atlas record."""
-    if rec["status"] == "" or (rec["status"] != "ok" and not math.isfinite(rec["max_modulus"])):
-        row = _nan_row(V, rec["message"] or "not computed")
-        if rec["status"] == "not_converged":
-            row["message"] = f"wave not converged: {rec['message']}"
-        row["wave_residual"] = jsonable(rec["residual"])
-        row["elapsed_s"] = jsonable(rec["elapsed_s"]) or 0.0
-        return row
-    row = {"V": float(V)}
-    row.update({k: jsonable(rec[src]) for k, src in _FROM_ATLAS.items()})
+def _row(V: float, N: int, rec: dict) -> dict:
+    """The sweep row of one atlas record (a record of a point never computed gets the sweep's
+    N, the chain size it was asked for)."""
+    row = {"V": float(V), **{k: jsonable(rec[k]) for k in FIELDS}}
+    if row["N"] < 0:
+        row["N"] = int(N)
     return row
 
 
@@ -270,7 +261,7 @@ def sweep(
 
     def on_points(points) -> None:
         for _, j, rec in points:
-            rows[j] = _row(Vs[j], rec)
+            rows[j] = _row(Vs[j], N, rec)
             computed[j] = True
             count[0] += 1
             if progress:
@@ -304,31 +295,41 @@ def sweep(
     recs = {k: ds[k].values[0] for k in ds.data_vars}
     for j in range(n):
         if rows[j] is None:
-            rec = {k: v[j] for k, v in recs.items()}
-            if recs["done"][j]:
-                rows[j] = _row(Vs[j], rec)
-            else:
-                rows[j] = _nan_row(Vs[j], res.message or "not computed")
+            done = recs["done"][j]
+            rec = {k: v[j] for k, v in recs.items()} if done else empty_record(
+                "", res.message or "not computed")  # fmt: skip
+            rows[j] = _row(Vs[j], N, rec)
     if bar is not None and hasattr(bar, "close"):
         bar.close()
-    arr = lambda k: np.array([np.nan if r[k] is None else r[k] for r in rows], float)  # noqa: E731
+
+    def arr(k: str, where=None) -> np.ndarray:  # a column, NaN where not computed (or not where)
+        x = np.array([np.nan if r[k] is None else r[k] for r in rows], float)
+        return x if where is None else np.where(where, x, np.nan)
+
     cached = ~computed & (recs["done"] == 1)
+    fl_ok = np.array([bool(r["floquet_converged"]) for r in rows])
+    wave_ok = np.array([bool(r["converged"]) for r in rows])
+    message = res.message if res.stopped else f"{n} velocities, {int(cached.sum())} from cache"
+    if not res.stopped and not fl_ok.all():
+        message += f"; {int((~fl_ok).sum())} without a converged spectrum"
     return SweepResult(
         kind=kind,
         N=int(N),
         w_plus=w_plus,
+        method=method,
         V=Vs,
         max_modulus=arr("max_modulus"),
         max_modulus_away_from_1=arr("max_modulus_away_from_1"),
-        error=arr("error"),
-        n_unstable=np.array([r["n_unstable"] or 0 for r in rows], int),
-        converged=np.array([bool(r["converged"]) for r in rows]),
+        max_modulus_error=arr("max_modulus_error"),
+        n_unstable=np.array([max(int(r["n_unstable"]), 0) for r in rows], int),
+        floquet_converged=fl_ok,
         cached=cached,
+        energy=arr("energy", wave_ok),
+        energy_error=arr("energy_error", wave_ok),
+        classification=tuple(r["classification"] for r in rows),
         rows=rows,
+        converged=bool(fl_ok.all()) and not res.stopped,
+        stopped=bool(res.stopped),
+        message=message,
         elapsed_s=res.elapsed_s,
-        message=res.message if res.stopped else f"{n} velocities, {int(cached.sum())} from cache",
-        energy=arr("energy"),
-        energy_error=arr("energy_error"),
-        classification=tuple(r["classification"] or "" for r in rows),
-        method=method,
     )

@@ -28,9 +28,10 @@ def _sweep(kind: str, Vs, w_plus=None):
 
 def _bound(figure, quantity, printed, bound, sw, mask, source, minus_one=False):
     """max over ``mask`` of max|μ| (or max|μ| − 1) against an upper bound; the error bar is that
-    row's error (fpucore.floquet.FloquetResult.error).  Rows that did not converge count as NaN."""
+    row's error bar (``max_modulus_error``: fpucore.floquet.FloquetResult.error).  Rows that did
+    not converge count as NaN."""
     y = np.asarray(sw.max_modulus, float)[mask]
-    e = np.asarray(sw.error, float)[mask]
+    e = np.asarray(sw.max_modulus_error, float)[mask]
     if y.size == 0 or not np.all(np.isfinite(y)):
         i, val, err = 0, np.nan, np.nan
     else:
@@ -80,7 +81,7 @@ def fig_floquet_SK(reduced: bool):
         _bound("floquet_SK", "max|μ| for V ≥ 5.57", "< 1.0001", 1.0001, sw, V >= 5.57, src),
         _bound("floquet_SK", "max|μ| over the range", "< 1.005", 1.005, sw, V > 0, src),
     ]
-    notes = f"{int(np.sum(sw.converged))}/{V.size} velocities converged; {sw.message}"
+    notes = f"{int(np.sum(sw.floquet_converged))}/{V.size} velocities converged; {sw.message}"
     return panels, comps, {"V": V.tolist(), "N": N, "method": sw.method}, notes
 
 

@@ -5,6 +5,7 @@ The paper's N = 500 statements are in tests/test_floquet_paper.py.
 
 from __future__ import annotations
 
+import csv
 import json
 import math
 
@@ -231,8 +232,8 @@ def test_sweep_is_cached_and_reports_progress(tmp_path, monkeypatch):
     V = [5.45, 5.5]
     s1 = fsw.sweep(LAW, "superkink", V, N=64, progress=lambda *a: calls.append(a))
     assert [c[0] for c in calls] == [1, 2] and not s1.cached.any()
-    assert np.all(s1.converged) and np.all(np.isfinite(s1.max_modulus))
-    assert np.all(s1.error < 1e-9)
+    assert s1.converged and s1.status == "ok" and np.all(np.isfinite(s1.max_modulus))
+    assert np.all(s1.max_modulus_error < 1e-9)
     s2 = fsw.sweep(LAW, "superkink", V, N=64)
     assert s2.cached.all()
     assert np.array_equal(s1.max_modulus, s2.max_modulus)
@@ -242,7 +243,8 @@ def test_sweep_is_cached_and_reports_progress(tmp_path, monkeypatch):
     out = tmp_path / "t.csv"
     s2.to_csv(out)
     lines = out.read_text().splitlines()
-    assert lines[0].startswith("N,V,max_modulus") and len(lines) == 3
+    assert lines[0].split(",") == [*fsw.COLUMNS, "cached"] and len(lines) == 3
+    assert "max_modulus_error" in fsw.COLUMNS and "error" not in fsw.COLUMNS  # the atlas's names
 
 
 def test_sweep_bad_input():
@@ -278,5 +280,8 @@ def test_cli_sweep_csv(tmp_path, monkeypatch, capsys):
     rc = cli_main(["floquet", "sweep", "superkink", "--V", "5.5", "--N", "64", "80",
                    "--out", str(out), "--no-progress"])  # fmt: skip
     assert rc == 0
-    lines = out.read_text().splitlines()
-    assert len(lines) == 3 and lines[1].startswith("64,") and lines[2].startswith("80,")
+    with open(out) as fh:  # one header, then a row per (N, V), under the atlas's names
+        rows = list(csv.DictReader(fh))
+    got = [(r["N"], r["V"], r["status"]) for r in rows]
+    assert got == [("64", "5.5", "ok"), ("80", "5.5", "ok")]
+    assert all(float(r["max_modulus_error"]) < 1e-9 for r in rows)
