@@ -131,6 +131,7 @@ def cases() -> dict:
             V=[3.5, 4.5, 5.2],
             N=None,
             floquet=True,
+            floquet_method="dense",  # the method it was saved with (the default until then)
             workers=1,
             chunk=3,
         ),  # fmt: skip
