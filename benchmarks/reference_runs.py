@@ -27,9 +27,8 @@ import numpy as np
 
 from fpucore import floquet, qc, simulate, wave
 from fpucore.atlas import run as atlas_run
-from fpucore.law import CubicLaw, PolynomialLaw
-
 from fpucore.atlas import sweep
+from fpucore.law import CubicLaw, PolynomialLaw
 
 LAW = CubicLaw(-1.0, 10.0)
 QUARTIC = PolynomialLaw((1.0, 10.0, -1.0, -0.2))

@@ -12,8 +12,8 @@ import numpy as np
 
 from fpucore import floquet as fq
 from fpucore import qc, wave
-from fpucore.atlas import sweep
 from fpucore import simulate as sim
+from fpucore.atlas import sweep
 from fpucore.errors import ParameterError
 from fpucore.parallel import Executor
 

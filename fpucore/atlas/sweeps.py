@@ -7,8 +7,9 @@ task (``CHUNK`` = 1) on a worker of the execution layer (:mod:`fpucore.parallel`
 BLAS thread each): its wave solved from the QC guess and its spectrum computed.  A sweep that
 starts its own pool computes in the calling process too (``caller_runs``: K cores = the caller
 and K - 1 workers, so only K - 1 processes pay the worker start-up and none is oversubscribed).
-Each spectrum takes the structured route by default (``method``; the quarter-size reversible one
-for the paper's families, max|μ| and classification equal to dense within the error bar).
+Each spectrum takes the structured route by default (``method``, as every entry point:
+:data:`fpucore.floquet.DEFAULT_METHOD`; the quarter-size reversible one for the paper's families,
+max|μ| and classification equal to dense within the error bar).
 One task per velocity keeps the workers balanced (spectra near the sonic end cost more: their
 finite-size test runs); continuation along V measured no gain (benchmarks/README.md, atlas part C).
 One row per V is kept: V and the point's atlas record, under the atlas's names
@@ -48,7 +49,7 @@ from fpucore.atlas.store import fpucore_version
 from fpucore.budget import require_time_budget
 from fpucore.errors import ParameterError, require_finite, require_int, require_tol
 from fpucore.floquet.monodromy import MAX_N
-from fpucore.floquet.multipliers import METHODS
+from fpucore.floquet.multipliers import DEFAULT_METHOD, METHODS
 from fpucore.jit_cache import source_hash
 from fpucore.law import require_law
 from fpucore.parallel import Executor
@@ -68,7 +69,7 @@ def cache_dir() -> Path:
 
 
 def cache_key(law, kind: str, V_values, N: int, w_plus, branch: str, m, tol: float,
-              method: str = "structured") -> dict:  # fmt: skip
+              method: str = DEFAULT_METHOD) -> dict:  # fmt: skip
     """The inputs and the code that determine a sweep's rows (see module doc)."""
     return {
         "method": method,
@@ -131,7 +132,7 @@ class SweepResult(Result):
     message: str
     elapsed_s: float
 
-    ERROR_FIELDS: ClassVar = ("max_modulus_error", "energy_error")
+    ERROR_FIELDS: ClassVar = ("max_modulus_error",)
 
     @property
     def status(self) -> str:
@@ -182,7 +183,7 @@ def _row(V: float, N: int, rec: dict) -> dict:
 
 
 def check_sweep_args(law, kind, V_values, w_plus, N, branch, m, tol, time_budget_s,
-                     method="structured"):  # fmt: skip
+                     method=DEFAULT_METHOD):  # fmt: skip
     """Validate a sweep's arguments before anything is computed (tol=0, N=10**6 and
     time_budget_s=-1 used to return NaN rows).  Returns (w_plus, Vs, N, m, tol, time_budget_s)."""
     require_law(law)
@@ -231,7 +232,7 @@ def sweep(
     time_budget_s: float = 3600.0,
     executor: Executor | None = None,
     workers: int | None = None,
-    method: str = "structured",
+    method: str = DEFAULT_METHOD,
 ) -> SweepResult:
     """max |μ| against V along a family of discrete waves (Figs. floquet_SK, floquet_cubicSW).
 
@@ -243,7 +244,8 @@ def sweep(
     velocities).  executor : an :class:`fpucore.parallel.Executor` to run on (default: one
     started for this sweep with ``workers`` computing processes, all cores: this process and a
     pool of ``workers - 1``, ``caller_runs=True``).  method : each spectrum's eigenvalue route
-    (:func:`fpucore.floquet.spectrum`): "structured" (default: the quarter-size reversible
+    (:func:`fpucore.floquet.spectrum`): "structured" (the default of every entry point,
+    :data:`fpucore.floquet.DEFAULT_METHOD`: the quarter-size reversible
     route for the paper's families, ~0.2× the dense call at N = 500, max|μ| and classification
     equal within the error bar, tests/floquet/test_sweep_method.py) or "dense" (the reference).
     """

@@ -12,7 +12,7 @@ import argparse
 import json
 import sys
 
-from fpucore.cli.choices import FLOQUET_METHODS
+from fpucore.cli.choices import DEFAULT_FLOQUET_METHOD, FLOQUET_METHODS, METHOD_HELP
 from fpucore.cli.common import add_law_args, jsonable, law_fields, law_from_args, print_json
 from fpucore.errors import ParameterError
 
@@ -37,10 +37,8 @@ def register(sub) -> None:
             help="skip the finite-size test (spectra on 5 shorter rings in [N/2, N]); an excess "
             "is then undetermined",
         )
-        q.add_argument("--method", choices=FLOQUET_METHODS, default="dense",
-                       help="eigenvalue route: dense LAPACK (reference) or the structure-"
-                       "preserving one (quarter size for reversible waves, else half size)",
-                       )  # fmt: skip
+        q.add_argument("--method", choices=FLOQUET_METHODS, default=DEFAULT_FLOQUET_METHOD,
+                       help=METHOD_HELP)  # fmt: skip
         q.add_argument("--json", action="store_true", help="print one JSON object")
         q.set_defaults(func=run_one, kind=name)
 
@@ -55,9 +53,8 @@ def register(sub) -> None:
     s.add_argument("--n", type=int, default=12, help="number of velocities in [V-min, V-max]")
     s.add_argument("--N", type=int, nargs="+", default=[500], help="chain size(s), one sweep each")
     s.add_argument("--out", default=None, help="write the table to this .csv or .json file")
-    s.add_argument("--method", choices=FLOQUET_METHODS, default="structured",
-                   help="each spectrum's eigenvalue route (default structured: ~0.2x the dense "
-                   "call for the paper's families; dense: the reference)")  # fmt: skip
+    s.add_argument("--method", choices=FLOQUET_METHODS, default=DEFAULT_FLOQUET_METHOD,
+                   help=METHOD_HELP)  # fmt: skip
     s.add_argument("--no-cache", action="store_true", help="ignore and do not write the cache")
     s.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
     s.add_argument("--json", action="store_true", help="print the table as one JSON object")

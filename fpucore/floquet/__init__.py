@@ -32,7 +32,7 @@ from fpucore.floquet.energy import (
 )
 from fpucore.floquet.finite_size import CLASSES, Decision, chain_lengths
 from fpucore.floquet.monodromy import MAX_N, Monodromy, default_steps, monodromy, multipliers_of
-from fpucore.floquet.multipliers import METHODS, FloquetResult, spectrum
+from fpucore.floquet.multipliers import DEFAULT_METHOD, METHODS, FloquetResult, spectrum
 from fpucore.floquet.reversible import reversor_of
 from fpucore.floquet.structured import structured_multipliers
 
@@ -56,6 +56,7 @@ __all__ = [
     "chain_lengths",
     "Decision",
     "METHODS",
+    "DEFAULT_METHOD",
     "structured_multipliers",
     "reversor_of",
     "FloquetResult",

@@ -89,7 +89,7 @@ def fig_Floquet_example(reduced: bool):
     """Fig. Floquet_example: all 2N multipliers of the superkink V = 5.2, N = 500 (dense), the
     unit circle, and the zoom on |μ| > 1 (mild oscillatory instabilities)."""
     clock = Clock()
-    fr = floquet.spectrum(wave.solve_superkink(LAW, 5.2, N=N))
+    fr = floquet.spectrum(wave.solve_superkink(LAW, 5.2, N=N), method="dense")
     mu = fr.multipliers
     th = np.linspace(0, 2 * np.pi, 721)
     out = np.abs(mu) > 1 + fr.error
@@ -113,7 +113,7 @@ def fig_Floquet_example(reduced: bool):
             ),
         ),
     )
-    src = f"floquet.spectrum(wave.solve_superkink(law, 5.2, N={N}))"
+    src = f"floquet.spectrum(wave.solve_superkink(law, 5.2, N={N}), method='dense')"
     t = clock.s
     # (quantity, printed, bound, ours, kind): the quartets leave the circle, mildly
     rows = [

@@ -23,8 +23,8 @@ from benchmarks.verdict_audit import (
     audit_sentence,
     audit_sweep_rows,
 )
-from fpucore import floquet as fq
 from fpucore import atlas, wave
+from fpucore import floquet as fq
 from fpucore.atlas.point import FIELDS
 from fpucore.cli import main as cli_main
 from fpucore.floquet import finite_size as fs
