@@ -9,9 +9,10 @@ excess |μ| − 1 an artefact of the finite ring? the one Decision record)  → 
 of E_ren(V) along solitary families, where stability may change)
 
 Sweeps of max|μ| along V are one-row atlases and live in the atlas stage
-(:func:`fpucore.atlas.sweep`).  ``floquet.sweep``, ``floquet.SweepResult`` and
-``floquet.sweeps`` still name them for older callers: loaded on first use (PEP 562, as in
-``fpucore/__init__``), so importing this package never imports the atlas above it.
+(:func:`fpucore.atlas.sweep`, their home: call them there).  ``floquet.sweep``,
+``floquet.SweepResult`` and ``floquet.sweeps`` are aliases of ``atlas.sweep``,
+``atlas.SweepResult`` and ``fpucore.atlas.sweeps``, kept for older callers: loaded on first use
+(PEP 562, as in ``fpucore/__init__``), so importing this package never imports the atlas above it.
 """
 
 import importlib

@@ -176,5 +176,5 @@ def fig_floquet_cubicSW(reduced: bool):
                 src,
             )
         )
-        notes.append(f"w₊ = {w_plus:g}: {int(np.sum(sw.converged))}/{V.size} converged")
+        notes.append(f"w₊ = {w_plus:g}: {int(np.sum(sw.floquet_converged))}/{V.size} converged")
     return tuple(panels), comps, {"w_plus": (1.0, 6.0), "N": N}, "; ".join(notes)
