@@ -4,6 +4,9 @@ public columns stay, and the inputs that used to give NaN rows are refused."""
 
 from __future__ import annotations
 
+import subprocess
+import sys
+
 import numpy as np
 import pytest
 
@@ -55,3 +58,14 @@ def test_time_budget_stops_with_a_message(tmp_path, monkeypatch):
     assert all(np.isnan(s.max_modulus)) or s.floquet_converged.sum() < 4
     missing = [r for r in s.rows if r["status"] == ""]  # never computed: said so, at the sweep's N
     assert missing and all("time budget" in r["message"] and r["N"] == 64 for r in missing)
+
+
+def test_floquet_sweep_is_an_alias_loaded_without_a_cycle():
+    """``floquet.sweep`` (older callers) is the atlas's sweep itself, and importing
+    fpucore.floquet does not load the atlas above it (the alias loads it on first use)."""
+    assert fq.sweep is atlas.sweep and fq.SweepResult is atlas.SweepResult
+    probe = ("import sys, fpucore.floquet as f; a = 'fpucore.atlas' in sys.modules; f.sweep; "
+             "print(a, 'fpucore.atlas' in sys.modules)")  # fmt: skip
+    out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
+                         check=True, timeout=120)  # fmt: skip
+    assert out.stdout.split() == ["False", "True"]
