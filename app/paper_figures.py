@@ -68,23 +68,24 @@ RUN_ON_CLICK_S = 3.0
 _T50_SK = 50.0 / 5.2  # 50 periods T = 1/V: fpucore.simulate.seeded's default t_end
 _T50_SW = 50.0 / 5.2174919476
 #: the Simulation scene's initial data of the simulation figures (fpucore.paper
-#: figures_dynamics), with ``run_s``: the run's cost measured with the app's calls (worker
-#: process, Numba cache warm, 2 shared cores under load; the first run after a server start
-#: adds the compilation) — the click starts it when run_s <= RUN_ON_CLICK_S.
+#: figures_dynamics), with ``run_s``: the longest click-to-drawn time measured for it in the
+#: app (Explorer, paper click, the run in a warm worker process, with the tracked sites' waves;
+#: 2 cores shared with ~10 other processes, 2026-11-26; a server's first run adds the JIT
+#: load) — the click starts the run when run_s <= RUN_ON_CLICK_S.
 FIGURE_SCENARIO: dict[str, dict] = {
     # seeded with the current superkink V = 5.2 (panel (b)) for 50 periods; L = fpucore's
     # default chain for N = 500 (N + ⌈V t_end⌉ + 2·100 sites) and 2 sites of slack
     "stabSK": {"kind": "seeded", "L": 752, "t_end": _T50_SK, "guard": "convex", "probes": (),
-               "run_s": 0.3},
+               "run_s": 0.4},
     # Riemann data w^l = 4.6, w^r = 0, L = 3600 to t = 300, tracked sites 100, 200, 3000
     "Riemann1": {"kind": "riemann", "w_left": 4.6, "w_right": 0.0, "L": 3600, "t_end": 300.0,
-                 "guard": "convex", "probes": (100, 200, 3000), "run_s": 2.6},
+                 "guard": "convex", "probes": (100, 200, 3000), "run_s": 2.7},
     # seeded with the tensile wave V = 5.2174919476 at w₊ = 6 (panel (b)) for 50 periods
     "stabSW": {"kind": "seeded", "L": 752, "t_end": _T50_SW, "guard": "convex", "probes": (),
-               "run_s": 2.9},
+               "run_s": 2.2},
     # Gaussian data (a): w_B = 1, A = 6, L = 2400, t = 200 (leaves (α, β): guard "bounded")
     "SWdyn": {"kind": "gaussian", "w_B": 1.0, "A": 6.0, "L": 2400, "t_end": 200.0,
-              "guard": "bounded", "probes": (), "run_s": 0.8},
+              "guard": "bounded", "probes": (), "run_s": 0.5},
 }  # fmt: skip
 
 #: what of a figure the view does not show at once (another panel's parameters), in one line

@@ -400,9 +400,10 @@ class Scene(pn.viewable.Viewer):
         """A paper figure set this scene's initial data: shown now, and run if it asks."""
         if not event.new:
             return
-        self.show_scenario(**event.new)
-        if self.state.tab == self.key:
-            self.request()
+        if self.state.tab != self.key:
+            self.show_scenario(**event.new)  # run (if asked) when the tab is opened
+            return
+        self.request(prepare=lambda: self.show_scenario(**event.new))
 
     def __panel__(self):
         return self.panel
@@ -511,10 +512,17 @@ class Scene(pn.viewable.Viewer):
         self.progress_text.object = f"{stage} …"
 
     # ------------------------------------------------------------------ refresh machinery
-    def request(self) -> None:
-        """Render in the scene's worker thread (latest request wins; never blocks the caller)."""
+    def request(self, prepare=None) -> None:
+        """Render in the scene's worker thread (latest request wins; never blocks the caller).
+        ``prepare()`` runs under the same lock, after the request is marked: a render still
+        looping (earlier requests) that reads what ``prepare`` set is already superseded, and
+        submits no job (run_job) — a paper figure's run was submitted by the render in flight,
+        cancelled by this very request (its worker killed) and resubmitted to a cold worker:
+        10 s instead of 2 s."""
         with self._lock:
             self._pending = True
+            if prepare is not None:
+                prepare()
             if self._running:
                 return
             self._running = True
