@@ -103,7 +103,7 @@ def test_paper_tab_opens_three_figures(page):
                 v, e = min(tracked, key=lambda t, p=printed: abs(t[0] - p))
                 assert abs(v - printed) <= e + 5e-5, (printed, tracked, text)
             for k in range(3):  # panels (c)-(e): the tracked site and the wave at its V, w_B
-                wait_source(page, f"sim-probe-{k}", lambda s: len(s["x"]) > 100)
+                wait_source(page, f"sim-probe-{k}", lambda s: len(s["x"]) > 50)
                 wait_source(page, f"sim-probe-wave-{k}", lambda s: len(s["x"]) > 10)
             page.screenshot(path="/tmp/fpu-paper-Riemann1.png", full_page=True)
         else:
