@@ -184,15 +184,34 @@ def test_a_simulation_figure_fills_the_simulation_scene(label, kind, widgets, pr
     assert later.kind.value == kind and later._want_run and not getattr(later, "requested", 0)
 
 
-def test_the_riemann_figure_runs_and_gives_the_papers_velocities():
-    """Riemann1 in one click: the run's tracked waves carry the caption's velocities −5.7209,
-    −5.6159, 4.6404 within their error bars plus the printed rounding."""
-    st = ExplorerState()
-    sc = SimulationScene(st)
-    st.show_figure("Riemann1")
+def test_the_riemann_figure_runs_once_and_gives_the_papers_velocities():
+    """Riemann1 in one click (the explorer's own sequence of state updates): the run is
+    submitted once — no render in flight takes it and is then superseded (its job cancelled,
+    its worker killed, the run resubmitted to a cold worker: 10 s instead of 2 s) — and its
+    tracked waves carry the caption's velocities −5.7209, −5.6159, 4.6404 within their error
+    bars plus the printed rounding."""
+    from app import compute
+
+    ex = Explorer(lazy=True)
+    cancelled = compute.CANCELLED[0]
+    ex.scene("paper").open("Riemann1")
+    sc = ex.scene("simulation")
     assert sc.wait_idle(300.0) and sc.last_message is None, sc.last_message
+    assert compute.CANCELLED[0] == cancelled
     _, _, sim = sc._sim
     for printed in (-5.7209, -5.6159, 4.6404):
         best = min(sim.waves, key=lambda w: abs(w.velocity - printed))
         assert abs(best.velocity - printed) <= best.velocity_error + 5e-5, (printed, best)
     assert [fig.visible for fig in sc.fig_probe] == [True, True, True]  # panels (c)-(e)
+
+
+def test_a_superseded_caller_submits_no_job():
+    from app import compute
+
+    cancelled, n = compute.CANCELLED[0], compute.jobs_in_flight()
+    with pytest.raises(compute.Superseded):
+        compute.simulation(
+            "riemann", compute.law(-1.0, 10.0), {"w_left": 4.6, "w_right": 0.0, "L": 400,
+            "t_end": 1.0 + 1e-9}, stop=lambda: True,
+        )  # fmt: skip
+    assert compute.CANCELLED[0] == cancelled and compute.jobs_in_flight() == n
