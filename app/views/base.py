@@ -38,7 +38,7 @@ from fpucore.result import jsonable
 
 from .. import compute
 from ..compute import Computed
-from ..state import URL_ATTRS, URL_PARAMS, ExplorerState
+from ..state import URL_PARAMS, ExplorerState, url_query
 from . import export
 
 log = logging.getLogger("fpu-explorer")
@@ -391,6 +391,19 @@ class Scene(pn.viewable.Viewer):
         self._cancel = False
         self._stamp = state_stamp(state)
         self._extra_watch()
+        if hasattr(self, "show_scenario"):  # a paper figure's initial data (state.scenario)
+            if state.scenario:
+                self.show_scenario(**state.scenario)  # run (if asked) at the first render
+            state.param.watch(self._on_scenario, "scenario")
+
+    def _on_scenario(self, event) -> None:
+        """A paper figure set this scene's initial data: shown now, and run if it asks."""
+        if not event.new:
+            return
+        if self.state.tab != self.key:
+            self.show_scenario(**event.new)  # run (if asked) when the tab is opened
+            return
+        self.request(prepare=lambda: self.show_scenario(**event.new))
 
     def __panel__(self):
         return self.panel
@@ -499,10 +512,17 @@ class Scene(pn.viewable.Viewer):
         self.progress_text.object = f"{stage} …"
 
     # ------------------------------------------------------------------ refresh machinery
-    def request(self) -> None:
-        """Render in the scene's worker thread (latest request wins; never blocks the caller)."""
+    def request(self, prepare=None) -> None:
+        """Render in the scene's worker thread (latest request wins; never blocks the caller).
+        ``prepare()`` runs under the same lock, after the request is marked: a render still
+        looping (earlier requests) that reads what ``prepare`` set is already superseded, and
+        submits no job (run_job) — a paper figure's run was submitted by the render in flight,
+        cancelled by this very request (its worker killed) and resubmitted to a cold worker:
+        10 s instead of 2 s."""
         with self._lock:
             self._pending = True
+            if prepare is not None:
+                prepare()
             if self._running:
                 return
             self._running = True
@@ -710,12 +730,8 @@ class Scene(pn.viewable.Viewer):
 
     def url_query(self) -> str:
         """The state as the URL's query string (what a link to this view carries)."""
-        parts = []
-        for name in URL_PARAMS:
-            v = self.key if name == "tab" else getattr(self.state, URL_ATTRS.get(name, name))
-            if v != "" and v is not None:
-                parts.append(f"{name}={v!r}" if isinstance(v, float) else f"{name}={v}")
-        return "&".join(parts)
+        q = url_query(self.state) | {"tab": self.key}
+        return "&".join(f"{name}={q[name]}" for name in URL_PARAMS if name in q)
 
     def export_figure(self, fmt: str) -> bytes:
         """The scene's figures as drawn (the models of the last render), SVG or PNG bytes."""
