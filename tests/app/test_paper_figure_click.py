@@ -198,7 +198,7 @@ def test_the_riemann_figure_runs_once_and_gives_the_papers_velocities():
     sc = ex.scene("simulation")
     assert sc.wait_idle(300.0) and sc.last_message is None, sc.last_message
     assert compute.CANCELLED[0] == cancelled
-    _, _, sim = sc._sim
+    sim = sc._sim[-1]
     for printed in (-5.7209, -5.6159, 4.6404):
         best = min(sim.waves, key=lambda w: abs(w.velocity - printed))
         assert abs(best.velocity - printed) <= best.velocity_error + 5e-5, (printed, best)
@@ -210,8 +210,6 @@ def test_a_superseded_caller_submits_no_job():
 
     cancelled, n = compute.CANCELLED[0], compute.jobs_in_flight()
     with pytest.raises(compute.Superseded):
-        compute.simulation(
-            "riemann", compute.law(-1.0, 10.0), {"w_left": 4.6, "w_right": 0.0, "L": 400,
-            "t_end": 1.0 + 1e-9}, stop=lambda: True,
-        )  # fmt: skip
+        req = compute.RiemannRequest(L=400, t_end=1.0 + 1e-9, w_left=4.6, w_right=0.0)
+        compute.simulation(compute.law(-1.0, 10.0), req, stop=lambda: True)
     assert compute.CANCELLED[0] == cancelled and compute.jobs_in_flight() == n
