@@ -12,6 +12,7 @@ from app import compute  # noqa: E402
 from app.explorer import from_url  # noqa: E402
 from app.resources import serve_locally  # noqa: E402
 from app.server_guards import (  # noqa: E402
+    schedule_callbacks_in_order,
     serve_document_locally,
     tolerate_detached_sessions,
     tolerate_long_url_values,
@@ -21,6 +22,7 @@ serve_locally()
 serve_document_locally(pn.state.curdoc)
 tolerate_long_url_values()
 tolerate_detached_sessions()
+schedule_callbacks_in_order()
 
 pn.extension(loading_indicator=True, notifications=False, throttled=True)
 

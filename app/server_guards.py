@@ -5,7 +5,10 @@
 * :func:`serve_document_locally`: every stylesheet of a session's document resolves to this
   server from the start of its build, never to cdn.holoviz.org;
 * :func:`tolerate_detached_sessions`: a websocket closing after its session was discarded is
-  no traceback.
+  no traceback;
+* :func:`schedule_callbacks_in_order`: a next-tick callback reaches the event loop when it is
+  added, in the order added, also while the document is on hold (model updates from worker
+  threads are applied in the order the threads queued them; none is lost).
 """
 
 from __future__ import annotations
@@ -14,6 +17,8 @@ import logging
 import urllib.parse
 
 import panel.io.location as pn_location
+from bokeh.document.callbacks import DocumentCallbackManager, invoke_with_curdoc
+from bokeh.document.events import SessionCallbackAdded, SessionCallbackRemoved
 from bokeh.server.views.ws import WSHandler
 from panel.io.resources import LOCAL_DIST
 
@@ -69,3 +74,44 @@ def tolerate_detached_sessions() -> None:
     session was detached; 17-22 such tracebacks were logged per ten-session run as browsers
     closed.  The patched handler returns early in exactly that case (see :func:`_on_close`)."""
     WSHandler.on_close = _on_close
+
+
+_bokeh_trigger_on_change = DocumentCallbackManager.trigger_on_change
+
+
+def _trigger_on_change(self, event) -> None:
+    if not isinstance(event, SessionCallbackAdded | SessionCallbackRemoved):
+        _bokeh_trigger_on_change(self, event)
+        return
+    # never held: the session schedules (or drops) the callback on its loop now
+    doc = self._document()
+    if doc is None:
+        return
+
+    def dispatch() -> None:
+        for cb in self.change_callbacks():
+            cb(event)
+
+    invoke_with_curdoc(doc, dispatch)
+
+
+def schedule_callbacks_in_order() -> None:
+    """Bokeh tells the server session about a new next-tick callback with a document event, and
+    while the document is on hold it keeps that event with the held model changes until the
+    hold ends: the callback is not on the event loop yet.  Panel holds a served document on
+    the loop (around each of its model updates) and from its handler threads (around each
+    batch of browser events, released by a next-tick callback; it lifts the hold for a moment
+    to queue that release).  The scenes' worker threads queue their plot updates and Panel
+    their status texts with next-tick callbacks at any time, so
+
+    * a callback queued while the hold was lifted ran before one queued earlier and held: the
+      state walk's diagram showed the previous step's current point (its data applied last)
+      under the status text of the new step, and stayed so;
+    * a worker thread appending its event while the loop took the held events away (Bokeh's
+      ``unhold``, Panel's ``unlocked``: copy, then replace the list) lost it: the callback
+      never ran.
+
+    Here the session hears of a callback (added or removed) at once, hold or not, so callbacks
+    run in the order they were queued, whichever thread queued them; model changes are still
+    held as before."""
+    DocumentCallbackManager.trigger_on_change = _trigger_on_change
