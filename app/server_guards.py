@@ -79,7 +79,7 @@ def tolerate_detached_sessions() -> None:
 _bokeh_trigger_on_change = DocumentCallbackManager.trigger_on_change
 
 
-def _trigger_on_change(self, event) -> None:
+def trigger_on_change_in_order(self, event) -> None:
     if not isinstance(event, SessionCallbackAdded | SessionCallbackRemoved):
         _bokeh_trigger_on_change(self, event)
         return
@@ -114,4 +114,4 @@ def schedule_callbacks_in_order() -> None:
     Here the session hears of a callback (added or removed) at once, hold or not, so callbacks
     run in the order they were queued, whichever thread queued them; model changes are still
     held as before."""
-    DocumentCallbackManager.trigger_on_change = _trigger_on_change
+    DocumentCallbackManager.trigger_on_change = trigger_on_change_in_order

@@ -37,7 +37,7 @@ class Session:
 @pytest.fixture
 def guarded(monkeypatch):
     monkeypatch.setattr(
-        DocumentCallbackManager, "trigger_on_change", server_guards._trigger_on_change
+        DocumentCallbackManager, "trigger_on_change", server_guards.trigger_on_change_in_order
     )
 
 
