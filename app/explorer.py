@@ -17,7 +17,7 @@
   ``w + 10*w**2 - w**3 - 0.01*w**4``) with one slider per coefficient; a coefficient slider
   rewrites the expression (exact reprs), so the text, the URL and "copy as Python" follow it.
 * (a, b, law, w_plus, V, mode, tab, N, tol) live in the URL query string.  A URL is validated like
-  any input (:func:`app.state.parse_url`): an invalid value is named with its valid range in
+  any input (:func:`app.url_state.parse_url`): an invalid value is named with its valid range in
   the sidebar, every other value is kept, and the address bar is rewritten to what is shown.
 * Slider and exact box always show the state's value: a value outside a slider's theoretical
   range (typed, or from a URL) widens the slider to include it, and the sidebar says why the
@@ -50,9 +50,8 @@ from .state import (
     TOL_OPTIONS,
     URL_PARAMS,
     ExplorerState,
-    state_from_url,
-    url_query,
 )
+from .url_state import state_from_url, url_query
 from .views import SCENES
 from .views.base import LITERAL_MD, md_literal
 

@@ -7,7 +7,7 @@ Quantities: max |μ| − 1 (log scale of the excess; needs Floquet), amplitude, 
 without a wave (outside the existence region, or not converged) are blank; the counts by status
 and the largest error bars are shown next to the plot.  A click on a cell sets (w₊, V) to that
 cell's point and the atlas's N (``ExplorerState.pick``), marks the cell, and the Profiles /
-Floquet tabs then show that wave.  A store is read only below ``app.state.atlas_root()``; its
+Floquet tabs then show that wave.  A store is read only below ``app.url_state.atlas_root()``; its
 path is part of the state, so the URL carries it.
 """
 
@@ -25,7 +25,8 @@ from fpucore.errors import ParameterError
 
 from .. import compute
 from ..compute import Computed
-from ..state import N_RANGE, resolve_atlas_store
+from ..state import N_RANGE
+from ..url_state import resolve_atlas_store
 from .base import Info, SceneMessage, as_csv, md_literal, python_preamble
 from .bokeh_scene import BokehScene, Updates, new_figure
 

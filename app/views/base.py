@@ -38,7 +38,8 @@ from fpucore.result import jsonable
 
 from .. import compute
 from ..compute import Computed
-from ..state import URL_PARAMS, ExplorerState, url_query
+from ..state import URL_PARAMS, ExplorerState
+from ..url_state import url_query
 from . import export
 
 log = logging.getLogger("fpu-explorer")

@@ -28,13 +28,8 @@ from bokeh.document import Document  # noqa: E402
 
 from app import compute  # noqa: E402
 from app.explorer import Explorer  # noqa: E402
-from app.state import (  # noqa: E402
-    MAX_URL_LAW,
-    STATE_PARAMS,
-    ExplorerState,
-    parse_url,
-    url_query,
-)
+from app.state import MAX_URL_LAW, STATE_PARAMS, ExplorerState
+from app.url_state import parse_url, url_query
 from app.views import SCENES  # noqa: E402
 from app.views.base import md_literal, state_stamp  # noqa: E402
 from fpucore.law import (  # noqa: E402

@@ -16,7 +16,8 @@ import pytest
 pytest.importorskip("panel")
 
 from app import compute  # noqa: E402
-from app.state import ExplorerState, parse_url  # noqa: E402
+from app.state import ExplorerState  # noqa: E402
+from app.url_state import parse_url  # noqa: E402
 
 C2 = 1.0 + 100.0 / 3.0  # c_max² = 1 + b²/(3|a|)
 W_STAR = 10.0 / 3.0

@@ -18,7 +18,8 @@ pytest.importorskip("panel")
 from scene_checks import assert_cancel_answers_within  # noqa: E402 - tests/support
 
 from app import compute  # noqa: E402
-from app.state import ExplorerState, parse_url, url_query  # noqa: E402
+from app.state import ExplorerState  # noqa: E402
+from app.url_state import parse_url, url_query  # noqa: E402
 from app.views.atlas import AtlasScene  # noqa: E402
 from fpucore import atlas  # noqa: E402
 from fpucore.law import CubicLaw  # noqa: E402

@@ -11,13 +11,8 @@ import pytest
 
 pytest.importorskip("panel")
 
-from app.state import (  # noqa: E402
-    MAX_HELD,
-    ExplorerState,
-    HeldWave,
-    state_from_url,
-    url_query,
-)
+from app.state import MAX_HELD, ExplorerState, HeldWave
+from app.url_state import state_from_url, url_query
 from app.views.phase_plane import PhasePlaneScene  # noqa: E402
 from app.views.profiles import ProfilesScene  # noqa: E402
 from fpucore import qc  # noqa: E402

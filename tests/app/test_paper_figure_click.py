@@ -14,7 +14,8 @@ pytest.importorskip("panel")
 
 from app.explorer import Explorer  # noqa: E402
 from app.paper_figures import FIGURE_SCENARIO  # noqa: E402
-from app.state import ExplorerState, state_from_url, url_query  # noqa: E402
+from app.state import ExplorerState  # noqa: E402
+from app.url_state import state_from_url, url_query  # noqa: E402
 from app.views.simulation import SimulationScene  # noqa: E402
 from fpucore import paper  # noqa: E402
 

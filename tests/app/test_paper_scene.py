@@ -12,11 +12,8 @@ pytest.importorskip("panel")
 import panel as pn  # noqa: E402
 
 from app.explorer import Explorer  # noqa: E402
-from app.state import (  # noqa: E402
-    TABS,
-    ExplorerState,  # noqa: E402
-    url_query,
-)
+from app.state import TABS, ExplorerState
+from app.url_state import url_query
 from app.views.base import fmt_num, md_literal  # noqa: E402
 from app.views.paper import (  # noqa: E402
     FIGURE_STATE,

@@ -27,7 +27,8 @@ from bokeh.models import GlyphRenderer, Image, Legend  # noqa: E402
 
 from app import compute  # noqa: E402
 from app.explorer import Explorer  # noqa: E402
-from app.state import N_RANGE, ExplorerState, parse_url  # noqa: E402
+from app.state import N_RANGE, ExplorerState  # noqa: E402
+from app.url_state import parse_url  # noqa: E402
 from app.views import SCENES  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]

@@ -8,7 +8,8 @@ import pytest
 pytest.importorskip("panel")
 
 from app.explorer import Explorer  # noqa: E402
-from app.state import N_RANGE, ExplorerState, parse_url, url_query  # noqa: E402
+from app.state import N_RANGE, ExplorerState  # noqa: E402
+from app.url_state import parse_url, url_query  # noqa: E402
 
 
 def test_typed_N_sets_the_state_the_slider_and_the_url():

@@ -12,7 +12,7 @@ import pytest
 
 pytest.importorskip("panel")
 
-from app.state import state_from_url  # noqa: E402
+from app.url_state import state_from_url  # noqa: E402
 from fpucore import CubicLaw, qc  # noqa: E402
 
 LAW = CubicLaw(-1.0, 10.0)
