@@ -54,7 +54,7 @@ from .state import (
     url_query,
 )
 from .views import SCENES
-from .views.base import LITERAL_MD, md_literal
+from .views.untrusted import LITERAL_MD, md_literal
 
 log = logging.getLogger("fpu-explorer")
 

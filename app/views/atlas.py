@@ -24,8 +24,11 @@ from fpucore.errors import ParameterError
 
 from ..compute import Computed
 from ..state import N_RANGE, resolve_atlas_store
-from .base import Info, SceneMessage, as_csv, md_literal, python_preamble
 from .bokeh_scene import BokehScene, Updates, new_figure
+from .formatting import as_csv
+from .python_code import python_preamble
+from .report import Info, SceneMessage
+from .untrusted import md_literal
 
 QUANTITIES = {
     "max |μ| − 1": "max_modulus",

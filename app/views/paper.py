@@ -15,7 +15,10 @@ import panel as pn
 
 from fpucore.paper import FIGURES, report
 
-from .base import Info, Scene, fmt_num, md_literal
+from .formatting import fmt_num
+from .report import Info
+from .scene import Scene
+from .untrusted import md_literal
 
 #: w₊ ahead of the superkink V = 5.2 (the paper's example, Figs. Floquet_example, stabSK (b)):
 #: qc.superkink_from_V(CubicLaw(-1, 10), 5.2).w_plus — the state sets V = V_SK(w₊) from it

@@ -14,16 +14,6 @@ import panel as pn
 from .. import compute
 from ..compute import exact
 from ..state import N_RANGE
-from .base import (
-    Info,
-    SceneMessage,
-    as_csv,
-    fmt_num,
-    law_source,
-    md_literal,
-    provenance,
-    python_preamble,
-)
 from .bokeh_scene import (
     BokehScene,
     Updates,
@@ -33,7 +23,11 @@ from .bokeh_scene import (
     finite_extent,
     new_figure,
 )
+from .formatting import as_csv, fmt_num, provenance
 from .held import Held, HeldCurves
+from .python_code import law_source, python_preamble
+from .report import Info, SceneMessage
+from .untrusted import md_literal
 
 
 def n_advice(need: int, N: int) -> str:

@@ -36,7 +36,8 @@ from app.state import (  # noqa: E402
     url_query,
 )
 from app.views import SCENES  # noqa: E402
-from app.views.base import md_literal, state_stamp  # noqa: E402
+from app.views.formatting import state_stamp  # noqa: E402
+from app.views.untrusted import md_literal  # noqa: E402
 from fpucore.law import (  # noqa: E402
     CubicLaw,
     PolynomialLaw,
