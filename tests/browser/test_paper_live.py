@@ -1,0 +1,177 @@
+"""The paper, live: the Paper tab, held curves, the scene export, branch view, tracked sites."""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+import pytest
+from browser_harness import (
+    FAST,
+    app_tracebacks,
+    inputs_reach_the_server,
+    open_tab,
+    query,
+    run_riemann,
+    settled,
+    source,
+    stamp,
+    status_text,
+    wait_rendered,
+    wait_url,
+)
+
+pytestmark = pytest.mark.browser
+
+
+def test_paper_tab_opens_three_figures(page):
+    """The Paper tab: a click on a figure sets the state (law, mode, w₊, V, N, tab), the URL
+    carries it and the scene that shows the figure renders exactly that state."""
+    page.goto(f"{page.server}/main?a=-2&b=12&w_plus=0.5&V=4&{FAST}&mode=solitary&tab=paper")
+    cases = [
+        # label, tab, mode, V (the paper's parameters), what the scene must show
+        ("pplane", "phase", "solitary", 2 * 65**0.5 / 3 - 0.001, "Time:"),
+        ("superkink", "force", "superkink", 2 * 65**0.5 / 3, "Time:"),
+        ("stabSW", "simulation", "solitary", 5.2174919476, "Run simulation"),
+    ]
+    # each figure's comparison row is filled (from fpu paper's cache, or the command to run)
+    page.locator(".paper-cmp-pplane").get_by_text("fpu paper", exact=False).or_(
+        page.locator(".paper-cmp-pplane").get_by_text("agree", exact=False)
+    ).first.wait_for()
+    page.screenshot(path="/tmp/fpu-paper-tab.png", full_page=False)
+    for label, tab, mode, V, shows in cases:
+        if query(page).get("tab") != "paper":
+            open_tab(page, "Paper")
+            wait_url(page, lambda q: q.get("tab") == "paper")
+        page.locator(f".paper-open-{label} button").click()
+        # the state changes in steps (tab, then law and mode, then w₊, N, V): wait for the last
+        q = wait_url(
+            page,
+            lambda q, t=tab, m=mode, v=V: (
+                q.get("tab") == t
+                and q.get("mode") == m
+                and q.get("a") == "-1.0"
+                and abs(float(q.get("V", "nan")) - v) < 1e-9
+            ),
+        )
+        assert q.get("tab") == tab and q.get("mode") == mode, (label, q)
+        assert (float(q["a"]), float(q["b"]), int(q["N"])) == (-1.0, 10.0, 500), q
+        assert abs(float(q["V"]) - V) < 1e-9, (label, q["V"])
+        if shows == "Time:":
+            text, msg, q = settled(page)
+            assert stamp(q) in text and not msg, (label, text, msg)
+        else:
+            page.locator(f".scene-{tab} .scene-message").get_by_text(shows).wait_for()
+        assert not app_tracebacks()
+
+
+def test_hold_curves_and_export_the_scene(page):
+    """Wave profiles: "Hold curve" keeps the profile at V = 5 while the V slider moves on; the
+    held curve is drawn (the browser's copy of its source), the downloads hold the scene as
+    drawn (an SVG with the held curve's path, a PNG, a notebook with the held call), and "Clear
+    held" removes it."""
+    page.goto(f"{page.server}/main?tab=profiles&{FAST}&V=5.0&mode=solitary")
+    wait_rendered(page, "profiles", 180.0)
+    before = status_text(page, "profiles")
+    page.locator(".profiles-hold button").click()
+    page.wait_for_function(
+        "() => { for (const d of Bokeh.documents) for (const m of d.all_models)"
+        " if (m.name === 'profile-held-0' && m.data && m.data.x.length > 0) return true;"
+        " return false; }"
+    )
+    held = source(page, "profile-held-0")
+    handle = page.locator(".w-V .noUi-handle").first
+    handle.focus()
+    page.keyboard.press("ArrowLeft")
+    q = wait_url(page, lambda q: q.get("V") != "5.0")
+    t_end = time.monotonic() + 120
+    while stamp(q) not in (after := status_text(page, "profiles")) or "Time:" not in after:
+        assert time.monotonic() < t_end, after
+        page.wait_for_timeout(100)
+    assert "V = 5," not in after and after != before  # the current wave moved on ...
+    assert source(page, "profile-held-0") == held  # ... the held one stayed
+    assert len(held["x"]) == 1601
+    page.screenshot(path="/tmp/fpu-profiles-held.png", full_page=True)
+    with page.expect_download() as dl:
+        page.locator(".scene-profiles .scene-export-svg button").click()
+    assert dl.value.suggested_filename == "profiles.svg"
+    svg = Path(dl.value.path()).read_text()
+    assert svg.lstrip().startswith("<?xml") and 'id="profile-held-0"' in svg
+    with page.expect_download() as dl:
+        page.locator(".scene-profiles .scene-export-png button").click()
+    assert Path(dl.value.path()).read_bytes()[:4] == b"\x89PNG"
+    with page.expect_download() as dl:
+        page.locator(".scene-profiles .scene-export-notebook button").click()
+    assert dl.value.suggested_filename == "profiles.ipynb"
+    nb = Path(dl.value.path()).read_text()
+    assert "held.append((qc.solitary(law, 1.0, 5.0)" in nb and '"nbformat": 4' in nb
+    page.locator(".profiles-clear-held button").click()
+    page.wait_for_function(
+        "() => { for (const d of Bokeh.documents) for (const m of d.all_models)"
+        " if (m.name === 'profile-held-0' && m.data) return m.data.x.length === 0;"
+        " return false; }"
+    )
+    assert not app_tracebacks()
+
+
+JS_DATA_TO_PAGE = """([title, x, y]) => {
+  let out = null;
+  const walk = (v) => {
+    const m = v.model;
+    if (out === null && m.title && m.title.text && m.title.text.startsWith(title) && v.frame) {
+      const r = v.canvas_view.el.getBoundingClientRect();
+      out = [r.left + v.frame.x_scale.compute(x), r.top + v.frame.y_scale.compute(y)];
+    }
+    for (const c of v.children()) walk(c);
+  };
+  for (const v of Bokeh.index) walk(v);
+  return out;
+}"""
+
+
+def test_branch_view_click_opens_the_wave(page):
+    """Diagrams (b): "Classify stability" draws the family's waves coloured by their Floquet
+    class; a click on one makes it the current wave (the URL's V)."""
+    page.goto(f"{page.server}/main?tab=diagram&N=96&tol=1e-08&V=5.0&mode=solitary&w_plus=1.0")
+    wait_rendered(page, "diagram", 180.0)
+    field = page.locator(".scene-diagram .bk-input-group", has_text="discrete points").locator(
+        "input"
+    )
+    field.fill("2")
+    field.press("Enter")
+    inputs_reach_the_server(page)
+    page.locator(".diagram-classify button").click()
+    page.locator(".scene-diagram .scene-status").get_by_text("branch view").wait_for(
+        timeout=400_000
+    )
+    points = {}
+    for c in ("stable", "finite_size", "unstable", "undetermined"):
+        s = source(page, f"diagram-branch-{c}")
+        points |= {x: y for x, y in zip(s["x"], s["y"])}
+    assert len(points) == 4, points
+    V, E = sorted(points.items())[0]
+    page.screenshot(path="/tmp/fpu-diagram-branch.png", full_page=True)
+    # click the point: data → screen through the figure's frame (BokehJS's own mapping)
+    box = page.evaluate(JS_DATA_TO_PAGE, ["(b) renormalized", V, E])
+    assert box is not None
+    page.mouse.click(box[0], box[1])
+    q = wait_url(page, lambda q: abs(float(q.get("V", "nan")) - V) < 1e-9)
+    assert float(q["V"]) == pytest.approx(V, abs=1e-9)
+    assert not app_tracebacks()
+
+
+def test_tracked_sites_on_the_simulation_scene(page):
+    """Simulation, Riemann data with a tracked site (Fig. Riemann1 (c)): panel (c) shows the
+    site's history and the wave computed at the measured V and w_B."""
+    page.goto(f"{page.server}/main?tab=simulation&N=300&tol=1e-08")
+    page.locator(".scene-simulation .scene-message").get_by_text("Run simulation").wait_for()
+    field = page.locator(".scene-simulation .bk-input-group", has_text="tracked sites")
+    field.locator("input").fill("280")
+    field.locator("input").press("Enter")
+    text = run_riemann(page, t_end="20", L="400")
+    assert "wave at V = 4.6" in text, text
+    site, tw = source(page, "sim-probe-0"), source(page, "sim-probe-wave-0")
+    assert len(site["x"]) > 100 and len(tw["x"]) > 10
+    assert abs(max(site["y"]) - max(tw["y"])) < 0.1  # the crests meet (4.5 high)
+    page.screenshot(path="/tmp/fpu-simulation-tracked.png", full_page=True)
+    assert not app_tracebacks()

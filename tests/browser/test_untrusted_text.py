@@ -1,0 +1,176 @@
+"""Untrusted text (URL values, the law box): shown literally, never run, never turned into links."""
+
+from __future__ import annotations
+
+import time
+import urllib.parse
+import urllib.request
+
+import pytest
+from browser_harness import FAST, app_tracebacks, open_tab, settled, url_message, wait_url
+
+from app.state import URL_PARAMS
+
+pytestmark = pytest.mark.browser
+
+
+# ----------------------------------------------------------------------------- user text
+#: OWASP-style payloads (each ≤ 40 characters, so a URL message repeats it whole)
+PAYLOADS = [
+    "<script>alert(1)</script>",
+    "<img src=x onerror=alert(7)>",
+    '"><svg onload=alert(1)>',
+    "<iframe src=javascript:alert(1)>",
+    "<details open ontoggle=alert(1)>",
+    "javascript:alert(1)",
+    "[x](javascript:alert(1))",
+    "';alert(1)//",
+    "__import__('os')",
+    "**b** _i_ `c` $x$ &amp; # h",
+    "<svg onload=alert(1)>",
+    "<iframe srcdoc=<svg/onload=alert(1)>>",
+    "<javascript:alert(1)>",
+    "&lt;img src=x onerror=alert(1)&gt;",
+    "&#60;svg onload=alert(1)&#62;",
+    "</textarea><script>alert(1)</script>",
+    '" onmouseover="alert(1)',
+    "' autofocus onfocus='alert(1)",
+    "`${alert(1)}`{{7*7}}",
+    "\u200b<img src=x onerror=alert(1)>",
+    "\u202e<svg onload=alert(1)>",
+    # percent-encoded text (on the wire: double-encoded), decoded once by the server only
+    "%3Cscript%3Ealert(1)%3C%2Fscript%3E",
+    "%253Csvg%2520onload%253Dalert(1)%253E",
+    # Markdown's linkify made links of these
+    "http://evil.example //evil.example",
+]
+#: a 5000-character value (a URL message repeats its first 12 characters; a text box takes
+#: at most 5000, Panel's TextInput.max_length)
+LONG_PAYLOAD = ("<img src=x onerror=alert(1)>" * 179)[:5000]
+# every URL parameter but the atlas store, whose value is a path (any text below the server's
+# directory is a valid one): it gets its own loop below
+URL_NAMES = ("a", "b", "law", "w_plus", "V", "mode", "tab", "N", "tol")
+
+#: every element of the page, through Bokeh's shadow roots: injected markup (an element whose
+#: attribute is an event handler, a javascript: URL or a payload's link, or a script that
+#: calls alert)
+JS_INJECTED = """() => { const bad = []; const walk = (root) => {
+  for (const el of root.querySelectorAll('*')) {
+    for (const at of el.attributes) {
+      const v = (at.value || '').toLowerCase();
+      if (at.name.startsWith('on') || v.includes('javascript:') || v.includes('alert(') ||
+          v.includes('evil.example'))
+        bad.push(el.tagName + ' ' + at.name + '=' + at.value);
+    }
+    if (el.tagName === 'SCRIPT' && (el.textContent || '').includes('alert(')) bad.push('SCRIPT');
+    if (el.shadowRoot) walk(el.shadowRoot);
+  } }; walk(document); return bad; }"""
+
+
+def injected(page) -> list[str]:
+    return page.evaluate(JS_INJECTED)
+
+
+def test_the_payload_list_covers_every_url_parameter():
+    assert set(URL_NAMES) | {"atlas"} == set(URL_PARAMS)
+
+
+def test_user_text_is_shown_literally_and_never_runs(page):
+    """Every URL parameter and every text input gets the payload list: no dialog fires, no
+    element with an event handler / javascript: URL appears in the DOM, and the messages repeat
+    each value exactly as typed (the old Markdown rendering ran ``V`` and ``tab`` payloads as
+    script and showed ``__import__('os')`` as ``import('os')``)."""
+    dialogs: list[str] = []
+    page.on("dialog", lambda d: (dialogs.append(d.message), d.dismiss()))
+    for payload in PAYLOADS:
+        q = urllib.parse.urlencode({n: payload for n in URL_NAMES})
+        page.goto(f"{page.server}/main?{q}")
+        page.locator(".url-message").get_by_text("tab=").wait_for()
+        settled(page)
+        page.wait_for_timeout(300)  # an onerror fires once the image has failed to load
+        # the law's refusal may follow the page (a law the worker has not answered within
+        # URL_LAW_WAIT_S is named once it has): bounded wait for every name
+        t_end = time.monotonic() + 20
+        note = ""
+        while time.monotonic() < t_end:
+            note = " ".join(url_message(page).split())
+            if all(f"{name}=" in note for name in URL_NAMES):
+                break
+            page.wait_for_timeout(100)
+        for name in URL_NAMES:
+            assert f"{name}={payload!r}" in note, (name, payload, note)
+        assert not injected(page), (payload, injected(page))
+        assert not dialogs, (payload, dialogs)
+    # the law box: the typed text is repeated in the scene's parameters line and message
+    page.goto(f"{page.server}/main?{FAST}")
+    settled(page)
+    page.locator(".w-law-kind button", has_text="expression").click()
+    box = page.locator(".in-law input")
+    for payload in PAYLOADS:
+        box.fill(payload)
+        box.press("Enter")
+        wait_url(page, lambda q, p=payload: q.get("law") == p.strip())
+        text, msg, q = settled(page)
+        assert f"law={payload.strip()}" in " ".join(text.split()), (payload, text)
+        assert msg, (payload, text)  # no law: the scene says why
+        page.wait_for_timeout(300)
+        assert not injected(page), (payload, injected(page))
+        assert not dialogs, (payload, dialogs)
+    # the atlas store from the URL: the scene's message names the path, nothing runs
+    for payload in PAYLOADS:
+        q = urllib.parse.urlencode({"tab": "atlas", "atlas": payload, "N": "120"})
+        page.goto(f"{page.server}/main?{q}")
+        msg = page.locator(".scene-atlas .scene-message").get_by_text("no atlas store")
+        msg.wait_for(timeout=20_000)
+        page.wait_for_timeout(300)
+        if "/" not in payload:  # a path keeps its text (a slash may be normalised away)
+            assert payload in msg.inner_text(), (payload, msg.inner_text())
+        assert not injected(page), (payload, injected(page))
+        assert not dialogs, (payload, dialogs)
+    # the atlas store's path box: its message names the path as typed
+    page.goto(f"{page.server}/main?{FAST}")
+    settled(page)
+    open_tab(page, "Atlas")
+    store = page.locator(".scene-atlas .bk-input-group", has_text="atlas store").locator("input")
+    for payload in [p for p in PAYLOADS if "/" not in p]:
+        store.fill(payload)
+        store.press("Enter")
+        page.locator(".scene-atlas .scene-message").get_by_text(payload).wait_for(timeout=20_000)
+        page.wait_for_timeout(300)
+        assert not injected(page), (payload, injected(page))
+    store.fill(LONG_PAYLOAD)
+    store.press("Enter")
+    message = page.locator(".scene-atlas .scene-message")
+    message.get_by_text(f"atlas store={LONG_PAYLOAD[:12] + '…'!r}").wait_for(timeout=20_000)
+    assert not injected(page), injected(page)
+    assert not dialogs, dialogs
+    assert not app_tracebacks()
+
+
+def test_a_5000_character_value_is_cut_in_its_message_and_never_runs(page):
+    """LONG_PAYLOAD in each URL parameter alone and in the law box: the URL message names the
+    parameter with the value's first 12 characters, the law box's text is the law shown in the
+    parameters line, nothing runs and the server logs no traceback."""
+    dialogs: list[str] = []
+    page.on("dialog", lambda d: (dialogs.append(d.message), d.dismiss()))
+    for name in URL_PARAMS:
+        page.goto(f"{page.server}/main?" + urllib.parse.urlencode({name: LONG_PAYLOAD}))
+        page.locator(".url-message").get_by_text(f"{name}=").wait_for()
+        settled(page)
+        page.wait_for_timeout(300)
+        note = " ".join(url_message(page).split())
+        assert f"{name}={LONG_PAYLOAD[:12] + '…'!r}" in note, (name, note)
+        assert not injected(page), (name, injected(page))
+    page.goto(f"{page.server}/main?{FAST}")
+    settled(page)
+    page.locator(".w-law-kind button", has_text="expression").click()
+    box = page.locator(".in-law input")
+    box.fill(LONG_PAYLOAD)
+    box.press("Enter")
+    wait_url(page, lambda q: q.get("law") == LONG_PAYLOAD)
+    text, msg, q = settled(page)
+    assert f"law={LONG_PAYLOAD}" in text and msg, (text[:300], msg[:300])
+    page.wait_for_timeout(300)
+    assert not injected(page), injected(page)
+    assert not dialogs, dialogs
+    assert not app_tracebacks()
