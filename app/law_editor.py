@@ -9,9 +9,10 @@ per coefficient.
   the URL and "copy as Python" follow it.
 
 Kept apart from the page (:mod:`app.explorer`): the editor talks to the
-:class:`~app.state.ExplorerState` only through its parameters (reads a, b, expression; sets them
-with ``param.update``), and the page only calls :meth:`LawEditor.sync` and
-:meth:`LawEditor.apply`.
+:class:`~app.state.ExplorerState` only through its parameters (reads a, b, expression and the law
+they make; sets a, b, expression with ``param.update``), and the page only calls
+:meth:`LawEditor.sync` (state → widgets, with the rest of the sidebar) and :meth:`LawEditor.apply`,
+and watches :attr:`LawEditor.checking`.
 """
 
 from __future__ import annotations
@@ -92,9 +93,7 @@ class LawEditor(pn.viewable.Viewer):
             )
         self.law_kind.param.watch(self._on_law_kind, "value")
         self.law_text.param.watch(lambda e: self.apply(e.new), "value")
-
-    def __panel__(self):
-        return pn.Column(
+        self._layout = pn.Column(
             pn.pane.Markdown("**force law**", margin=(0, 10)),
             self.law_kind,
             self.a,
@@ -104,6 +103,9 @@ class LawEditor(pn.viewable.Viewer):
             sizing_mode="stretch_width",
             margin=0,
         )
+
+    def __panel__(self):
+        return self._layout
 
     # ------------------------------------------------------------------ user → state
     def _set(self, **kw) -> None:
