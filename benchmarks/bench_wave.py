@@ -130,8 +130,8 @@ def main(argv=None):
     for m in (4, 6, 8, 10, 12, 16, 24):
         err = pm.step_doubling_error(LAW, r.w, r.wdot, 1 / 5.2, m, r.w_left, r.w_right)
         sp = wave.superkink_spec(LAW, 5.2, "lower")
-        S = wave.build_system(LAW, sp, 500, m, r.K)
-        x0 = wave.qc_guess(sp, 500)
+        S = sp.system(500, m, r.K)
+        x0 = sp.qc_guess(500)
         from fpucore.wave.system import newton
 
         ts, o = timed(lambda S=S, x0=x0: newton(S, x0, 1e-11), 3)
@@ -204,7 +204,7 @@ def bounds_cost(reps: int = 7):
     ]
     ratios = []
     for name, sp, N in cases:
-        t_s, done = timed(lambda sp=sp, N=N: WaveSolve(LAW, sp, N, 1e-12, "exact", 40, 60).solve(),
+        t_s, done = timed(lambda sp=sp, N=N: WaveSolve(sp, N, 1e-12, "exact", 40, 60).solve(),
                           reps)  # fmt: skip
         sol = sp.kind != "superkink"
         t_b, _ = timed(

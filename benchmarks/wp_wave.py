@@ -52,9 +52,9 @@ def _fixed_m(kind, V, N, m, jacobian="exact", tol=1e-12):
     here m is the work–precision knob).  Returns (w, wdot, reached tol)."""
     sp = _spec(kind, V)
     scale = max(1.0, abs(sp.w_left), abs(sp.w_right))
-    x0 = wave.qc_guess(sp, N)
-    K = wave.choose_K(LAW, sp, x0, max(m, 8))
-    o = newton(wave.build_system(LAW, sp, N, m, K), x0, tol * scale, 40, jacobian, 120.0)
+    x0 = sp.qc_guess(N)
+    K = sp.choose_K(x0, max(m, 8))
+    o = newton(sp.system(N, m, K), x0, tol * scale, 40, jacobian, 120.0)
     return o.x[0::2], o.x[1::2], o.converged
 
 
@@ -151,8 +151,8 @@ def _n_panel(quick: bool) -> list[Row]:
 def _floors(N: int, route: str) -> list[Floor]:
     """One period integration (m = 12) and one banded LU of the exact Jacobian, same N."""
     sp = _spec("superkink", V_SK_CASE)
-    x = wave.qc_guess(sp, N)
-    S = wave.build_system(LAW, sp, N, 12, wave.choose_K(LAW, sp, x, 12))
+    x = sp.qc_guess(N)
+    S = sp.system(N, 12, sp.choose_K(x, 12))
     t_int = best_time(lambda: S.integrate(x), min_time=0.1)
     ab, kl, ku, *_ = S.jacobian_banded(x)
     t_lu = best_time(lambda: lapack.dgbtrf(ab, kl, ku), min_time=0.1)

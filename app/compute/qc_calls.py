@@ -76,17 +76,17 @@ def existence_diagram(lw, n: int = 400) -> Computed:
     return CACHE.get(("diagram", law_key(lw), n), lambda: diagram.existence_diagram(lw, n=n))
 
 
-def spec_of(lw, mode, w_plus, V):
-    """fpucore.wave's description (Spec) of the wave the parameters define."""
+def spec_of(lw, mode, w_plus, V) -> wave.Spec:
+    """fpucore.wave's description (Spec, with its law) of the wave the parameters define."""
     if mode == "superkink":  # the scene's w₊ fixes V and the branch
         sk = qc.superkink_from_w_plus(lw, w_plus)
-        return lw, wave.spec_of(lw, "superkink", sk.branch, sk.V)
-    return lw, wave.spec_of(lw, "solitary", w_plus, V)
+        return wave.spec_of(lw, "superkink", sk.branch, sk.V)
+    return wave.spec_of(lw, "solitary", w_plus, V)
 
 
 def n_needed(lw, mode, w_plus, V, tol: float) -> int:
     """The chain size fpucore would choose itself for this wave (``N=None``: tails resolved to
     0.1·tol·scale, eq. fixedBCs), at least the smallest N it accepts (tails cut at 1e-6 of the
     amplitude).  Closed-form QC tails only: cheap."""
-    lw, spec = spec_of(lw, mode, w_plus, V)
-    return int(max(wave.auto_N(lw, spec, tol), wave.smallest_N(lw, spec)))
+    spec = spec_of(lw, mode, w_plus, V)
+    return int(max(spec.auto_N(tol), spec.smallest_N()))

@@ -112,18 +112,17 @@ def add_floquet(rec: dict, fr) -> None:
         rec["status"], rec["message"] = "not_converged", f"spectrum: {fr.message}"[:MESSAGE_CHARS]
 
 
-def solve_point(law, kind: str, row, V: float, N: int, tol: float, prev):
-    """The wave at (row, V) — from prev = (wave, spec) by the QC-shift predictor when both lie
-    on the same velocity interval, else (or if that fails) from the QC guess.  Raises
-    ParameterError outside the existence region."""
-    sp = spec_of(law, kind, row, V)  # ParameterError here: no wave at (row, V)
+def solve_point(sp, N: int, tol: float, prev):
+    """The wave ``sp`` (a :class:`fpucore.wave.Spec`) describes — from prev = (wave, spec) by the
+    QC-shift predictor when both lie on the same velocity interval, else (or if that fails) from
+    the QC guess (:func:`fpucore.wave.continuation.solve_from_neighbour`)."""
 
     def solve(pred):
-        if kind == "superkink":
-            return solve_superkink(law, V, row, N, tol, predictor=pred)
-        return solve_solitary(law, row, V, N, tol, predictor=pred)
+        if sp.kind == "superkink":
+            return solve_superkink(sp.law, sp.V, sp.branch, N, tol, predictor=pred)
+        return solve_solitary(sp.law, sp.w_plus, sp.V, N, tol, predictor=pred)
 
-    return solve_from_neighbour(law, sp, prev, solve), sp
+    return solve_from_neighbour(sp, prev, solve)
 
 
 def solve_chunk(task: dict, progress=None) -> list[dict]:
@@ -139,7 +138,7 @@ def solve_chunk(task: dict, progress=None) -> list[dict]:
     for k, V in enumerate(Vs):
         t0 = time.perf_counter()
         try:
-            spec_of(law, kind, row, float(V))
+            sp = spec_of(law, kind, row, float(V))
         except ParameterError as exc:  # outside the existence region
             out.append(empty_record("no_wave", str(exc)) | {"elapsed_s": time.perf_counter() - t0})
             prev = None
@@ -147,7 +146,7 @@ def solve_chunk(task: dict, progress=None) -> list[dict]:
                 progress((k + 1) / len(Vs))
             continue
         try:
-            r, sp = solve_point(law, kind, row, float(V), N, tol, prev)
+            r = solve_point(sp, N, tol, prev)
             rec = wave_record(r)
             prev = (r, sp) if (r.converged and task.get("continuation", True)) else None
             if r.converged and task["floquet"]:

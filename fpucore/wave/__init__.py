@@ -3,7 +3,8 @@
 Flow of this subpackage:
 
     period_map (RK integration over one period, tangent columns)  →  system (Newton system,
-    banded Jacobian)  →  tails (N from the decay)  →  setup (spec, N, m, K)  →  plateau
+    banded Jacobian)  →  tails (N from the decay)  →  setup (Spec: the wave, its law and what
+    derives from them: tolerances, N, m, K, the system, the predictor)  →  plateau
     (flat tops near V_SK)  →  continuation  →  attempt (one solve: tolerances, routes,
     rescues)  →  bounds (error bounds, E_ren)  →  driver (solve_superkink / solve_solitary)
     →  family (families over V)
@@ -25,15 +26,7 @@ from fpucore.wave.setup import (
     M_STEPS,
     Spec,
     Tolerances,
-    auto_N,
-    build_system,
-    choose_K,
-    choose_m,
-    choose_N,
-    qc_guess,
-    required_N,
     resize,
-    smallest_N,
     solitary_spec,
     spec_of,
     strain_scale,
@@ -53,15 +46,7 @@ __all__ = [
     "M_STEPS",
     "Spec",
     "Tolerances",
-    "auto_N",
-    "build_system",
-    "choose_K",
-    "choose_m",
-    "choose_N",
-    "qc_guess",
-    "required_N",
     "resize",
-    "smallest_N",
     "solitary_spec",
     "spec_of",
     "strain_scale",

@@ -1,9 +1,10 @@
 """One discrete-wave solve as an object: the attempt logic of :mod:`.driver` (paper §5).
 
 :class:`~fpucore.wave.setup.Tolerances` holds every tolerance of a solve, derived in one place
-(:mod:`.setup`) from the user's relative ``tol`` and the strain scale.  :class:`WaveSolve` holds
-what one solve works with (law, spec, N, m, K, the tolerances, the time budget, the Newton
-history, the routes taken) and has one method per route or rescue:
+(:meth:`Spec.tolerances <fpucore.wave.setup.Spec.tolerances>`) from the user's relative ``tol``
+and the strain scale.  :class:`WaveSolve` holds what one solve works with (the spec, which
+carries the law; N, m, K, the tolerances, the time budget, the Newton history, the routes
+taken) and has one method per route or rescue:
 
     solve()          the whole solve: ordinary() or plateau(), then refine_m(), check_plateau()
     embedded()       flat tops on a chain longer than they need: solved on the N they need,
@@ -29,26 +30,12 @@ from dataclasses import replace as _replace
 
 import numpy as np
 
-from fpucore import qc
 from fpucore.wave import bounds as wb
 from fpucore.wave import period_map as pm
 from fpucore.wave import plateau as wp
 from fpucore.wave import tails as wt
 from fpucore.wave.continuation import continue_to
-from fpucore.wave.setup import (
-    FLOOR_FACTOR,
-    M_STEPS,
-    Spec,
-    Tolerances,
-    build_system,
-    choose_K,
-    choose_m_floor,
-    choose_N,
-    qc_guess,
-    required_N,
-    resize,
-    solitary_spec,
-)
+from fpucore.wave.setup import FLOOR_FACTOR, M_STEPS, Spec, Tolerances, resize
 from fpucore.wave.system import NewtonOutcome, WaveSystem, newton
 
 #: flat tops (QC γ·x_f ≥ wp.GX_FALLBACK) are solved to at least this tol: their plateau length
@@ -77,10 +64,10 @@ class Solved:
 
 @dataclass
 class WaveSolve:
-    """One solve of eq. nonlin_system for (law, spec); see the module doc.  ``predictor``: a
-    callable N ↦ initial state (continuation), else the QC guess."""
+    """One solve of eq. nonlin_system for the wave ``spec`` (which carries the law); see the
+    module doc.  ``predictor``: a callable N ↦ initial state (continuation), else the QC guess.
+    ``time_budget_s``: seconds from construction (:attr:`deadline`)."""
 
-    law: object
     spec: Spec
     N_req: int | None
     tol: float
@@ -106,21 +93,30 @@ class WaveSolve:
         if self.gx >= wp.GX_FALLBACK and self.tol > FLAT_TOP_TOL:
             self.tol = FLAT_TOP_TOL  # said in the route (see FLAT_TOP_TOL)
             self.routes.append(f"flat top: tol tightened to {FLAT_TOP_TOL:g}")
-        self.tols = Tolerances.of(self.spec, self.tol)
-        self.N = choose_N(self.law, self.spec, self.N_req, self.tol)
+        self.tols = self.spec.tolerances(self.tol)
+        self.N = self.spec.choose_N(self.N_req, self.tol)
         pred = self.predictor
-        self.x0 = pred(self.N) if pred is not None else qc_guess(self.spec, self.N)
-        self.m = choose_m_floor(self.law, self.spec, self.x0, self.tols.int_tol)
-        self.K = choose_K(self.law, self.spec, self.x0, self.m)
+        self.x0 = pred(self.N) if pred is not None else self.spec.qc_guess(self.N)
+        self.m = self.spec.choose_m_floor(self.x0, self.tols.int_tol)
+        self.K = self.spec.choose_K(self.x0, self.m)
         self.system = self.build(self.N)
 
     # ------------------------------------------------------------------ helpers
+    @property
+    def law(self):
+        return self.spec.law
+
+    @property
+    def deadline(self) -> float:
+        """End of the time budget on the ``time.perf_counter()`` clock."""
+        return self.t0 + self.time_budget_s
+
     def left(self) -> float:
         """Seconds left of the time budget."""
         return self.time_budget_s - (time.perf_counter() - self.t0)
 
     def build(self, N: int) -> WaveSystem:
-        return build_system(self.law, self.spec, N, self.m, self.K)
+        return self.spec.system(N, self.m, self.K)
 
     def resized(self, x: np.ndarray, N_old: int, N_new: int) -> np.ndarray:
         return resize(x, N_old, N_new, self.spec.w_left, self.spec.w_right)
@@ -184,7 +180,7 @@ class WaveSolve:
 
     def n_work(self) -> int:
         """The chain a flat top needs: its tails reach tail_tol (at least N_MIN)."""
-        return max(wt.N_MIN, required_N(self.law, self.spec, self.tols.tail_tol))
+        return max(wt.N_MIN, self.spec.required_N(self.tols.tail_tol))
 
     def embedded(self) -> Solved | None:
         """A flat top on a chain longer than it needs (the explorer's N = 500): solve it on
@@ -199,7 +195,7 @@ class WaveSolve:
         at the short chain's ends (:func:`fpucore.wave.bounds.embedded`)."""
         N_w = self.n_work()
         sub = WaveSolve(
-            self.law, self.spec, N_w, self.tol, self.jacobian, self.max_iter, max(1.0, self.left())
+            self.spec, N_w, self.tol, self.jacobian, self.max_iter, max(1.0, self.left())
         ).solve()
         if not sub.out.converged or sub.out.factorization is None:
             return None
@@ -258,7 +254,7 @@ class WaveSolve:
 
     def grow_N(self, out: NewtonOutcome) -> NewtonOutcome:
         """Rescue 1: far-field directions are nearly null at large N: converge short, grow N."""
-        N_s = required_N(self.law, self.spec, self.tols.tail_tol)
+        N_s = self.spec.required_N(self.tols.tail_tol)
         if N_s >= self.N:
             return out
         o_s = self.newton(self.build(N_s), self.resized(self.x0, self.N, N_s))
@@ -273,7 +269,7 @@ class WaveSolve:
         if self.N >= 256 or self.predictor is not None:
             return out
         N_b = max(4 * self.N, 256)
-        o_b = self.newton(self.build(N_b), qc_guess(self.spec, N_b))
+        o_b = self.newton(self.build(N_b), self.spec.qc_guess(N_b))
         if not o_b.converged:
             return out
         self.routes.append(f"cut-N from {N_b}")
@@ -284,7 +280,7 @@ class WaveSolve:
         if self.predictor is not None:
             return out
         x_c, N_c, note = continue_to(
-            self.law, self.spec, self.tols, self.jacobian, self.left, self.max_iter
+            self.spec, self.tols, self.jacobian, self.deadline, self.max_iter
         )
         self.routes.append(note)
         if x_c is None:
@@ -295,30 +291,30 @@ class WaveSolve:
     def plateau(self) -> tuple[NewtonOutcome, str]:
         """Continuation in plateau mass (:mod:`fpucore.wave.plateau`) from a short-plateau wave
         on the same side of V_SK, then a polish at fixed V with the ordinary pinning."""
-        law, spec = self.law, self.spec
-        v_sk = qc.sound_speeds(law, spec.w_plus)[1]
+        spec = self.spec
+        v_sk = spec.v_sk
         sgn = 1.0 if spec.V > v_sk else -1.0
         t_end = time.perf_counter() + self.left()
         start = None
         for g in wp.GX_START:
             if self.left() <= 0:
                 break
-            d0 = wp.start_delta(law, spec.w_plus, v_sk, sgn, g)
+            d0 = wp.start_delta(spec, sgn, g)
             if d0 <= abs(spec.V - v_sk):
                 continue
-            sp0 = solitary_spec(law, spec.w_plus, v_sk + sgn * d0)
+            sp0 = spec.at(v_sk + sgn * d0)
             start = WaveSolve(
-                law, sp0, self.N, self.tol, "exact", self.max_iter, max(1.0, self.left())
+                sp0, self.N, self.tol, "exact", self.max_iter, max(1.0, self.left())
             ).solve()
             if start.out.converged:
                 break
-        x_best = qc_guess(spec, self.N)
+        x_best = spec.qc_guess(self.N)
         if start is None or not start.out.converged:
             return self.newton(self.system, x_best, min(self.left(), 1.0)), (
                 "plateau route: no converged short-plateau start wave"
             )
         path = wp.continue_in_mass(
-            law, spec.w_plus, spec.V, start.out.x, start.system.V, self.N, self.m, self.K,
+            spec, start.out.x, start.system.V, self.N, self.m, self.K,
             self.tols.res_tol, t_end,
         )  # fmt: skip
         note = (
@@ -348,7 +344,7 @@ class WaveSolve:
         )
         fu = u.sites
         if fu > wp.FRONT_MAX:  # residual ≤ tol, but the plateau length is not determined
-            v_sk = qc.sound_speeds(self.law, self.spec.w_plus)[1]
+            v_sk = self.spec.v_sk
             d_ok = 2.0 * abs(self.spec.V - v_sk) * fu / wp.FRONT_MAX  # σ_min ∝ |V − V_SK|
             v_ok = v_sk + math.copysign(d_ok, self.spec.V - v_sk)
             out = _replace(

@@ -7,9 +7,11 @@ map (eqs. period, nonlin_map, nonlin_system, fixedBCs).
 Route: QC closed form (eqs. SKsoln_cubic, SWsoln_cubic) → initial guess w_n(0) = w_QC(n), ẇ_n(0) =
 −V w_QC′(n) (ansatz ξ = n − V t) → damped Newton with the exact banded Jacobian
 (:mod:`fpucore.wave.system`), stopping on the size of the correction.  If that fails: solve on the
-shorter automatic chain and grow N, then continuation in V from a velocity where the QC guess
-converges (:mod:`fpucore.wave.continuation`); flat tops near V_SK by continuation in plateau mass
-(:mod:`fpucore.wave.plateau`) — the attempt logic is :class:`fpucore.wave.attempt.WaveSolve`.
+shorter automatic chain and grow N (or, on a short chain, solve long and cut), then continuation
+in V from a velocity where the QC guess converges (:mod:`fpucore.wave.continuation`); flat tops
+near V_SK by continuation in plateau mass (:mod:`fpucore.wave.plateau`) — the attempt logic is
+:class:`fpucore.wave.attempt.WaveSolve`, everything derived from the wave alone (tolerances, N,
+m, K, the system) is a method of its :class:`fpucore.wave.setup.Spec`.
 Error bounds against the infinite chain's exact wave: :mod:`fpucore.wave.bounds`.
 N=None picks N from the wave's width (:mod:`fpucore.wave.tails`).  The RK step count m is chosen by
 step doubling so the integrator error stays at the tolerance, and re-checked at the solution."""
@@ -33,7 +35,7 @@ from fpucore.wave import bounds as wb
 from fpucore.wave import period_map as pm
 from fpucore.wave import tails as wt
 from fpucore.wave.attempt import Solved, WaveSolve
-from fpucore.wave.setup import Spec, Tolerances, solitary_spec, superkink_spec
+from fpucore.wave.setup import Spec, solitary_spec, superkink_spec
 
 
 @dataclass(frozen=True)
@@ -130,10 +132,10 @@ class WaveResult(Result):
 
 
 # =============================================================================== solver core
-def _solve(law, spec: Spec, N, tol, jacobian, max_iter, time_budget_s, predictor=None):
+def _solve(spec: Spec, N, tol, jacobian, max_iter, time_budget_s, predictor=None):
     t0 = time.perf_counter()
-    done = WaveSolve(law, spec, N, tol, jacobian, max_iter, time_budget_s, predictor).solve()
-    return _result(law, spec, done, jacobian, tol, t0)
+    done = WaveSolve(spec, N, tol, jacobian, max_iter, time_budget_s, predictor).solve()
+    return _result(spec, done, jacobian, tol, t0)
 
 
 def particle_velocities(w: np.ndarray, wdot: np.ndarray, V: float, w_left: float) -> np.ndarray:
@@ -190,7 +192,7 @@ def newton_count(iterations: int) -> str:
     return f"in {iterations} iteration" + ("" if iterations == 1 else "s")
 
 
-def _result(law, spec: Spec, done: Solved, jacobian: str, tol: float, t0: float) -> WaveResult:
+def _result(spec: Spec, done: Solved, jacobian: str, tol: float, t0: float) -> WaveResult:
     out, N, hist, route = done.out, done.N, done.history, done.route
     bd = _bounds(spec, done)
     x = out.x
@@ -206,7 +208,7 @@ def _result(law, spec: Spec, done: Solved, jacobian: str, tol: float, t0: float)
     msg = out.message
     if out.converged:
         msg = f"converged: residual {out.residual:.3g} {newton_count(len(hist) - 1)} ({route})"
-        if done.residual_floor > Tolerances.of(spec, tol).res_tol:
+        if done.residual_floor > spec.tolerances(tol).res_tol:
             msg += (
                 f"; the requested tol is below the round-off floor of this law: residual "
                 f"accepted at {done.residual_floor:.2g} (achievable), profile error "
@@ -225,7 +227,7 @@ def _result(law, spec: Spec, done: Solved, jacobian: str, tol: float, t0: float)
         w_left=spec.w_left,
         w_right=spec.w_right,
         w_plus=spec.w_plus,
-        law=law,
+        law=spec.law,
         residual=out.residual,
         dropped_residual=out.dropped_residual,
         converged=out.converged,
@@ -293,7 +295,7 @@ def solve_superkink(
     """
     tol, time_budget_s = _check_common(law, tol, jacobian, max_iter, time_budget_s, predictor)
     spec = superkink_spec(law, require_finite("V", V), branch)
-    return _solve(law, spec, N, tol, jacobian, max_iter, time_budget_s, predictor)
+    return _solve(spec, N, tol, jacobian, max_iter, time_budget_s, predictor)
 
 
 @on_budget
@@ -316,7 +318,7 @@ def solve_solitary(
     """
     tol, time_budget_s = _check_common(law, tol, jacobian, max_iter, time_budget_s, predictor)
     spec = solitary_spec(law, require_finite("w_plus", w_plus), require_finite("V", V))
-    return _solve(law, spec, N, tol, jacobian, max_iter, time_budget_s, predictor)
+    return _solve(spec, N, tol, jacobian, max_iter, time_budget_s, predictor)
 
 
 def warm(law) -> None:

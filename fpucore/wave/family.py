@@ -56,10 +56,10 @@ def superkink_family(
     V = _check_V_values(V_values)
     specs = [superkink_spec(law, float(v), branch) for v in V]  # validates every V first
 
-    def solve(v, pred):
-        return solve_superkink(law, v, branch, N, tol, predictor=pred)
+    def solve(sp, pred):
+        return solve_superkink(law, sp.V, branch, N, tol, predictor=pred)
 
-    return _family_wrap(law, specs, solve, "superkink", progress)
+    return _family_wrap(specs, solve, "superkink", progress)
 
 
 def solitary_family(
@@ -70,18 +70,19 @@ def solitary_family(
     V = _check_V_values(V_values)
     specs = [solitary_spec(law, w_plus, float(v)) for v in V]
 
-    def solve(v, pred):
-        return solve_solitary(law, w_plus, v, N, tol, predictor=pred)
+    def solve(sp, pred):
+        return solve_solitary(law, w_plus, sp.V, N, tol, predictor=pred)
 
-    return _family_wrap(law, specs, solve, "solitary", progress)
+    return _family_wrap(specs, solve, "solitary", progress)
 
 
-def _family_wrap(law, specs, solve, kind, progress):
-    """Solve specs in order; each uses the previous converged wave (same interval) as predictor."""
+def _family_wrap(specs, solve, kind, progress):
+    """Solve specs in order (``solve(spec, predictor)``), each from the previous converged wave
+    on the same velocity interval (:func:`.continuation.solve_from_neighbour`)."""
     t0 = time.perf_counter()
     results, prev = [], None
     for i, sp in enumerate(specs):
-        r = solve_from_neighbour(law, sp, prev, lambda pred, V=sp.V: solve(V, pred))
+        r = solve_from_neighbour(sp, prev, lambda pred, sp=sp: solve(sp, pred))
         results.append(r)
         prev = (r, sp) if r.converged else None
         if progress is not None:

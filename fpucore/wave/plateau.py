@@ -46,6 +46,7 @@ from scipy.optimize import brentq
 from fpucore import qc
 from fpucore.wave import period_map as pm
 from fpucore.wave import tails as wt
+from fpucore.wave.setup import Spec
 from fpucore.wave.system import WaveSystem
 
 FRONT_MAX = 1.0  # sites: a larger round-off error bar on the fronts is reported as failure
@@ -273,8 +274,10 @@ def _tangent(fam: _Family, x, s):
 # =============================================================================== the route
 @dataclass(frozen=True)
 class PlateauPath:
-    """Outcome of :func:`continue_in_mass`.  x : state at V (or at the closest V reached);
-    points : list of (δ, M, front) along the path; reached : V of the last converged point."""
+    """Outcome of :func:`continue_in_mass`.  x : state at V (None if the start wave was lost);
+    V : the velocity of x (the target, or the closest V reached); converged : whether the path
+    reached the target; note : how; points : (δ, M, front sites) along the path; start_delta :
+    δ = |V − V_SK| of the start wave."""
 
     x: np.ndarray | None
     V: float
@@ -284,14 +287,16 @@ class PlateauPath:
     start_delta: float
 
 
-def start_delta(law, w_plus: float, v_sk: float, sgn: float, gx: float) -> float:
-    """δ on the given side of V_SK where the QC half-plateau γ·x_f equals gx (bisection in ln δ)."""
-    (a, b), (c, d) = qc.solitary_intervals(law, w_plus)
+def start_delta(spec: Spec, sgn: float, gx: float) -> float:
+    """δ on the side sgn of V_SK (of spec's w₊) where the QC half-plateau γ·x_f equals gx
+    (bisection in ln δ)."""
+    v_sk = spec.v_sk
+    (a, b), (c, d) = spec.intervals()
     far = (b - a) if sgn < 0 else (d - c)
     lo, hi = math.log(1e-15 * v_sk), math.log(0.5 * far)
 
     def h(s):
-        return qc_half_plateau(qc.solitary(law, w_plus, v_sk + sgn * math.exp(s))) - gx
+        return qc_half_plateau(spec.at(v_sk + sgn * math.exp(s)).qcw) - gx
 
     if h(hi) > 0 or h(lo) < 0:
         return math.exp(hi) if h(hi) > 0 else math.exp(lo)
@@ -321,9 +326,11 @@ def translate_fronts(S: WaveSystem, x: np.ndarray, delta: float) -> np.ndarray:
 
 
 def continue_in_mass(
-    law, w_plus, V_target, x0, V0, N, m, K, tol, deadline, max_steps: int = 40
+    spec: Spec, x0, V0, N, m, K, tol, deadline, max_steps: int = 40
 ) -> PlateauPath:
-    """March in plateau mass M from the converged wave (x0, V0) to V_target (same side of V_SK).
+    """March in plateau mass M from the converged wave (x0, V0) to V_target = spec.V (same side
+    of V_SK, same w₊) on N sites with m RK steps, window K; tol : residual tolerance; deadline :
+    ``time.perf_counter()`` time limit.
 
     Predictor: both discrete fronts translated by ΔM/(2A) sites (:func:`translate_fronts`; the
     QC-difference and linear-tangent predictors were measured to allow only |Δs| ≲ 1 per step,
@@ -332,9 +339,9 @@ def continue_in_mass(
     the ordinary residual at V_target of the current state is ≤ tol/4 (then the caller's fixed-V
     polish takes no step) or when the secant cannot move M any more (round-off floor of the
     plateau length)."""
-    v_sk = qc.sound_speeds(law, w_plus)[1]
+    V_target, v_sk = spec.V, spec.v_sk
     sgn = 1.0 if V_target > v_sk else -1.0
-    fam = _Family(law, w_plus, v_sk, sgn, N, m, K)
+    fam = _Family(spec.law, spec.w_plus, v_sk, sgn, N, m, K)
     n = np.arange(N) - N // 2
     s = fam.s(V0)
     M = float(x0[0::2].sum() - N * fam.w_B(V0))
@@ -345,7 +352,7 @@ def continue_in_mass(
     pts = [(math.exp(s), M, front_position(x[0::2], n, fam.w_B(fam.V(s))))]
     s_t = fam.s(V_target)
     S_t = fam.system(V_target)
-    lam = wt.decay_rate(law, x[N], V0)
+    lam = wt.decay_rate(spec.law, x[N], V0)
     ds_max = min(DS_MAX, 1.6 * lam)  # front step |Δ| = |Δs|/(2λ) ≤ 0.8 site
     ds_cap = ds_max
     prev, steps = None, 0

@@ -19,6 +19,7 @@ from browser_harness import (
     app_tracebacks,
     check_consistent,
     liveness_s,
+    open_law_box,
     record_foreign_requests,
     server_rss_mb,
     settled,
@@ -127,8 +128,7 @@ def test_a_pathological_law_never_freezes_the_server(browser, server):
             text, msg, q = settled(a)  # the cubic, with the URL rewritten to it
             assert "law" not in q, q
         # typed in the law box
-        a.locator(".w-law-kind button", has_text="expression").click()
-        box = a.locator(".in-law input")
+        box = open_law_box(a)
         box.fill(DOS_LAWS[1])
         box.press("Enter")
         before = status_text(b, "force")

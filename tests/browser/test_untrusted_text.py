@@ -7,7 +7,15 @@ import urllib.parse
 import urllib.request
 
 import pytest
-from browser_harness import FAST, app_tracebacks, open_tab, settled, url_message, wait_url
+from browser_harness import (
+    FAST,
+    app_tracebacks,
+    open_law_box,
+    open_tab,
+    settled,
+    url_message,
+    wait_url,
+)
 
 from app.state import URL_PARAMS
 
@@ -104,8 +112,7 @@ def test_user_text_is_shown_literally_and_never_runs(page):
     # the law box: the typed text is repeated in the scene's parameters line and message
     page.goto(f"{page.server}/main?{FAST}")
     settled(page)
-    page.locator(".w-law-kind button", has_text="expression").click()
-    box = page.locator(".in-law input")
+    box = open_law_box(page)
     for payload in PAYLOADS:
         box.fill(payload)
         box.press("Enter")
@@ -163,8 +170,7 @@ def test_a_5000_character_value_is_cut_in_its_message_and_never_runs(page):
         assert not injected(page), (name, injected(page))
     page.goto(f"{page.server}/main?{FAST}")
     settled(page)
-    page.locator(".w-law-kind button", has_text="expression").click()
-    box = page.locator(".in-law input")
+    box = open_law_box(page)
     box.fill(LONG_PAYLOAD)
     box.press("Enter")
     wait_url(page, lambda q: q.get("law") == LONG_PAYLOAD)

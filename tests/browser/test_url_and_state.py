@@ -17,6 +17,7 @@ from browser_harness import (
     check_consistent,
     message_text,
     open_app,
+    open_law_box,
     open_tab,
     press_on_slider,
     query,
@@ -173,7 +174,7 @@ def test_a_value_typed_again_after_the_state_moved_is_kept(page):
         assert widget_value(page, slider) == float(end)
         assert float(page.locator(f".{box} input").input_value()) == float(end), (name, q)
     # a coefficient slider of a typed law: to its end, the law typed again, to its end again
-    page.locator(".w-law-kind button", has_text="expression").click()
+    open_law_box(page)
     law = "w + 10*w**2 - w**3"
     type_into(page, "in-law", law, "law", law)
     moved = press_on_slider(page, "w-c2", "End")["law"]
@@ -194,9 +195,7 @@ def test_typed_law_reaches_every_scene_and_the_url(page):
     status has "Time:" and the law in its parameters line, the URL carries law=…, a coefficient
     slider rewrites the law, and the server log has no traceback."""
     open_app(page, FAST)
-    page.locator(".w-law-kind button", has_text="expression").click()
-    box = page.locator(".in-law input")
-    box.wait_for()
+    box = open_law_box(page)
     box.fill(QUARTIC)
     box.press("Enter")
     t_end = time.monotonic() + TIMEOUT_MS / 1000

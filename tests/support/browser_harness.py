@@ -357,3 +357,17 @@ class LivenessProbe(threading.Thread):
         self.halt.set()
         self.join(30)
         return self
+
+
+def open_law_box(page):
+    """Choose "expression" and return the law box once the server has filled it with the
+    current law.  Typing before that races the server's fill: on a loaded machine the fill
+    arrived between Playwright's clear and its insert, and the two texts ran together."""
+    page.locator(".w-law-kind button", has_text="expression").click()
+    box = page.locator(".in-law input")
+    box.wait_for()
+    t_end = time.monotonic() + TIMEOUT_MS / 1000
+    while not box.input_value() and time.monotonic() < t_end:
+        page.wait_for_timeout(50)
+    assert box.input_value(), "the law box was never filled with the current law"
+    return box

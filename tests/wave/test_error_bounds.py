@@ -84,7 +84,7 @@ def reference(law, spec, r, N_ref, m_ref, iters=12):
     x[0::2], x[1::2] = r.w, r.wdot
     x0 = wave.resize(x, r.N, N_ref, spec.w_left, spec.w_right)
     m_d = min(m_ref, 128)
-    S = wave.build_system(law, spec, N_ref, m_d, wave.choose_K(law, spec, x0, m_d))
+    S = spec.system(N_ref, m_d, spec.choose_K(x0, m_d))
     xd = newton(S, x0, 1e-13 * scale, 60, "exact", 120.0).x
     xl = xd.astype(LD)
     last = math.inf
@@ -162,7 +162,7 @@ def _variants(law, spec, r):
     out = [(r.w, r.wdot)]
     scale = max(1.0, abs(spec.w_left), abs(spec.w_right))
     for m in (r.m + 1, r.m + 2):
-        S = wave.build_system(law, spec, r.N, m, r.K)
+        S = spec.system(r.N, m, r.K)
         o = newton(
             S, x, max(1e-12 * scale, r.residual_floor), 40, "exact", 60.0, step_tol=1e-16 * scale
         )  # fmt: skip  (steps until round-off)
