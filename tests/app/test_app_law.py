@@ -14,6 +14,7 @@ import math
 import os
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import numpy as np
@@ -243,6 +244,24 @@ def test_typed_invalid_expression_hides_the_sliders_and_names_the_problem():
     assert "could not parse" in ex.ranges.object and not law.coeff_box.visible
     law.law_text.value = Q
     assert law.coeff_box.visible and ex.state.problem() is None
+
+
+def test_a_typed_law_is_named_as_being_checked_until_the_law_worker_has_built_it():
+    """The law editor names a typed law while the law worker builds it (the page shows it in
+    the sidebar), then applies it: state, coefficient sliders and the sidebar's ranges."""
+    ex = Explorer()
+    law = ex.law_editor
+    text = "w + 9.25*w**2 - w**3"  # typed nowhere else: not built yet
+    assert compute.lookup_law(text) is None
+    law.law_kind.value = "expression"
+    law.law_text.value = text
+    assert "checking the law" in ex.ranges.object and md_literal(text) in ex.ranges.object
+    t_end = time.monotonic() + 60.0  # applied in the law worker's watcher thread
+    while "checking" in ex.ranges.object and time.monotonic() < t_end:
+        time.sleep(0.05)
+    assert ex.state.expression == text
+    assert [s.value for s in law.coeff_sliders] == [1.0, 9.25, -1.0]
+    assert "checking" not in ex.ranges.object and "w₊ ∈ (α, β)" in ex.ranges.object
 
 
 @pytest.mark.parametrize(
