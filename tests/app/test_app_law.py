@@ -254,13 +254,23 @@ def test_a_typed_law_is_named_as_being_checked_until_the_law_worker_has_built_it
     text = "w + 9.25*w**2 - w**3"  # typed nowhere else: not built yet
     assert compute.lookup_law(text) is None
     law.law_kind.value = "expression"
+    # every text of the sidebar's ranges pane, recorded (a warm law worker answers within ms)
+    shown: list[str] = []
+    ex.ranges.param.watch(lambda e: shown.append(e.new), "object")
     law.law_text.value = text
-    assert "checking the law" in ex.ranges.object and md_literal(text) in ex.ranges.object
-    t_end = time.monotonic() + 60.0  # applied in the law worker's watcher thread
-    while "checking" in ex.ranges.object and time.monotonic() < t_end:
+
+    def coefficients() -> list[float]:
+        return [s.value for s in law.coeff_sliders]
+
+    # applied in the law worker's watcher thread: wait until the sidebar has followed it
+    t_end = time.monotonic() + 60.0
+    while time.monotonic() < t_end and (
+        "checking" in ex.ranges.object or coefficients() != [1.0, 9.25, -1.0]
+    ):
         time.sleep(0.05)
-    assert ex.state.expression == text
-    assert [s.value for s in law.coeff_sliders] == [1.0, 9.25, -1.0]
+    assert shown and shown[0] == f"_checking the law {md_literal(text)} …_", shown
+    assert ex.state.expression == text, ex.ranges.object
+    assert coefficients() == [1.0, 9.25, -1.0], ex.ranges.object
     assert "checking" not in ex.ranges.object and "w₊ ∈ (α, β)" in ex.ranges.object
 
 
