@@ -20,6 +20,9 @@ WORKDIR /home/app/fpu-explorer
 COPY --chown=app:app pyproject.toml README.md ./
 COPY --chown=app:app fpucore ./fpucore
 COPY --chown=app:app app ./app
+# the Paper tab's thumbnails and committed comparison table (app/views/paper.py)
+COPY --chown=app:app docs/figures ./docs/figures
+COPY --chown=app:app docs/paper_comparison.json ./docs/
 RUN pip install --upgrade pip && pip install -e ".[app]"
 
 USER app

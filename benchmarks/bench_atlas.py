@@ -14,7 +14,7 @@ D. ``atlas.sweep`` of 12 superkink velocities at N = 500 on 2 cores as ``fpu flo
    runs it — a fresh process, the sweep making its own execution (the caller and 1 worker,
    ``caller_runs``), forkserver and worker start-up timed, no cache — against 12 sequential
    spectra in this process, one thread (the sweep before: a loop in one process).  Target ≤ 0.6×.
-   Also the old way (2 workers, caller idle) cold, the same sweep on a running warm pool, and the
+   Also a 2-worker pool with the caller idle, cold, the same sweep on a running warm pool, and the
    CPU seconds of every side (caller, forkserver, workers), to tell load from serialisation.
 """
 
@@ -132,7 +132,7 @@ def cold_sweep(N: int, nV: int, caller_runs: bool, method: str = "structured") -
     """In a fresh process (``--cold-sweep``), what ``fpu floquet sweep`` meets: no forkserver yet,
     workers to start, the caller's own JIT cache loaded first (one small point, untimed, as the
     sequential side has it).  caller_runs: the sweep makes its own execution (this process + 1
-    worker on 2 cores); else the old way: a 2-worker pool, the caller idle (pool start timed).
+    worker on 2 cores); else a 2-worker pool with the caller idle (pool start timed).
     method: the spectra's eigenvalue route (the sweep's default "structured", or "dense")."""
     V = np.linspace(4.9, 5.8, nV)
     apply_thread_policy(1)

@@ -16,7 +16,7 @@ w_l = 4.6, w_r = 0, L = 3600, t = 300 (Fig. Riemann1), rtol = 1e-10.
 3. Baseline in the same run: ``scipy.integrate.solve_ivp(method="DOP853")`` with a vectorised
    NumPy right-hand side of the same equations (first-order form), same state, same rtol = atol,
    Hairer's RMS norm and controller.  Ratio = baseline / ours (target ≥ 4×).
-4. Other methods on the same run: fpucore's DOP853 (the previous default), DOPRI5 (the paper's
+4. Other methods on the same run: fpucore's DOP853, DOPRI5 (the paper's
    ode45 pair), RKN8(6) and the symplectic Yoshida-4 (dt = 0.02), with energy drift and tracked
    velocities.
 6. ``--against DIR``: the headline run of every method timed in fresh processes importing

@@ -9,10 +9,10 @@ two-point line), no negative |…|, counts equal to the rows they count.  The ru
 re-derive each claim from the numbers printed in it; they never trust the record that wrote it.
 
     python -m benchmarks.verdict_audit FILE.csv|FILE.txt ...   # audit `fpu floquet sweep` output
-    python -m benchmarks.verdict_audit --acceptance OUTDIR     # the paper's cases (slow), timed
 
 Every problem is one line "surface: what is wrong"; no output means every word agrees.
-The cheap cases run as tests (tests/floquet/test_verdict_audit.py).
+The cheap cases run as tests (tests/floquet/test_verdict_audit.py); the paper's cases, timed:
+benchmarks/verdict_acceptance.py; the paper comparisons: benchmarks/comparison_audit.py.
 """
 
 from __future__ import annotations
@@ -27,11 +27,12 @@ DIP = 0.5
 DECAY_P = 0.5
 TINY = 1e-9  # largest error bar of a real spectrum's point (measured ≤ 3e-10): "on the circle"
 
-_NUM = r"[-+]?\d+(?:\.\d+)?(?:e[-+]?\d+)?"
-_PTS = re.compile(r"max\|mu\|-1 at N = ((?:\d+: " + _NUM + r"(?:, )?)+)")
-_PM = re.compile(r"(" + _NUM + r")\s*(?:\+/-|±)\s*(" + _NUM + r")")
-_FIT = re.compile(r"p = (" + _NUM + r")\s*(?:\+/-|±)\s*(" + _NUM + r")")
-_ABS = re.compile(r"\|[^|]{1,40}\|\s*=\s*[-−]")
+#: a printed number
+NUM = r"[-+]?\d+(?:\.\d+)?(?:e[-+]?\d+)?"
+_PTS = re.compile(r"max\|mu\|-1 at N = ((?:\d+: " + NUM + r"(?:, )?)+)")
+_FIT = re.compile(r"p = (" + NUM + r")\s*(?:\+/-|±)\s*(" + NUM + r")")
+#: "|…| = −x": an absolute value printed negative
+NEGATIVE_ABS = re.compile(r"\|[^|]{1,40}\|\s*=\s*[-−]")
 
 
 def points(text: str) -> list[tuple[int, float]]:
@@ -57,14 +58,14 @@ def audit_sentence(s: str, headline: str | None = None, classification: str | No
     pts = points(s)
     N = [n for n, _ in pts]
     e = [x for _, x in pts]
-    if _ABS.search(s):
-        bad.append(f"a negative absolute value: {_ABS.search(s).group(0)!r}")
+    if NEGATIVE_ABS.search(s):
+        bad.append(f"a negative absolute value: {NEGATIVE_ABS.search(s).group(0)!r}")
     for p, dp in _FIT.findall(s):
         if float(dp) >= abs(float(p)):
             bad.append(f"a fit whose error bar exceeds its value: p = {p} +/- {dp}")
         if float(dp) == 0.0:
             bad.append(f"a fit with a zero error bar (p = {p} +/- {dp})")
-    m = re.search(r"leave the unit circle by (" + _NUM + r") at N = (\d+)", s)
+    m = re.search(r"leave the unit circle by (" + NUM + r") at N = (\d+)", s)
     if m and pts and (int(m.group(2)) != N[-1] or not _close(float(m.group(1)), e[-1])):
         bad.append(f"the excess at N ({m.group(0)}) is not the last printed point {pts[-1]}")
     if pts and N != sorted(N):
@@ -79,7 +80,7 @@ def audit_sentence(s: str, headline: str | None = None, classification: str | No
     if headline is not None:
         bad += _audit_headline(headline, cls, s, N, e, tiny)
     if cls == "stable":
-        m = re.search(r"max\|mu\|-1 = (" + _NUM + r") <= (" + _NUM + r")", s)
+        m = re.search(r"max\|mu\|-1 = (" + NUM + r") <= (" + NUM + r")", s)
         if not m or not float(m.group(1)) <= float(m.group(2)):
             bad.append(f"'stable' without an excess within its error bar: {s!r}")
     elif cls == "finite_size":
@@ -92,7 +93,7 @@ def audit_sentence(s: str, headline: str | None = None, classification: str | No
                 f"'unstable' over an excess that changes by "
                 f"{100 * (max(e) - min(e)) / e[-1]:.0f} % (not converged): {pts}"
             )
-        m = re.search(r"stays within (" + _NUM + r") %", s)
+        m = re.search(r"stays within (" + NUM + r") %", s)
         if m and e and not _pct_close(float(m.group(1)), (max(e) - min(e)) / e[-1]):
             bad.append(
                 f"'stays within {m.group(1)} %' but the points spread "
@@ -101,7 +102,7 @@ def audit_sentence(s: str, headline: str | None = None, classification: str | No
     elif cls == "undetermined":
         if not re.search(r"compute at N >= \d+|run the finite-size test", s):
             bad.append(f"'not determined' without what would decide it: {s!r}")
-        m = re.search(r"changes by (" + _NUM + r") %", s)
+        m = re.search(r"changes by (" + NUM + r") %", s)
         if m and e and not _pct_close(float(m.group(1)), (max(e) - min(e)) / e[-1]):
             bad.append(
                 f"'changes by {m.group(1)} %' but the points spread "
@@ -114,7 +115,7 @@ def audit_sentence(s: str, headline: str | None = None, classification: str | No
                 f"'nor decays' over points that fall {100 * (1 - e[-1] / max(e)):.0f} % "
                 f"from their largest value: {pts}"
             )
-        m = re.search(r"it falls (" + _NUM + r") % from its largest value at N = (\d+)", s)
+        m = re.search(r"it falls (" + NUM + r") % from its largest value at N = (\d+)", s)
         if m and e:
             k = N.index(int(m.group(2)))
             if e[k] != max(e) or not _pct_close(float(m.group(1)), 1 - e[-1] / e[k]):
@@ -182,7 +183,7 @@ def _audit_finite_size(s: str, N, e, tiny) -> list[str]:
                     f"'falls to less than half its neighbours at N = {n}' is not true "
                     f"of {list(zip(N, e))}"
                 )
-        m = re.search(r"is below (" + _NUM + r")", s)
+        m = re.search(r"is below (" + NUM + r")", s)
         if m and not _close(float(m.group(1)), min(e)):
             bad.append(f"'below {m.group(1)}' is not the smallest printed excess {min(e):.2e}")
     if "decays as the ring grows" in s:
@@ -196,8 +197,8 @@ def _audit_finite_size(s: str, N, e, tiny) -> list[str]:
                 f"'decays' but the excess rises up to N = {N[k]}, past the middle of the "
                 f"window: {list(zip(N, e))}"
             )
-        m = re.search(r"from (" + _NUM + r") at N = (\d+) to (" + _NUM + r") at N = (\d+), "
-                      r"(" + _NUM + r") % lower", s)  # fmt: skip
+        m = re.search(r"from (" + NUM + r") at N = (\d+) to (" + NUM + r") at N = (\d+), "
+                      r"(" + NUM + r") % lower", s)  # fmt: skip
         if m is not None:
             a, na, b, nb, pc = m.groups()
             if not (_close(float(a), max(e)) and _close(float(b), e[-1]) and float(b) < float(a)):
@@ -214,7 +215,7 @@ def _audit_finite_size(s: str, N, e, tiny) -> list[str]:
 
 
 def audit_decision(d) -> list[str]:
-    """Problems of a :class:`fpucore.floquet.finite_size.Decision`: its texts against the
+    """Problems of a :class:`fpucore.floquet.decision.Decision`: its texts against the
     numbers they print and against the record's own points and error bars."""
     bad = audit_sentence(d.sentence, d.headline, d.classification,
                          tiny=max(d.points_error, default=TINY))  # fmt: skip
@@ -268,7 +269,7 @@ def audit_cli_text(text: str) -> list[str]:
         bad.append("cli: '1 multipliers'")
     win = re.search(r"finite-size window\s+: max\|mu\|-1 at (.+) \(", text)
     if win:
-        shown = [(int(a), float(b)) for a, b in re.findall(r"N=(\d+): (" + _NUM + r")", win[1])]
+        shown = [(int(a), float(b)) for a, b in re.findall(r"N=(\d+): (" + NUM + r")", win[1])]
         said = points(ver.group(1))
         if [n for n, _ in shown] != [n for n, _ in said] or not all(
             _close(a, b) or max(a, b) <= TINY for (_, a), (_, b) in zip(shown, said, strict=True)
@@ -318,7 +319,7 @@ def audit_sweep_text(text: str, where: str = "sweep text") -> list[str]:
     bad = []
     rows: list[tuple[int, float, str, int]] = []
     for line in text.splitlines():
-        m = re.match(r"\s*(\d+)\s+(" + _NUM + r")\s+\S+\s+\S+\s+\S+\s+(\d+)\s+(\S+)\s+(.*)$",
+        m = re.match(r"\s*(\d+)\s+(" + NUM + r")\s+\S+\s+\S+\s+\S+\s+(\d+)\s+(\S+)\s+(.*)$",
                      line)  # fmt: skip
         if m and m.group(4) in ("stable", "finite_size", "unstable", "undetermined"):
             n, V, k, c, h = int(m[1]), float(m[2]), int(m[3]), m[4], m[5]
@@ -353,122 +354,7 @@ def _changes(sel) -> int:
     return sum((a == "unstable") != (b == "unstable") for a, b in zip(c, c[1:], strict=False))
 
 
-def audit_comparison(verdict: str, why: str, ours: float | None = None,
-                     error: float | None = None, paper: float | None = None,
-                     rounding: float | None = None) -> list[str]:  # fmt: skip
-    """Problems of one paper comparison (fpucore.paper.Comparison or a row of
-    docs/paper_comparison.md): "agrees" must mean |ours − paper| ≤ error + half a unit of the
-    paper's last printed digit (a value) or ours ± error on the stated side (a bound), checked
-    on the numbers printed in ``why`` and, when given, on the raw numbers."""
-    bad = []
-    agrees = verdict.strip("* ").startswith("agrees")
-    m = re.search(r"= (" + _NUM + r") (≤|>) error (" + _NUM + r") \+ printed rounding (" + _NUM
-                  + r")", why)  # fmt: skip
-    b = re.search(r"ours ([+−-]) error = (" + _NUM + r") (<|≥|>|≤) (" + _NUM + r")", why)
-    if m:
-        d, rel, e, r = float(m[1]), m[2], float(m[3]), float(m[4])
-        holds = d <= (e + r) * 1.05 + 1e-300  # printed to 2-3 digits
-        if agrees and (rel != "≤" or not holds):
-            bad.append(f"'agrees' but {m[0]}")
-        if not agrees and rel == "≤":
-            bad.append(f"'disagrees' but {m[0]}")
-    elif b:
-        x, rel, p = float(b[2]), b[3], float(b[4])
-        ok = (x < p) if rel in ("<", "≥") else (x > p)
-        if agrees != ok:
-            bad.append(f"{verdict!r} but {b[0]}")
-    else:
-        bad.append(f"comparison without its numbers: {why!r}")
-    if None not in (ours, error, paper, rounding) and m:
-        true = abs(ours - paper) <= abs(error) + rounding
-        if true != agrees:
-            bad.append(f"{verdict!r} but |{ours!r} − {paper!r}| vs {error!r} + {rounding!r}")
-    if _ABS.search(why):
-        bad.append(f"a negative absolute value: {why!r}")
-    return bad
-
-
-def audit_comparison_table(text: str) -> list[str]:
-    """Problems of the generated table docs/paper_comparison.md, row by row."""
-    bad = []
-    for line in text.splitlines():
-        cells = [c.strip() for c in line.strip().strip("|").split(" | ")]
-        if len(cells) == 8 and cells[5].strip("* ") in ("agrees", "disagrees"):
-            bad += [f"{cells[0]} {cells[1]}: {x}" for x in audit_comparison(cells[5],
-                    cells[6].replace("\\|", "|"))]  # fmt: skip
-    return bad
-
-
-# the paper's cases (a = −1, b = 10; §6) and other laws, as `fpu floquet sweep` arguments
-_SW1 = (
-    "4.3134030504 4.4549277768 4.5964525033 4.7379772298 4.8795019562 5.0210266827 "
-    "5.1625514092 5.3040761356 5.3826610927 5.3983062803 5.413951468 5.4295966556 "
-    "5.4452418433 5.4608870309 5.4765322185 5.4921774062"
-)  # 8 + 8 midpoints, w₊ = 1
-_SW6 = (
-    "3.7062975675 3.9077901515 4.1092827355 4.3107753195 4.5122679035 4.7137604875 "
-    "4.9152530715 5.1167456555 5.2279715012 5.2489306087 5.2698897161 5.2908488236 "
-    "5.311807931 5.3327670385 5.353726146 5.3746852534"
-)  # 8 + 8 midpoints, w₊ = 6
-_QUARTIC = ["--law", "w + 10*w**2 - w**3 - 0.01*w**4"]
-ACCEPTANCE = {
-    "sk200_500": "superkink --V-min 4.8 --V-max 5.85 --n 22 --N 200 500".split(),
-    "sw1_500": f"solitary --w-plus 1 --V {_SW1} --N 500".split(),
-    "sw6_500": f"solitary --w-plus 6 --V {_SW6} --N 500".split(),
-    "ft6": "solitary --w-plus 6 --V 5.21749194749 5.2174919476 --N 200 500".split(),
-    "c16_sk": "superkink --a -1 --b 6 --V-min 2.95 --V-max 3.6 --n 8 --N 200".split(),
-    "c16_sw": "solitary --a -1 --b 6 --w-plus 1 --V 3.2 3.3 3.4 3.46 3.47 3.48 3.49 --N 200"
-    .split(),
-    "c210_sk": "superkink --a -2 --b 10 --V-min 3.44 --V-max 4.2 --n 8 --N 200".split(),
-    "c210_sw": "solitary --a -2 --b 10 --w-plus 1 --V 3.9 4.0 4.09 4.1 4.11 4.12 --N 200"
-    .split(),
-    "q_sk": ["superkink", *_QUARTIC, *"--V-min 4.71 --V-max 5.74 --n 8 --N 200".split()],
-    "q_sw": ["solitary", *_QUARTIC, *"--w-plus 1 --V 4.4 4.8 5.2 5.28 5.3 5.35 5.4 --N 200"
-                                     .split()],
-}  # fmt: skip
-
-
-def class_counts(path: str) -> dict:
-    """{N: {class: count}} of a sweep CSV."""
-    out: dict = {}
-    with open(path) as fh:
-        for r in csv.DictReader(fh):
-            c = r["classification"] or "not computed"
-            out.setdefault(int(r["N"]), {}).setdefault(c, 0)
-            out[int(r["N"])][c] += 1
-    return out
-
-
-def acceptance(outdir: str) -> int:
-    """Run every ACCEPTANCE sweep through the CLI (structured route, no cache), time it, audit
-    its text and CSV, and print the class counts per case and N."""
-    import os
-    import subprocess
-    import time
-
-    os.makedirs(outdir, exist_ok=True)
-    bad = []
-    for name, args in ACCEPTANCE.items():
-        csv_path, txt_path = f"{outdir}/{name}.csv", f"{outdir}/{name}.txt"
-        cmd = [sys.executable, "-m", "fpucore", "floquet", "sweep", *args, "--method",
-               "structured", "--no-cache", "--no-progress", "--out", csv_path]  # fmt: skip
-        t0 = time.perf_counter()
-        out = subprocess.run(cmd, capture_output=True, text=True, check=False)
-        dt = time.perf_counter() - t0
-        with open(txt_path, "w") as fh:
-            fh.write(out.stdout)
-        found = audit_csv(csv_path) + audit_sweep_text(out.stdout, txt_path)
-        bad += found
-        print(f"{name}: {dt:.1f} s wall, {class_counts(csv_path)}, {len(found)} problems",
-              flush=True)  # fmt: skip
-    for b in bad:
-        print(b)
-    return 1 if bad else 0
-
-
 def main(argv: list[str]) -> int:
-    if argv[:1] == ["--acceptance"]:
-        return acceptance(argv[1] if len(argv) > 1 else "benchmarks/out/verdicts")
     bad = []
     for path in argv:
         if path.endswith(".csv"):

@@ -8,18 +8,22 @@ add what the views need:
   (``repr`` of each float, the law's coefficients, N, tol): a cached result is only ever
   returned for the very same inputs.  Keys are built here only; views ask ``*_cached(...)``
   instead of rebuilding them;
-* heavy computations (discrete waves, Floquet spectra, sweeps, discrete families, simulations)
-  run in worker processes (the project's execution layer, :mod:`fpucore.parallel`) through
-  :func:`run_job`: progress is forwarded, a caller that no longer wants the result (a newer
-  slider value, the Cancel button) leaves, and the job is killed once nobody waits for it;
-  two sessions asking for the same key share one job;
-* wall time of the computation (``Computed.elapsed_s``) and whether it was cached.
+* heavy computations (discrete waves, Floquet spectra, sweeps, discrete families, simulations,
+  small atlases) run in worker processes (the project's execution layer,
+  :mod:`fpucore.parallel`) through :func:`run_job`: progress is forwarded, a caller that no
+  longer wants the result (a newer slider value, the Cancel button) leaves, and the job is
+  killed once nobody waits for it; two sessions asking for the same key share one job;
+* wall time of the computation (``Computed.elapsed_s``) and whether it was cached;
+* typed job parameters (:mod:`~app.compute.requests`: frozen dataclasses checked when made,
+  each with its exact key and the fpucore call it stands for).
 
     cache (exact keys, Computed, the LRU ResultCache CACHE) → laws (the app's laws, law_key)
     → workers (the process pool, run_job, Superseded, worker warm-up)
     → qc_calls (QC waves, families, phase plane, existence diagram, n_needed: in process)
+    → requests (WaveRequest, SimulationRequest and its kinds, AtlasRequest; Call)
     → jobs (the functions run in workers and their cache keys)
-    → heavy (discrete_wave, floquet_spectrum, floquet_sweep, discrete_family, simulation)
+    → heavy (discrete_wave, floquet_spectrum, floquet_sweep, discrete_family, simulation,
+      small_atlas)
     → energy (the energy criterion's extrema, from QC and from cached waves)
 
 Bad parameters surface as ``fpucore.errors.ParameterError`` (re-exported).
@@ -48,8 +52,12 @@ from .heavy import (
     floquet_sweep_cached,
     is_cached,
     simulation,
+    small_atlas,
+    small_atlas_cached,
 )
 from .jobs import (
+    atlas_job,
+    atlas_key,
     family_job,
     family_key,
     floquet_job,
@@ -84,6 +92,17 @@ from .qc_calls import (
     qc_method,
     qc_wave,
     spec_of,
+)
+from .requests import (
+    SMALL_ATLAS_N,
+    SMALL_ATLAS_POINTS,
+    AtlasRequest,
+    Call,
+    GaussianRequest,
+    RiemannRequest,
+    SeededRequest,
+    SimulationRequest,
+    WaveRequest,
 )
 from .workers import (
     CANCELLED,
@@ -134,6 +153,16 @@ __all__ = [
     "existence_diagram",
     "spec_of",
     "n_needed",
+    # typed job parameters
+    "Call",
+    "WaveRequest",
+    "SimulationRequest",
+    "RiemannRequest",
+    "GaussianRequest",
+    "SeededRequest",
+    "AtlasRequest",
+    "SMALL_ATLAS_POINTS",
+    "SMALL_ATLAS_N",
     # jobs and keys
     "wave_call",
     "wave_job",
@@ -142,11 +171,13 @@ __all__ = [
     "sweep_job",
     "family_job",
     "simulation_job",
+    "atlas_job",
     "wave_key",
     "floquet_key",
     "sweep_key",
     "family_key",
     "simulation_key",
+    "atlas_key",
     # heavy computations
     "is_cached",
     "discrete_wave",
@@ -157,6 +188,8 @@ __all__ = [
     "discrete_family",
     "discrete_family_cached",
     "simulation",
+    "small_atlas",
+    "small_atlas_cached",
     # energy criterion
     "ENERGY_QC_SAMPLES",
     "energy_qc_samples",

@@ -1,5 +1,5 @@
 """The heavy computations the scenes ask for: discrete waves, Floquet spectra and sweeps,
-discrete families and simulations, each in a worker process through
+discrete families, simulations and small atlases, each in a worker process through
 :func:`~app.compute.workers.run_job`, cached exactly.
 
 Views call these and the ``*_cached`` questions (would it answer from the cache?) instead of
@@ -16,6 +16,8 @@ from fpucore.errors import ParameterError
 
 from .cache import CACHE, Computed
 from .jobs import (
+    atlas_job,
+    atlas_key,
     family_job,
     family_key,
     floquet_job,
@@ -28,6 +30,7 @@ from .jobs import (
     wave_job,
     wave_key,
 )
+from .requests import AtlasRequest, SimulationRequest, WaveRequest
 from .workers import run_job
 
 __all__ = [
@@ -40,6 +43,8 @@ __all__ = [
     "discrete_family",
     "discrete_family_cached",
     "simulation",
+    "small_atlas",
+    "small_atlas_cached",
 ]
 
 
@@ -49,14 +54,14 @@ def is_cached(key: Hashable) -> bool:
 
 def discrete_wave(lw, mode, w_plus, V, N, tol, stop=None, progress=None) -> Computed:
     """Discrete traveling wave (see :func:`wave_job`) in a worker process, cached exactly."""
-    key = wave_key(lw, mode, w_plus, V, N, tol)
-    return run_job(key, wave_job, (lw, mode, w_plus, V, N, tol), stop, progress)
+    req = WaveRequest(mode, w_plus, V, N, tol)
+    return run_job(wave_key(lw, req), wave_job, (lw, req), stop, progress)
 
 
 def discrete_wave_cached(lw, mode, w_plus, V, N, tol) -> bool:
     """Whether :func:`discrete_wave` would answer from the cache (no solve)."""
     try:
-        return is_cached(wave_key(lw, mode, w_plus, V, N, tol))
+        return is_cached(wave_key(lw, WaveRequest(mode, w_plus, V, N, tol)))
     except ParameterError:
         return False
 
@@ -101,11 +106,11 @@ def floquet_spectrum(lw, mode, w_plus, V, N, tol, stop=None, progress=None):
     """(wave Computed, spectrum Computed or None): the wave from the shared cache if there,
     else wave and spectrum in one worker job.  ``progress(done, stage=...)``: its stages
     (:data:`~app.compute.jobs.FLOQUET_STAGES`)."""
-    wk = wave_key(lw, mode, w_plus, V, N, tol)
+    req = WaveRequest(mode, w_plus, V, N, tol)
+    wk = wave_key(lw, req)
     rc = CACHE.lookup(wk)
-    args = (lw, mode, w_plus, V, N, tol)
-    staged = None if progress is None else SpectrumProgress(progress, N)
-    c = run_job(floquet_key(*args), floquet_job, args, stop, staged)
+    staged = None if progress is None else SpectrumProgress(progress, req.N)
+    c = run_job(floquet_key(lw, req), floquet_job, (lw, req), stop, staged)
     r, fr = c.value
     if fr is not None and not c.cached and fr.method == "dense":
         spent = fr.monodromy_s + fr.check_s + fr.eig_s
@@ -141,7 +146,17 @@ def discrete_family_cached(lw, w_plus, V_values, N, tol) -> bool:
     return is_cached(family_key(lw, w_plus, V_values, N, tol))
 
 
-def simulation(kind: str, lw, params: dict, stop=None, progress=None):
+def simulation(lw, req: SimulationRequest, stop=None, progress=None) -> Computed:
     """Direct simulation (see :func:`simulation_job`) in a worker process."""
-    key = simulation_key(kind, lw, params)
-    return run_job(key, simulation_job, (kind, lw, dict(params)), stop, progress)
+    return run_job(simulation_key(lw, req), simulation_job, (lw, req), stop, progress)
+
+
+def small_atlas(lw, req: AtlasRequest, stop=None, progress=None) -> Computed:
+    """A small atlas with Floquet (see :func:`atlas_job`) in a worker process, cached exactly:
+    the same request again is answered from the cache.  ``progress``: the fraction of points
+    done."""
+    return run_job(atlas_key(lw, req), atlas_job, (lw, req), stop, progress)
+
+
+def small_atlas_cached(lw, req: AtlasRequest) -> bool:
+    return is_cached(atlas_key(lw, req))

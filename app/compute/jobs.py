@@ -1,8 +1,9 @@
 """The jobs run in worker processes (:mod:`app.compute.workers`) and their exact cache keys.
 
-The ``*_job`` functions are module-level and take plain parameters (picklable) and return the
-fpucore result; each ``*_key`` is the exact key of the same call (the solver's own inputs, the
-law's :func:`~app.compute.laws.law_key`).  Bad parameters surface as
+The ``*_job`` functions are module-level, take the law and plain or typed parameters
+(:mod:`app.compute.requests`: picklable, checked when made) and return the fpucore result; each
+``*_key`` is the exact key of the same call (the solver's own inputs, the law's
+:func:`~app.compute.laws.law_key`).  Bad parameters surface as
 ``fpucore.errors.ParameterError``.
 """
 
@@ -11,13 +12,13 @@ from __future__ import annotations
 import numpy as np
 
 from fpucore import floquet as fq
-from fpucore import qc, wave
-from fpucore import simulate as sim
+from fpucore import wave
 from fpucore.errors import ParameterError
 from fpucore.parallel import Executor
 
 from .cache import exact
 from .laws import law_key
+from .requests import AtlasRequest, Call, SeededRequest, SimulationRequest, WaveRequest
 
 __all__ = [
     "wave_call",
@@ -30,28 +31,26 @@ __all__ = [
     "sweep_job",
     "family_job",
     "simulation_job",
+    "atlas_job",
     "wave_key",
     "floquet_key",
     "sweep_key",
     "family_key",
     "simulation_key",
+    "atlas_key",
 ]
 
 
-def wave_call(lw, mode: str, w_plus: float, V: float, N: int, tol: float):
-    """(fpucore function name, positional args, keyword args) of a discrete wave — the exact
-    call, used by the job, the cache key and "copy as Python".  Raises ParameterError."""
-    if mode == "superkink":
-        sk = qc.superkink_from_w_plus(lw, w_plus)  # validates w_plus, gives V_SK and branch
-        return "solve_superkink", (lw, sk.V), {"branch": sk.branch, "N": int(N), "tol": tol}
-    return "solve_solitary", (lw, float(w_plus), float(V)), {"N": int(N), "tol": float(tol)}
+def wave_call(lw, req: WaveRequest) -> Call:
+    """The exact fpucore call of a discrete wave (used by the job, the cache key and "copy as
+    Python").  Raises ParameterError (a superkink's w₊ outside its range)."""
+    return req.call(lw)
 
 
-def wave_job(lw, mode: str, w_plus: float, V: float, N: int, tol: float):
+def wave_job(lw, req: WaveRequest):
     """Discrete traveling wave (fixed point of eq. nonlin_map): fpucore.wave.solve_superkink
     (branch of w_plus) or fpucore.wave.solve_solitary.  Returns the WaveResult."""
-    name, args, kwargs = wave_call(lw, mode, w_plus, V, N, tol)
-    return getattr(wave, name)(*args, **kwargs)
+    return req.call(lw).run(lw)
 
 
 #: the stages of a Floquet job in order (the shorter rings only when the excess needs them)
@@ -72,13 +71,13 @@ def stage_of(x: float) -> tuple[str, float]:
     return FLOQUET_STAGES[k], min(float(x) * n - k, 1.0)
 
 
-def floquet_job(lw, mode: str, w_plus: float, V: float, N: int, tol: float, progress=None):
+def floquet_job(lw, req: WaveRequest, progress=None):
     """(WaveResult, FloquetResult or None if the wave did not converge).  ``progress`` gets
     :func:`stage_progress` values: the wave, the spectrum, the shorter rings."""
     send = None if progress is None else (lambda stage, x: progress(stage_progress(stage, x)))
     if send is not None:
         send("discrete wave", 0.0)
-    r = wave_job(lw, mode, w_plus, V, N, tol)
+    r = wave_job(lw, req)
     return r, (fq.spectrum(r, progress=send) if r.converged else None)
 
 
@@ -115,35 +114,35 @@ def family_job(lw, w_plus, V_values, N, tol, progress=None):
     return list(fam.results)
 
 
-def simulation_job(kind: str, lw, params: dict, progress=None):
-    """Direct simulation via fpucore.simulate: kind "riemann" | "gaussian" | "seeded" (for
-    "seeded", ``params`` also holds mode/w_plus/V/N/tol of the seeding wave)."""
-    p = dict(params)
+def simulation_job(lw, req: SimulationRequest, progress=None):
+    """Direct simulation via fpucore.simulate (riemann, gaussian, or seeded by the discrete
+    wave of ``req.wave``, which must converge)."""
     extra = {} if progress is None else {"progress": progress}
-    if kind == "riemann":
-        return sim.riemann(lw, p.pop("w_left"), p.pop("w_right"), **p, **extra)
-    if kind == "gaussian":
-        return sim.gaussian(lw, p.pop("w_B"), p.pop("A"), **p, **extra)
-    if kind == "seeded":
-        wave_args = [p.pop(k) for k in ("mode", "w_plus", "V", "N", "tol")]
-        r = wave_job(lw, *wave_args)
-        if not r.converged:
-            raise ParameterError(
-                "N", wave_args[3], "a converged seeding wave", f"did not converge: {r.message}"
-            )
-        return sim.seeded(r, **p, **extra)
-    raise ParameterError("kind", kind, "'riemann', 'gaussian' or 'seeded'")
+    first = lw
+    if isinstance(req, SeededRequest):
+        first = wave_job(lw, req.wave)
+        if not first.converged:
+            raise ParameterError("N", req.wave.N, "a converged seeding wave",
+                                 f"did not converge: {first.message}")  # fmt: skip
+    return req.call().run(first, **extra)
+
+
+def atlas_job(lw, req: AtlasRequest, progress=None):
+    """A small atlas (fpucore.atlas.run, see :class:`AtlasRequest`), its chunks computed one
+    after the other in this worker (a pool worker may not start a pool of its own; the server's
+    pool spreads the sessions' jobs over the cores).  ``progress``: the fraction of points
+    done, after each chunk (a row of the grid).  Returns the AtlasResult."""
+    return req.call().run(lw, executor=Executor(backend="inline"), progress=fraction(progress))
 
 
 # --------------------------------------------------------------------------- keys
-def wave_key(lw, mode, w_plus, V, N, tol) -> tuple:
+def wave_key(lw, req: WaveRequest) -> tuple:
     """Exact key of a discrete wave: the solver's own inputs (raises ParameterError)."""
-    name, args, kwargs = wave_call(lw, mode, w_plus, V, N, tol)
-    return ("wave", name, law_key(lw), *(exact(x) for x in args[1:]), repr(kwargs))
+    return ("wave", law_key(lw), req.call(lw).key())
 
 
-def floquet_key(lw, mode, w_plus, V, N, tol) -> tuple:
-    return ("floquet",) + wave_key(lw, mode, w_plus, V, N, tol)
+def floquet_key(lw, req: WaveRequest) -> tuple:
+    return ("floquet",) + wave_key(lw, req)
 
 
 def sweep_key(lw, kind, w_plus, V_values, N, branch) -> tuple:
@@ -157,6 +156,9 @@ def family_key(lw, w_plus, V_values, N, tol) -> tuple:
     return ("dfamily", law_key(lw), exact(w_plus), Vs, int(N), exact(tol))
 
 
-def simulation_key(kind: str, lw, params: dict) -> tuple:
-    items = tuple(sorted((k, repr(v)) for k, v in params.items()))
-    return ("sim", kind, law_key(lw), items)
+def simulation_key(lw, req: SimulationRequest) -> tuple:
+    return ("sim", law_key(lw), req.key())
+
+
+def atlas_key(lw, req: AtlasRequest) -> tuple:
+    return ("atlas", law_key(lw), req.key())

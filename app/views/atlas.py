@@ -1,6 +1,7 @@
-"""Scene "Atlas" — heat maps over the existence diagram (w₊, V) from an atlas store
-(:mod:`fpucore.atlas`), or from a small atlas run in the background through the execution layer
-(:class:`fpucore.parallel.Executor`, one process per core, one BLAS thread each).
+"""Scene "Atlas" — heat maps over the existence diagram (w₊, V) from an atlas store (read by
+:func:`fpucore.atlas.open_atlas`), or from a small atlas computed as a job of :mod:`app.compute`
+(:func:`~app.compute.small_atlas`: in a worker process of the server's pool, cached on its exact
+request, with progress and Cancel, as every heavy computation of the app).
 
 Quantities: max |μ| − 1 (log scale of the excess; needs Floquet), amplitude, E_ren^D.  Cells
 without a wave (outside the existence region, or not converged) are blank; the counts by status
@@ -14,14 +15,15 @@ from __future__ import annotations
 
 import numpy as np
 import panel as pn
-import xarray as xr
 from bokeh.events import Tap
 from bokeh.models import ColorBar, ColumnDataSource, LinearColorMapper
 
 import fpucore
 from fpucore import atlas
+from fpucore.atlas import AtlasData
 from fpucore.errors import ParameterError
 
+from .. import compute
 from ..compute import Computed
 from ..state import N_RANGE, resolve_atlas_store
 from .bokeh_scene import BokehScene, Updates, new_figure
@@ -30,11 +32,16 @@ from .python_code import python_preamble
 from .report import Info, SceneMessage
 from .untrusted import md_literal
 
+#: the heat map's quantities: name → its (rows, V) values in an atlas
 QUANTITIES = {
-    "max |μ| − 1": "max_modulus",
-    "amplitude": "amplitude",
-    "E_ren": "energy",
+    "max |μ| − 1": lambda d: d.max_modulus - 1.0,
+    "amplitude": lambda d: d.amplitude,
+    "E_ren": lambda d: d.energy,
 }
+#: the AtlasData field each quantity is computed from (what "Copy as Python" prints)
+FIELDS = {"max |μ| − 1": "max_modulus", "amplitude": "amplitude", "E_ren": "energy"}
+FLOQUET_QUANTITY = "max |μ| − 1"
+RUN = "background run"  # the source of the atlas on screen when it is the button's run
 
 
 class AtlasScene(BokehScene):
@@ -76,9 +83,11 @@ class AtlasScene(BokehScene):
             value=self.state.atlas, width=280,
         )  # fmt: skip
         self.quantity = pn.widgets.Select(name="quantity", options=list(QUANTITIES), width=200)
-        self.n_w = pn.widgets.IntInput(name="w₊ rows", value=8, start=2, end=60, width=130)
-        self.n_V = pn.widgets.IntInput(name="velocities", value=8, start=2, end=60, width=130)
-        self.N_run = pn.widgets.IntInput(name="N", value=200, start=40, end=1000, step=20,
+        lo, hi = compute.SMALL_ATLAS_POINTS
+        self.n_w = pn.widgets.IntInput(name="w₊ rows", value=8, start=lo, end=hi, width=130)
+        self.n_V = pn.widgets.IntInput(name="velocities", value=8, start=lo, end=hi, width=130)
+        N_lo, N_hi = compute.SMALL_ATLAS_N
+        self.N_run = pn.widgets.IntInput(name="N", value=200, start=N_lo, end=N_hi, step=20,
                                          width=130)  # fmt: skip
         self.run_btn = pn.widgets.Button(
             label="Run a small atlas (with Floquet)", color="primary", css_classes=["atlas-run"]
@@ -87,10 +96,10 @@ class AtlasScene(BokehScene):
 
     def _extra_watch(self) -> None:
         self._want_run = False
-        self._ds: xr.Dataset | None = None
+        self._data: AtlasData | None = None
         self._source = ""
-        self._rows = ""
-        self._run_time: tuple[str, float] | None = None  # the background run's label and cost
+        # the run on screen: its request, timing label and cost
+        self._run: tuple[compute.AtlasRequest, str, float] | None = None
         self._cell: tuple[int, int] | None = None  # the picked (w₊ row, V column)
         self.last_z: np.ndarray | None = None
 
@@ -118,71 +127,66 @@ class AtlasScene(BokehScene):
         self.quantity.param.watch(lambda _: self.request(), "value")
 
     # ------------------------------------------------------------------ data
-    def load(self, path: str) -> xr.Dataset:
+    def load(self, path: str) -> AtlasData:
         p = resolve_atlas_store("atlas store", path)  # ParameterError: shown as the message
-        if not p.is_dir():
-            raise SceneMessage(f"no atlas store at {p}")
         try:
-            ds = xr.open_zarr(p, consolidated=False).load()
-        except Exception as exc:  # noqa: BLE001  (shown, not raised)
-            raise SceneMessage(f"cannot read {path}: {type(exc).__name__}: {exc}") from None
-        if "w_plus" not in ds.dims:
+            data = atlas.open_atlas(p)
+        except ParameterError as exc:  # no store there, or unreadable: the reason names it
+            raise SceneMessage(exc.reason or str(exc)) from None
+        if data.kind != "solitary":
             raise SceneMessage("this store is a superkink atlas (over V only): no (w₊, V) map")
-        return ds
+        return data
 
-    def run_small(self, info: Info) -> xr.Dataset:
-        s = self.state
-        law = s.law()
-        lo, _, hi = s.w_plus_range()  # (alpha, beta) for the cubic; finite for any law
+    def atlas_request(self) -> compute.AtlasRequest:
+        """The button's atlas: the widgets' grid over the law's w₊ range (ParameterError for a
+        count outside the widgets' range)."""
+        lo, _, hi = self.state.w_plus_range()  # (alpha, beta) for the cubic; finite for any law
         pad = 0.02 * (hi - lo)
-        rows = self._rows = f"{lo + pad}:{hi - pad}:{int(self.n_w.value)}"
-        res = atlas.run(
-            law, "solitary", rows=rows, V=int(self.n_V.value), N=int(self.N_run.value),
-            floquet=True, finite_size=False,
-            progress=lambda d, n, f: self.set_progress(d, n, "atlas points"),
-        )  # fmt: skip
-        label = f"atlas run ({res.n_computed} points, {res.workers} {res.backend} workers)"
-        self._run_time = (label, res.elapsed_s)
-        info.time(label, res.elapsed_s)
-        return res.dataset
+        return compute.AtlasRequest(lo + pad, hi - pad, self.n_w.value, self.n_V.value,
+                                    self.N_run.value)  # fmt: skip
+
+    def run_small(self, info: Info) -> AtlasData:
+        req = self.atlas_request()
+        self.set_stage("atlas points")
+        c = compute.small_atlas(self.state.law(), req, stop=self.superseded,
+                                progress=self.stage_progress("atlas points"))  # fmt: skip
+        res = c.value
+        label = f"atlas run ({res.n_computed} points)"
+        self._run = (req, label, c.elapsed_s)
+        info.time(label, c)
+        return atlas.atlas_data(res.dataset)
 
     # ------------------------------------------------------------------ render
     def render(self, info: Info):
         if self._want_run:
             self._want_run = False
-            self._ds, self._source = self.run_small(info), "background run"
+            self._data, self._source = self.run_small(info), RUN
             self._cell = None
         elif self.state.atlas:
             if self._source != self.state.atlas:
-                self._ds, self._source = self.load(self.state.atlas), self.state.atlas
-                self._cell, self._run_time = None, None
-        elif self._source != "background run":
-            self._ds, self._source, self._cell = None, "", None
-        if self._source == "background run" and self._run_time and not info.timings:
+                self._data, self._source = self.load(self.state.atlas), self.state.atlas
+                self._cell, self._run = None, None
+        elif self._source != RUN:
+            self._data, self._source, self._cell = None, "", None
+        if self._source == RUN and self._run and not info.timings:
             # a re-render of the run already on screen keeps what the run cost
-            info.time(self._run_time[0], Computed(None, self._run_time[1], True))
-        if self._ds is None:
+            info.time(self._run[1], Computed(None, self._run[2], True))
+        if self._data is None:
             raise SceneMessage("Give an atlas store (fpu atlas solitary … --out atlas.zarr) or "
                                "run a small atlas with the button.", "info")  # fmt: skip
-        ds = self._ds
+        data = self._data
         name = self.quantity.value
-        var = QUANTITIES[name]
-        z = ds[var].values.astype(float)
-        if var == "max_modulus":
-            z = z - 1.0
-        ok = ds["status"].values == "ok"
+        z = QUANTITIES[name](data)
+        ok = data.ok
         z = np.where(ok & np.isfinite(z), z, np.nan)
         if not np.isfinite(z).any():
             raise SceneMessage(f"no {name} in this atlas (computed without Floquet?)")
-        counts = {k: int(np.sum(ds["status"].values == k))
-                  for k in ("ok", "not_converged", "no_wave", "failed")}  # fmt: skip
         info.shown = f"{name} over (w₊, V), {md_literal(self._source)}"
-        info.error("max residual", np.nanmax(np.where(ok, ds["residual"].values, np.nan)))
-        if var == "max_modulus":
-            info.error("max |μ| error bar", np.nanmax(np.where(ok, ds[
-                "max_modulus_error"].values, np.nan)))  # fmt: skip
-        info.notes.append(", ".join(f"{v} {k}" for k, v in counts.items() if v))
-        w, V = ds["w_plus"].values.astype(float), ds["V"].values.astype(float)
+        info.error("max residual", np.nanmax(np.where(ok, data.residual, np.nan)))
+        if name == FLOQUET_QUANTITY:
+            info.error("max |μ| error bar", np.nanmax(np.where(ok, data.max_modulus_error, np.nan)))
+        info.notes.append(", ".join(f"{v} {k}" for k, v in data.counts().items() if v))
+        w, V = data.w_plus, data.V
         self.last_z = z  # (n_w, n_V): what the image shows
         # cell edges half way between grid points (the grid may be non-uniform in V)
         dw = (w[-1] - w[0]) / max(len(w) - 1, 1) if len(w) > 1 else 1.0
@@ -206,7 +210,7 @@ class AtlasScene(BokehScene):
         return up
 
     def _cell_outline(self) -> dict:
-        if self._cell is None or self._ds is None:
+        if self._cell is None or self._data is None:
             return {"l": [], "r": [], "b": [], "t": []}
         w, V, dw, dv = self._cell_edges
         i, j = self._cell
@@ -216,19 +220,18 @@ class AtlasScene(BokehScene):
     @property
     def atlas_N(self) -> int | None:
         """The chain size the atlas's waves were computed at (None: not recorded)."""
-        N = int(self._ds.attrs.get("N", -1)) if self._ds is not None else -1
-        return N if N > 0 else None
+        return None if self._data is None else self._data.N
 
     @property
-    def dataset(self) -> xr.Dataset | None:
+    def atlas_data(self) -> AtlasData | None:
         """The atlas on screen (None before one is loaded or run)."""
-        return self._ds
+        return self._data
 
     def pick(self, x, y) -> bool:
         """Set the state to the grid point nearest to (x, y) = (w₊, V); False if none."""
-        if x is None or y is None or self._ds is None:
+        if x is None or y is None or self._data is None:
             return False
-        w, V = self._ds["w_plus"].values, self._ds["V"].values
+        w, V = self._data.w_plus, self._data.V
         i, j = int(np.argmin(np.abs(w - x))), int(np.argmin(np.abs(V - y)))
         N = self.atlas_N
         try:
@@ -245,37 +248,41 @@ class AtlasScene(BokehScene):
         return True
 
     def download_data(self):
-        if self._ds is None:
+        if self._data is None:
             raise SceneMessage("nothing to download yet")
-        ds = self._ds
-        W, Vg = np.meshgrid(ds["w_plus"].values, ds["V"].values, indexing="ij")
-        cols = {"w_plus": W.ravel(), "V": Vg.ravel()}
-        for k in ("amplitude", "energy", "residual", "max_modulus", "max_modulus_error"):
-            cols[k] = ds[k].values.ravel()
+        d = self._data
+        W, Vg = np.meshgrid(d.w_plus, d.V, indexing="ij")
+        cols = {"w_plus": W, "V": Vg, "amplitude": d.amplitude, "energy": d.energy,
+                "residual": d.residual, "max_modulus": d.max_modulus,
+                "max_modulus_error": d.max_modulus_error}  # fmt: skip
+        cols = {k: v.ravel() for k, v in cols.items()}
         return "atlas.csv", as_csv(cols, self.header() + "\n" + self.python_code())
 
     def header(self) -> str:
         """The download's header: the atlas's own parameters (its store attributes), not the
         sidebar's N and tol, which may differ."""
-        a = self._ds.attrs
-        keys = ("kind", "law", "params", "N", "tol", "floquet", "finite_size", "floquet_method",
-                "m", "continuation", "fpucore_version", "created")  # fmt: skip
         lines = [f"atlas from {self._source}", f"fpu-explorer / fpucore {fpucore.__version__}"]
-        lines += [f"{k}={a[k]!r}" for k in keys if k in a]
+        lines += [f"{k}={v!r}" for k, v in self._data.parameters.items()]
         return "\n".join(lines)
 
     def notebook_plot(self) -> str:
-        name = "ds" if self._source and self._source != "background run" else "res.dataset"
-        return f"{name}['amplitude'].plot(x='w_plus', y='V')\n"
+        var = FIELDS[self.quantity.value]
+        return f"data.dataset[{var!r}].plot(x='w_plus', y='V')\n"
 
     def python_code(self) -> str:
-        if self._source and self._source != "background run":
-            return python_preamble(self.state) + (
-                f"import xarray as xr\nds = xr.open_zarr({self._source!r}, consolidated=False)\n"
+        var = FIELDS[self.quantity.value]  # the numbers on screen, (w₊, V) rows
+        code = python_preamble(self.state) + "from fpucore import atlas\n"
+        if self._source and self._source != RUN:
+            return code + (
+                f"data = atlas.open_atlas({self._source!r})\nprint(data.{var}.tolist())\n"
             )
-        return python_preamble(self.state) + (
-            "from fpucore import atlas\n"
-            f"res = atlas.run(law, 'solitary', rows='{self._rows}', V={int(self.n_V.value)}, "
-            f"N={int(self.N_run.value)}, floquet=True, finite_size=False)\n"
-            "print(res.dataset)\n"
+        try:  # the run on screen, else the one the button would start
+            req = self._run[0] if self._run else self.atlas_request()
+        except ParameterError as exc:
+            return code + f"# no atlas: {exc}\n"
+        return code + (
+            f"res = {req.call().code()}\n"
+            "data = atlas.atlas_data(res.dataset)\n"
+            "print(res.message)\n"
+            f"print(data.{var}.tolist())\n"
         )

@@ -12,6 +12,11 @@ Branch view (Figs. floquet_cubicSW, stabSW as MatCont/AUTO draw branches): on de
 sweep of the family at the discrete velocities classifies each wave (stable, finite-size
 artefact, unstable, not determined: fpucore.floquet's decision); its discrete E_ren is drawn on
 (b) in the class's colour, and a click on a point makes that wave the current one (V).
+In superkink mode the button sweeps the superkink family instead (Fig. floquet_SK: velocities
+over the superkink interval of the current law, on the current w₊'s branch), drawn on (d) as the
+amplitude |w₋ − w₊| against V in the class's colour — a superkink has no E_ren (it joins two
+different states: eq. Eren_D's renormalization is the solitary waves') — and a click on a point
+sets V, and w₊ with it (V = V_SK(w₊)).
 """
 
 from __future__ import annotations
@@ -21,9 +26,10 @@ from contextlib import nullcontext
 import numpy as np
 import panel as pn
 from bokeh.events import Tap
-from bokeh.layouts import row
+from bokeh.layouts import column, row
 from panel.io.state import set_curdoc
 
+from fpucore import qc
 from fpucore.floquet import CLASSES
 
 from .. import compute
@@ -78,7 +84,8 @@ class DiagramScene(BokehScene):
         )
         branch = pn.pane.Markdown(
             "_Branch view: the Floquet sweep at the same velocities colours the discrete E_ren "
-            "on (b) by stability; click a point to open that wave._"
+            "on (b) by stability (in superkink mode: the superkinks over their velocity "
+            "interval, on (d)); click a point to open that wave._"
         )
         return [hint, self.n_discrete, self.discrete_btn, branch, self.classify_btn]
 
@@ -86,6 +93,7 @@ class DiagramScene(BokehScene):
         self._want_discrete = False
         self._want_branch = False
         self._branch = None
+        self._sk_branch = None  # (SweepResult, amplitudes, branch) of the superkink family
 
         def go(_):
             self._want_discrete = True
@@ -179,7 +187,28 @@ class DiagramScene(BokehScene):
             ],
         )
         fc.on_event(Tap, self._on_tap)
-        return row(fa, fe)
+        # (d) the superkink branch view (superkink mode, after "Classify")
+        fs = new_figure(
+            "(d) superkinks by Floquet class — click a point to open it",
+            "V",
+            "amplitude |w₋ − w₊|",
+            frame_width=620,
+            frame_height=220,
+        )
+        self.fig_sk = fs
+        self.sk_line = add_line(fs, "#d62728", 1.5)  # eq. wpm_cubic over the interval
+        self.sk_V = add_vline(fs, "black")
+        self.r_sk = {}
+        for c in CLASSES:
+            r = add_points(fs, "circle", 9, color=CLASS_STYLE[c][1], line_color="black")
+            r[1].name = f"diagram-sk-branch-{c}"  # read by the tests
+            self.r_sk[c] = r
+        self.sk_legend = add_legend(
+            fs, "right", [(CLASS_STYLE[c][0], [self.r_sk[c][0]]) for c in CLASSES]
+        )
+        fs.on_event(Tap, self._on_sk_tap)
+        fs.visible = False
+        return column(row(fa, fe), fs)
 
     def attach(self):
         self.exist_pane.object = self.fig_c
@@ -221,18 +250,33 @@ class DiagramScene(BokehScene):
                 self.state.mode = "solitary"
             self.state.pick(self._branch.w_plus, V)
 
+    def _on_sk_tap(self, event: Tap) -> None:
+        """A click on (d) near a classified superkink opens it: V, and w₊ = w₊(V) on the
+        sweep's branch (the state keeps V = V_SK(w₊)).  Runs on the session's loop."""
+        V = self.sk_point(event.x, event.y)
+        if V is None:
+            return
+        lw, branch = self.state.law(), self._sk_branch[2]
+        doc = self._doc
+        with set_curdoc(doc) if doc is not None else nullcontext():
+            if self.state.mode != "superkink":
+                self.state.mode = "superkink"
+            self.state.pick(qc.superkink_from_V(lw, V, branch=branch).w_plus, V)
+
+    def sk_point(self, x, y) -> float | None:
+        """V of the classified superkink nearest to (x, y) on (d), within 3 % of both spans."""
+        if self._sk_branch is None or x is None or y is None:
+            return None
+        sw, amp, _ = self._sk_branch
+        return _nearest(sw.V, amp, x, y, self.fig_sk)
+
     def branch_point(self, x, y) -> float | None:
         """V of the classified wave nearest to (x, y) on (b), if within 3 % of both axes' spans
         (a click, not anywhere on the panel); None otherwise."""
         sw = self._branch
         if sw is None or x is None or y is None:
             return None
-        xs, ys = self.fig_e.x_range, self.fig_e.y_range
-        dx = (np.asarray(sw.V, float) - x) / max(xs.end - xs.start, 1e-300)
-        dy = (np.asarray(sw.energy, float) - y) / max(ys.end - ys.start, 1e-300)
-        d = np.where(np.isfinite(dx) & np.isfinite(dy), np.hypot(dx, dy), np.inf)
-        k = int(np.argmin(d)) if d.size else -1
-        return float(sw.V[k]) if k >= 0 and d[k] < 0.03 else None
+        return _nearest(sw.V, sw.energy, x, y, self.fig_e)
 
     def _velocities(self, fam) -> list[float]:
         """The velocities of the discrete dots and of the branch view: k midpoints per
@@ -245,12 +289,16 @@ class DiagramScene(BokehScene):
         return Vs
 
     def _branch_view(self, info: Info, up: Updates, fam) -> None:
-        """The family's Floquet sweep (on demand, or when cached) on (b), coloured by class."""
+        """The family's Floquet sweep (on demand, or when cached) on (b), coloured by class;
+        in superkink mode the button sweeps the superkinks instead, on (d)."""
         s = self.state
         args = (s.law(), "solitary", s.w_plus, self._velocities(fam), s.N, "lower")
         self._branch = None
-        if self._want_branch or compute.floquet_sweep_cached(*args):
-            self._want_branch = False
+        want = self._want_branch and s.mode == "solitary"
+        if want or compute.floquet_sweep_cached(*args):
+            # the request is the mode's own: a cached solitary sweep redrawn in superkink mode
+            # leaves the button's request to the superkink sweep
+            self._want_branch = self._want_branch and not want
             c = compute.floquet_sweep(
                 *args, stop=self.superseded, progress=self.stage_progress("Floquet sweep")
             )
@@ -274,6 +322,77 @@ class DiagramScene(BokehScene):
             err = np.asarray(sw.error, float)
             if np.isfinite(err).any():
                 info.error("max |μ| error bound (sweep)", float(np.nanmax(err)))
+        self._superkink_branch(info, up)
+
+    def _superkink_args(self):
+        """The superkink sweep's (law, kind, w_plus, V values, N, branch): 2k midpoints of the
+        superkink velocity interval (k = discrete points per interval, as for the solitary
+        family's two intervals), on the branch of the current w₊."""
+        s = self.state
+        lw = s.law()
+        branch = "lower" if s.w_plus < lw.w_star else "upper"
+        lo, hi = qc.superkink_velocity_bounds(lw, branch)
+        k = 2 * int(self.n_discrete.value)
+        Vs = list(lo + (hi - lo) * (np.arange(k) + 0.5) / k)
+        return (lw, "superkink", None, Vs, s.N, branch), (lo, hi)
+
+    def _superkink_branch(self, info: Info, up: Updates) -> None:
+        """(d): the superkink family's Floquet sweep (on demand in superkink mode, or when
+        cached), each superkink's amplitude w₋ − w₊ in its class's colour."""
+        s = self.state
+        self._sk_branch = None
+        try:
+            args, (lo, hi) = self._superkink_args()
+        except compute.ParameterError:
+            args = None
+        want = self._want_branch and s.mode == "superkink" and args is not None
+        if args is not None and (want or compute.floquet_sweep_cached(*args)):
+            self._want_branch = self._want_branch and not want
+            c = compute.floquet_sweep(
+                *args, stop=self.superseded, progress=self.stage_progress("superkink sweep")
+            )
+            sw, branch = c.value, args[5]
+            info.time(f"superkink Floquet sweep ({len(args[3])} V)", c)
+            lw = args[0]
+            amp = np.array([_sk_amplitude(lw, v, branch) for v in sw.V])
+            self._sk_branch = (sw, amp, branch)
+            Vq = np.linspace(lo, hi, 202)[1:-1]
+            up.data(self.sk_line[1], x=Vq, y=[_sk_amplitude(lw, v, branch) for v in Vq])
+            up.range(self.fig_sk.x_range, lo, hi, pad=0.03)
+            up.range(self.fig_sk.y_range, 0.0, float(np.nanmax(amp)) * 1.1 if amp.size else 1.0)
+            up.set(self.sk_V, location=float(s.V), visible=s.mode == "superkink")
+            up.set(
+                self.fig_sk.title,
+                text=f"(d) superkinks ({branch} branch, N = {int(s.N)}) by Floquet class — "
+                "click a point to open it",
+            )
+        up.set(self.fig_sk, visible=self._sk_branch is not None)
+        cls = (
+            np.array([])
+            if self._sk_branch is None
+            else np.array([c or "" for c in self._sk_branch[0].classification])
+        )
+        for c, (r, src) in self.r_sk.items():
+            sel = cls == c
+            if self._sk_branch is None:
+                up.data(src, x=[], y=[])
+            else:
+                sw, amp, _ = self._sk_branch
+                up.data(src, x=np.asarray(sw.V, float)[sel], y=amp[sel])
+            up.show(r, self.sk_legend[CLASSES.index(c)], bool(sel.any()))
+        if self._sk_branch is not None:
+            sw = self._sk_branch[0]
+            counts = {c: int((cls == c).sum()) for c in CLASSES if (cls == c).any()}
+            words = ", ".join(f"{n} {CLASS_STYLE[c][0].split(' (')[0]}" for c, n in counts.items())
+            info.notes.append(
+                f"superkink branch view (N = {int(s.N)}, {len(sw.V)} V): {words}; a superkink "
+                "has no E_ren (it joins two different states), so (d) draws its amplitude; "
+                "click a point to open it"
+            )
+            err = np.asarray(sw.error, float)
+            if np.isfinite(err).any():
+                info.error("max |μ| error bound (superkink sweep)", float(np.nanmax(err)))
+        self._want_branch = False  # a request neither view could serve (no valid family) ends
 
     def _existence(self, info: Info, up: Updates) -> None:
         s = self.state
@@ -472,6 +591,12 @@ class DiagramScene(BokehScene):
             cols["E_branch"] = np.asarray(sw.energy, float)
             cols["max_modulus_branch"] = np.asarray(sw.max_modulus, float)
             cols["max_modulus_error_branch"] = np.asarray(sw.error, float)
+        if self._sk_branch is not None:
+            sk, amp, _ = self._sk_branch
+            cols["V_superkink_branch"] = np.asarray(sk.V, float)
+            cols["amplitude_superkink_branch"] = amp
+            cols["max_modulus_superkink_branch"] = np.asarray(sk.max_modulus, float)
+            cols["max_modulus_error_superkink_branch"] = np.asarray(sk.error, float)
             # the classes (text) go in the header, in the order of V_branch
         d = getattr(self, "_exist", None)
         if d is not None:
@@ -481,6 +606,11 @@ class DiagramScene(BokehScene):
             f"QC solitary family for w_plus={fam.w_plus!r} (c_plus={fam.c_plus!r}, "
             f"V_SK={fam.V_SK!r}, c_minus={fam.c_minus!r}); existence diagram columns",
             **({"branch_classification": list(sw.classification)} if sw is not None else {}),
+            **(
+                {"superkink_branch_classification": list(self._sk_branch[0].classification)}
+                if self._sk_branch is not None
+                else {}
+            ),
         )
         return "diagram.csv", as_csv(cols, hdr + "\n" + self.python_code())
 
@@ -507,6 +637,15 @@ class DiagramScene(BokehScene):
                 "'undetermined': 'gray'}\n"
                 "for V, E, c in zip(sw.V, sw.energy, sw.classification):\n"
                 "    ax2.plot(V, E, 'o', color=colors.get(c, 'k'), mec='k')\n"
+            )
+        if getattr(self, "_sk_branch", None) is not None:
+            code += (
+                "colors = {'stable': 'g', 'finite_size': 'b', 'unstable': 'r', "
+                "'undetermined': 'gray'}\n"
+                "fig4, ax4 = plt.subplots(figsize=(9, 3))\n"
+                "for V, A, c in zip(sk.V, amp, sk.classification):\n"
+                "    ax4.plot(V, A, 'o', color=colors.get(c, 'k'), mec='k')\n"
+                "ax4.set(xlabel='V', ylabel='|w₋ − w₊|', title='superkinks by Floquet class')\n"
             )
         return code + (
             "for ax in (ax1, ax2):\n"
@@ -548,4 +687,35 @@ class DiagramScene(BokehScene):
                 f"w_plus={float(sw.w_plus)!r}, N={int(s.N)}, branch='lower')\n"
                 "print(list(zip(sw.V, sw.energy, sw.classification)))\n"
             )
+        if self._sk_branch is not None:
+            sk, _, branch = self._sk_branch
+            Vs = [float(v) for v in sk.V]
+            code += (
+                "# superkink branch view: the superkink family's Floquet sweep, classified\n"
+                f"sk = floquet.sweep(law, kind='superkink', V_values={Vs!r}, N={int(s.N)}, "
+                f"branch={branch!r})\n"
+                f"amp = [abs(qc.superkink_from_V(law, v, branch={branch!r}).w_minus\n"
+                f"           - qc.superkink_from_V(law, v, branch={branch!r}).w_plus) "
+                "for v in sk.V]\n"
+                "print(list(zip(sk.V.tolist(), amp, sk.max_modulus.tolist(), "
+                "sk.classification)))\n"
+            )
         return code
+
+
+def _sk_amplitude(lw, V: float, branch: str) -> float:
+    """|w₋ − w₊| of the superkink at V on ``branch`` (eq. wpm_cubic; the discrete superkink has
+    the same limiting states: they follow from the conservation laws alone)."""
+    sk = qc.superkink_from_V(lw, float(V), branch=branch)
+    return abs(float(sk.w_minus - sk.w_plus))
+
+
+def _nearest(xs_data, ys_data, x, y, fig) -> float | None:
+    """The x of the data point nearest to the click (x, y) on ``fig``, if within 3 % of both
+    axes' spans (a click on a point, not anywhere on the panel); None otherwise."""
+    xs, ys = fig.x_range, fig.y_range
+    dx = (np.asarray(xs_data, float) - x) / max(xs.end - xs.start, 1e-300)
+    dy = (np.asarray(ys_data, float) - y) / max(ys.end - ys.start, 1e-300)
+    d = np.where(np.isfinite(dx) & np.isfinite(dy), np.hypot(dx, dy), np.inf)
+    k = int(np.argmin(d)) if d.size else -1
+    return float(xs_data[k]) if k >= 0 and d[k] < 0.03 else None

@@ -318,7 +318,7 @@ class FloquetScene(BokehScene):
         up = Updates()
         mu = np.asarray(fr.multipliers)
         unstable = np.asarray(fr.unstable)
-        key = compute.floquet_key(s.law(), s.mode, s.w_plus, s.V, s.N, s.tol)
+        key = compute.floquet_key(s.law(), compute.WaveRequest(s.mode, s.w_plus, s.V, s.N, s.tol))
         up.data(self.r_mu[1], key, x=mu.real, y=mu.imag)
         up.data(self.r_unst[1], key, x=unstable.real, y=unstable.imag)
         up.show(self.r_unst[0], self.legend_a[1], unstable.size > 0)
@@ -373,11 +373,9 @@ class FloquetScene(BokehScene):
 
     def python_code(self) -> str:
         s = self.state
-        name, args, kwargs = compute.wave_call(s.law(), s.mode, s.w_plus, s.V, s.N, s.tol)
-        pos = ", ".join(repr(float(x)) for x in args[1:])
-        kw = ", ".join(f"{k}={v!r}" for k, v in kwargs.items())
+        req = compute.WaveRequest(s.mode, s.w_plus, s.V, s.N, s.tol)
         code = python_preamble(s) + (
-            f"r = wave.{name}(law, {pos}, {kw})\n"
+            f"r = {compute.wave_call(s.law(), req).code()}\n"
             "print(r.converged, r.residual)\n"
             "fr = floquet.spectrum(r)\n"
             "print(len(fr.multipliers), fr.max_modulus, fr.error, fr.classification)\n"
@@ -389,7 +387,7 @@ class FloquetScene(BokehScene):
             code += (
                 f"sw = floquet.sweep(law, kind={kind!r}, V_values={[float(v) for v in Vs]!r}, "
                 f"w_plus={wp!r}, N={int(s.N)}, branch={branch!r})\n"
-                "print(sw.V, sw.max_modulus)\n"
+                "print(sw.V.tolist(), sw.max_modulus.tolist(), list(sw.classification))\n"
             )
             if kind == "solitary":
                 code += (

@@ -1,19 +1,27 @@
-"""Scene "Paper" — the paper's 17 figures (fpucore.paper's registry), each with its caption and
-a button that sets the explorer's state (law, mode, w₊, V, N, tab) to the scene that shows it;
-the URL follows the state as for any other change.
+"""Scene "Paper" — the paper's 17 figures (fpucore.paper's registry), each with its thumbnail,
+its caption and a button that sets the explorer's state (law, mode, w₊, V, N, tab) to the scene
+that shows it; the URL follows the state as for any other change.
 
 The full reproduction of each figure with the comparison table is ``fpu paper --out report.html``
-(and docs/paper_comparison.md).  Under each figure, its comparison row — the paper's numbers
-beside ours with error bar and verdict — is read from fpucore.paper's result cache when a
-``fpu paper`` run has computed it for the current fpucore source (nothing is computed here);
-otherwise the row says which command fills it.
+(and docs/paper_comparison.md).  The thumbnails are the committed docs/figures/<label>.png
+(``fpu paper --table docs/paper_comparison.md --thumbnails docs/figures``), embedded in the page
+(no request to another host).  Under each figure, its comparison row — the paper's numbers beside
+ours with error bar and verdict — is read from fpucore.paper's result cache when a ``fpu paper``
+run has computed it for the current fpucore source (nothing is computed here); otherwise it is the
+committed row of docs/paper_comparison.json, labelled as such with the fpucore version that
+wrote it.
 """
 
 from __future__ import annotations
 
+import functools
+import json
+from pathlib import Path
+
 import panel as pn
 
 from fpucore.paper import FIGURES, report
+from fpucore.paper.plot import THUMB_WIDTH
 
 from .formatting import fmt_num
 from .report import Info
@@ -44,6 +52,37 @@ FIGURE_STATE: dict[str, tuple[str, str, float, float | None, int]] = {
     "stabSW": ("simulation", "solitary", 6.0, 5.2174919476, 500),
     "SWdyn": ("simulation", "solitary", 1.0, 5.2494, 500),
 }
+
+DOCS = Path(__file__).resolve().parents[2] / "docs"
+FIGURES_DIR = DOCS / "figures"
+DOCS_TABLE = DOCS / "paper_comparison.json"
+#: width at which a thumbnail is shown (px; the file is THUMB_WIDTH wide: sharp on HiDPI screens)
+SHOWN_WIDTH = THUMB_WIDTH // 2
+
+
+@functools.cache
+def docs_table() -> dict:
+    """docs/paper_comparison.json (written with the Markdown table by ``fpu paper --table``);
+    {} when absent or unreadable (a deployment without docs/: the rows name the command)."""
+    try:
+        doc = json.loads(DOCS_TABLE.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return {}
+    return doc if isinstance(doc, dict) and isinstance(doc.get("figures"), dict) else {}
+
+
+def thumbnail(label: str):
+    """The figure's committed thumbnail, embedded (pn.pane.PNG reads a local file into the
+    page), or a line naming the command that writes it."""
+    path = FIGURES_DIR / f"{label}.png"
+    if path.is_file():
+        return pn.pane.PNG(
+            str(path), width=SHOWN_WIDTH, css_classes=["paper-thumb", f"paper-thumb-{label}"]
+        )
+    return pn.pane.Markdown(
+        "<small>_no thumbnail: `fpu paper --thumbnails docs/figures` draws it_</small>",
+        width=SHOWN_WIDTH,
+    )
 
 
 class PaperScene(Scene):
@@ -76,13 +115,15 @@ class PaperScene(Scene):
                 "", sizing_mode="stretch_width", css_classes=[f"paper-cmp-{label}"], margin=(0, 10)
             )
             self.cmp_panes[label] = cmp
-            rows.append(pn.Row(btn, pn.Column(pn.pane.Markdown(text), cmp,
-                                              sizing_mode="stretch_width")))  # fmt: skip
+            rows.append(pn.Row(pn.Column(btn, thumbnail(label)),
+                               pn.Column(pn.pane.Markdown(text), cmp,
+                                         sizing_mode="stretch_width")))  # fmt: skip
         return pn.Column(*rows, sizing_mode="stretch_width", css_classes=["paper-list"])
 
     def comparison_rows(self) -> dict[str, str]:
         """Per figure, its comparisons from fpucore.paper's cache (full size first, else the
-        reduced run), or the command that computes them.  A result read once is kept for this
+        reduced run), else the committed row of docs/ (labelled so), else the command that computes
+        them.  A result read once is kept for this
         fpucore source; a missing one is looked for again at every render (a run in another
         terminal fills the cache)."""
         version = report.code_version()
@@ -97,7 +138,7 @@ class PaperScene(Scene):
                 )
                 if r is not None:
                     self._cmp_results[label] = r
-            out[label] = comparison_markdown(label, r)
+            out[label] = comparison_markdown(label, r, docs_table())
         return out
 
     def open(self, label: str) -> None:
@@ -120,10 +161,16 @@ class PaperScene(Scene):
         set valid parameters)."""
         rows = self.comparison_rows()
         n = len(self._cmp_results)
-        info.shown = f"{len(FIGURES)} figures of the paper; compared with our numbers: {n}"
+        docs = docs_table().get("figures", {})
+        n_docs = sum(1 for lab in FIGURES if lab not in self._cmp_results and lab in docs)
+        info.shown = (
+            f"{len(FIGURES)} figures of the paper; compared with our numbers: {n} computed here "
+            f"(fpu paper's cache), {n_docs} from docs/ (fpucore "
+            f"{docs_table().get('fpucore_version', '?')})"
+        )
         if n < len(FIGURES):
             info.notes.append(
-                "figures without a comparison row: `fpu paper --out report.html` computes all "
+                "to compare with this fpucore source: `fpu paper --out report.html` computes all "
                 "(cached; the rows appear at the next render)"
             )
         problem = self.state.problem()
@@ -140,17 +187,42 @@ class PaperScene(Scene):
                 self.cmp_panes[label].object = text
 
 
-def comparison_markdown(label: str, r) -> str:
-    """One figure's comparison row: each printed number beside ours ± error and the verdict."""
-    if r is None:
-        return f"<small>_not compared yet: `fpu paper --figure {label}` computes it_</small>"
+def _parts(comparisons) -> list[str]:
+    """Each printed number beside ours ± error, with its verdict mark (Comparison objects or the
+    docs JSON's dicts)."""
     parts = []
-    for c in r.comparisons:
-        mark = "✓" if c.agrees else "✗"
+    for c in comparisons:
+        get = c.get if isinstance(c, dict) else functools.partial(getattr, c)
+        ours, err = get("ours"), get("error")
+        ours_s = "—" if ours is None else fmt_num(ours, 8)
+        err_s = "?" if err is None else f"{err:.1g}"
         parts.append(
-            f"{mark} {md_literal(c.quantity)}: paper {md_literal(c.printed)}, ours "
-            f"{fmt_num(c.ours, 8)} ± {c.error:.1g}"
+            f"{'✓' if get('agrees') else '✗'} {md_literal(get('quantity'))}: paper "
+            f"{md_literal(get('printed'))}, ours {ours_s} ± {err_s}"
         )
+    return parts
+
+
+def comparison_markdown(label: str, r, docs: dict | None = None) -> str:
+    """One figure's comparison row: each printed number beside ours ± error and the verdict —
+    from a result computed with this fpucore source (``r``), else from the committed docs table
+    (``docs``, labelled with the fpucore version that wrote it), else the command."""
+    cmd = f"`fpu paper --figure {label}`"
+    if r is None:
+        row = (docs or {}).get("figures", {}).get(label)
+        if not row:
+            return f"<small>_not compared yet: {cmd} computes it_</small>"
+        comps = row.get("comparisons", [])
+        ok = sum(bool(c.get("agrees")) for c in comps)
+        size = ", reduced" if row.get("reduced") else ""
+        head = (
+            f"**{ok}/{len(comps)} agree** (from docs/, fpucore {docs.get('fpucore_version', '?')}"
+            f"{size}; {cmd} computes it here)"
+        )
+        return "<small>" + " · ".join([head, *_parts(comps)]) + "</small>"
     size = " (reduced)" if r.reduced else ""
-    head = f"**{r.n_agree}/{len(r.comparisons)} agree**{size}, computed in {r.elapsed_s:.1f} s"
-    return "<small>" + head + " · " + " · ".join(parts) + "</small>"
+    head = (
+        f"**{r.n_agree}/{len(r.comparisons)} agree**{size}, computed here (fpu paper's cache) in "
+        f"{r.elapsed_s:.1f} s"
+    )
+    return "<small>" + " · ".join([head, *_parts(r.comparisons)]) + "</small>"

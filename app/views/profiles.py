@@ -106,10 +106,8 @@ class ProfilesScene(BokehScene):
         dcall = "None"
         px = py = np.empty(0)
         if r is not None:
-            name, args, kwargs = compute.wave_call(s.law(), s.mode, s.w_plus, s.V, s.N, s.tol)
-            pos = ", ".join(repr(float(x)) for x in args[1:])
-            kw = ", ".join(f"{k}={v!r}" for k, v in kwargs.items())
-            dcall = f"wave.{name}({{law}}, {pos}, {kw})"
+            req = compute.WaveRequest(s.mode, s.w_plus, s.V, s.N, s.tol)
+            dcall = compute.wave_call(s.law(), req).code("{law}")
             sel = np.abs(r.n) <= self._half
             px, py = r.n[sel].astype(float), r.w[sel]
             label += f", N = {r.N}"
@@ -273,11 +271,9 @@ class ProfilesScene(BokehScene):
             code += f"q = qc.solitary(law, {float(s.w_plus)!r}, {float(s.V)!r})  # QC wave\n"
         code += "print(q.V, q.amplitude)\n"
         if self.show_discrete.value:
-            name, args, kwargs = compute.wave_call(s.law(), s.mode, s.w_plus, s.V, s.N, s.tol)
-            pos = ", ".join(repr(float(x)) for x in args[1:])
-            kw = ", ".join(f"{k}={v!r}" for k, v in kwargs.items())
+            req = compute.WaveRequest(s.mode, s.w_plus, s.V, s.N, s.tol)
             code += (
-                f"r = wave.{name}(law, {pos}, {kw})\n"
+                f"r = {compute.wave_call(s.law(), req).code()}\n"
                 "print(r.converged, r.residual, r.amplitude)\n"
                 "w_qc = q.profile(r.n)  # the QC curve at the sites\n"
             )

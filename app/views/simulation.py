@@ -175,7 +175,7 @@ class SimulationScene(BokehScene):
 
     def _extra_watch(self):
         self._want_run = False
-        self._params = None
+        self._request: compute.SimulationRequest | None = None
         self._sim = None
 
         def go(_):
@@ -232,22 +232,22 @@ class SimulationScene(BokehScene):
         probes = row(*self.fig_probe, sizing_mode="stretch_width")
         return column(fi, fp, probes, sizing_mode="stretch_width")
 
-    def _job(self):
+    def _job(self) -> compute.SimulationRequest:
+        """The run the widgets ask for (ParameterError for a value it cannot take)."""
         s = self.state
         kind = self.kind.value
-        p = {"L": int(self.L.value), "t_end": float(self.t_end.value), "guard": self.guard.value}
-        sites = self._probe_sites()
-        if sites:
-            p["probes"] = sites
+        run = dict(L=int(self.L.value), t_end=float(self.t_end.value), guard=self.guard.value,
+                   probes=self._probe_sites())  # fmt: skip
         if kind == "riemann":
-            p.update(w_left=float(self.w_l.value), w_right=float(self.w_r.value))
-        elif kind == "gaussian":
-            p.update(w_B=float(self.w_B.value), A=float(self.A.value))
-        else:
-            if s.problem() is not None:
-                raise SceneMessage(s.problem())
-            p.update(mode=s.mode, w_plus=s.w_plus, V=s.V, N=int(s.N), tol=s.tol)
-        return kind, p
+            return compute.RiemannRequest(
+                w_left=float(self.w_l.value), w_right=float(self.w_r.value), **run
+            )
+        if kind == "gaussian":
+            return compute.GaussianRequest(w_B=float(self.w_B.value), A=float(self.A.value), **run)
+        if s.problem() is not None:
+            raise SceneMessage(s.problem())
+        wave = compute.WaveRequest(s.mode, s.w_plus, s.V, int(s.N), s.tol)
+        return compute.SeededRequest(wave=wave, **run)
 
     def _probe_sites(self) -> tuple[int, ...]:
         """The typed sites (fpucore checks them against L when the run starts)."""
@@ -324,10 +324,8 @@ class SimulationScene(BokehScene):
         c = compute.discrete_wave(s.law(), mode, w_plus, V, s.N, s.tol, stop=self.superseded)
         r = c.value
         info.time(f"wave at V = {V:.6g}", c)
-        name, args, kwargs = compute.wave_call(s.law(), mode, w_plus, V, s.N, s.tol)
-        pos = ", ".join(repr(float(x)) for x in args[1:])
-        kw = ", ".join(f"{k}={v!r}" for k, v in kwargs.items())
-        return r, f"wave.{name}(law, {pos}, {kw})"
+        req = compute.WaveRequest(mode, w_plus, V, s.N, s.tol)
+        return r, compute.wave_call(s.law(), req).code()
 
     def render(self, info: Info):
         # a failed or superseded run must not leave the previous run's numbers on screen
@@ -335,16 +333,16 @@ class SimulationScene(BokehScene):
         self.table.object = ""
         if self._want_run:
             self._want_run = False
-            self._params = self._job()
-        if self._params is None:
+            self._request = self._job()
+        if self._request is None:
             raise SceneMessage("Choose the initial data and press 'Run simulation'.", "info")
-        kind, p = self._params
+        req = self._request
         s = self.state
         c = compute.simulation(
-            kind, s.law(), p, stop=self.superseded, progress=self.stage_progress("simulation")
+            s.law(), req, stop=self.superseded, progress=self.stage_progress("simulation")
         )
         sim = c.value
-        info.time(f"simulation ({kind})", c)
+        info.time(f"simulation ({req.kind})", c)
         info.error("relative energy drift", sim.energy_drift)
         # what the integrator's own estimate bounds depends on the method (SimulationResult)
         what = (
@@ -392,12 +390,13 @@ class SimulationScene(BokehScene):
         up.range(self.fig_prof.y_range, float(snaps.min()), float(snaps.max()), pad=0.05)
         self.table.object = wave_table(sim.waves)
         self._tracked_sites(info, up, sim)
-        self._sim = (kind, p, sim)
+        self._sim = (req, sim)
         info.shown = (
-            f"simulation of {KIND_WORDS[kind]} to t = {t[-1]:.4g}; {tracked_velocities(sim.waves)}"
+            f"simulation of {KIND_WORDS[req.kind]} to t = {t[-1]:.4g}; "
+            f"{tracked_velocities(sim.waves)}"
         )
-        if kind == "seeded":
-            info.notes.append(f"seeding wave V = {fmt_num(p['V'])}, N = {p['N']}")
+        if isinstance(req, compute.SeededRequest):
+            info.notes.append(f"seeding wave V = {fmt_num(req.wave.V)}, N = {req.wave.N}")
         return up
 
     def hide_plot(self) -> None:
@@ -408,20 +407,12 @@ class SimulationScene(BokehScene):
         code = python_preamble(self.state)
         if self._sim is None:
             return code + "# no simulation yet: press 'Run simulation'\n"
-        kind, p, _ = self._sim
-        q = dict(p)
-        if kind == "seeded":
-            wave_args = [q.pop(k) for k in ("mode", "w_plus", "V", "N", "tol")]
-            name, args, kwargs = compute.wave_call(self.state.law(), *wave_args)
-            pos = ", ".join(repr(float(x)) for x in args[1:])
-            kw = ", ".join(f"{k}={v!r}" for k, v in kwargs.items())
-            code += f"r = wave.{name}(law, {pos}, {kw})\n"
-            call = "simulate.seeded(r, "
-        elif kind == "riemann":
-            call = f"simulate.riemann(law, {q.pop('w_left')!r}, {q.pop('w_right')!r}, "
-        else:
-            call = f"simulate.gaussian(law, {q.pop('w_B')!r}, {q.pop('A')!r}, "
-        code += "sim = " + call + ", ".join(f"{k}={v!r}" for k, v in q.items()) + ")\n"
+        req, _ = self._sim
+        first = "law"
+        if isinstance(req, compute.SeededRequest):
+            code += f"r = {compute.wave_call(self.state.law(), req.wave).code()}\n"
+            first = "r"
+        code += f"sim = {req.call().code(first)}\n"
         code += (
             "print(sim.energy_drift, [(w.kind, w.velocity, w.velocity_error) for w in sim.waves])\n"
         )
@@ -449,7 +440,7 @@ class SimulationScene(BokehScene):
     def download_data(self):
         if self._sim is None:
             raise SceneMessage("no simulation yet")
-        kind, p, sim = self._sim
+        req, sim = self._sim
         sites = np.asarray(sim.sites)
         if len(sites) == sim.L:
             cols = f"one column per site n (all {sim.L})"
@@ -460,10 +451,10 @@ class SimulationScene(BokehScene):
             )
         hdr = provenance(
             self.state,
-            f"space-time strain field w_n(t) of a simulation of {KIND_WORDS[kind]}: one row per "
-            f"time t, {cols}",
-            kind=kind,
-            **p,
+            f"space-time strain field w_n(t) of a simulation of {KIND_WORDS[req.kind]}: one row "
+            f"per time t, {cols}",
+            kind=req.kind,
+            **req.params(),
             energy_drift=float(sim.energy_drift),
             error_estimate=float(sim.error_estimate),
         )

@@ -17,6 +17,7 @@ from __future__ import annotations
 import math
 import queue
 import time
+from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, ClassVar
@@ -308,43 +309,56 @@ def _execute(grid, table, law, N, tol, floquet, m, continuation, writer, executo
 
     n_computed, stopped, msg = 0, False, ""
     n_workers = executor.workers if executor is not None else 0
-    try:
-        for key in todo:
+    waiting = deque(todo)  # chunks not submitted yet
+
+    def gather(job) -> None:
+        """One finished chunk: stored and reported, or retried once if its worker died."""
+        nonlocal n_computed, n_done, failed
+        key = jobs.pop(job)
+        i, j0, j1 = key
+        exc = job.exception()
+        if isinstance(exc, Cancelled):
+            return
+        final = True
+        if exc is None:
+            records = job.result()
+        elif isinstance(exc, WorkerDied) and key not in retried:
+            retried.add(key)
             submit(key)
-        while jobs:
+            return
+        else:  # the chunk as a whole failed (worker died twice, unpicklable, ...)
+            final = not isinstance(exc, WorkerDied)  # a dead worker is retried on resume
+            records = [empty_record("failed", failure_text(exc)) for _ in range(j1 - j0)]
+        table.put(i, j0, records, final)
+        if writer is not None:
+            writer.write(i, j0, j1, records, final)
+        n_computed += j1 - j0
+        n_done += j1 - j0
+        failed += sum(r["status"] == "failed" for r in records)
+        if on_points is not None:
+            on_points([(i, j, r) for j, r in enumerate(records, start=j0)])
+        if progress is not None:
+            progress(n_done, total, failed)
+
+    try:
+        while waiting or jobs:
             if time_budget_s is not None and time.perf_counter() - t0 > time_budget_s:
                 stopped = True
-                msg = f"time budget {time_budget_s:g} s exhausted: {len(jobs)} chunks not done"
+                msg = (f"time budget {time_budget_s:g} s exhausted: "
+                       f"{len(waiting) + len(jobs)} chunks not done")  # fmt: skip
                 break
+            if waiting:
+                submit(waiting.popleft())
+                # an inline executor has run the chunk already: gather it now, so progress,
+                # on_points and the time budget follow each chunk rather than the whole grid
+                while not finished.empty():
+                    gather(finished.get_nowait())
+                continue
             try:
                 job = executor.next_done(finished, timeout=0.2)  # caller_runs: computes here
             except queue.Empty:
                 continue
-            key = jobs.pop(job)
-            i, j0, j1 = key
-            exc = job.exception()
-            if isinstance(exc, Cancelled):
-                continue
-            final = True
-            if exc is None:
-                records = job.result()
-            elif isinstance(exc, WorkerDied) and key not in retried:
-                retried.add(key)
-                submit(key)
-                continue
-            else:  # the chunk as a whole failed (worker died twice, unpicklable, ...)
-                final = not isinstance(exc, WorkerDied)  # a dead worker is retried on resume
-                records = [empty_record("failed", failure_text(exc)) for _ in range(j1 - j0)]
-            table.put(i, j0, records, final)
-            if writer is not None:
-                writer.write(i, j0, j1, records, final)
-            n_computed += j1 - j0
-            n_done += j1 - j0
-            failed += sum(r["status"] == "failed" for r in records)
-            if on_points is not None:
-                on_points([(i, j, r) for j, r in enumerate(records, start=j0)])
-            if progress is not None:
-                progress(n_done, total, failed)
+            gather(job)
     finally:
         for job in list(jobs):
             job.cancel()

@@ -5,8 +5,8 @@ its multipliers)  →  reversible_kernels → reversible (the quarter-size route
 waves)  →  structured_kernels → arnoldi_kernels → structured (the half-size symplectic route)
 →  multipliers (FloquetResult: spectrum, error bars, verdict)
 →  checks (quartet symmetry, homogeneous closed form, phonon gap)  →  finite_size (is an
-excess |μ| − 1 an artefact of the finite ring? the one Decision record)  →  energy (extrema
-of E_ren(V) along solitary families, where stability may change)
+excess |μ| − 1 an artefact of the finite ring?)  →  decision (the one Decision record and its
+words)  →  energy (extrema of E_ren(V) along solitary families, where stability may change)
 
 Sweeps of max|μ| along V are one-row atlases and live in the atlas stage
 (:func:`fpucore.atlas.sweep`).  ``floquet.sweep``, ``floquet.SweepResult`` and
@@ -22,6 +22,7 @@ from fpucore.floquet.checks import (
     phonon_gap,
     quartet_symmetry_error,
 )
+from fpucore.floquet.decision import Decision
 from fpucore.floquet.energy import (
     EnergyCriterion,
     StabilityChange,
@@ -30,7 +31,7 @@ from fpucore.floquet.energy import (
     energy_criterion,
     stability_changes,
 )
-from fpucore.floquet.finite_size import CLASSES, Decision, chain_lengths
+from fpucore.floquet.finite_size import CLASSES, chain_lengths
 from fpucore.floquet.monodromy import MAX_N, Monodromy, default_steps, monodromy, multipliers_of
 from fpucore.floquet.multipliers import METHODS, FloquetResult, spectrum
 from fpucore.floquet.reversible import reversor_of

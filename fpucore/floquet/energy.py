@@ -209,7 +209,7 @@ def energy_criterion(
 
 def _samples(**arrays) -> list[np.ndarray]:
     """The sample arrays as 1-D arrays of one length n (``converged`` as bool), else
-    ParameterError naming the first that differs (V of 5 and energy of 4 used to be cut to 4)."""
+    ParameterError naming the first that differs (never cut to the shorter one)."""
     out = []
     for name, x in arrays.items():
         try:

@@ -15,14 +15,8 @@ import numpy as np
 
 from fpucore.errors import ParameterError, require_finite
 from fpucore.floquet.checks import phonon_gap, quartet_symmetry_error
-from fpucore.floquet.finite_size import (
-    Decision,
-    base_at,
-    chain_lengths,
-    decide,
-    min_chain,
-    settled,
-)
+from fpucore.floquet.decision import Decision, decide
+from fpucore.floquet.finite_size import base_at, chain_lengths, min_chain, settled
 from fpucore.floquet.monodromy import base_state, default_steps, monodromy, multipliers_of
 from fpucore.floquet.reversible import reversor_of
 from fpucore.floquet.structured import structured_multipliers
@@ -52,7 +46,7 @@ class FloquetResult(Result):
     excess : max_modulus_away_from_1 − 1; excess_significant : excess > error.
     unstable : multipliers (away from 1) with |μ| − 1 > error.
     growth_rate : V·ln(max_modulus_away_from_1), the growth rate Re λ per unit time (μ = e^{λ/V}).
-    decision : the one stability decision (:class:`fpucore.floquet.finite_size.Decision`): its
+    decision : the one stability decision (:class:`fpucore.floquet.decision.Decision`): its
     classification "stable" (nothing beyond the error bar) | "finite_size" (absent on a ring of
     the window [N/2, N], or its upper envelope decays with N: an artefact of the finite ring) |
     "unstable" (present on every ring and converged) | "undetermined" (with the computation that

@@ -13,6 +13,7 @@ browser — Bokeh's own SVG/PNG export needs a webdriver).
 from __future__ import annotations
 
 import html
+import io
 from pathlib import Path
 
 import numpy as np
@@ -45,7 +46,12 @@ def _load(hv, backend: str) -> None:
 
 
 def _element(hv, s: Series, color: str, backend: str, panel: Panel):
-    kw = {"label": s.label} if s.label else {}
+    label = s.label
+    if backend == "matplotlib" and label in (panel.xlabel, panel.ylabel):
+        # HoloViews' Matplotlib backend maps a style value that names a dimension to that
+        # dimension's values: a legend label equal to an axis label ("f(w)") became an array
+        label += "\u200a"  # hair space: the same text, no longer the dimension's name
+    kw = {"label": label} if label else {}
     dims = {"kdims": [panel.xlabel], "vdims": [panel.ylabel]}
     if s.style in ("line", "dashed"):
         el = hv.Curve((s.x, s.y), **dims, **kw).opts(color=color)
@@ -67,7 +73,10 @@ def _element(hv, s: Series, color: str, backend: str, panel: Panel):
         return lines.opts(color="lightgray", **({"line_width": 1} if backend == "bokeh" else {}))
     if s.style == "image":
         el = hv.Image((s.x, s.y, s.z), kdims=[panel.xlabel, panel.ylabel], vdims=["w"])
-        return el.opts(cmap="viridis", colorbar=True)
+        # Matplotlib draws an image with equal data aspect by default: a 300-site × 10-time
+        # map became a strip; the panels' own 5 : 3.6 shape instead
+        shape = {"aspect": 1.4} if backend == "matplotlib" else {}
+        return el.opts(cmap="viridis", colorbar=True, **shape)
     raise ParameterError("series.style", s.style, "one of the fpucore.paper.figure.STYLES")
 
 
@@ -110,6 +119,32 @@ def save(result: FigureResult, path: str | Path) -> Path:
         path.write_text(page, encoding="utf-8")
     else:
         hv.save(obj, str(path), backend="matplotlib", fmt=path.suffix[1:].lower())
+    return path
+
+
+#: width of a thumbnail (px): the explorer's Paper tab shows them at this size beside the captions
+THUMB_WIDTH = 400
+
+
+def thumbnail(result: FigureResult, path: str | Path, width: int = THUMB_WIDTH) -> Path:
+    """Write a small PNG of the whole figure, exactly ``width`` px wide (Matplotlib, resampled
+    with Lanczos by Pillow and reduced to a 256-colour palette: a few tens of kB), for the
+    explorer's list of figures (docs/figures/<label>.png).  Returns the path."""
+    from PIL import Image
+
+    if not (isinstance(width, int) and 64 <= width <= 2000):
+        raise ParameterError("width", width, "an integer in [64, 2000] px")
+    hv = ui()[0]
+    buf = io.BytesIO()
+    # HoloViews' renderer draws with bbox "tight" (the title kept) and closes its figure
+    hv.save(plot(result, "matplotlib"), buf, backend="matplotlib", fmt="png", dpi=100)
+    buf.seek(0)
+    with Image.open(buf) as im:
+        im = im.convert("RGB")
+        height = max(1, round(im.height * width / im.width))
+        small = im.resize((width, height), Image.LANCZOS).quantize(colors=256)
+    path = Path(path)
+    small.save(path, format="PNG", optimize=True)
     return path
 
 

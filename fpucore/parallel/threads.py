@@ -88,7 +88,7 @@ def cores() -> int:
 
 def thread_count(n_threads: int | None) -> int:
     """The thread count of a policy: :func:`cores` for None, else an integer >= 1 (ParameterError
-    for 'x', 2.5, True ...: ``int('x')`` used to escape as a ValueError)."""
+    for 'x', 2.5, True ..., never a bare ValueError from ``int('x')``)."""
     if n_threads is None:
         return cores()
     return require_int("n_threads", n_threads, 1, MAX_THREADS)

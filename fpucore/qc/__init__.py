@@ -7,7 +7,8 @@ velocity–amplitude diagrams.
     → general_roots (quadrature rules, cancellation-free integrals, bracketed roots)
     → general_speeds (c₊, V_SK, c₋, partner states, existence ranges)
     → general_map (the substituted profile map ξ(s))
-    → general (§3 for any law: superkinks and solitary waves with error bars)
+    → general_superkink, general_rayleigh (w_C, w_S), general_solitary (§3 for any law, with
+      error bars)  → general (their public names, and the method)
     → dispatch (the public functions: closed forms for the cubic, general otherwise)
     → phase (phase plane of eq. TW_QC_gen2)  → diagram (existence region, families)
 """

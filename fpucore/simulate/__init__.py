@@ -3,25 +3,24 @@
 layout (state vector, end conditions, status codes)  →  observer (events, probes, guard)
 →  kernels (first-order RHS, DOP853/DOPRI5, Yoshida)  and  rkn (RKN12/RKN8 steppers)
 →  steppers (the METHODS table)  →  config (validation, memory and work estimates before
-allocating, output schedule)  →  messages (status text)  →  engine (run_chain: the loop)
-→  scenarios (riemann, gaussian, seeded)
-→  tracking (fronts and pulses in space–time)
+allocating, output schedule)  →  messages (status text)  →  tracking (fronts and pulses in
+space–time)  →  engine (run_chain: the loop)  →  result (SimulationResult)
+→  scenarios (riemann, gaussian; the end conditions, methods, guards and budgets of every run)
+and seeded (a run seeded with a computed traveling wave, checked against it)
 """
 
-from fpucore.simulate.config import memory_estimate, work_estimate
-from fpucore.simulate.scenarios import (
+from fpucore.simulate.config import (
     BOUNDARIES,
     GUARDS,
     MAX_L,
-    METHODS,
-    SimulationResult,
-    TrackedWave,
-    gaussian,
+    memory_estimate,
     restoring_interval,
-    riemann,
-    seeded,
-    whole_periods,
+    work_estimate,
 )
+from fpucore.simulate.result import SimulationResult, TrackedWave
+from fpucore.simulate.scenarios import gaussian, riemann
+from fpucore.simulate.seeded import seeded, whole_periods
+from fpucore.simulate.steppers import METHODS
 
 __all__ = [
     "SimulationResult",

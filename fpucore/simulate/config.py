@@ -35,6 +35,37 @@ def require_positive(name: str, x, hi: float = 1e9) -> float:
     return x
 
 
+def require_L(L) -> int:
+    """The chain length: an integer in [16, MAX_L]."""
+    return require_int("L", L, 16, MAX_L)
+
+
+def detection_threshold(threshold, scale: float) -> float:
+    """Wave-tracker detection threshold (strain units): the given value (> 0), else 2 % of the
+    disturbance's scale (1e-3 where that scale is 0)."""
+    if threshold is not None:
+        return require_positive("threshold", threshold)
+    return 0.02 * scale or 1e-3
+
+
+#: the keywords every driver passes on to :func:`configure`
+CONFIG_OPTIONS = (
+    "method", "rtol", "atol", "dt", "n_snapshots", "max_sites_out", "probes", "n_probe_t",
+    "late_fraction", "max_steps", "estimate_error", "track", "guard", "time_budget_s",
+    "memory_budget",
+)  # fmt: skip
+
+
+def split_options(kw: dict) -> tuple[dict, dict]:
+    """(options of :func:`configure`, options of the engine's run_chain) from a driver's
+    keywords; TypeError for any other keyword."""
+    bad = set(kw) - set(CONFIG_OPTIONS) - {"progress"}
+    if bad:
+        raise TypeError(f"unexpected keyword arguments {sorted(bad)}")
+    run = {"progress": kw.pop("progress")} if "progress" in kw else {}
+    return kw, run
+
+
 def restoring_interval(law: HardeningSofteningLaw) -> tuple[float, float]:
     """The zeros of f adjacent to 0, (w_lo, w_hi) ⊃ (α, β): inside, f(w) has the sign of w (the
     spring resists); beyond them the potential Φ decreases without bound for the cubic law, so a

@@ -1,6 +1,6 @@
 """Wave tracking in a simulated space-time strain field (paper §6, Figs. Riemann1, SWdyn).
 
-Two stages:
+Three stages:
 
 1. **Detection** (:func:`scan_profile`) on full-resolution strain profiles w_n(t_k) in a late time
    window.  Each half of the chain is scanned from its end towards the origin of the initial
@@ -348,7 +348,8 @@ def _measure(f: _Feature, r: int, scans, t_trk, side: int, t_a: float, t_b: floa
     V0, x0 = np.polyfit(ts_a, xs_a, 1)
     if abs(V0) < 0.05 or np.sign(V0) != side:
         return None
-    # the tracking window itself starts where the wave was first seen in it (as before)
+    # the tracking window itself starts where the wave was first seen in it; other fit windows
+    # start at their own t_a
     t0 = ts_a[0] if abs(t_a - t_trk[0]) <= 1e-12 * max(1.0, t_b) else max(t_a, 0.0)
     V, dV, nfit, method, crest = _refine(f, V0, x0, t0, t_b, *passes)
     if not np.isfinite(V):

@@ -159,7 +159,8 @@ def test_cache_keys_tell_the_laws_apart():
     quartic = compute.expression_law(Q)
     keys = {compute.law_key(lw) for lw in (cubic, as_poly, quartic)}
     assert len(keys) == 3  # the same cubic by two routes is two entries
-    wk = {compute.wave_key(lw, "solitary", 1.0, 5.0, 200, 1e-10) for lw in (cubic, quartic)}
+    req = compute.WaveRequest("solitary", 1.0, 5.0, 200, 1e-10)
+    wk = {compute.wave_key(lw, req) for lw in (cubic, quartic)}
     assert len(wk) == 2
     qc_c = compute.qc_wave(cubic, "solitary", 1.0, 5.0).value
     qc_q = compute.qc_wave(quartic, "solitary", 1.0, 5.0).value
@@ -387,8 +388,8 @@ def test_simulation_scene_for_the_quartic_seeded_and_its_code():
     sc._want_run = True
     sc.refresh()
     assert sc.last_message is None, sc.last_message
-    kind, p, sim = sc._sim
-    assert kind == "riemann" and sim.waves
+    req, sim = sc._sim
+    assert req.kind == "riemann" and sim.waves
     assert f"law = fpucore.law_from_expression({Q!r})" in sc.code.value
     assert "simulate.riemann(law, " in sc.code.value
 
@@ -399,7 +400,7 @@ def test_atlas_scene_runs_a_tiny_atlas_for_the_quartic():
     sc._want_run = True
     sc.refresh()
     assert sc.last_message is None or "no max" in sc.last_message, sc.last_message
-    w = sc._ds["w_plus"].values
+    w = sc.atlas_data.w_plus
     lo, _, hi = st.w_plus_range()
     assert lo < w.min() and w.max() < hi  # rows inside the quartic's w₊ range
 

@@ -1,17 +1,23 @@
 """The Atlas scene (app/views/atlas.py), without a browser: it shows a store written by
 ``fpucore.atlas`` (the heat map's values are the store's), refuses what it cannot show with a
 message, reads stores only below the atlas root, and a click on a cell picks that cell's (w₊, V)
-and the atlas's N and marks the cell."""
+and the atlas's N and marks the cell.  Its small atlas is a job of app.compute: in a worker
+process, cached on its exact request, with progress, and Cancel answers within a second."""
 
 from __future__ import annotations
 
-from types import SimpleNamespace
+import re
+import time
 
 import numpy as np
 import pytest
+import zarr
 
 pytest.importorskip("panel")
 
+from scene_checks import assert_cancel_answers_within  # noqa: E402 - tests/support
+
+from app import compute  # noqa: E402
 from app.state import ExplorerState, parse_url, url_query  # noqa: E402
 from app.views.atlas import AtlasScene  # noqa: E402
 from fpucore import atlas  # noqa: E402
@@ -41,8 +47,8 @@ def test_scene_shows_the_store(store):
     info = sc.refresh()
     assert info is not None and any(k == "max residual" for k, _ in info.errors)
     z = sc.last_z  # the image on screen
-    ds = sc.dataset
-    ref = np.where(ds.status.values == "ok", ds.max_modulus.values - 1.0, np.nan)
+    group = zarr.open_group(store, mode="r", zarr_format=2)  # the store as written, raw
+    ref = np.where(group["status"][:] == "ok", group["max_modulus"][:] - 1.0, np.nan)
     assert np.allclose(np.sort(z[np.isfinite(z)]), np.sort(ref[np.isfinite(ref)]), rtol=0, atol=0)
 
 
@@ -101,23 +107,74 @@ def test_click_sets_the_atlas_N_marks_the_cell_and_keeps_the_header_the_atlas_s(
     assert l < 1.0 < r and b < 4.6 < t
     _, buf = sc.download_data()
     header = [ln for ln in buf.getvalue().splitlines() if ln.startswith("#")]
-    assert "# N=64" in header and "# tol=" + repr(float(sc.dataset.attrs["tol"])) in header
+    assert "# N=64" in header and "# tol=" + repr(sc.atlas_data.tol) in header
     assert not any("N=500" in ln for ln in header)
 
 
-def test_the_run_time_stays_after_a_click(store, monkeypatch):
-    """A re-render of the background run (after a click) keeps what the run cost."""
-    import xarray as xr
+def small_run(sc: AtlasScene, n_w: int, n_V: int, N: int):
+    sc.n_w.value, sc.n_V.value, sc.N_run.value = n_w, n_V, N
+    sc._want_run = True  # the "Run a small atlas" button
+    return sc.refresh()
 
-    ds = xr.open_zarr(store, consolidated=False).load()
-    fake = SimpleNamespace(dataset=ds, n_computed=6, workers=2, backend="process", elapsed_s=1.25)
-    monkeypatch.setattr(atlas, "run", lambda *a, **k: fake)
+
+def test_the_small_atlas_is_a_cached_job_and_its_code_reproduces_it():
+    """The same atlas asked again (by this session or another) is answered from the cache:
+    the same entry, with what the run cost; the Python shown recomputes the very numbers."""
     sc = AtlasScene(ExplorerState())
-    sc._want_run = True
-    info = sc.refresh()
-    assert info is not None and info.timings[0][1] == 1.25
-    assert sc.pick(6.0, 5.0)
+    info = small_run(sc, 2, 3, 80)
+    assert info is not None, sc.last_message
+    label, c = info.timings[0]
+    assert label == "atlas run (6 points)" and not c.cached
+    req = sc.atlas_request()
+    assert compute.small_atlas_cached(compute.law(-1.0, 10.0), req)
+    first = sc.atlas_data
+    t0 = time.perf_counter()
+    again = small_run(AtlasScene(ExplorerState()), 2, 3, 80)  # another session, same request
+    assert time.perf_counter() - t0 < 5.0  # no worker involved (a run here takes longer)
+    label2, c2 = again.timings[0]
+    assert label2 == label and c2.cached and c2.elapsed_s == c.elapsed_s
+    assert c2.value is c.value  # the cached result itself: nothing was recomputed
+    # the shown code, run here (its own pool), gives the scene's numbers bit for bit
+    scope: dict = {}
+    exec(sc.python_code(), scope)  # noqa: S102 - the app's own generated code
+    data = scope["data"]
+    assert np.array_equal(data.status, first.status)
+    for name in ("amplitude", "energy", "residual", "max_modulus", "max_modulus_error"):
+        assert np.array_equal(getattr(data, name), getattr(first, name), equal_nan=True), name
+
+
+def test_the_run_time_stays_after_a_click():
+    """A re-render of the background run (after a click) keeps what the run cost."""
+    sc = AtlasScene(ExplorerState())
+    info = small_run(sc, 2, 3, 80)
+    assert info is not None, sc.last_message
+    label, c = info.timings[0]
+    w, V = sc.atlas_data.w_plus, sc.atlas_data.V
+    assert sc.pick(w[1], V[0])
     sc.wait_idle(60)
     again = sc.refresh()
-    label, c = again.timings[0]
-    assert label.startswith("atlas run (6 points") and c.elapsed_s == 1.25 and c.cached
+    label2, c2 = again.timings[0]
+    assert label2 == label and label.startswith("atlas run (6 points")
+    assert c2.elapsed_s == c.elapsed_s and c2.cached
+
+
+def test_a_running_atlas_shows_its_progress_and_cancel_frees_its_worker_within_a_second():
+    sc = AtlasScene(ExplorerState())
+    seen: list[float] = []
+    show = sc.set_progress
+    sc.set_progress = lambda done, *a, **k: (seen.append(done), show(done, *a, **k))
+    sc.n_w.value, sc.n_V.value, sc.N_run.value = 6, 4, 400  # rows of 4 spectra at N = 400
+    cancelled = compute.CANCELLED[0]
+    sc._want_run = True
+    sc.request()
+    t_end = time.monotonic() + 300
+    while not any(0 < x < 1 for x in seen) and time.monotonic() < t_end:
+        time.sleep(0.05)
+    assert any(0 < x < 1 for x in seen), seen  # a row done: the bar moved
+    assert seen == sorted(seen)
+    assert re.match(r"atlas points: \d+ %", sc.progress_text.object), sc.progress_text.object
+    assert compute.jobs_in_flight() == 1 and sc.cancel_btn.visible
+    assert_cancel_answers_within(sc, 1.0)
+    assert compute.CANCELLED[0] == cancelled + 1 and compute.jobs_in_flight() == 0
+    assert not compute.small_atlas_cached(compute.law(-1.0, 10.0), sc.atlas_request())
+    assert sc.atlas_data is None  # nothing half-done on screen

@@ -16,6 +16,7 @@ from scene_checks import assert_cancel_answers_within  # noqa: E402 - tests/supp
 from app import compute  # noqa: E402
 from app.compute import heavy  # noqa: E402
 from app.compute.jobs import FLOQUET_STAGES, floquet_job, stage_of, stage_progress  # noqa: E402
+from app.compute.requests import WaveRequest  # noqa: E402
 from app.state import ExplorerState  # noqa: E402
 from app.views import SCENES  # noqa: E402
 
@@ -34,7 +35,7 @@ def test_stage_and_fraction_survive_the_one_number_the_pool_forwards():
 def test_the_job_reports_its_stages_in_order():
     seen: list[float] = []
     law = compute.law(-1.0, 10.0)
-    r, fr = floquet_job(law, "superkink", 1.0, 0.0, 200, 1e-10, progress=seen.append)
+    r, fr = floquet_job(law, WaveRequest("superkink", 1.0, 0.0, 200, 1e-10), progress=seen.append)
     assert fr is not None
     stages = [stage_of(x)[0] for x in seen]
     assert stages[0] == "discrete wave" and "Floquet spectrum" in stages

@@ -2,7 +2,7 @@
 each of the four classes, and what they say is true of the numbers drawn in panel (d).
 
 The spectrum is a real one (superkink V = 5.2, N = 128); for each class its decision is replaced
-by the record fpucore.floquet.finite_size.decide makes of a synthetic window with that answer
+by the record fpucore.floquet.decision.decide makes of a synthetic window with that answer
 (the same windows as tests/floquet/test_decision.py), so the scene renders every class.
 """
 
@@ -22,6 +22,7 @@ from app import compute  # noqa: E402
 from app.state import ExplorerState  # noqa: E402
 from app.views import SCENES  # noqa: E402
 from benchmarks.verdict_audit import audit_sentence  # noqa: E402
+from fpucore.floquet import decision  # noqa: E402
 from fpucore.floquet import finite_size as fs  # noqa: E402
 
 BY_KEY = {cls.key: cls for cls in SCENES}
@@ -47,7 +48,7 @@ def test_status_words_agree_with_the_numbers(cls, real, monkeypatch):
     rc, fc = real
     e = WINDOWS[cls]
     err = np.full(e.size, 1e-12)
-    d, fit = fs.decide(WIN, e, err, growth_rate=0.01)
+    d, fit = decision.decide(WIN, e, err, growth_rate=0.01)
     assert d.classification == cls, d.sentence
     fr = dataclasses.replace(
         fc.value, decision=d, classification=cls, verdict=d.sentence,
@@ -150,7 +151,7 @@ def test_measured_windows_render_words_that_agree(key, real, monkeypatch):
     rc, fc = real
     n, e = (np.asarray(x, float) for x in MEASURED[key])
     err = np.full(e.size, 1e-10)
-    d, fit = fs.decide(n, e, err, growth_rate=0.01)
+    d, fit = decision.decide(n, e, err, growth_rate=0.01)
     fr = dataclasses.replace(
         fc.value, decision=d, classification=d.classification, verdict=d.sentence,
         finite_size_N=n.astype(np.int64), finite_size_excess=e, finite_size_error=err,

@@ -9,13 +9,24 @@ import pytest
 
 pytest.importorskip("panel")
 
+import panel as pn  # noqa: E402
+
 from app.explorer import Explorer  # noqa: E402
 from app.state import (  # noqa: E402
     TABS,
     ExplorerState,  # noqa: E402
     url_query,
 )
-from app.views.paper import FIGURE_STATE, W_PLUS_5_2, PaperScene  # noqa: E402
+from app.views.base import fmt_num, md_literal  # noqa: E402
+from app.views.paper import (  # noqa: E402
+    FIGURE_STATE,
+    FIGURES_DIR,
+    SHOWN_WIDTH,
+    W_PLUS_5_2,
+    PaperScene,
+    comparison_markdown,
+    docs_table,
+)
 from fpucore import paper  # noqa: E402
 from fpucore.paper import report  # noqa: E402
 
@@ -85,3 +96,44 @@ def test_a_figure_computed_by_fpu_paper_shows_its_comparison_row(tmp_path, monke
         assert f"paper {c.printed}" in row and f"{c.ours:.8g}" in row
     assert v_sk(1.0) == pytest.approx(r.comparisons[0].ours, abs=1e-12)
     assert "fpu paper --figure superkink" in sc.cmp_panes["superkink"].object
+
+
+def test_the_list_shows_every_figures_committed_thumbnail_embedded():
+    """One thumbnail per figure beside its caption, at a fixed width, its bytes inside the page
+    (a data: URL — no request to the server's files or to another host)."""
+    sc = PaperScene(ExplorerState())
+    sc.refresh()
+    thumbs = [p for p in sc.plot.select(pn.pane.PNG) if "paper-thumb" in p.css_classes]
+    assert len(thumbs) == len(paper.LABELS) == 17
+    for label, p in zip(paper.LABELS, thumbs, strict=True):
+        assert f"paper-thumb-{label}" in p.css_classes and p.width == SHOWN_WIDTH
+        assert p.object == str(FIGURES_DIR / f"{label}.png")
+        html = p._transform_object(p.object)["object"]
+        assert "data:image/png;base64," in html and "http" not in html
+
+
+def test_without_a_cached_run_the_row_is_the_committed_docs_row(tmp_path, monkeypatch):
+    """No fpu paper run cached for this source: each row shows docs/paper_comparison.json's
+    numbers, said to come from docs/ with the fpucore version that wrote them."""
+    monkeypatch.setenv("FPU_CACHE_DIR", str(tmp_path))
+    doc = docs_table()
+    assert set(doc["figures"]) == set(paper.LABELS)
+    sc = PaperScene(ExplorerState())
+    sc.refresh()
+    for label in paper.LABELS:
+        row = sc.cmp_panes[label].object
+        comps = doc["figures"][label]["comparisons"]
+        ok = sum(c["agrees"] for c in comps)
+        assert f"**{ok}/{len(comps)} agree** (from docs/, fpucore {doc['fpucore_version']}" in row
+        assert f"fpu paper --figure {label}" in row  # how to compute it here instead
+        for c in comps:
+            assert f"paper {md_literal(c['printed'])}, ours {fmt_num(c['ours'], 8)}" in row
+    # V_SK = 2√65/3 beside the paper's closed form, from the docs
+    assert f"ours {fmt_num(v_sk(1.0), 8)}" in sc.cmp_panes["pplane"].object
+    assert "0 computed here" in sc.last_info.shown and "17 from docs/" in sc.last_info.shown
+
+
+def test_without_docs_the_row_names_the_command(tmp_path, monkeypatch):
+    monkeypatch.setenv("FPU_CACHE_DIR", str(tmp_path))
+    row = comparison_markdown("pplane", None, {})
+    assert "not compared yet" in row and "fpu paper --figure pplane" in row

@@ -200,3 +200,110 @@ def test_every_notebook_cell_is_python_and_every_figure_exports(key):
         if cell["cell_type"] == "code":
             compile("".join(cell["source"]), f"{key} cell", "exec")  # a SyntaxError fails
     assert any(True for _ in ET.fromstring(sc.export_figure("svg")).iter(f"{SVG}path"))
+
+
+NUM = r"-?\d+(?:\.\d+)?(?:e[-+]?\d+)?"
+
+
+def numbers(text: str) -> list[float]:
+    """The numbers of a printed line (NumPy scalars print as np.float64(x))."""
+    return [float(v) for v in re.findall(NUM, text.replace("np.float64", ""))]
+
+
+def printed_line(text: str, start: str) -> str:
+    return next(ln for ln in text.splitlines() if ln.startswith(start))
+
+
+@pytest.mark.slow
+def test_a_floquet_notebook_reproduces_the_spectrum_and_the_sweep(tmp_path):
+    """The Floquet scene at N = 64 with a 4-velocity superkink sweep: the notebook's max|μ|,
+    its error bar and class, and every swept max|μ| are the screen's (to 1e-12)."""
+    sc = scene("floquet", N=64, mode="superkink", w_plus=0.6327161199294542)
+    sc.n_sweep.value = 4
+    sc._want_sweep = True  # "Run sweep"
+    sc.refresh()
+    assert sc.last_message is None, sc.last_message
+    fr, sw = sc._fr, sc._sweep_result
+    assert sw is not None and len(sw.V) == 4
+    text = run_notebook(sc, tmp_path)
+    n, mm, err, cls = printed_line(text, f"{2 * 64} ").split()
+    assert int(n) == len(fr.multipliers) and cls == fr.classification
+    assert float(mm) == pytest.approx(fr.max_modulus, abs=1e-12)
+    assert float(err) == pytest.approx(fr.error, rel=1e-6, abs=1e-15)
+    line = printed_line(text, "[")
+    got = numbers(line)
+    assert got[:4] == pytest.approx(list(sw.V), abs=1e-15)
+    assert got[4:8] == pytest.approx(list(sw.max_modulus), abs=1e-12)
+    assert [c for c in sw.classification] == re.findall(r"'(\w+)'", line)
+
+
+@pytest.mark.slow
+def test_a_simulation_notebook_reproduces_the_run(tmp_path):
+    """A short seeded run (L = 400, t_end = 5): the notebook's energy drift and tracked wave
+    velocity are the screen's (the integrator is deterministic: to 1e-12)."""
+    sc = BY_KEY["simulation"](ExplorerState(N=64))
+    sc.L.value, sc.t_end.value = 400, 5.0
+    sc._want_run = True  # "Run simulation"
+    sc.refresh()
+    assert sc.last_message is None, sc.last_message
+    _, _, sim = sc._sim
+    assert sim.waves
+    text = run_notebook(sc, tmp_path)
+    line = next(ln for ln in text.splitlines() if "[('" in ln)  # drift, [(kind, V, error)]
+    got = numbers(line)
+    assert got[0] == pytest.approx(sim.energy_drift, rel=1e-9, abs=0)
+    want = [x for w in sim.waves for x in (w.velocity, w.velocity_error)]
+    assert got[1:] == pytest.approx(want, rel=1e-12, abs=1e-15)
+
+
+@pytest.mark.slow
+def test_an_atlas_notebook_reproduces_the_map(tmp_path):
+    """A tiny atlas (2 w₊ rows × 3 V, N = 80) run from the scene: the notebook prints the
+    quantity on screen (max|μ|), equal cell by cell to the scene's image."""
+    sc = BY_KEY["atlas"](ExplorerState())
+    sc.n_w.value, sc.n_V.value, sc.N_run.value = 2, 3, 80
+    sc._want_run = True  # "Run a small atlas"
+    sc.refresh()
+    assert sc.last_message is None, sc.last_message
+    z = np.asarray(sc.last_z, float) + 1.0  # the scene draws max|μ| − 1
+    assert z.shape == (2, 3) and np.isfinite(z).all()
+    text = run_notebook(sc, tmp_path)
+    got = np.array(numbers(printed_line(text, "[[")), float).reshape(2, 3)
+    assert np.max(np.abs(got - z)) < 1e-12
+
+
+@pytest.mark.slow
+def test_a_diagrams_notebook_reproduces_the_dots_and_the_branch_view(tmp_path):
+    """The Diagrams scene with discrete dots and both branch views (4 velocities each, N = 64):
+    the notebook's c₊, V_SK, c₋, the dots' amplitude and E_ren, the solitary sweep's classes and
+    the superkink sweep's amplitudes, max|μ| and classes are the screen's."""
+    sc = BY_KEY["diagram"](ExplorerState(N=64))
+    sc.n_discrete.value = 2
+    sc._want_discrete = sc._want_branch = True  # both buttons
+    sc.refresh()
+    assert sc.last_message is None, sc.last_message
+    # superkink mode (V = V_SK(1)): the button sweeps the superkinks (d); the solitary family's
+    # dots and branch (same w₊, cached) stay
+    sc.state.mode = "superkink"
+    assert sc.wait_idle(600)
+    sc.classify_btn.clicks += 1
+    assert sc.wait_idle(600)
+    assert sc.last_message is None, sc.last_message
+    fam, rows, sw = sc._fam, sc._rows, sc._branch
+    assert len(rows) == 4 and sw is not None and sc._sk_branch is not None
+    sk, amp, _ = sc._sk_branch
+    text = run_notebook(sc, tmp_path)
+    line = [ln for ln in text.splitlines() if ln.startswith("[(") and "np.float64" not in ln][-1]
+    assert re.findall(r"'(\w+)'", line) == list(sk.classification)
+    got = np.array(numbers(line), float).reshape(len(sk.V), 3)  # V, |w₋ − w₊|, max|μ|
+    assert np.max(np.abs(got[:, 0] - sk.V)) == 0.0 and np.max(np.abs(got[:, 1] - amp)) < 1e-12
+    assert np.max(np.abs(got[:, 2] - sk.max_modulus)) < 1e-12
+    got = numbers(printed_line(text, f"{fam.c_plus!r}"[:5]))
+    assert got == pytest.approx([fam.c_plus, fam.V_SK, fam.c_minus], abs=1e-14)
+    dots = numbers(printed_line(text, "[(4."))
+    want = [x for r in rows for x in (r.V, r.amplitude, r.energy)]
+    assert dots == pytest.approx(want, rel=1e-12, abs=1e-12)
+    line = printed_line(text, "[(np.float64(")
+    assert re.findall(r"'(\w+)'", line) == list(sw.classification)
+    branch = numbers(line)
+    assert branch[1::2] == pytest.approx(list(sw.energy), rel=1e-12)

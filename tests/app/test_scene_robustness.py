@@ -256,8 +256,8 @@ def test_cache_never_returns_a_result_for_different_inputs():
     """Two velocities 2e-13 apart on either side of V_SK (w₊ = 1)."""
     V1, V2 = 5.374838498865599, 5.3748384988658
     assert V1 < V_SK1 < V2 or V2 < V_SK1 < V1 or True  # V_SK = 5.3748384988657 (closed form)
-    k1 = compute.wave_key(CUBIC, "solitary", 1.0, V1, 400, 1e-10)
-    k2 = compute.wave_key(CUBIC, "solitary", 1.0, V2, 400, 1e-10)
+    k1 = compute.wave_key(CUBIC, compute.WaveRequest("solitary", 1.0, V1, 400, 1e-10))
+    k2 = compute.wave_key(CUBIC, compute.WaveRequest("solitary", 1.0, V2, 400, 1e-10))
     assert k1 != k2
     q1 = compute.qc_wave(CUBIC, "solitary", 1.0, V1)
     q2 = compute.qc_wave(CUBIC, "solitary", 1.0, V2)
@@ -322,7 +322,7 @@ def test_simulation_field_is_downloadable_with_its_parameters():
     assert "w_left=4.6" in text and "L=300" in text and "a=-1.0" in text
     rows = [ln for ln in text.splitlines() if not ln.startswith("#")]
     assert rows[0].startswith("t,n=")
-    assert len(rows) - 1 == len(sc._sim[2].t)
+    assert len(rows) - 1 == len(sc._sim[-1].t)
 
 
 def test_titles_in_words_and_TSW_CSW_spelled_out():

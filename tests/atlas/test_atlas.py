@@ -111,6 +111,28 @@ def test_no_wave_not_converged_and_failed_points_carry_reasons():
     assert "N too small for the wave width" in res.dataset.message.values[0, 0]
 
 
+def test_an_inline_run_reports_each_chunk_as_it_is_done(monkeypatch):
+    """The inline executor runs a chunk when it is submitted (the app's worker runs its atlas
+    so): progress and the time budget follow each chunk, not the end of the whole grid."""
+    run_module = sys.modules["fpucore.atlas.run"]  # the module (atlas.run is the function)
+    events = []
+    real = run_module.solve_chunk
+
+    def chunk(task):
+        events.append("computed")
+        return real(task)
+
+    monkeypatch.setattr(run_module, "solve_chunk", chunk)
+    atlas.run(LAW, "solitary", rows=[1.0, 3.0, 6.0], V=[4.6, 5.0], N=N, backend="inline",
+              progress=lambda done, total, failed: events.append(done))  # fmt: skip
+    assert events == [0, "computed", 2, "computed", 4, "computed", 6]
+    events.clear()  # a budget spent after the first chunk: the others are not computed
+    res = atlas.run(LAW, "solitary", rows=[1.0, 3.0, 6.0], V=[4.6, 5.0], N=N, backend="inline",
+                    time_budget_s=1.0, on_points=lambda points: time.sleep(1.1))  # fmt: skip
+    assert events == ["computed"] and res.stopped and "2 chunks not done" in res.message
+    assert res.n_computed == 2 and res.n_pending == 4
+
+
 def test_bad_arguments_are_refused(tmp_path):
     with pytest.raises(ParameterError, match="^N="):
         atlas.run(LAW, "solitary", rows=[1.0], V=[5.0], N=7)

@@ -175,3 +175,52 @@ def test_tracked_sites_on_the_simulation_scene(page):
     assert abs(max(site["y"]) - max(tw["y"])) < 0.1  # the crests meet (4.5 high)
     page.screenshot(path="/tmp/fpu-simulation-tracked.png", full_page=True)
     assert not app_tracebacks()
+
+
+def test_superkink_branch_view_click_opens_the_superkink(page):
+    """Diagrams (d), superkink mode: "Classify stability" sweeps the superkink family (Fig.
+    floquet_SK) and draws each superkink by its Floquet class; a click on one sets V and w₊
+    (V = V_SK(w₊)) in the URL."""
+    w0 = 0.6327161199294542  # V_SK = 5.2
+    page.goto(f"{page.server}/main?tab=diagram&N=64&tol=1e-08&V=5.2&mode=superkink&w_plus={w0}")
+    wait_rendered(page, "diagram", 180.0)
+    field = page.locator(".scene-diagram .bk-input-group", has_text="discrete points").locator(
+        "input"
+    )
+    field.fill("2")
+    field.press("Enter")
+    inputs_reach_the_server(page)
+    page.locator(".diagram-classify button").click()
+    page.locator(".scene-diagram .scene-status").get_by_text("superkink branch view").wait_for(
+        timeout=400_000
+    )
+    points = {}
+    for c in ("stable", "finite_size", "unstable", "undetermined"):
+        s = source(page, f"diagram-sk-branch-{c}")
+        points |= {x: y for x, y in zip(s["x"], s["y"])}
+    assert len(points) == 4, points
+    assert all(4.78423 < V < 5.85947 for V in points)  # the paper's superkink interval
+    V, amp = sorted(points.items())[0]
+    page.screenshot(path="/tmp/fpu-diagram-superkink-branch.png", full_page=True)
+    box = page.evaluate(JS_DATA_TO_PAGE, ["(d) superkinks", V, amp])
+    assert box is not None
+    page.mouse.click(box[0], box[1])
+    q = wait_url(page, lambda q: abs(float(q.get("V", "nan")) - V) < 1e-9)
+    assert q["mode"] == "superkink"
+    w = float(q["w_plus"])  # V = V_SK(w₊) (eq. cubic_cond2, a = −1, b = 10)
+    assert (1 + 100 / 3 - (w - 10 / 3) ** 2) ** 0.5 == pytest.approx(V, abs=1e-9)
+    assert not app_tracebacks()
+
+
+def test_paper_tab_shows_every_thumbnail_embedded(page):
+    """The Paper tab: one thumbnail per figure, its bytes in the page (a data: URL, no request
+    to the server's files or to another host)."""
+    page.goto(f"{page.server}/main?tab=paper")
+    imgs = page.locator(".paper-thumb img")
+    imgs.nth(16).wait_for(timeout=60_000)
+    assert imgs.count() == 17
+    srcs = [imgs.nth(k).get_attribute("src") for k in range(17)]
+    assert all(s.startswith("data:image/png;base64,") for s in srcs)
+    widths = {imgs.nth(k).evaluate("e => e.getBoundingClientRect().width") for k in range(17)}
+    assert widths == {200}, widths
+    assert not app_tracebacks()

@@ -18,7 +18,7 @@ from fpucore.floquet.energy import criterion_from_samples
 from fpucore.law import CubicLaw
 from fpucore.parallel.threads import apply_thread_policy, thread_policy
 from fpucore.simulate.config import restoring_interval
-from fpucore.simulate.scenarios import whole_periods
+from fpucore.simulate.seeded import whole_periods
 
 LAW = CubicLaw()
 

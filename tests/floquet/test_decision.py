@@ -14,6 +14,7 @@ import re
 import numpy as np
 import pytest
 
+from fpucore.floquet import decision
 from fpucore.floquet import finite_size as fs
 
 N = np.array(fs.chain_lengths(500) + [500], float)
@@ -21,7 +22,7 @@ N = np.array(fs.chain_lengths(500) + [500], float)
 
 def _decide(e, err=None, n=N):
     err = np.full(len(e), 2e-12) if err is None else err
-    return fs.decide(np.asarray(n, float), np.asarray(e, float), err, growth_rate=0.01)
+    return decision.decide(np.asarray(n, float), np.asarray(e, float), err, growth_rate=0.01)
 
 
 # a sawtooth whose peaks lie on 0.3/N: which phonon pair collides changes with N
@@ -52,7 +53,7 @@ def test_two_points_are_undetermined_and_say_what_would_decide():
     d, _ = _decide([2e-3, 1e-3], n=[250, 500])
     assert d.classification == "undetermined" and d.reason == "few_lengths"
     assert "compute at N >= 1000" in d.sentence and d.next_step in d.sentence
-    d, _ = fs.decide(np.array([64.0]), np.array([6e-3]), np.array([1e-12]), 0.01, "N = 64 is "
+    d, _ = decision.decide(np.array([64.0]), np.array([6e-3]), np.array([1e-12]), 0.01, "N = 64 is "
                      "too short", n_min=64)  # fmt: skip
     assert d.classification == "undetermined" and "compute at N >= 128" in d.sentence
 
@@ -64,10 +65,10 @@ def test_a_window_stopped_early_is_decided_by_its_absent_excess_or_dip():
     e = np.array([3.97e-5, 2.2e-16, 6.197e-5])  # superkink V = 5.6, N = 500 (measured)
     err = np.full(3, 1e-10)
     assert fs.settled(n, e, err) and not fs.settled(n[[0, 2]], e[[0, 2]], err[:2])
-    d, _ = fs.decide(n, e, err, 0.01)
+    d, _ = decision.decide(n, e, err, 0.01)
     assert (d.classification, d.reason) == ("finite_size", "absent")
     dip = np.array([1.4e-4, 3.1e-5, 1.2e-4])
-    assert fs.settled(n, dip, err) and fs.decide(n, dip, err, 0.01)[0].reason == "dips"
+    assert fs.settled(n, dip, err) and decision.decide(n, dip, err, 0.01)[0].reason == "dips"
     assert not fs.settled(n, np.array([2e-4, 1.5e-4, 1.2e-4]), err)  # a decay needs the window
 
 

@@ -59,6 +59,8 @@ LATE_OK: set[tuple[str, str]] = {
     ("fpucore/paper/plot.py", "from bokeh import models"),
     ("fpucore/paper/plot.py", "from bokeh.embed import file_html"),
     ("fpucore/paper/plot.py", "from bokeh.resources import INLINE"),
+    # Pillow (a Matplotlib dependency) only when a thumbnail is written (fpu paper --thumbnails)
+    ("fpucore/paper/plot.py", "from PIL import Image"),
     # the explorer's law worker imports SymPy before its time budget starts; the server
     # process never imports it (a typed law is built in that worker)
     ("app/compute/laws.py", "import sympy"),

@@ -1,0 +1,257 @@
+"""The typed parameters of the heavy jobs and the fpucore calls they stand for.
+
+A request is a frozen dataclass, checked when it is made (types, finite numbers, choices: a bad
+value is a ParameterError naming it; ranges that depend on the law or on other arguments are
+fpucore's, checked where the call runs) and hashable; :meth:`key` is its exact cache key (the
+``repr`` of every float, :func:`~app.compute.cache.exact`).  Its :class:`Call` is the fpucore
+function itself with its arguments: the job runs it, the cache key and "copy as Python" are
+made from it, so the three never differ.
+
+    WaveRequest(mode, w_plus, V, N, tol)               a discrete traveling wave
+    RiemannRequest / GaussianRequest / SeededRequest   a direct simulation (SimulationRequest)
+    AtlasRequest(w_lo, w_hi, n_w, n_V, N)              a small solitary atlas with Floquet
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, fields
+from typing import Any, ClassVar
+
+from fpucore import atlas, qc, wave
+from fpucore import simulate as sim
+from fpucore.errors import ParameterError, require_finite, require_int, require_tol
+from fpucore.simulate.config import GUARDS, MAX_L, require_positive
+from fpucore.wave.tails import N_MAX, N_MIN
+
+from .cache import exact
+
+__all__ = [
+    "Call",
+    "WaveRequest",
+    "SimulationRequest",
+    "RiemannRequest",
+    "GaussianRequest",
+    "SeededRequest",
+    "AtlasRequest",
+    "SMALL_ATLAS_POINTS",
+    "SMALL_ATLAS_N",
+]
+
+MODES = ("solitary", "superkink")
+
+
+def key_of(value) -> Any:
+    """Exact key form of a request's value: floats by repr, nested requests by their key."""
+    if isinstance(value, float):
+        return exact(value)
+    if isinstance(value, tuple):
+        return tuple(key_of(v) for v in value)
+    if hasattr(value, "key"):
+        return value.key()
+    return value
+
+
+class Request:
+    """What every request has: its exact key (the class name and each field's exact value)."""
+
+    def key(self) -> tuple:
+        items = ((f.name, key_of(getattr(self, f.name))) for f in fields(self))
+        return (type(self).__name__, *items)
+
+    def _set(self, name: str, value) -> None:  # a frozen dataclass normalises its own fields
+        object.__setattr__(self, name, value)
+
+
+@dataclass(frozen=True)
+class Call:
+    """``fn(first, *args, **kwargs)``: an fpucore function and its arguments after the first
+    (the law, or a wave for a seeded simulation).  ``module`` is the name the code shown to the
+    user imports it under (``from fpucore import wave``)."""
+
+    module: str
+    fn: Callable
+    args: tuple = ()
+    kwargs: tuple = ()  # (name, value) pairs in call order (a dict is not hashable)
+
+    @property
+    def name(self) -> str:
+        return self.fn.__name__
+
+    def run(self, first, **extra):
+        return self.fn(first, *self.args, **dict(self.kwargs), **extra)
+
+    def key(self) -> tuple:
+        return (self.module, self.name, key_of(self.args), key_of(self.kwargs))
+
+    def code(self, first: str = "law") -> str:
+        """The call as Python (every float by repr, so it runs on the very same inputs)."""
+        parts = [first, *(repr(x) for x in self.args)]
+        parts += [f"{k}={v!r}" for k, v in self.kwargs]
+        return f"{self.module}.{self.name}({', '.join(parts)})"
+
+
+@dataclass(frozen=True)
+class WaveRequest(Request):
+    """A discrete traveling wave: the superkink of w₊'s branch (V follows from w₊) or the
+    solitary wave (w₊, V), on N sites to the relative tolerance tol."""
+
+    mode: str
+    w_plus: float
+    V: float
+    N: int
+    tol: float
+
+    def __post_init__(self):
+        if self.mode not in MODES:
+            raise ParameterError("mode", self.mode, " | ".join(map(repr, MODES)))
+        self._set("w_plus", require_finite("w_plus", self.w_plus))
+        self._set("V", require_finite("V", self.V))
+        self._set("N", require_int("N", self.N, N_MIN, N_MAX))
+        self._set("tol", require_tol(self.tol))
+
+    def call(self, lw) -> Call:
+        """fpucore.wave.solve_superkink (V and branch from w₊; ParameterError outside the
+        superkink's range) or fpucore.wave.solve_solitary."""
+        if self.mode == "superkink":
+            sk = qc.superkink_from_w_plus(lw, self.w_plus)
+            kw = (("branch", sk.branch), ("N", self.N), ("tol", self.tol))
+            return Call("wave", wave.solve_superkink, (float(sk.V),), kw)
+        kw = (("N", self.N), ("tol", self.tol))
+        return Call("wave", wave.solve_solitary, (self.w_plus, self.V), kw)
+
+
+@dataclass(frozen=True, kw_only=True)
+class SimulationRequest(Request):
+    """What every direct simulation takes: L sites to time t_end, the run stopped when a strain
+    leaves ``guard``'s interval (fpucore.simulate: "bounded" | "convex"), the histories of the
+    1-based sites ``probes`` recorded."""
+
+    L: int
+    t_end: float
+    guard: str = "bounded"
+    probes: tuple = ()
+    kind: ClassVar[str] = ""
+
+    def __post_init__(self):
+        self._set("L", require_int("L", self.L, 1, MAX_L))
+        self._set("t_end", require_positive("t_end", self.t_end))
+        if self.guard not in GUARDS:
+            raise ParameterError("guard", self.guard, " | ".join(map(repr, GUARDS)))
+        try:
+            probes = tuple(self.probes)
+        except TypeError:
+            raise ParameterError("probes", self.probes, "a sequence of site numbers") from None
+        self._set("probes", tuple(require_int("probes", p, 1, MAX_L) for p in probes))
+
+    def options(self) -> tuple:
+        """The run's keyword arguments, in the order the code shows them."""
+        kw = (("L", self.L), ("t_end", self.t_end), ("guard", self.guard))
+        return kw + ((("probes", self.probes),) if self.probes else ())
+
+    def params(self) -> dict:
+        """Every parameter by name, the run's options first (for a download's header)."""
+        return {**dict(self.options()), **self.initial_data()}
+
+    def initial_data(self) -> dict:
+        raise NotImplementedError
+
+    def call(self) -> Call:
+        raise NotImplementedError
+
+
+@dataclass(frozen=True, kw_only=True)
+class RiemannRequest(SimulationRequest):
+    """Riemann data: w_left on the left half, w_right on the right (eq. Riemann_data)."""
+
+    w_left: float
+    w_right: float
+    kind: ClassVar[str] = "riemann"
+
+    def __post_init__(self):
+        super().__post_init__()
+        self._set("w_left", require_finite("w_left", self.w_left))
+        self._set("w_right", require_finite("w_right", self.w_right))
+
+    def initial_data(self) -> dict:
+        return {"w_left": self.w_left, "w_right": self.w_right}
+
+    def call(self) -> Call:
+        return Call("simulate", sim.riemann, (self.w_left, self.w_right), self.options())
+
+
+@dataclass(frozen=True, kw_only=True)
+class GaussianRequest(SimulationRequest):
+    """A Gaussian bump of height A on the background w_B (eq. GaussIC)."""
+
+    w_B: float
+    A: float
+    kind: ClassVar[str] = "gaussian"
+
+    def __post_init__(self):
+        super().__post_init__()
+        self._set("w_B", require_finite("w_B", self.w_B))
+        self._set("A", require_finite("A", self.A))
+
+    def initial_data(self) -> dict:
+        return {"w_B": self.w_B, "A": self.A}
+
+    def call(self) -> Call:
+        return Call("simulate", sim.gaussian, (self.w_B, self.A), self.options())
+
+
+@dataclass(frozen=True, kw_only=True)
+class SeededRequest(SimulationRequest):
+    """Data seeded by a discrete traveling wave (eq. fixedBCs): the call's first argument is the
+    wave's result, not the law."""
+
+    wave: WaveRequest
+    kind: ClassVar[str] = "seeded"
+
+    def __post_init__(self):
+        super().__post_init__()
+        if not isinstance(self.wave, WaveRequest):
+            raise ParameterError("wave", self.wave, "a WaveRequest")
+
+    def initial_data(self) -> dict:
+        return {f.name: getattr(self.wave, f.name) for f in fields(self.wave)}
+
+    def call(self) -> Call:
+        return Call("simulate", sim.seeded, (), self.options())
+
+
+#: the Atlas scene's small atlas: rows and velocities each in this range, N in SMALL_ATLAS_N
+SMALL_ATLAS_POINTS = (2, 60)
+SMALL_ATLAS_N = (40, 1000)
+
+
+@dataclass(frozen=True)
+class AtlasRequest(Request):
+    """A small atlas of solitary waves with their Floquet spectra (no finite-size test): n_w
+    rows of w₊ evenly over [w_lo, w_hi], n_V velocities spanning each row's existence
+    interval, N sites."""
+
+    w_lo: float
+    w_hi: float
+    n_w: int
+    n_V: int
+    N: int
+
+    def __post_init__(self):
+        self._set("w_lo", require_finite("w_lo", self.w_lo))
+        self._set("w_hi", require_finite("w_hi", self.w_hi))
+        if not self.w_lo < self.w_hi:
+            raise ParameterError("w_hi", self.w_hi, f"a value above w_lo = {self.w_lo!r}")
+        self._set("n_w", require_int("n_w", self.n_w, *SMALL_ATLAS_POINTS))
+        self._set("n_V", require_int("n_V", self.n_V, *SMALL_ATLAS_POINTS))
+        self._set("N", require_int("N", self.N, *SMALL_ATLAS_N))
+
+    @property
+    def n_points(self) -> int:
+        return self.n_w * self.n_V
+
+    def call(self) -> Call:
+        """fpucore.atlas.run (rows "LO:HI:K": the floats by repr, read back exactly)."""
+        kw = (("rows", f"{self.w_lo!r}:{self.w_hi!r}:{self.n_w}"), ("V", self.n_V),
+              ("N", self.N), ("floquet", True), ("finite_size", False))  # fmt: skip
+        return Call("atlas", atlas.run, ("solitary",), kw)
