@@ -17,7 +17,7 @@ from app.state import (  # noqa: E402
     ExplorerState,  # noqa: E402
     url_query,
 )
-from app.views.base import fmt_num, md_literal  # noqa: E402
+from app.views.formatting import fmt_num  # noqa: E402
 from app.views.paper import (  # noqa: E402
     FIGURE_STATE,
     FIGURES_DIR,
@@ -27,6 +27,7 @@ from app.views.paper import (  # noqa: E402
     comparison_markdown,
     docs_table,
 )
+from app.views.untrusted import md_literal  # noqa: E402
 from fpucore import paper  # noqa: E402
 from fpucore.paper import report  # noqa: E402
 
