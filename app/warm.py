@@ -55,9 +55,10 @@ def warm(verbose: bool = True, scenes: str | None = None) -> dict[str, float]:
     """Warm the JIT and the cache; returns seconds spent per step.
 
     ``scenes``: comma-separated scene keys to pre-render, "all" or "none"; default (environment
-    variable FPU_WARM_SCENES) every scene but the Floquet spectrum, whose dense eigenvalue call
-    (~1 s alone, 30 s on a loaded machine) would hold the server's start: it is computed when the
-    tab is first shown.  The browser tests use "force,phase" to start fast.
+    variable FPU_WARM_SCENES) every scene but the Floquet spectrum, whose eigenvalue calls
+    (0.2–0.8 s alone at N = 500, many times that on a loaded machine) would hold the server's
+    start: it is computed when the tab is first shown.  The browser tests use "force,phase" to
+    start fast.
     """
     scenes = scenes or os.environ.get("FPU_WARM_SCENES", DEFAULT_SCENES)
     times: dict[str, float] = {}

@@ -149,7 +149,8 @@ def cold_sweep(N: int, nV: int, caller_runs: bool, method: str = "structured") -
     wall = time.perf_counter() - t0
     return {"wall": wall, "caller_cpu": time.process_time() - c0,
             "pool_cpu": descendants_cpu() - d0, "max_modulus": s.max_modulus.tolist(),
-            "error": s.error.tolist(), "classification": list(s.classification)}  # fmt: skip
+            "error": s.max_modulus_error.tolist(),
+            "classification": list(s.classification)}  # fmt: skip
 
 
 def run_cold_sweep(N: int, nV: int, caller_runs: bool, method: str = "structured") -> dict:
@@ -162,7 +163,7 @@ def run_cold_sweep(N: int, nV: int, caller_runs: bool, method: str = "structured
 
 def sequential_spectra(V, N: int, method: str = "dense") -> tuple[list, float, float, list]:
     """One spectrum per velocity, one after the other in this process, as a user calls
-    ``floquet.spectrum`` (default route dense): (max|μ|, wall s, CPU s, (error, class) pairs)."""
+    ``floquet.spectrum`` (route ``method``): (max|μ|, wall s, CPU s, (error, class) pairs)."""
     c0, t0 = time.process_time(), time.perf_counter()
     fr = [floquet.spectrum(wave.solve_superkink(LAW, v, N=N), method=method) for v in V]
     wall, cpu = time.perf_counter() - t0, time.process_time() - c0
@@ -172,8 +173,8 @@ def sequential_spectra(V, N: int, method: str = "dense") -> tuple[list, float, f
 def part_d(N: int = 500, nV: int = 12) -> None:
     """The sweep as a user meets it (a fresh process: forkserver, worker start-up and pool
     start all timed; the sweep's default structured route) against 12 sequential spectra in this
-    process as a user calls them (``spectrum(r)``, dense; before and after the sweeps: their mean,
-    as the machine's speed drifts), both with a warm JIT in the calling process.  For the
+    process (``spectrum(r, method="dense")``, the reference; before and after the sweeps: their
+    mean, as the machine's speed drifts), both with a warm JIT in the calling process.  For the
     parallel efficiency alone, each route also against its own sequential time; then the sweep
     on a running, warm pool (the dashboard's case).  CPU seconds of every side — caller,
     forkserver and workers — tell load from serialisation: with two free cores the wall is about

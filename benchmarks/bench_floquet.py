@@ -48,13 +48,13 @@ def _best(fn, repeat: int) -> float:
 
 def part_a(N: int = 500, V: float = 5.2) -> None:
     print(f"A. cost split, superkink V={V} N={N} (2N = {2 * N} multipliers)")
-    fq.spectrum(fq.HomogeneousState(LAW, 1.0, 5.0, 16))  # warm every kernel
+    fq.spectrum(fq.HomogeneousState(LAW, 1.0, 5.0, 16), method="dense")  # warm every kernel
     r = wave.solve_superkink(LAW, V, N=N)
     m = max(r.m, fq.default_steps(LAW, V))
     mono = fq.monodromy(r, m)
     t_mono = _best(lambda: fq.monodromy(r, m), 5)
     t_eig = _best(lambda: fq.multipliers_of(mono.matrix, N), 3)
-    t_full = _best(lambda: fq.spectrum(r), 2)
+    t_full = _best(lambda: fq.spectrum(r, method="dense"), 2)
     ratio = t_mono / t_eig
     print(f"   m = {m}, window K = {mono.K}")
     print(f"   monodromy (Numba)           {t_mono * 1e3:8.1f} ms")
@@ -69,7 +69,7 @@ def part_a2(N: int = 500, V: float = 5.8) -> None:
     import scipy.linalg
 
     r = wave.solve_superkink(LAW, V, N=N)
-    fr = fq.spectrum(r)
+    fr = fq.spectrum(r, method="dense")
     raw = scipy.linalg.eigvals(fq.monodromy(r, fr.m).matrix)
     print(
         f"A2. superkink V={V} N={N}: plain eig of M: max|mu|-1 = {np.abs(raw).max() - 1:.2e}, "
@@ -84,13 +84,13 @@ def part_a2(N: int = 500, V: float = 5.8) -> None:
 def part_b(N: int = 500, V: float = 5.2, ms=(5, 7, 9, 12, 18, 27, 36), m_ref: int = 72) -> None:
     print(f"B. error against run time, superkink V={V} N={N}; reference m = {m_ref}")
     r = wave.solve_superkink(LAW, V, N=N)
-    ref = fq.spectrum(r, m=m_ref, check=False)
+    ref = fq.spectrum(r, m=m_ref, check=False, method="dense")
     print(f"   reference: max|mu|-1 = {ref.max_modulus - 1:.6e}, symmetry {ref.symmetry_error:.1e}")
     print(f"   {'m':>4} {'mono [ms]':>10} {'eig [ms]':>9} {'symmetry':>9} {'||M_m-M_2m||':>13} "
           f"{'|d max|mu||':>12} {'max|mu|-1':>12}")  # fmt: skip
     for m in ms:
         t_mono = _best(lambda m=m: fq.monodromy(r, m), 3)
-        fr = fq.spectrum(r, m=m)
+        fr = fq.spectrum(r, m=m, method="dense")
         dmax = abs(fr.max_modulus - ref.max_modulus)
         ex = fr.max_modulus - 1
         print(f"   {m:>4} {t_mono * 1e3:>10.1f} {fr.eig_s * 1e3:>9.0f} {fr.symmetry_error:>9.1e} "
@@ -123,7 +123,9 @@ def part_c(Ns=(200, 300, 500), n_sk: int = 22, n_sw: int = 10) -> None:
         mx = np.nanmax(sw.max_modulus)
         print(f"   solitary w+={w_plus}: max over V of max|mu| = {mx:.6f} (paper bound {bound}): "
               f"{'PASS' if mx < bound else 'FAIL'}; V_SK = {b:.6f}")  # fmt: skip
-        rows = zip(sw.V, sw.max_modulus, sw.max_modulus_away_from_1, sw.error, strict=True)
+        rows = zip(
+            sw.V, sw.max_modulus, sw.max_modulus_away_from_1, sw.max_modulus_error, strict=True
+        )
         for V_, m_, a_, e_ in rows:
             print(f"     V={V_:.5f}  max|mu|-1={m_ - 1:.3e}  away from 1: {a_ - 1:.3e}  "
                   f"error={e_:.1e}")  # fmt: skip
@@ -143,7 +145,8 @@ def part_d(N: int = 500, repeat: int = 3) -> None:
             fr = fq.spectrum(r, method="structured")
             t_d, t_s, t_on = float("inf"), float("inf"), float("inf")
             for _ in range(repeat):  # interleaved: all three see the same machine load
-                t_d = min(t_d, _best(lambda r=r: fq.spectrum(r, finite_size=False), 1))
+                t_d = min(t_d, _best(lambda r=r: fq.spectrum(r, finite_size=False,
+                                                             method="dense"), 1))  # fmt: skip
                 t_s = min(t_s, _best(lambda r=r: fq.spectrum(r, finite_size=False,
                                                              method="structured"), 1))  # fmt: skip
                 t_on = min(t_on, _best(lambda r=r: fq.spectrum(r, method="structured"), 1))
@@ -184,7 +187,7 @@ def part_e(N: int = 500, repeat: int = 3) -> None:
                         m.matrix, N, m.K, reversor=rv), 1))  # fmt: skip
                 t_e = min(t_e, _best(lambda b=deflated: scipy.linalg.eigvals(b.copy(order="F"),
                           overwrite_a=True, check_finite=False), 1))  # fmt: skip
-            a = fq.spectrum(r, finite_size=False)
+            a = fq.spectrum(r, finite_size=False, method="dense")
             b = fq.spectrum(r, finite_size=False, method="structured")
             print(f"   {name:<20} dense {t_d:6.3f} s (eigvals alone {t_e:.3f});  structured route "
                   f"taken: {b.route} (reversor c = {c});  max|mu|-1 {a.max_modulus - 1:.3e} / "

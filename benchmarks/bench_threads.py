@@ -2,9 +2,9 @@
 
     python -m benchmarks.bench_threads [--repeat 3] [--N 500]
 
-Each spectrum is ``fpucore.floquet.spectrum(wave.solve_superkink(CubicLaw(), 5.2, N=500))`` (its
-cost is the LAPACK ``dgeev`` of the deflated ~1000 × 1000 matrix), run in a separate process,
-warm (one spectrum first, timed afterwards).  Two settings in the same run:
+Each spectrum is ``floquet.spectrum(wave.solve_superkink(CubicLaw(), 5.2, N=500),
+method="dense")`` (its cost is the LAPACK ``dgeev`` of the deflated ~1000 × 1000 matrix), run
+in a separate process, warm (one spectrum first, timed afterwards).  Two settings in the same run:
 
 * **policy**  — every process calls ``fpucore.parallel.apply_thread_policy(1)`` (what the
   Executor's workers, the atlas and the server do): one BLAS/OpenMP/Numba thread each;
@@ -36,13 +36,13 @@ def child(mode: str, N: int, repeat: int) -> None:
     if mode == "policy":
         apply_thread_policy(1)
     r = wave.solve_superkink(CubicLaw(), 5.2, N=N)
-    floquet.spectrum(r)  # warm (JIT, LAPACK workspace)
+    floquet.spectrum(r, method="dense")  # warm (JIT, LAPACK workspace)
     print("READY", flush=True)
     sys.stdin.readline()
     times = []
     for _ in range(repeat):
         t0 = time.perf_counter()
-        floquet.spectrum(r)
+        floquet.spectrum(r, method="dense")
         times.append(time.perf_counter() - t0)
     print(" ".join(f"{t:.4f}" for t in times), flush=True)
 

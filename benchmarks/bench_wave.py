@@ -181,7 +181,7 @@ def main(argv=None):
     sk = superkink_family(LAW, np.linspace(lo, hi, 42)[1:-1])
     print(
         f"\n## 3d. families: 80 solitary waves (w+=1) + 40 superkinks, automatic N: "
-        f"{time.perf_counter() - t0:.2f} s, all converged: {fam.all_converged and sk.all_converged}"
+        f"{time.perf_counter() - t0:.2f} s, all converged: {fam.converged and sk.converged}"
         f", max residual {max(fam.residual.max(), sk.residual.max()):.1e}"
     )
 

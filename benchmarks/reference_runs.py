@@ -6,7 +6,10 @@ a tiny atlas, simulations) whose numeric outputs are stored once and compared bi
     python -m benchmarks.reference_runs compare ref.pkl    # after it: exit 1 on any difference
 
 Every result is flattened to ``path → value`` (its ``as_dict()``, recursively); arrays compare
-with ``np.array_equal`` (NaN = NaN), scalars and strings with ``==``.  Timing fields (names
+with ``np.array_equal`` (NaN = NaN), scalars and strings with ``==``.  A value renamed since the
+reference was saved is compared under its new name (:data:`RENAMED`); a value added since then
+(:data:`ADDED`) has nothing to compare with and is only counted; any other key present on one side
+only is a difference.  Timing fields (names
 ending in ``elapsed_s`` or ``_s`` of wall/CPU time) and run-time notes are left out: they differ
 between any two runs.  Runs on one process (``workers=1``) so that it costs about a minute.
 """
@@ -24,17 +27,39 @@ import numpy as np
 
 from fpucore import floquet, qc, simulate, wave
 from fpucore.atlas import run as atlas_run
+from fpucore.atlas import sweep
 from fpucore.law import CubicLaw, PolynomialLaw
-
-try:  # the sweep's home after the stage cycle was removed; before: fpucore.floquet
-    from fpucore.atlas.sweeps import sweep
-except ImportError:  # pragma: no cover (the commit the reference was saved on)
-    sweep = floquet.sweep
 
 LAW = CubicLaw(-1.0, 10.0)
 QUARTIC = PolynomialLaw((1.0, 10.0, -1.0, -0.2))
 V_SK6 = 7 * math.sqrt(5) / 3
 TIMING = re.compile(r"(elapsed|wall|cpu|seconds|_time$|_s$|timings?)", re.I)  # wall-clock
+# (runs, old key, new key): renamed since a reference was saved.  Sweeps took the atlas's names
+# (their rows are atlas records; their arrays are fields of the result, so in as_dict), a
+# family's per-wave flags became ``wave_converged`` (``converged``: the protocol's bool).
+_ROW = r"^(rows\[\d+\]\.)"
+RENAMED = [
+    (r"^sweep_", r"^arrays\.error$", "max_modulus_error"),
+    (r"^sweep_", r"^arrays\.converged$", "floquet_converged"),
+    (r"^sweep_", r"^arrays\.(\w+)$", r"\1"),
+    (r"^sweep_", _ROW + r"error$", r"\1max_modulus_error"),
+    (r"^sweep_", _ROW + r"integrator_error$", r"\1floquet_integrator_error"),
+    (r"^sweep_", _ROW + r"converged$", r"\1floquet_converged"),
+    (r"^sweep_", _ROW + r"wave_converged$", r"\1converged"),
+    (r"^sweep_", _ROW + r"wave_residual$", r"\1residual"),
+    (r"^family_", r"^converged$", "wave_converged"),
+]
+# (runs, new key): added since a reference was saved (the sweep rows' other atlas fields, the
+# result protocol's summary of sweeps and families)
+ADDED = [
+    (
+        r"^sweep_",
+        _ROW + r"(status|kind|amplitude|dropped_residual|tail_error|integrator_error|"
+        r"qc_max_deviation|profile_error|amplitude_error|N|iterations)$",
+    ),
+    (r"^sweep_", r"^(status|converged|stopped)$"),
+    (r"^family_", r"^(status|converged|message)$"),
+]
 
 
 def _waves() -> dict:
@@ -105,6 +130,7 @@ def cases() -> dict:
             V=[3.5, 4.5, 5.2],
             N=None,
             floquet=True,
+            floquet_method="dense",  # the method it was saved with (the default until then)
             workers=1,
             chunk=3,
         ),  # fmt: skip
@@ -145,15 +171,8 @@ def flatten(obj, path: str = "", out: dict | None = None) -> dict:
 
 
 def _results(obj) -> dict:
-    """Families carry their WaveResults in ``results``; sweeps their arrays beside the rows."""
-    extra = {}
-    if hasattr(obj, "results"):
-        extra["results"] = list(obj.results)
-    if hasattr(obj, "max_modulus") and hasattr(obj, "rows"):
-        extra["arrays"] = {k: getattr(obj, k) for k in ("V", "max_modulus", "error",
-                           "n_unstable", "converged", "cached", "energy", "energy_error",
-                           "classification", "max_modulus_away_from_1")}  # fmt: skip
-    return extra
+    """Families carry their WaveResults in ``results`` (a sweep's arrays are in its as_dict)."""
+    return {"results": list(obj.results)} if hasattr(obj, "results") else {}
 
 
 def compute(names=None) -> dict:
@@ -188,15 +207,39 @@ def same(a, b) -> bool:
     return type(a) is type(b) and a == b
 
 
-def compare(ref: dict, new: dict) -> list[str]:
+def renamed(name: str, r: dict) -> dict:
+    """The reference's values of run ``name`` under today's names (:data:`RENAMED`: every key
+    renamed at once, by its first matching rule; a reference saved after a rename has no old
+    key, so nothing changes)."""
+    rules = [(re.compile(old), new) for runs, old, new in RENAMED if re.search(runs, name)]
+    out = {}
+    for k, v in r.items():
+        for old, new in rules:
+            if old.search(k):
+                k = old.sub(new, k)
+                break
+        out[k] = v
+    return out
+
+
+def added(name: str, key: str) -> bool:
+    return any(re.search(runs, name) and re.search(k, key) for runs, k in ADDED)
+
+
+def compare(ref: dict, new: dict, extra: list | None = None) -> list[str]:
+    """Differences between two computations (``extra`` collects the keys of :data:`ADDED`)."""
     bad = []
     for name in ref:
         if name not in new:
             bad.append(f"{name}: missing")
             continue
-        r, n = ref[name], new[name]
+        r, n = renamed(name, ref[name]), new[name]
         for k in sorted(set(r) | set(n)):
             if TIMING.search(k.rsplit(".", 1)[-1]):
+                continue
+            if k not in r and added(name, k):
+                if extra is not None:
+                    extra.append(f"{name}.{k}")
                 continue
             if k not in r or k not in n:
                 bad.append(f"{name}.{k}: only in {'ref' if k in r else 'new'}")
@@ -218,9 +261,13 @@ def main(argv: list[str]) -> int:
         ref = pickle.load(f)
     if names:
         ref = {k: v for k, v in ref.items() if k in names}
-    bad = compare(ref, new)
+    extra: list = []
+    bad = compare(ref, new, extra)
     n_vals = sum(len(v) for v in ref.values())
-    print(f"compared {len(ref)} runs, {n_vals} values: {len(bad)} differences")
+    print(
+        f"compared {len(ref)} runs, {n_vals} values: {len(bad)} differences"
+        + (f" ({len(extra)} values added since the reference, not compared)" if extra else "")
+    )
     for line in bad:
         print("  " + line)
     return 1 if bad else 0

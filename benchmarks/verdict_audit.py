@@ -284,7 +284,7 @@ def audit_sweep_rows(rows: list[dict], where: str = "sweep") -> list[str]:
     bad = []
     for r in rows:
         v = r.get("verdict") or ""
-        if v == "not computed":
+        if v in ("", "not computed") and r.get("status") != "ok":  # no spectrum at this V
             continue
         c, h = r.get("classification") or None, r.get("headline") or None
         tag = f"{where} V={float(r['V']):.6g}"

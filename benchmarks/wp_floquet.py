@@ -52,7 +52,7 @@ def study(quick: bool = False) -> tuple[list[Row], list[Floor]]:
     law = CubicLaw(-1.0, 10.0)
     N = 120 if quick else 200
     r = wave.solve_superkink(law, 5.2, N=N)
-    ref = fq.spectrum(r, m=72, check=False)
+    ref = fq.spectrum(r, m=72, check=False, method="dense")
     rows: list[Row] = []
     for m in (5, 9, 18) if quick else (5, 7, 9, 12, 18, 27):
         M = fq.monodromy(r, m).matrix

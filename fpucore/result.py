@@ -112,5 +112,13 @@ class Result:
         return self
 
     def errors(self) -> dict[str, float]:
-        """The error fields of this result by name."""
-        return {k: float(getattr(self, k)) for k in self.ERROR_FIELDS}
+        """The error fields of this result by name; a field holding one bar per row (sweeps,
+        families) gives its largest finite entry (NaN if none)."""
+        out = {}
+        for k in self.ERROR_FIELDS:
+            v = np.asarray(getattr(self, k), dtype=float)
+            if v.ndim:
+                v = v[np.isfinite(v)]
+                v = v.max() if v.size else np.nan
+            out[k] = float(v)
+        return out

@@ -91,7 +91,7 @@ def sweep_energy_check(lw, w_plus, V_values, N) -> Computed | None:
     n = energy_qc_samples(lw)
 
     def check():
-        ok = np.asarray(sw.converged, bool)
+        ok = np.asarray(sw.floquet_converged, bool)
         ec = fq.criterion_from_samples(lw, w_plus, sw.V, sw.energy, sw.energy_error, ok, n)
         return ec, fq.stability_changes(lw, w_plus, sw.V, sw.classification, ec)
 

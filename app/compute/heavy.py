@@ -66,15 +66,15 @@ def discrete_wave_cached(lw, mode, w_plus, V, N, tol) -> bool:
         return False
 
 
-#: seconds per (2N)³ of the last dense spectrum computed here (monodromy, check and
+#: seconds per (2N)³ of the last spectrum computed here (monodromy, check and
 #: eigenvalues): the time-left estimate of the next one, whose LAPACK call reports nothing
 _SPECTRUM_RATE: list[float] = []
 _RATE_LOCK = threading.Lock()
 
 
 def spectrum_time_estimate(N: int) -> float | None:
-    """Seconds a dense spectrum of a chain of N sites should take here, from the last one
-    computed (None before the first)."""
+    """Seconds a spectrum of a chain of N sites should take here (its eigenvalues: O(N³)), from
+    the last one computed (None before the first)."""
     with _RATE_LOCK:
         rate = _SPECTRUM_RATE[-1] if _SPECTRUM_RATE else None
     return None if rate is None else rate * (2.0 * N) ** 3
@@ -112,7 +112,7 @@ def floquet_spectrum(lw, mode, w_plus, V, N, tol, stop=None, progress=None):
     staged = None if progress is None else SpectrumProgress(progress, req.N)
     c = run_job(floquet_key(lw, req), floquet_job, (lw, req), stop, staged)
     r, fr = c.value
-    if fr is not None and not c.cached and fr.method == "dense":
+    if fr is not None and not c.cached:  # the job's spectra take one route (the default)
         spent = fr.monodromy_s + fr.check_s + fr.eig_s
         with _RATE_LOCK:
             _SPECTRUM_RATE[:] = [spent / (2.0 * fr.N) ** 3]
@@ -124,7 +124,7 @@ def floquet_spectrum(lw, mode, w_plus, V, N, tol, stop=None, progress=None):
 
 
 def floquet_sweep(lw, kind, w_plus, V_values, N, branch="lower", stop=None, progress=None):
-    """max |μ| against V for the family (fpucore.floquet.sweep) in a worker process."""
+    """max |μ| against V for the family (fpucore.atlas.sweep) in a worker process."""
     Vs = [float(v) for v in V_values]
     key = sweep_key(lw, kind, w_plus, Vs, N, branch)
     return run_job(key, sweep_job, (lw, kind, w_plus, Vs, int(N), branch), stop, progress)

@@ -13,6 +13,7 @@ import numpy as np
 
 from fpucore import floquet as fq
 from fpucore import wave
+from fpucore.atlas import sweep
 from fpucore.errors import ParameterError
 from fpucore.parallel import Executor
 
@@ -90,10 +91,10 @@ def fraction(progress):
 
 
 def sweep_job(lw, kind, w_plus, V_values, N, branch, progress=None):
-    """max |μ| against V for a family (fpucore.floquet.sweep), run inline in this worker: a pool
+    """max |μ| against V for a family (fpucore.atlas.sweep), run inline in this worker: a pool
     worker is daemonic and may not start a pool of its own (the server's pool already spreads
     the sessions' jobs over the cores)."""
-    return fq.sweep(
+    return sweep(
         lw,
         kind=kind,
         V_values=np.asarray(V_values, float),

@@ -319,7 +319,7 @@ class DiagramScene(BokehScene):
             counts = {c: int((cls == c).sum()) for c in CLASSES if (cls == c).any()}
             words = ", ".join(f"{n} {CLASS_STYLE[c][0].split(' (')[0]}" for c, n in counts.items())
             info.notes.append(f"branch view (N = {int(s.N)}): {words}; click a point to open it")
-            err = np.asarray(sw.error, float)
+            err = np.asarray(sw.max_modulus_error, float)
             if np.isfinite(err).any():
                 info.error("max |μ| error bound (sweep)", float(np.nanmax(err)))
         self._superkink_branch(info, up)
@@ -389,7 +389,7 @@ class DiagramScene(BokehScene):
                 "has no E_ren (it joins two different states), so (d) draws its amplitude; "
                 "click a point to open it"
             )
-            err = np.asarray(sw.error, float)
+            err = np.asarray(sw.max_modulus_error, float)
             if np.isfinite(err).any():
                 info.error("max |μ| error bound (superkink sweep)", float(np.nanmax(err)))
         self._want_branch = False  # a request neither view could serve (no valid family) ends
@@ -590,13 +590,13 @@ class DiagramScene(BokehScene):
             cols["V_branch"] = np.asarray(sw.V, float)
             cols["E_branch"] = np.asarray(sw.energy, float)
             cols["max_modulus_branch"] = np.asarray(sw.max_modulus, float)
-            cols["max_modulus_error_branch"] = np.asarray(sw.error, float)
+            cols["max_modulus_error_branch"] = np.asarray(sw.max_modulus_error, float)
         if self._sk_branch is not None:
             sk, amp, _ = self._sk_branch
             cols["V_superkink_branch"] = np.asarray(sk.V, float)
             cols["amplitude_superkink_branch"] = amp
             cols["max_modulus_superkink_branch"] = np.asarray(sk.max_modulus, float)
-            cols["max_modulus_error_superkink_branch"] = np.asarray(sk.error, float)
+            cols["max_modulus_error_superkink_branch"] = np.asarray(sk.max_modulus_error, float)
             # the classes (text) go in the header, in the order of V_branch
         d = getattr(self, "_exist", None)
         if d is not None:
@@ -683,7 +683,8 @@ class DiagramScene(BokehScene):
             Vs = [float(v) for v in sw.V]
             code += (
                 "# branch view: the family's Floquet sweep, classified\n"
-                f"sw = floquet.sweep(law, kind='solitary', V_values={Vs!r}, "
+                "from fpucore.atlas import sweep\n"
+                f"sw = sweep(law, kind='solitary', V_values={Vs!r}, "
                 f"w_plus={float(sw.w_plus)!r}, N={int(s.N)}, branch='lower')\n"
                 "print(list(zip(sw.V, sw.energy, sw.classification)))\n"
             )
@@ -692,7 +693,8 @@ class DiagramScene(BokehScene):
             Vs = [float(v) for v in sk.V]
             code += (
                 "# superkink branch view: the superkink family's Floquet sweep, classified\n"
-                f"sk = floquet.sweep(law, kind='superkink', V_values={Vs!r}, N={int(s.N)}, "
+                "from fpucore.atlas import sweep\n"
+                f"sk = sweep(law, kind='superkink', V_values={Vs!r}, N={int(s.N)}, "
                 f"branch={branch!r})\n"
                 f"amp = [abs(qc.superkink_from_V(law, v, branch={branch!r}).w_minus\n"
                 f"           - qc.superkink_from_V(law, v, branch={branch!r}).w_plus) "

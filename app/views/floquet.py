@@ -215,7 +215,7 @@ class FloquetScene(BokehScene):
         sw = c.value
         info.time(f"sweep ({len(Vs)} V)", c)
         self._sweep_result = sw
-        mm, err = np.asarray(sw.max_modulus, float), np.asarray(sw.error, float)
+        mm, err = np.asarray(sw.max_modulus, float), np.asarray(sw.max_modulus_error, float)
         ok = np.isfinite(mm) & np.isfinite(err)
         # max|μ| − 1 on a log axis; a point within its error bar is drawn at the bar (a bound)
         y = np.maximum(mm - 1.0, np.maximum(err, 1e-16))
@@ -235,8 +235,7 @@ class FloquetScene(BokehScene):
         self._energy_criterion(info, up, kind, wp, Vs, (lo, hi))
         # a velocity left out of (c): its wave did not converge, or it was never computed (a
         # sweep stopped early) — two different statements
-        lost = np.array([str(r.get("message") or "").startswith("wave not converged")
-                         for r in sw.rows])  # fmt: skip
+        lost = np.array([r["status"] == "not_converged" and not r["converged"] for r in sw.rows])
         if (~ok & lost).any():
             k = int((~ok & lost).sum())
             info.notes.append(f"sweep: {k} velocit{'y' if k == 1 else 'ies'} did not converge "
@@ -385,7 +384,8 @@ class FloquetScene(BokehScene):
         if sw is not None:
             kind, wp, Vs, _, branch = self._sweep_values()
             code += (
-                f"sw = floquet.sweep(law, kind={kind!r}, V_values={[float(v) for v in Vs]!r}, "
+                "from fpucore.atlas import sweep\n"
+                f"sw = sweep(law, kind={kind!r}, V_values={[float(v) for v in Vs]!r}, "
                 f"w_plus={wp!r}, N={int(s.N)}, branch={branch!r})\n"
                 "print(sw.V.tolist(), sw.max_modulus.tolist(), list(sw.classification))\n"
             )
@@ -393,7 +393,7 @@ class FloquetScene(BokehScene):
                 code += (
                     "# energy criterion: extrema of E_ren (the sweep's waves, the QC family)\n"
                     f"ec = floquet.criterion_from_samples(law, {wp!r}, sw.V, sw.energy, "
-                    "sw.energy_error, sw.converged)\n"
+                    "sw.energy_error, sw.floquet_converged)\n"
                     "print(ec.extrema_V, ec.extrema_V_error, ec.qc_extrema_V)\n"
                     "print(floquet.stability_changes(law, sw.w_plus, sw.V, sw.classification, "
                     "ec))\n"
@@ -427,7 +427,8 @@ class FloquetScene(BokehScene):
         }
         sw = self._sweep_result
         if sw is not None:
-            out["sweep"] = {"V": sw.V, "max_modulus": sw.max_modulus, "error": sw.error,
+            out["sweep"] = {"V": sw.V, "max_modulus": sw.max_modulus,
+                            "max_modulus_error": sw.max_modulus_error,
                             "classification": sw.classification,
                             "headline": [r.get("headline") for r in sw.rows],
                             "energy": sw.energy,
@@ -457,7 +458,8 @@ class FloquetScene(BokehScene):
         )
         if self._sweep_result is not None:
             return code + (
-                "y = np.maximum(np.asarray(sw.max_modulus) - 1, np.maximum(sw.error, 1e-16))\n"
+                "y = np.maximum(np.asarray(sw.max_modulus) - 1,\n"
+                "               np.maximum(sw.max_modulus_error, 1e-16))\n"
                 "ax2.semilogy(sw.V, y, 'o-')\n"
                 "ax2.set(xlabel='V', ylabel='max |μ| − 1', title='sweep')\n"
             )

@@ -129,7 +129,7 @@ def solve_chunk(task: dict, progress=None) -> list[dict]:
     """Records of the points ``task["V"]`` along one row, in order.  task: law (a force-law
     object), kind, row, V (list), N (int or None: automatic), tol, floquet (bool), m (RK steps or
     None), finite_size (bool: the spectrum's finite-size test, which gives the classification),
-    floquet_method ("dense" | "structured", default "dense"), continuation (bool).
+    floquet_method ("structured" | "dense"), continuation (bool).
     ``progress(frac)`` after each point."""
     law = task["law"]
     kind, row, N, tol = task["kind"], task["row"], task["N"], task["tol"]
@@ -151,7 +151,7 @@ def solve_chunk(task: dict, progress=None) -> list[dict]:
             prev = (r, sp) if (r.converged and task.get("continuation", True)) else None
             if r.converged and task["floquet"]:
                 fs = task.get("finite_size", True)
-                method = task.get("floquet_method", "dense")
+                method = task["floquet_method"]
                 add_floquet(rec, spectrum(r, m=task.get("m"), finite_size=fs, method=method))
         except ParameterError as exc:  # the wave exists, the settings do not suit it (N, ...)
             rec, prev = empty_record("failed", str(exc)), None

@@ -40,7 +40,7 @@ from fpucore.atlas.store import (
 from fpucore.budget import require_time_budget
 from fpucore.errors import ParameterError, require_tol
 from fpucore.floquet.monodromy import MAX_N
-from fpucore.floquet.multipliers import METHODS
+from fpucore.floquet.multipliers import DEFAULT_METHOD, METHODS
 from fpucore.law import HardeningSofteningLaw
 
 if TYPE_CHECKING:
@@ -146,7 +146,7 @@ def run(
     tol: float = 1e-12,
     floquet: bool = False,
     finite_size: bool = True,
-    floquet_method: str = "dense",
+    floquet_method: str = DEFAULT_METHOD,
     m: int | None = None,
     chunk: int | None = None,
     continuation: bool = True,
@@ -171,8 +171,9 @@ def run(
     V : ``"LO:HI:K"``, a list, or a count K spanning the existence intervals.  N : chain size
     (None: automatic per point).  floquet : also compute spectra; finite_size : with the
     spectrum's finite-size test (spectra at 0.4N, 0.6N), which gives the classification;
-    floquet_method : the spectrum's eigenvalue route, "dense" (reference) | "structured"
-    (:func:`fpucore.floquet.spectrum`).
+    floquet_method : the spectrum's eigenvalue route, "structured" (the default of every entry
+    point, :data:`fpucore.floquet.DEFAULT_METHOD`) | "dense" (the reference;
+    :func:`fpucore.floquet.spectrum`).
     chunk : points per chunk.
     out : Zarr store path (None: in memory only).  resume : continue an existing store.
     executor : an Executor to use (else one is made from backend / workers / address and shut

@@ -39,6 +39,7 @@ import numpy as np
 from fpucore.atlas.grid import Grid
 from fpucore.atlas.point import FIELDS
 from fpucore.errors import ParameterError
+from fpucore.floquet.multipliers import DEFAULT_METHOD
 from fpucore.jit_cache import source_hash
 from fpucore.law import CubicLaw
 from fpucore.result import jsonable
@@ -141,7 +142,7 @@ def skeleton(grid: Grid, attrs: dict) -> xr.Dataset:
 
 
 def identity_attrs(grid: Grid, law, N, tol: float, floquet: bool, finite_size: bool, m,
-                   continuation: bool, floquet_method: str = "dense") -> dict:  # fmt: skip
+                   continuation: bool, floquet_method: str = DEFAULT_METHOD) -> dict:  # fmt: skip
     """The store's attributes: everything that determines its records (see IDENTITY), plus a
     and b for the cubic law."""
     attrs = {

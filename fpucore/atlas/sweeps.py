@@ -7,13 +7,17 @@ task (``CHUNK`` = 1) on a worker of the execution layer (:mod:`fpucore.parallel`
 BLAS thread each): its wave solved from the QC guess and its spectrum computed.  A sweep that
 starts its own pool computes in the calling process too (``caller_runs``: K cores = the caller
 and K - 1 workers, so only K - 1 processes pay the worker start-up and none is oversubscribed).
-Each spectrum takes the structured route by default (``method``; the quarter-size reversible one
-for the paper's families, max|μ| and classification equal to dense within the error bar).
+Each spectrum takes the structured route by default (``method``, as every entry point:
+:data:`fpucore.floquet.DEFAULT_METHOD`; the quarter-size reversible one for the paper's families,
+max|μ| and classification equal to dense within the error bar).
 One task per velocity keeps the workers balanced (spectra near the sonic end cost more: their
 finite-size test runs); continuation along V measured no gain (benchmarks/README.md, atlas part C).
-One row per V is kept: V, max |μ|, max |μ| away from the trivial cluster, the error bar, the
-verdict, the three-way classification, and the wave's E_ren with its error bar (solitary families:
-the energy criterion, :func:`fpucore.floquet.criterion_from_samples`, reads them). Running the same
+One row per V is kept: V and the point's atlas record, under the atlas's names
+(:data:`fpucore.atlas.point.FIELDS`: the spectrum's error bar is ``max_modulus_error``, the wave's
+``converged`` and ``energy``, ``energy_error`` beside the spectrum's ``floquet_converged``,
+``verdict``, ``classification``, …; solitary families: the energy criterion,
+:func:`fpucore.floquet.criterion_from_samples`, reads them).  The JSON of ``fpu floquet sweep``
+and its CSV columns are these rows.  Running the same
 sweep at several N measures the N-dependence of the spurious oscillatory instabilities.
 
 Cache.  With ``use_cache`` the sweep is an atlas store in ``$FPU_CACHE_DIR/floquet`` (default
@@ -32,43 +36,30 @@ import math
 import os
 import shutil
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
+from typing import ClassVar
 
 import numpy as np
 from tqdm import tqdm
 
+from fpucore.atlas.point import FIELDS, empty_record
 from fpucore.atlas.run import run as run_atlas
 from fpucore.atlas.store import fpucore_version
 from fpucore.budget import require_time_budget
 from fpucore.errors import ParameterError, require_finite, require_int, require_tol
 from fpucore.floquet.monodromy import MAX_N
-from fpucore.floquet.multipliers import METHODS
+from fpucore.floquet.multipliers import DEFAULT_METHOD, METHODS
 from fpucore.jit_cache import source_hash
 from fpucore.law import require_law
 from fpucore.parallel import Executor
 from fpucore.parallel.threads import on_budget
-from fpucore.result import jsonable
+from fpucore.result import Result, jsonable, status_of
 from fpucore.wave.setup import spec_of
 
 SWEEP_MAX_V = 10_000  # velocities per sweep
 CHUNK = 1  # velocities per task (fixed: results must not depend on the number of workers)
-_ROW_KEYS = (
-    "V", "max_modulus", "max_modulus_away_from_1", "error", "symmetry_error", "integrator_error",
-    "n_unstable", "n_trivial", "trivial_split", "verdict", "wave_converged", "wave_residual",
-    "converged", "elapsed_s", "message", "classification", "headline", "energy", "energy_error",
-)  # fmt: skip
-# sweep row key ← atlas record field
-_FROM_ATLAS = {
-    "max_modulus": "max_modulus", "max_modulus_away_from_1": "max_modulus_away_from_1",
-    "error": "max_modulus_error", "symmetry_error": "symmetry_error",
-    "integrator_error": "floquet_integrator_error", "n_unstable": "n_unstable",
-    "n_trivial": "n_trivial", "trivial_split": "trivial_split", "verdict": "verdict",
-    "wave_converged": "converged", "wave_residual": "residual", "converged": "floquet_converged",
-    "elapsed_s": "elapsed_s", "message": "message", "classification": "classification",
-    "headline": "headline",
-    "energy": "energy", "energy_error": "energy_error",
-}  # fmt: skip
+COLUMNS = ("V", *FIELDS)  # a sweep row: the velocity and its atlas record (fpucore.atlas.point)
 
 
 def cache_dir() -> Path:
@@ -78,7 +69,7 @@ def cache_dir() -> Path:
 
 
 def cache_key(law, kind: str, V_values, N: int, w_plus, branch: str, m, tol: float,
-              method: str = "structured") -> dict:  # fmt: skip
+              method: str = DEFAULT_METHOD) -> dict:  # fmt: skip
     """The inputs and the code that determine a sweep's rows (see module doc)."""
     return {
         "method": method,
@@ -103,43 +94,56 @@ def cache_path(key: dict) -> Path:
 
 
 @dataclass(frozen=True)
-class SweepResult:
-    """max |μ| along a family.  Arrays (n,) in the order of V; error is each row's error bar
-    (:attr:`fpucore.floquet.FloquetResult.error`); NaN where the wave did not converge.
-    cached : rows read from the cache store (computed by an earlier run).
-    energy, energy_error : (n,) the waves' E_ren and its bound (eq. Eren_D); classification :
-    (n,) "stable" | "finite_size" | "unstable" ("" where not computed).  method : the spectra's
-    eigenvalue route ("structured" | "dense")."""
+class SweepResult(Result):
+    """max |μ| along a family: a one-row atlas, its records named as the atlas's
+    (:data:`fpucore.atlas.point.FIELDS`).
+
+    rows : one dict per V, in the order of V — ``V`` and the point's atlas record (``status``,
+    ``message``, the wave's ``converged``, ``residual``, ``energy``, ``energy_error``, …, the
+    spectrum's ``max_modulus``, ``max_modulus_error`` (its error bar,
+    :attr:`fpucore.floquet.FloquetResult.error`), ``floquet_converged``, ``verdict``,
+    ``classification``, ``headline``, …; ``status`` "" for a velocity never computed).
+    V, max_modulus, max_modulus_away_from_1, max_modulus_error, energy, energy_error : (n,)
+    arrays of those columns, NaN where nothing was computed; n_unstable : (n,) int (0 there);
+    floquet_converged : (n,) bool, the spectrum converged; cached : (n,) bool, the row was read
+    from the cache store (computed by an earlier run); classification : (n,) "stable" |
+    "finite_size" | "unstable" | "undetermined" ("" where not computed).  method : the spectra's
+    eigenvalue route ("structured" | "dense").
+    converged : every velocity has a converged spectrum; stopped : the time budget ended the
+    sweep (rows left not computed)."""
 
     kind: str
     N: int
     w_plus: float | None
+    method: str
     V: np.ndarray
     max_modulus: np.ndarray
     max_modulus_away_from_1: np.ndarray
-    error: np.ndarray
+    max_modulus_error: np.ndarray
     n_unstable: np.ndarray
-    converged: np.ndarray
+    floquet_converged: np.ndarray
     cached: np.ndarray
-    rows: list = field(default_factory=list)
-    elapsed_s: float = 0.0
-    message: str = ""
-    energy: np.ndarray = field(default_factory=lambda: np.zeros(0))
-    energy_error: np.ndarray = field(default_factory=lambda: np.zeros(0))
-    classification: tuple = ()
-    method: str = "structured"
+    energy: np.ndarray
+    energy_error: np.ndarray
+    classification: tuple
+    rows: list
+    converged: bool
+    stopped: bool
+    message: str
+    elapsed_s: float
 
-    def as_dict(self) -> dict:
-        return {"kind": self.kind, "N": self.N, "w_plus": self.w_plus, "method": self.method,
-                "rows": self.rows, "elapsed_s": self.elapsed_s,
-                "message": self.message}  # fmt: skip
+    ERROR_FIELDS: ClassVar = ("max_modulus_error",)
+
+    @property
+    def status(self) -> str:
+        return status_of(self.converged, self.stopped)
 
     def to_csv(self, path_or_file) -> None:
-        cols = ["N", *_ROW_KEYS, "cached"]
+        """One line per row: the columns :data:`COLUMNS` (the atlas's names) and ``cached``."""
+        cols = [*COLUMNS, "cached"]
         lines = [",".join(cols)]
         for row, c in zip(self.rows, self.cached, strict=True):
-            vals = [self.N, *(row.get(k) for k in _ROW_KEYS), bool(c)]
-            lines.append(",".join(_csv(v) for v in vals))
+            lines.append(",".join(_csv(v) for v in [*(row[k] for k in COLUMNS), bool(c)]))
         text = "\n".join(lines) + "\n"
         if hasattr(path_or_file, "write"):
             path_or_file.write(text)
@@ -169,29 +173,17 @@ def tqdm_progress(n: int, desc: str = "floquet sweep") -> Callable:
     return cb
 
 
-def _nan_row(V: float, message: str) -> dict:
-    row = {k: None for k in _ROW_KEYS}
-    row.update(V=float(V), n_unstable=0, n_trivial=0, verdict="not computed",
-               wave_converged=False, converged=False, elapsed_s=0.0, message=message)  # fmt: skip
-    return row
-
-
-def _row(V: float, rec: dict) -> dict:
-    """The sweep row of one atlas record."""
-    if rec["status"] == "" or (rec["status"] != "ok" and not math.isfinite(rec["max_modulus"])):
-        row = _nan_row(V, rec["message"] or "not computed")
-        if rec["status"] == "not_converged":
-            row["message"] = f"wave not converged: {rec['message']}"
-        row["wave_residual"] = jsonable(rec["residual"])
-        row["elapsed_s"] = jsonable(rec["elapsed_s"]) or 0.0
-        return row
-    row = {"V": float(V)}
-    row.update({k: jsonable(rec[src]) for k, src in _FROM_ATLAS.items()})
+def _row(V: float, N: int, rec: dict) -> dict:
+    """The sweep row of one atlas record (a record of a point never computed gets the sweep's
+    N, the chain size it was asked for)."""
+    row = {"V": float(V), **{k: jsonable(rec[k]) for k in FIELDS}}
+    if row["N"] < 0:
+        row["N"] = int(N)
     return row
 
 
 def check_sweep_args(law, kind, V_values, w_plus, N, branch, m, tol, time_budget_s,
-                     method="structured"):  # fmt: skip
+                     method=DEFAULT_METHOD):  # fmt: skip
     """Validate a sweep's arguments before anything is computed (tol=0, N=10**6 and
     time_budget_s=-1 used to return NaN rows).  Returns (w_plus, Vs, N, m, tol, time_budget_s)."""
     require_law(law)
@@ -240,7 +232,7 @@ def sweep(
     time_budget_s: float = 3600.0,
     executor: Executor | None = None,
     workers: int | None = None,
-    method: str = "structured",
+    method: str = DEFAULT_METHOD,
 ) -> SweepResult:
     """max |μ| against V along a family of discrete waves (Figs. floquet_SK, floquet_cubicSW).
 
@@ -252,7 +244,8 @@ def sweep(
     velocities).  executor : an :class:`fpucore.parallel.Executor` to run on (default: one
     started for this sweep with ``workers`` computing processes, all cores: this process and a
     pool of ``workers - 1``, ``caller_runs=True``).  method : each spectrum's eigenvalue route
-    (:func:`fpucore.floquet.spectrum`): "structured" (default: the quarter-size reversible
+    (:func:`fpucore.floquet.spectrum`): "structured" (the default of every entry point,
+    :data:`fpucore.floquet.DEFAULT_METHOD`: the quarter-size reversible
     route for the paper's families, ~0.2× the dense call at N = 500, max|μ| and classification
     equal within the error bar, tests/floquet/test_sweep_method.py) or "dense" (the reference).
     """
@@ -270,7 +263,7 @@ def sweep(
 
     def on_points(points) -> None:
         for _, j, rec in points:
-            rows[j] = _row(Vs[j], rec)
+            rows[j] = _row(Vs[j], N, rec)
             computed[j] = True
             count[0] += 1
             if progress:
@@ -304,31 +297,41 @@ def sweep(
     recs = {k: ds[k].values[0] for k in ds.data_vars}
     for j in range(n):
         if rows[j] is None:
-            rec = {k: v[j] for k, v in recs.items()}
-            if recs["done"][j]:
-                rows[j] = _row(Vs[j], rec)
-            else:
-                rows[j] = _nan_row(Vs[j], res.message or "not computed")
+            done = recs["done"][j]
+            rec = {k: v[j] for k, v in recs.items()} if done else empty_record(
+                "", res.message or "not computed")  # fmt: skip
+            rows[j] = _row(Vs[j], N, rec)
     if bar is not None and hasattr(bar, "close"):
         bar.close()
-    arr = lambda k: np.array([np.nan if r[k] is None else r[k] for r in rows], float)  # noqa: E731
+
+    def arr(k: str, where=None) -> np.ndarray:  # a column, NaN where not computed (or not where)
+        x = np.array([np.nan if r[k] is None else r[k] for r in rows], float)
+        return x if where is None else np.where(where, x, np.nan)
+
     cached = ~computed & (recs["done"] == 1)
+    fl_ok = np.array([bool(r["floquet_converged"]) for r in rows])
+    wave_ok = np.array([bool(r["converged"]) for r in rows])
+    message = res.message if res.stopped else f"{n} velocities, {int(cached.sum())} from cache"
+    if not res.stopped and not fl_ok.all():
+        message += f"; {int((~fl_ok).sum())} without a converged spectrum"
     return SweepResult(
         kind=kind,
         N=int(N),
         w_plus=w_plus,
+        method=method,
         V=Vs,
         max_modulus=arr("max_modulus"),
         max_modulus_away_from_1=arr("max_modulus_away_from_1"),
-        error=arr("error"),
-        n_unstable=np.array([r["n_unstable"] or 0 for r in rows], int),
-        converged=np.array([bool(r["converged"]) for r in rows]),
+        max_modulus_error=arr("max_modulus_error"),
+        n_unstable=np.array([max(int(r["n_unstable"]), 0) for r in rows], int),
+        floquet_converged=fl_ok,
         cached=cached,
+        energy=arr("energy", wave_ok),
+        energy_error=arr("energy_error", wave_ok),
+        classification=tuple(r["classification"] for r in rows),
         rows=rows,
+        converged=bool(fl_ok.all()) and not res.stopped,
+        stopped=bool(res.stopped),
+        message=message,
         elapsed_s=res.elapsed_s,
-        message=res.message if res.stopped else f"{n} velocities, {int(cached.sum())} from cache",
-        energy=arr("energy"),
-        energy_error=arr("energy_error"),
-        classification=tuple(r["classification"] or "" for r in rows),
-        method=method,
     )

@@ -1,7 +1,7 @@
 """``fpu atlas``: waves, energies and Floquet multipliers over a grid, stored in Zarr.
 
 fpu atlas solitary --w-plus 0.2:6.5:40 --V 40 --N 500 --floquet --out atlas.zarr
-fpu atlas superkink --V 4.8:5.85:22 --N 500 --floquet --out sk.zarr [--branch both]
+fpu atlas superkink --V 4.8:5.85:22 --N 500 --floquet [--method dense] --out sk.zarr [--branch both]
     [--scheduler tcp://HOST:8786 | --workers K [--force-workers] | --backend dask] [--resume]
     [--memory-budget 4GiB] [--json]
 
@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import sys
 
+from fpucore.cli.choices import DEFAULT_FLOQUET_METHOD, FLOQUET_METHODS, METHOD_HELP
 from fpucore.cli.common import add_law_args, law_from_args, print_json
 from fpucore.errors import ParameterError
 
@@ -38,6 +39,8 @@ def register(sub) -> None:
         q.add_argument("--tol", type=float, default=1e-12, help="Newton residual tolerance")
         q.add_argument("--floquet", action="store_true", help="also the Floquet spectra")
         q.add_argument("--m", type=int, default=None, help="RK steps per period (Floquet)")
+        q.add_argument("--method", choices=FLOQUET_METHODS, default=DEFAULT_FLOQUET_METHOD,
+                       help=METHOD_HELP)  # fmt: skip
         q.add_argument(
             "--no-finite-size",
             action="store_true",
@@ -69,11 +72,11 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
-    from tqdm import tqdm
+    from tqdm import tqdm  # heavy: tqdm
 
-    from fpucore import atlas
-    from fpucore.atlas.store import check_out
-    from fpucore.parallel import apply_thread_policy
+    from fpucore import atlas  # heavy: Numba, xarray
+    from fpucore.atlas.store import check_out  # heavy: Numba
+    from fpucore.parallel import apply_thread_policy  # heavy: Numba
 
     law = law_from_args(args)
     check_out(args.out)  # before anything is computed
@@ -98,7 +101,8 @@ def run(args) -> int:
     try:
         res = atlas.run(
             law, args.kind, rows=rows, V=args.V, N=args.N, tol=args.tol, floquet=args.floquet,
-            finite_size=not args.no_finite_size, m=args.m, chunk=args.chunk,
+            finite_size=not args.no_finite_size, floquet_method=args.method, m=args.m,
+            chunk=args.chunk,
             continuation=not args.no_continuation, out=args.out,
             resume=args.resume, backend=backend, workers=args.workers, address=args.scheduler,
             progress=progress, time_budget_s=args.time_budget, force_workers=args.force_workers,

@@ -14,14 +14,11 @@ from fpucore.errors import ParameterError
 if TYPE_CHECKING:
     from fpucore.law import HardeningSofteningLaw
 
-# Imports of NumPy and of fpucore's subpackages sit inside the functions of fpucore/cli: the
-# parser is built (and ``--help`` printed) without them, a command pays them when it runs.
-
 
 def jsonable(obj):
     """:func:`fpucore.result.jsonable`, imported when a command prints (NumPy stays out of
     ``fpu --help``)."""
-    from fpucore.result import jsonable as convert
+    from fpucore.result import jsonable as convert  # heavy: NumPy
 
     return convert(obj)
 
@@ -85,7 +82,7 @@ def add_law_args(p: argparse.ArgumentParser) -> None:
 def law_from_args(args) -> HardeningSofteningLaw:
     """The law of the command line: ``--law`` parsed by SymPy if given, else CubicLaw(a, b).
     Both at once is refused: --law would silently replace the cubic the user asked for."""
-    from fpucore.law import CubicLaw, law_from_expression
+    from fpucore.law import CubicLaw, law_from_expression  # heavy: Numba, SciPy
 
     a, b = getattr(args, "a", None), getattr(args, "b", None)
     if getattr(args, "law", None) is not None:
@@ -101,7 +98,7 @@ def law_from_args(args) -> HardeningSofteningLaw:
 
 def law_fields(law: HardeningSofteningLaw) -> dict:
     """The law in JSON output: a, b for the cubic; the expression and coefficients otherwise."""
-    from fpucore.law import CubicLaw
+    from fpucore.law import CubicLaw  # heavy: Numba, SciPy
 
     if isinstance(law, CubicLaw):
         return {"a": law.a, "b": law.b, "law": law.describe()}

@@ -59,7 +59,7 @@ def main(argv: list[str] | None = None) -> int:
     try:
         args = build_parser().parse_args(argv)  # --help exits here: no NumPy/Numba imported
         load_stack()
-        from fpucore.parallel.threads import apply_thread_policy, default_threads
+        from fpucore.parallel.threads import apply_thread_policy, default_threads  # heavy: Numba
 
         # the thread budget (fpucore/parallel/threads.py): FPU_THREADS threads (default 1) for a
         # command computing one job; commands that fan out (atlas) set threads=1 for the parent

@@ -12,7 +12,7 @@ import argparse
 import json
 import sys
 
-from fpucore.cli.choices import FLOQUET_METHODS
+from fpucore.cli.choices import DEFAULT_FLOQUET_METHOD, FLOQUET_METHODS, METHOD_HELP
 from fpucore.cli.common import add_law_args, jsonable, law_fields, law_from_args, print_json
 from fpucore.errors import ParameterError
 
@@ -37,10 +37,8 @@ def register(sub) -> None:
             help="skip the finite-size test (spectra on 5 shorter rings in [N/2, N]); an excess "
             "is then undetermined",
         )
-        q.add_argument("--method", choices=FLOQUET_METHODS, default="dense",
-                       help="eigenvalue route: dense LAPACK (reference) or the structure-"
-                       "preserving one (quarter size for reversible waves, else half size)",
-                       )  # fmt: skip
+        q.add_argument("--method", choices=FLOQUET_METHODS, default=DEFAULT_FLOQUET_METHOD,
+                       help=METHOD_HELP)  # fmt: skip
         q.add_argument("--json", action="store_true", help="print one JSON object")
         q.set_defaults(func=run_one, kind=name)
 
@@ -55,9 +53,8 @@ def register(sub) -> None:
     s.add_argument("--n", type=int, default=12, help="number of velocities in [V-min, V-max]")
     s.add_argument("--N", type=int, nargs="+", default=[500], help="chain size(s), one sweep each")
     s.add_argument("--out", default=None, help="write the table to this .csv or .json file")
-    s.add_argument("--method", choices=FLOQUET_METHODS, default="structured",
-                   help="each spectrum's eigenvalue route (default structured: ~0.2x the dense "
-                   "call for the paper's families; dense: the reference)")  # fmt: skip
+    s.add_argument("--method", choices=FLOQUET_METHODS, default=DEFAULT_FLOQUET_METHOD,
+                   help=METHOD_HELP)  # fmt: skip
     s.add_argument("--no-cache", action="store_true", help="ignore and do not write the cache")
     s.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
     s.add_argument("--json", action="store_true", help="print the table as one JSON object")
@@ -65,7 +62,7 @@ def register(sub) -> None:
 
 
 def _wave(args, law):
-    from fpucore import wave
+    from fpucore import wave  # heavy: Numba
 
     if args.kind == "superkink":
         return wave.solve_superkink(law, args.V, branch=args.branch, N=args.N)
@@ -78,9 +75,9 @@ def _check_N(N: int) -> None:
 
 
 def run_one(args) -> int:
-    import numpy as np
+    import numpy as np  # heavy: NumPy
 
-    from fpucore import floquet
+    from fpucore import floquet  # heavy: Numba
 
     _check_N(args.N)
     law = law_from_args(args)
@@ -128,7 +125,7 @@ def run_one(args) -> int:
 
 
 def _velocities(args):
-    import numpy as np
+    import numpy as np  # heavy: NumPy
 
     if args.V is not None:
         return np.asarray(args.V, float)
@@ -140,7 +137,7 @@ def _velocities(args):
 
 
 def run_sweep(args) -> int:
-    from fpucore import floquet
+    from fpucore import atlas  # heavy: Numba, xarray
 
     law = law_from_args(args)
     Vs = _velocities(args)
@@ -151,12 +148,12 @@ def run_sweep(args) -> int:
         prog = None if (args.no_progress or args.json) else True
         if prog and len(args.N) > 1:
             sys.stderr.write(f"N = {N}\n")
-        sw = floquet.sweep(law, args.kind, Vs, w_plus=args.w_plus, N=N, progress=prog,
-                           branch=args.branch, use_cache=not args.no_cache,
-                           method=args.method)  # fmt: skip
+        sw = atlas.sweep(law, args.kind, Vs, w_plus=args.w_plus, N=N, progress=prog,
+                         branch=args.branch, use_cache=not args.no_cache,
+                         method=args.method)  # fmt: skip
         tables.append(sw)
     obj = {"kind": args.kind, **law_fields(law), "w_plus": args.w_plus,
-           "sweeps": [t.as_dict() for t in tables],
+           "sweeps": [t.as_dict(arrays=False) for t in tables],
            "elapsed_s": sum(t.elapsed_s for t in tables)}  # fmt: skip
     if args.out:
         if args.out.endswith(".json"):
@@ -178,13 +175,19 @@ def run_sweep(args) -> int:
         for row, c in zip(t.rows, t.cached, strict=True):
             mm, ma = row["max_modulus"], row["max_modulus_away_from_1"]
             f = lambda x: "nan" if x is None else f"{x - 1:.3e}"  # noqa: E731
-            e = "nan" if row["error"] is None else f"{row['error']:.1e}"
+            err = row["max_modulus_error"]
+            e = "nan" if err is None else f"{err:.1e}"
             tag = " (cached)" if c else ""
             cls = row["classification"] or "-"
+            said = (
+                row["headline"]
+                or row["verdict"]
+                or (f"{row['status'] or 'not computed'}: {row['message']}")
+            )  # no spectrum: why
             print(f"{t.N:>5} {row['V']:>12.8g} {f(mm):>11} {f(ma):>11} {e:>9} "
-                  f"{row['n_unstable'] or 0:>4}  {cls:<12}  {row['headline'] or row['verdict']}"
+                  f"{max(row['n_unstable'], 0):>4}  {cls:<12}  {said}"
                   f"{tag}")  # fmt: skip
-        missing = sum(r["verdict"] == "not computed" for r in t.rows)
+        missing = sum(r["status"] == "" for r in t.rows)
         if missing or t.cached.any():  # a partial or cached table says so
             print(f"{t.N:>5} {t.message}" + (f" ({missing} not computed)" if missing else ""))
         if args.kind == "solitary" and args.w_plus is not None:
@@ -197,11 +200,11 @@ def run_sweep(args) -> int:
 
 def _energy_line(law, t) -> str:
     """The sweep's cross-check against the extrema of E_ren, one line."""
-    from fpucore import floquet
+    from fpucore import floquet  # heavy: Numba
 
     try:
         ec = floquet.criterion_from_samples(law, t.w_plus, t.V, t.energy, t.energy_error,
-                                            t.converged)  # fmt: skip
+                                            t.floquet_converged)  # fmt: skip
         ch = floquet.stability_changes(law, t.w_plus, t.V, t.classification, ec)
     except ParameterError as exc:
         return f"not evaluated ({exc})"

@@ -41,8 +41,8 @@ def register(sub) -> None:
 
 
 def _check(args) -> list[str]:
-    from fpucore.paper import plot
-    from fpucore.paper.registry import LABELS, figure
+    from fpucore.paper import plot  # heavy: Numba
+    from fpucore.paper.registry import LABELS, figure  # heavy: Numba
 
     formats = (*plot.FORMATS, ".ipynb")
     labels = list(LABELS) if not args.figure else [figure(lab).label for lab in args.figure]
@@ -64,11 +64,11 @@ def _check(args) -> list[str]:
 
 
 def run(args) -> int:
-    from tqdm import tqdm
+    from tqdm import tqdm  # heavy: tqdm
 
-    from fpucore.paper import notebook, plot
-    from fpucore.paper.registry import FIGURES, LABELS
-    from fpucore.paper.report import compute_many
+    from fpucore.paper import notebook, plot  # heavy: Numba
+    from fpucore.paper.registry import FIGURES, LABELS  # heavy: Numba
+    from fpucore.paper.report import compute_many  # heavy: Numba
 
     if args.list:
         for lab in LABELS:
@@ -127,7 +127,7 @@ def run(args) -> int:
 
 
 def _table_doc(results, missing, reduced: bool, thumbnails: str | None = None) -> str:
-    from fpucore.paper.report import markdown_table
+    from fpucore.paper.report import markdown_table  # heavy: Numba
 
     head = (
         "# The paper vs fpu-explorer, number by number\n\n"

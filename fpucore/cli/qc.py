@@ -22,7 +22,7 @@ def register(sub) -> None:
 
 
 def compute(law: HardeningSofteningLaw, w_plus: float, V: float | None) -> dict:
-    from fpucore import qc
+    from fpucore import qc  # heavy: Numba, SciPy
 
     t0 = time.perf_counter()
     sk = qc.superkink_from_w_plus(law, w_plus)

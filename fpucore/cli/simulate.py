@@ -42,7 +42,7 @@ class _Bar:
 
     def __call__(self, frac: float) -> None:
         if self.bar is None:
-            from tqdm import tqdm
+            from tqdm import tqdm  # heavy: tqdm
 
             self.bar = tqdm(
                 total=100, desc=self.label, unit="%", file=sys.stderr, dynamic_ncols=True
@@ -56,7 +56,7 @@ class _Bar:
 
 def _progress(args, law, L: float, t_end: float, method: str, rtol: float):
     """A progress bar when asked, or on a terminal when the run is estimated at ≥ 2 s."""
-    from fpucore import simulate
+    from fpucore import simulate  # heavy: Numba
 
     mode = args.progress
     if mode == "never":
@@ -186,7 +186,7 @@ def _emit(args, s, extra: dict | None = None) -> int:
 
 
 def run_riemann(args) -> int:
-    from fpucore import simulate
+    from fpucore import simulate  # heavy: Numba
 
     law = law_from_args(args)
     kw = _common(args, "fixed_particles", 1e-10)
@@ -196,7 +196,7 @@ def run_riemann(args) -> int:
 
 
 def run_gaussian(args) -> int:
-    from fpucore import simulate
+    from fpucore import simulate  # heavy: Numba
 
     law = law_from_args(args)
     kw = _common(args, "fixed_particles", 1e-10)
@@ -206,7 +206,7 @@ def run_gaussian(args) -> int:
 
 
 def run_wave(args) -> int:
-    from fpucore import simulate, wave
+    from fpucore import simulate, wave  # heavy: Numba
 
     law = law_from_args(args)
     # checked before the wave is solved, and named as typed (not as the t_end it implies)

@@ -20,7 +20,7 @@ def register(sub) -> None:
 
 
 def run(args) -> int:
-    from fpucore.warm import warm_all
+    from fpucore.warm import warm_all  # heavy: Numba
 
     t0 = time.perf_counter()
     done = warm_all(parallel=not args.serial, lazy=not args.essential)

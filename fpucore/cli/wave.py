@@ -39,7 +39,7 @@ def register(sub) -> None:
 
 
 def compute(args):
-    from fpucore import wave
+    from fpucore import wave  # heavy: Numba
 
     law = law_from_args(args)
     jac = "fd" if args.fd else "exact"

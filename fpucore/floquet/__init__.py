@@ -9,9 +9,10 @@ excess |μ| − 1 an artefact of the finite ring?)  →  decision (the one Decis
 words)  →  energy (extrema of E_ren(V) along solitary families, where stability may change)
 
 Sweeps of max|μ| along V are one-row atlases and live in the atlas stage
-(:func:`fpucore.atlas.sweep`).  ``floquet.sweep``, ``floquet.SweepResult`` and
-``floquet.sweeps`` still name them for older callers: loaded on first use (PEP 562, as in
-``fpucore/__init__``), so importing this package never imports the atlas above it.
+(:func:`fpucore.atlas.sweep`, their home: call them there).  ``floquet.sweep``,
+``floquet.SweepResult`` and ``floquet.sweeps`` are aliases of ``atlas.sweep``,
+``atlas.SweepResult`` and ``fpucore.atlas.sweeps``, kept for older callers: loaded on first use
+(PEP 562, as in ``fpucore/__init__``), so importing this package never imports the atlas above it.
 """
 
 import importlib
@@ -33,7 +34,7 @@ from fpucore.floquet.energy import (
 )
 from fpucore.floquet.finite_size import CLASSES, chain_lengths
 from fpucore.floquet.monodromy import MAX_N, Monodromy, default_steps, monodromy, multipliers_of
-from fpucore.floquet.multipliers import METHODS, FloquetResult, spectrum
+from fpucore.floquet.multipliers import DEFAULT_METHOD, METHODS, FloquetResult, spectrum
 from fpucore.floquet.reversible import reversor_of
 from fpucore.floquet.structured import structured_multipliers
 
@@ -57,6 +58,7 @@ __all__ = [
     "chain_lengths",
     "Decision",
     "METHODS",
+    "DEFAULT_METHOD",
     "structured_multipliers",
     "reversor_of",
     "FloquetResult",

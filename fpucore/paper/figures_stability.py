@@ -28,9 +28,10 @@ def _sweep(kind: str, Vs, w_plus=None):
 
 def _bound(figure, quantity, printed, bound, sw, mask, source, minus_one=False):
     """max over ``mask`` of max|μ| (or max|μ| − 1) against an upper bound; the error bar is that
-    row's error (fpucore.floquet.FloquetResult.error).  Rows that did not converge count as NaN."""
+    row's error bar (``max_modulus_error``: fpucore.floquet.FloquetResult.error).  Rows that did
+    not converge count as NaN."""
     y = np.asarray(sw.max_modulus, float)[mask]
-    e = np.asarray(sw.error, float)[mask]
+    e = np.asarray(sw.max_modulus_error, float)[mask]
     if y.size == 0 or not np.all(np.isfinite(y)):
         i, val, err = 0, np.nan, np.nan
     else:
@@ -80,7 +81,7 @@ def fig_floquet_SK(reduced: bool):
         _bound("floquet_SK", "max|μ| for V ≥ 5.57", "< 1.0001", 1.0001, sw, V >= 5.57, src),
         _bound("floquet_SK", "max|μ| over the range", "< 1.005", 1.005, sw, V > 0, src),
     ]
-    notes = f"{int(np.sum(sw.converged))}/{V.size} velocities converged; {sw.message}"
+    notes = f"{int(np.sum(sw.floquet_converged))}/{V.size} velocities converged; {sw.message}"
     return panels, comps, {"V": V.tolist(), "N": N, "method": sw.method}, notes
 
 
@@ -88,7 +89,7 @@ def fig_Floquet_example(reduced: bool):
     """Fig. Floquet_example: all 2N multipliers of the superkink V = 5.2, N = 500 (dense), the
     unit circle, and the zoom on |μ| > 1 (mild oscillatory instabilities)."""
     clock = Clock()
-    fr = floquet.spectrum(wave.solve_superkink(LAW, 5.2, N=N))
+    fr = floquet.spectrum(wave.solve_superkink(LAW, 5.2, N=N), method="dense")
     mu = fr.multipliers
     th = np.linspace(0, 2 * np.pi, 721)
     out = np.abs(mu) > 1 + fr.error
@@ -112,7 +113,7 @@ def fig_Floquet_example(reduced: bool):
             ),
         ),
     )
-    src = f"floquet.spectrum(wave.solve_superkink(law, 5.2, N={N}))"
+    src = f"floquet.spectrum(wave.solve_superkink(law, 5.2, N={N}), method='dense')"
     t = clock.s
     # (quantity, printed, bound, ours, kind): the quartets leave the circle, mildly
     rows = [
@@ -175,5 +176,5 @@ def fig_floquet_cubicSW(reduced: bool):
                 src,
             )
         )
-        notes.append(f"w₊ = {w_plus:g}: {int(np.sum(sw.converged))}/{V.size} converged")
+        notes.append(f"w₊ = {w_plus:g}: {int(np.sum(sw.floquet_converged))}/{V.size} converged")
     return tuple(panels), comps, {"w_plus": (1.0, 6.0), "N": N}, "; ".join(notes)

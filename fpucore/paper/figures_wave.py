@@ -123,7 +123,7 @@ def _amp_energy(label: str, reduced: bool, quantity: str):
             series(f"QC {qfam.kind_above}", qfam.V_above, qy_a),
         ]
         for fam, kind in ((fam_b, qfam.kind_below), (fam_a, qfam.kind_above)):
-            ok = np.asarray(fam.converged, bool)
+            ok = np.asarray(fam.wave_converged, bool)
             y = fam.amplitude if quantity == "amplitude" else fam.energy
             ser.append(
                 series(f"discrete {kind}", np.asarray(fam.V)[ok], np.asarray(y)[ok], "points")

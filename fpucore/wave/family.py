@@ -7,34 +7,52 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass
+from typing import ClassVar
 
 import numpy as np
 
 from fpucore.errors import ParameterError
+from fpucore.result import Result, status_of
 from fpucore.wave.continuation import solve_from_neighbour
 from fpucore.wave.driver import solve_solitary, solve_superkink
 from fpucore.wave.setup import solitary_spec, superkink_spec
 
 
 @dataclass(frozen=True)
-class Family:
+class Family(Result):
     """A family of discrete waves over V.  kind : "superkink" | "solitary".
     results : list of WaveResult (V in the order requested); V, amplitude, energy, residual,
-    qc_max_deviation : arrays; converged : bool array."""
+    qc_max_deviation : arrays; wave_converged : bool array (each wave's ``converged``).
+    converged : every wave converged; message : how many did not, and the first one's reason."""
 
     kind: str
     results: list
     V: np.ndarray
-    converged: np.ndarray
+    wave_converged: np.ndarray
     amplitude: np.ndarray
     energy: np.ndarray
     residual: np.ndarray
     qc_max_deviation: np.ndarray
     elapsed_s: float
 
+    ERROR_FIELDS: ClassVar = ("residual",)
+    DERIVED: ClassVar = ("status", "converged", "message")
+
     @property
-    def all_converged(self) -> bool:
-        return bool(np.all(self.converged))
+    def converged(self) -> bool:
+        return bool(np.all(self.wave_converged))
+
+    @property
+    def status(self) -> str:
+        return status_of(self.converged)
+
+    @property
+    def message(self) -> str:
+        n, bad = len(self.results), [r for r in self.results if not r.converged]
+        if not bad:
+            return f"{n} waves converged"
+        return (f"{len(bad)} of {n} waves did not converge (first at V = {bad[0].V:.10g}: "
+                f"{bad[0].message})")  # fmt: skip
 
 
 def _check_V_values(V_values) -> np.ndarray:

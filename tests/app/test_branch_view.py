@@ -10,6 +10,7 @@ pytest.importorskip("panel")
 
 from bokeh.events import Tap  # noqa: E402
 
+from app import compute  # noqa: E402
 from app.state import ExplorerState  # noqa: E402
 from app.views import SCENES  # noqa: E402
 from fpucore import floquet, wave  # noqa: E402
@@ -44,7 +45,7 @@ def test_every_classified_wave_is_drawn_in_its_class(classified):
     # E_ren of a drawn point is the discrete wave's own (an independent solve at that V)
     r = wave.solve_solitary(CubicLaw(-1.0, 10.0), 1.0, float(sw.V[0]), N=128, tol=1e-10)
     assert float(sw.energy[0]) == pytest.approx(r.energy, abs=10 * r.energy_error + 1e-9)
-    assert "sw = floquet.sweep(law, kind='solitary'" in sc.python_code()
+    assert "from fpucore.atlas import sweep\nsw = sweep(law, kind='solitary'" in sc.python_code()
     assert "branch view (N = 128)" in sc.status.object
 
 
@@ -85,7 +86,10 @@ def v_sk(w_plus: float) -> float:
 
 @pytest.fixture(scope="module")
 def superkinks():
-    """Superkink mode (w₊ of the paper's V = 5.2 example), N = 64, 4 superkinks."""
+    """Superkink mode (w₊ of the paper's V = 5.2 example), N = 64, 4 superkinks.  The cache is
+    emptied first: another test of the session may have swept the same superkinks, and a cached
+    sweep is drawn without the click."""
+    compute.CACHE.clear()
     sc = BY_KEY["diagram"](ExplorerState(N=64, mode="superkink", w_plus=0.6327161199294542))
     sc.n_discrete.value = 2  # 2k = 4 velocities over the superkink interval
     sc.refresh()

@@ -96,31 +96,32 @@ def test_sweep_panel_says_which_velocities_are_missing_and_why(real, monkeypatch
     converge, or a velocity never computed (a sweep stopped early) — the old note called every
     missing row "did not converge"."""
     from app.compute.cache import Computed
-    from fpucore.floquet import sweeps
+    from fpucore.atlas import sweeps
+    from fpucore.atlas.point import empty_record
+    from fpucore.result import jsonable
 
     rc, fc = real
     V = np.array([5.0, 5.2, 5.4])
 
-    def missing(V, message):  # a row of a velocity without a spectrum (sweep's own shape)
-        return {"V": V, "max_modulus": None, "max_modulus_away_from_1": None, "error": None,
-                "n_unstable": 0, "classification": None, "headline": None,
-                "verdict": "not computed", "converged": False, "wave_converged": False,
-                "message": message}  # fmt: skip
+    def row(V, status, message, **fields):  # a sweep row: V and its atlas record
+        return {"V": V, **jsonable(empty_record(status, message)), **fields}
 
     rows = [
-        missing(5.0, "wave not converged: Newton stalled"),
-        missing(5.2, "time budget of 1 s exceeded after 1 of 3 velocities"),
-        {**missing(5.4, ""), "max_modulus": 1.0005, "max_modulus_away_from_1": 1.0005,
-         "error": 1e-11, "n_unstable": 2, "classification": "finite_size", "converged": True,
-         "wave_converged": True, "verdict": "x", "headline": "finite-size artefact (x)"},
+        row(5.0, "not_converged", "Newton stalled", N=N),  # the wave did not converge
+        row(5.2, "", "time budget of 1 s exceeded after 1 of 3 velocities"),  # never computed
+        row(5.4, "ok", "", N=N, converged=True, floquet_converged=True, max_modulus=1.0005,
+            max_modulus_away_from_1=1.0005, max_modulus_error=1e-11, n_unstable=2,
+            classification="finite_size", verdict="x", headline="finite-size artefact (x)"),
     ]  # fmt: skip
+    nan2 = [np.nan, np.nan]
     sw = sweeps.SweepResult(
-        kind="superkink", N=N, w_plus=None, V=V,
-        max_modulus=np.array([np.nan, np.nan, 1.0005]),
-        max_modulus_away_from_1=np.array([np.nan, np.nan, 1.0005]),
-        error=np.array([np.nan, np.nan, 1e-11]), n_unstable=np.array([0, 0, 2]),
-        converged=np.array([False, False, True]), cached=np.zeros(3, bool), rows=rows,
-        classification=("", "", "finite_size"),
+        kind="superkink", N=N, w_plus=None, method="structured", V=V,
+        max_modulus=np.array([*nan2, 1.0005]), max_modulus_away_from_1=np.array([*nan2, 1.0005]),
+        max_modulus_error=np.array([*nan2, 1e-11]), n_unstable=np.array([0, 0, 2]),
+        floquet_converged=np.array([False, False, True]), cached=np.zeros(3, bool),
+        energy=np.full(3, np.nan), energy_error=np.full(3, np.nan),
+        classification=("", "", "finite_size"), rows=rows, converged=False, stopped=True,
+        message="time budget", elapsed_s=0.1,
     )  # fmt: skip
     monkeypatch.setattr(compute, "floquet_spectrum", lambda *a, **k: (rc, fc))
     monkeypatch.setattr(compute, "floquet_sweep", lambda *a, **k: Computed(sw, 0.1, False))

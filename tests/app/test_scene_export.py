@@ -246,7 +246,7 @@ def test_a_simulation_notebook_reproduces_the_run(tmp_path):
     sc._want_run = True  # "Run simulation"
     sc.refresh()
     assert sc.last_message is None, sc.last_message
-    _, _, sim = sc._sim
+    sim = sc._sim[-1]
     assert sim.waves
     text = run_notebook(sc, tmp_path)
     line = next(ln for ln in text.splitlines() if "[('" in ln)  # drift, [(kind, V, error)]

@@ -21,7 +21,7 @@ import pytest
 from hypothesis import HealthCheck, event, given, settings
 from hypothesis import strategies as st
 
-from fpucore import floquet, wave
+from fpucore import atlas, wave
 from fpucore.cli import main
 
 CLI = settings(
@@ -241,7 +241,7 @@ def stub_sweep(monkeypatch, tmp_path):
     """Sweeps in this module write no cache into the working tree and do no real work: the stub
     validates exactly as the sweep does, then stops."""
     monkeypatch.setenv("FPU_CACHE_DIR", str(tmp_path))
-    real_check = floquet.sweeps.check_sweep_args
+    real_check = atlas.sweeps.check_sweep_args
 
     def stub(law, kind, V_values, w_plus=None, N=500, progress=None, branch="lower", m=None,
              tol=1e-12, use_cache=True, time_budget_s=3600.0, **kw):  # fmt: skip
@@ -251,7 +251,7 @@ def stub_sweep(monkeypatch, tmp_path):
                 wave.solitary_spec(law, w_plus, float(v)))  # fmt: skip
         raise ValidSweep
 
-    monkeypatch.setattr(floquet, "sweep", stub)
+    monkeypatch.setattr(atlas, "sweep", stub)
 
 
 @settings(CLI, max_examples=40)

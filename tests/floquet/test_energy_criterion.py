@@ -162,11 +162,13 @@ def test_classification_along_a_sweep_changes_only_at_an_energy_extremum(
     monkeypatch.setenv("FPU_CACHE_DIR", str(tmp_path))
     sw = atlas.sweep(LAW, "solitary", Vs, w_plus=w_plus, N=200, executor=Executor("inline"),
                   use_cache=False)  # fmt: skip
-    assert sw.converged.all() and all(c in fq.CLASSES for c in sw.classification)
+    assert sw.converged and all(c in fq.CLASSES for c in sw.classification)
     # the rows' energies are the waves' own: one direct solve at the same V and N
     r = wave.solve_solitary(LAW, w_plus, Vs[1], N=200)
     assert abs(sw.energy[1] - r.energy) <= sw.energy_error[1] + r.energy_error
-    ec = fq.criterion_from_samples(LAW, w_plus, sw.V, sw.energy, sw.energy_error, sw.converged)
+    ec = fq.criterion_from_samples(
+        LAW, w_plus, sw.V, sw.energy, sw.energy_error, sw.floquet_converged
+    )
     changes = fq.stability_changes(LAW, w_plus, sw.V, sw.classification, ec)
     assert all(ch.explained for ch in changes), (sw.classification, changes)
     if ec.extrema_V.size == 0 and ec.qc_extrema_V.size == 0:

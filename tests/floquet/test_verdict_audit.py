@@ -23,8 +23,8 @@ from benchmarks.verdict_audit import (
     audit_sentence,
     audit_sweep_rows,
 )
+from fpucore import atlas, wave
 from fpucore import floquet as fq
-from fpucore import wave
 from fpucore.atlas.point import FIELDS
 from fpucore.cli import main as cli_main
 from fpucore.floquet import decision
@@ -204,7 +204,7 @@ def test_superkink_spectrum_cli_text_and_json_words(capsys):
 
 def test_sweep_rows_words(tmp_path, monkeypatch):
     monkeypatch.setenv("FPU_CACHE_DIR", str(tmp_path))
-    sw = fq.sweep(LAW, "superkink", [4.8, 5.6, 5.8], N=128, use_cache=False, workers=1)
+    sw = atlas.sweep(LAW, "superkink", [4.8, 5.6, 5.8], N=128, use_cache=False, workers=1)
     assert audit_sweep_rows(sw.rows) == [], [r["verdict"] for r in sw.rows]
 
 

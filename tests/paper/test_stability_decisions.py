@@ -35,7 +35,7 @@ def test_readme_superkink_sweep_has_no_unstable_row(capsys, tmp_path, monkeypatc
     assert [s["N"] for s in obj["sweeps"]] == [200, 500]
     for s in obj["sweeps"]:
         rows = s["rows"]
-        assert len(rows) == 22 and all(r["converged"] for r in rows)
+        assert len(rows) == 22 and all(r["floquet_converged"] for r in rows)
         classes = [r["classification"] for r in rows]
         assert "unstable" not in classes, [(r["V"], r["verdict"]) for r in rows]
         for r in rows:
@@ -66,7 +66,7 @@ def test_solitary_families_have_no_unstable_row(w_plus, bound, tmp_path, monkeyp
     t = np.array([0.25, 0.5, 0.75, 0.97])
     Vs = np.concatenate([cp + (vsk - cp) * t, vsk + (cm - vsk) * (1.0 - t)])
     sw = atlas.sweep(LAW, "solitary", Vs, w_plus=w_plus, N=500, use_cache=False)
-    assert sw.converged.all()
+    assert sw.converged
     assert "unstable" not in sw.classification, [r["verdict"] for r in sw.rows]
     assert np.nanmax(sw.max_modulus) < bound
     assert any(c == "finite_size" for c in sw.classification)  # the excesses are there
@@ -74,7 +74,7 @@ def test_solitary_families_have_no_unstable_row(w_plus, bound, tmp_path, monkeyp
 
 def _unstable_survive_doubling(law, kind, Vs, w_plus=None, N=200):
     sw = atlas.sweep(law, kind, Vs, w_plus=w_plus, N=N, use_cache=False)
-    assert sw.converged.any()
+    assert sw.floquet_converged.any()
     for V, c in zip(sw.V, sw.classification, strict=True):
         if c != "unstable":
             continue

@@ -7,7 +7,8 @@ import json
 import numpy as np
 import pytest
 
-from fpucore import ConvergenceError, CubicLaw, floquet, qc, simulate, wave
+from fpucore import ConvergenceError, CubicLaw, atlas, floquet, qc, simulate, wave
+from fpucore.parallel import Executor
 from fpucore.result import STATUSES, Result, jsonable
 
 LAW = CubicLaw()
@@ -21,6 +22,10 @@ def _results():
         "wave": r,
         "floquet": floquet.spectrum(floquet.HomogeneousState(LAW, 1.0, 5.0, 16)),
         "simulation": simulate.riemann(LAW, 4.6, 0.0, L=40, t_end=0.5, n_snapshots=4),
+        "family": wave.superkink_family(LAW, [5.2, 5.3], N=64),
+        "sweep": atlas.sweep(
+            LAW, "superkink", [5.2, 5.3], N=64, use_cache=False, executor=Executor("inline")
+        ),
     }
 
 
