@@ -1,8 +1,9 @@
 """The explorer's single state owner: parameters, slider ranges and validity.
 
 ``ExplorerState`` holds what a link must reproduce (the law: cubic a, b or an expression; w_plus,
-V, mode, tab, N, tol) and derives from fpucore's QC functions (closed forms for the cubic, the
-numerical §3 theory for any other law) the ranges the sliders may take:
+V, mode, tab, N, tol; the held curves; the paper figure the view was opened from) and derives
+from fpucore's QC functions (closed forms for the cubic, the numerical §3 theory for any other
+law) the ranges the sliders may take:
 
 * w_plus: where superkinks (and so both solitary intervals) exist — (alpha, beta) for the cubic,
   the union of both branches' w_plus ranges otherwise — with the degenerate point w* excluded;
@@ -19,6 +20,8 @@ from __future__ import annotations
 import contextlib
 import math
 import os
+import re
+from dataclasses import dataclass
 from pathlib import Path
 
 import param
@@ -26,7 +29,7 @@ import param
 from fpucore import qc
 from fpucore.errors import ParameterError
 
-from . import compute
+from . import compute, paper_figures
 
 TABS = ("force", "phase", "profiles", "diagram", "floquet", "simulation", "atlas", "paper")
 MODES = ("solitary", "superkink")
@@ -41,11 +44,44 @@ MAX_URL_VALUE = 40
 MAX_URL_LAW = 200
 #: longest wait of a page build for the URL's law (the server's event loop waits meanwhile)
 URL_LAW_WAIT_S = 0.1
-URL_PARAMS = ("a", "b", "law", "w_plus", "V", "mode", "tab", "N", "tol", "atlas")
+URL_PARAMS = ("a", "b", "law", "w_plus", "V", "mode", "tab", "N", "tol", "atlas", "hold", "fig")
 #: URL name → state parameter where they differ (``law()`` is the state's law object)
-URL_ATTRS = {"law": "expression"}
+URL_ATTRS = {"law": "expression", "hold": "held", "fig": "figure"}
+#: curves held at once (Hold on Wave profiles and Phase plane; the oldest goes first)
+MAX_HELD = 6
+#: longest ``hold`` value read: MAX_HELD entries of two exact floats each, with room to spare
+MAX_URL_HOLD = 400
 #: the state parameters a URL holds, in URL_PARAMS order
 STATE_PARAMS = tuple(URL_ATTRS.get(n, n) for n in URL_PARAMS)
+#: the state parameters a paper figure sets: a change of one of them leaves the figure
+FIGURE_PARAMS = ("a", "b", "expression", "w_plus", "V", "mode", "N", "held")
+
+
+@dataclass(frozen=True)
+class HeldWave:
+    """One held curve: the wave it shows, under the state's law (and N, tol).  A superkink is
+    named by its w₊ alone (V = V_SK(w₊), eq. cubic_cond2, follows from the law); a solitary
+    wave by (w₊, V).  Its curves are recomputed (cached) by the scenes that draw it."""
+
+    mode: str
+    w_plus: float
+    V: float | None = None
+
+    def label(self, V: float | None = None) -> str:
+        """Legend label; ``V``: the superkink's velocity under the current law."""
+        if self.mode == "superkink":
+            v = f"superkink V = {V:.6g}, " if V is not None else "superkink "
+            return f"{v}w₊ = {self.w_plus:.6g}"
+        return f"V = {self.V:.6g}, w₊ = {self.w_plus:.6g}"
+
+    def url(self, w_plus: float) -> str:
+        """URL form: ``V`` (solitary at the state's w₊ ``w_plus``), ``V@w₊`` (solitary at another
+        w₊) or ``sk@w₊`` (superkink); floats exact (repr)."""
+        if self.mode == "superkink":
+            return f"sk@{self.w_plus!r}"
+        if self.w_plus == w_plus:
+            return repr(self.V)
+        return f"{self.V!r}@{self.w_plus!r}"
 
 
 class ExplorerState(param.Parameterized):
@@ -63,14 +99,23 @@ class ExplorerState(param.Parameterized):
     N = param.Integer(500, doc="number of lattice sites of the discrete solve (even)")
     tol = param.Number(1e-10, doc="Newton tolerance of the discrete solve")
     atlas = param.String("", doc="the Atlas scene's store, relative to ATLAS_ROOT; empty: none")
+    held = param.List([], item_type=HeldWave, doc="held curves (oldest first), at most MAX_HELD")
+    figure = param.String(
+        "", doc="the paper figure (label) the view was opened from, while the state is its"
+    )
+    #: the Simulation scene's initial data set by a paper figure (app.paper_figures
+    #: FIGURE_SCENARIO and "run"); not in the URL (its ``fig`` sets it)
+    scenario = param.Dict(None, allow_None=True)
     #: what the state changed by itself (e.g. V moved with w_plus), shown in the sidebar
     note = param.String("")
 
     def __init__(self, **params):
         super().__init__(**params)
         self._tying = False
+        self._showing_figure = False
         self._solitary_V = self.V if self.mode == "solitary" else None
         self.param.watch(self._tie, ["w_plus", "V", "mode", "a", "b", "expression"])
+        self.param.watch(self._leave_figure, list(FIGURE_PARAMS))
         if self.mode == "superkink":
             self._tie_superkink(from_V=False)
 
@@ -283,6 +328,65 @@ class ExplorerState(param.Parameterized):
                 f"at w₊ = {self.w_plus:.8g}"
             )
 
+    # ------------------------------------------------------------------ held curves, figures
+    def hold(self, wave: HeldWave) -> None:
+        """Hold ``wave`` (again: it moves to the end); past MAX_HELD the oldest goes, and
+        ``note`` says which."""
+        new = [*(h for h in self.held if h != wave), wave]
+        if len(new) > MAX_HELD:
+            gone = ", ".join(h.label() for h in new[:-MAX_HELD])
+            self.note = f"at most {MAX_HELD} held curves: {gone} let go"
+        self.held = new[-MAX_HELD:]
+
+    def current_wave(self) -> HeldWave | None:
+        """The current wave as a held curve (None while the parameters show no wave)."""
+        if self.problem() is not None:
+            return None
+        if self.mode == "superkink":
+            return HeldWave("superkink", float(self.w_plus))
+        return HeldWave("solitary", float(self.w_plus), float(self.V))
+
+    def show_figure(self, label: str) -> None:
+        """The state of paper figure ``label`` (app.paper_figures): in steps — the tab first,
+        alone, so that a scene not built yet is built and sent to the browser exactly as on a
+        tab click, before any render of it (a render of a scene built in the same update as
+        the parameters sent patches for models the browser did not have yet: "reference …
+        isn't known"); then the law and mode, so that the tie of V to w₊ in superkink mode acts
+        on the new mode; then w₊, N and V; then the held curves, the figure and the Simulation
+        scene's initial data.  ParameterError for an unknown label."""
+        if label not in paper_figures.FIGURE_STATE:
+            raise ParameterError("fig", label, "one of " + ", ".join(paper_figures.FIGURE_STATE))
+        tab, mode, w_plus, V, N = paper_figures.FIGURE_STATE[label]
+        self._showing_figure = True
+        try:
+            self.tab = tab
+            self.param.update(a=-1.0, b=10.0, expression="", mode=mode)
+            new = {"w_plus": w_plus, "N": N}
+            if V is not None:
+                new["V"] = V
+            self.param.update(**new)
+            held = [HeldWave(*h) for h in paper_figures.FIGURE_HELD.get(label, ())]
+            self.param.update(held=held, figure=label)
+            sc = paper_figures.FIGURE_SCENARIO.get(label)
+            if sc is not None:  # the widgets' values, and whether the click starts the run
+                sc = {k: v for k, v in sc.items() if k != "run_s"}
+                sc["run"] = paper_figures.scenario_runs(label)
+            if sc is not None and sc == self.scenario:
+                self.param.trigger("scenario")  # the same figure again: its widgets again
+            else:
+                self.scenario = sc
+        finally:
+            self._showing_figure = False
+        self.note = paper_figures.FIGURE_NOTE.get(label, "")
+
+    def _leave_figure(self, *events) -> None:
+        """A change the figure did not make: the view is no longer the figure's (the URL drops
+        its ``fig``), and a Simulation scene built later keeps its own initial data."""
+        if self._showing_figure or not self.figure:
+            return
+        self.figure = ""
+        self.scenario = None
+
     # ------------------------------------------------------------------ actions
     def pick(self, w_plus: float, V: float, N: int | None = None) -> None:
         """Set (w_plus, V) at once (and N, when given), e.g. from a click on the existence
@@ -335,7 +439,8 @@ def resolve_atlas_store(name: str, raw: str) -> Path:
 def parse_url_value(name: str, raw: str):
     """One URL query value → the state's value (raises ParameterError naming the value and
     the valid range; the same ranges the sliders have)."""
-    limit = MAX_URL_LAW if name in ("law", "atlas") else MAX_URL_VALUE
+    limits = {"law": MAX_URL_LAW, "atlas": MAX_URL_LAW, "hold": MAX_URL_HOLD}
+    limit = limits.get(name, MAX_URL_VALUE)
     if len(raw) > limit:
         raise ParameterError(name, raw[:12] + "…", f"at most {limit} characters")
     if name == "law":
@@ -379,6 +484,12 @@ def parse_url_value(name: str, raw: str):
     if name == "atlas":
         resolve_atlas_store(name, raw)
         return raw.strip()
+    if name == "hold":  # its entries are read against the law and w₊: parse_hold
+        return raw.strip()
+    if name == "fig":
+        if raw not in paper_figures.FIGURE_STATE:
+            raise ParameterError(name, raw, "one of " + ", ".join(paper_figures.FIGURE_STATE))
+        return raw
     if name == "tol":
         x = _float(name, raw, "one of " + ", ".join(f"{t:g}" for t in TOL_OPTIONS))
         for t in TOL_OPTIONS:
@@ -386,6 +497,70 @@ def parse_url_value(name: str, raw: str):
                 return t
         raise ParameterError(name, x, "one of " + ", ".join(f"{t:g}" for t in TOL_OPTIONS))
     raise ParameterError(name, raw, "one of " + ", ".join(URL_PARAMS))
+
+
+HOLD_FORMS = "V, V@w_plus or sk@w_plus"
+_HOLD_ENTRY = re.compile(r"^\s*(?:(sk)|([^@\s]+))\s*(?:@\s*([^@\s]+))?\s*$")
+
+
+def parse_hold(text: str, law, w_plus: float) -> tuple[list[HeldWave], list[str]]:
+    """A link's ``hold`` (comma-separated ``V`` — a solitary wave at the state's w₊ —, ``V@w₊``
+    or ``sk@w₊`` — a superkink) → (the held waves, one message per entry refused).  Each wave
+    must exist for the law (``law`` None: an invalid law, whose message the page shows; the
+    entries are kept unchecked); more than MAX_HELD: the oldest (first) go, named."""
+    held, errors = [], []
+    entries = [e for e in text.split(",") if e.strip()]
+    for entry in entries:
+        m = _HOLD_ENTRY.match(entry)
+        try:
+            if m is None or (m.group(1) and m.group(3) is None):
+                raise ParameterError("hold", entry.strip(), HOLD_FORMS)
+            w = w_plus if m.group(3) is None else _float("hold", m.group(3), "a finite w₊")
+            if m.group(1):
+                wave = HeldWave("superkink", w)
+                if law is not None:
+                    _check_held(law, wave)
+            else:
+                V = _float("hold", m.group(2), "a finite V")
+                wave = HeldWave("solitary", w, V)
+                if law is not None:
+                    _check_held(law, wave)
+        except ParameterError as exc:
+            errors.append(f"URL value ignored: {exc}")
+            continue
+        if wave not in held:
+            held.append(wave)
+    if len(held) > MAX_HELD:
+        gone = ", ".join(h.url(w_plus) for h in held[:-MAX_HELD])
+        errors.append(
+            f"URL value ignored: hold has {len(held)} curves, at most {MAX_HELD} are held: "
+            f"the first {len(held) - MAX_HELD} ({gone}) let go"
+        )
+        held = held[-MAX_HELD:]
+    return held, errors
+
+
+def _check_held(law, wave: HeldWave) -> None:
+    """ParameterError (named ``hold``, with the valid range) if ``wave`` is no wave of ``law``."""
+    try:
+        if wave.mode == "superkink":
+            qc.superkink_from_w_plus(law, wave.w_plus)
+            return
+        cp, vsk, cm = qc.sound_speeds(law, wave.w_plus)
+        if wave.V == vsk:
+            raise ParameterError(
+                "V", wave.V, f"({cp:.10g}, {vsk:.10g}) or ({vsk:.10g}, {cm:.10g})",
+                "V = V_SK is the superkink: sk@w_plus holds it",
+            )  # fmt: skip
+        qc.solitary(law, wave.w_plus, wave.V)
+    except ParameterError as exc:
+        why = f"the held wave's {exc.name}" + (f": {exc.reason}" if exc.reason else "")
+        raise ParameterError("hold", exc.value, exc.valid, why) from None
+
+
+def format_hold(state) -> str:
+    """The URL's ``hold`` of the state's held curves (see :func:`parse_hold`)."""
+    return ",".join(h.url(state.w_plus) for h in state.held)
 
 
 def parse_url(query: dict[str, str]) -> tuple[dict, list[str]]:
@@ -411,6 +586,15 @@ def state_from_url(query: dict[str, str]) -> tuple[ExplorerState, list[str]]:
     from it (as typing V does), and one that gives both, inconsistently, keeps w₊ and says so.
     """
     values, errors = parse_url(query)
+    hold = values.pop("held", None)
+    fig = values.pop("figure", "")
+    figure = figure_state(fig) if fig else None
+    if figure is not None:  # the figure's state first; the link's own values (checked) win
+        base = {"a": -1.0, "b": 10.0, "expression": ""}
+        base.update({n: getattr(figure, n) for n in ("mode", "tab", "N", "w_plus")})
+        if figure.mode == "solitary":
+            base["V"] = figure.V
+        values = base | values
     st = ExplorerState(**{k: v for k, v in values.items() if k not in ("w_plus", "V")})
     try:
         lo, w_star, hi = st.w_plus_range()
@@ -436,7 +620,28 @@ def state_from_url(query: dict[str, str]) -> tuple[ExplorerState, list[str]]:
         st.w_plus = w
     if V is not None:
         st.V = V  # in superkink mode this moves w₊ along its branch (ExplorerState._tie)
+    if hold is not None:
+        try:
+            law = st.law()
+        except ParameterError:
+            law = None  # an invalid law (or one still being built): the page names it
+        st.held, more = parse_hold(hold, law, st.w_plus)
+        errors += more
+    elif figure is not None:
+        st.held = list(figure.held)
+    if figure is not None:
+        # the figure's simulation; the figure itself only while the state is the figure's
+        st.scenario = figure.scenario
+        same = [getattr(st, n) == getattr(figure, n) for n in FIGURE_PARAMS]
+        st.figure = fig if all(same) else ""
     return st, errors
+
+
+def figure_state(label: str) -> ExplorerState:
+    """The state paper figure ``label`` sets (app.paper_figures), from the default state."""
+    st = ExplorerState()
+    st.show_figure(label)
+    return st
 
 
 def url_value(x) -> str:
@@ -446,11 +651,11 @@ def url_value(x) -> str:
 
 def url_query(state: ExplorerState) -> dict[str, str]:
     """The URL query of the state, {URL name: value} in URL_PARAMS order; ``law`` only when it
-    is an expression (a cubic link stays as it was: a, b)."""
+    is an expression (a cubic link stays as it was: a, b); ``hold`` and ``fig`` when set."""
     out = {}
     for name, attr in zip(URL_PARAMS, STATE_PARAMS):
         value = getattr(state, attr)
-        if name in ("law", "atlas") and not value:
+        if name in ("law", "atlas", "hold", "fig") and not value:
             continue
-        out[name] = url_value(value)
+        out[name] = format_hold(state) if name == "hold" else url_value(value)
     return out

@@ -85,6 +85,8 @@ def run_job(
     hit = CACHE.lookup(key)
     if hit is not None:
         return hit
+    if stop is not None and stop():  # not wanted any more: submit nothing (no worker killed)
+        raise Superseded()
     with _INFLIGHT_LOCK:
         entry = _INFLIGHT.get(key)
         if entry is None or (entry[0].done() and entry[1] == 0):

@@ -1,12 +1,15 @@
-"""Held curves: "Hold" keeps the curve on screen (its data, from the last render — nothing is
-recomputed) while the sliders move on, so several V overlay as in the paper's families of
-profiles (Figs. cubic (b), SWs_cubic, TWcubic, SWs_cubic_DvsQC) and of phase-plane orbits;
-"Clear held" removes them.
+"""Held curves: "Hold" keeps the current wave on screen while the sliders move on, so several V
+overlay as in the paper's families of profiles (Figs. cubic (b), SWs_cubic, TWcubic,
+SWs_cubic_DvsQC) and of phase-plane orbits; "Clear held" removes them.
+
+The state owns the held waves (ExplorerState.held: (mode, w₊, V), up to MAX_HELD, in the URL's
+``hold``); each scene that draws them recomputes their curves through app.compute (cached: a
+wave held from the screen is the very one just computed) under the current law, N and tol, so a
+link reproduces them.  Both Wave profiles and Phase plane draw the same held waves.
 
 The renderers (MAX_HELD lines and point sets, one colour each) are built once with the figure;
 a render only fills or hides them.  Each held curve keeps the fpucore call that computes it, so
 "Copy as Python", the notebook, the data download and the exported figure hold it too.
-Held curves live in the session (not in the URL: a link reproduces the current curve only).
 """
 
 from __future__ import annotations
@@ -16,17 +19,21 @@ from dataclasses import dataclass
 import numpy as np
 import panel as pn
 
-from .bokeh_scene import Updates, add_line, add_points
+from fpucore.errors import ParameterError
 
-MAX_HELD = 6  # curves held at once (the oldest goes first)
+from ..state import MAX_HELD
+from .bokeh_scene import Updates, add_line, add_points
+from .report import Info
+from .untrusted import md_literal
+
 HELD_COLORS = ("#ff7f0e", "#2ca02c", "#9467bd", "#8c564b", "#e377c2", "#17becf")
 
 
 @dataclass(frozen=True)
 class Held:
-    """One held curve: its legend label, its line (x, y; NaN-separated pieces allowed), its
-    points (possibly empty) and the Python line that computes it: ``held.append(…)`` with
-    ``{law}`` where the law goes (``law_src``: the law's constructor when it was held)."""
+    """One held curve as drawn: its legend label, its line (x, y; NaN-separated pieces
+    allowed), its points (possibly empty) and the Python line that computes it
+    (``held.append(…)``, with the current ``law``)."""
 
     label: str
     x: np.ndarray
@@ -34,17 +41,17 @@ class Held:
     px: np.ndarray
     py: np.ndarray
     code: str
-    law_src: str
 
 
 class HeldCurves:
     """The Hold / Clear held buttons and the held curves' renderers on one figure."""
 
-    def __init__(self, on_change, css: str):
-        self.items: list[Held] = []
+    def __init__(self, state, on_change, css: str):
+        self.state = state
+        self.items: list[Held] = []  # the held curves of the last render, oldest first
         self.hold_btn = pn.widgets.Button(label="Hold curve", css_classes=[f"{css}-hold"])
         self.clear_btn = pn.widgets.Button(label="Clear held", css_classes=[f"{css}-clear-held"])
-        self._hold = None  # the scene's function returning the Held of what is shown
+        self._shown = None  # the scene's function: is a curve of the current wave on screen?
         self._on_change = on_change
         self.hold_btn.on_click(lambda _: self.hold())
         self.clear_btn.on_click(lambda _: self.clear())
@@ -64,21 +71,35 @@ class HeldCurves:
             self.points.append(pts)
         return [(f"held {k}", [self.lines[k][0], self.points[k][0]]) for k in range(MAX_HELD)]
 
-    def set_source(self, make_held) -> None:
-        """``make_held()`` → the Held of the curve now shown (None if nothing is shown)."""
-        self._hold = make_held
+    def set_source(self, shown) -> None:
+        """``shown()`` → whether the current wave's curve is on screen (Hold holds only that)."""
+        self._shown = shown
 
     def hold(self) -> bool:
-        h = self._hold() if self._hold is not None else None
-        if h is None:
+        """Hold the wave on screen (the state's current wave): the state's held list, and so
+        the URL, gets it; the scenes that draw it re-render."""
+        wave = self.state.current_wave() if self._shown is None or self._shown() else None
+        if wave is None:
             return False
-        self.items = [*(i for i in self.items if i.label != h.label), h][-MAX_HELD:]
+        self.state.hold(wave)
         self._on_change()
         return True
 
     def clear(self) -> None:
-        self.items = []
+        self.state.held = []
         self._on_change()
+
+    def compute(self, curve_of, info: Info) -> list[Held]:
+        """The state's held waves as curves: ``curve_of(wave)`` → Held (raises ParameterError
+        for a wave that is no wave of the current law: named in the notes, not drawn)."""
+        items = []
+        for wave in list(self.state.held):
+            try:
+                items.append(curve_of(wave))
+            except ParameterError as exc:
+                info.notes.append(f"held {wave.label()}: not drawn, {md_literal(exc)}")
+        self.items = items
+        return items
 
     def update(self, up: Updates, legend_items) -> list[np.ndarray]:
         """Fill the renderers (and name the legend entries); returns the held y arrays (for the
@@ -100,15 +121,12 @@ class HeldCurves:
             up.show(rp, None, shown and k < len(self.items) and len(self.items[k].px) > 0)
         return ys
 
-    def code(self, law_src: str) -> str:
-        """The held curves' fpucore calls (``held`` is the list of their results); a curve held
-        under the current law (constructor ``law_src``) uses ``law``, another its own law."""
+    def code(self) -> str:
+        """The held curves' fpucore calls (``held`` is the list of their results)."""
         if not self.items:
             return ""
         out = "# held curves (Hold), oldest first\nheld = []\n"
-        for h in self.items:
-            out += h.code.format(law="law" if h.law_src == law_src else h.law_src) + "\n"
-        return out
+        return out + "".join(h.code + "\n" for h in self.items)
 
     def columns(self) -> dict[str, np.ndarray]:
         """The held curves as CSV columns."""

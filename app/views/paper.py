@@ -1,6 +1,7 @@
 """Scene "Paper" — the paper's 17 figures (fpucore.paper's registry), each with its thumbnail,
-its caption and a button that sets the explorer's state (law, mode, w₊, V, N, tab) to the scene
-that shows it; the URL follows the state as for any other change.
+its caption and a button that sets the explorer's state (law, mode, w₊, V, N, tab, held curves;
+the Simulation scene's initial data) to the scene that shows it (app.paper_figures); the URL
+follows the state as for any other change, and its ``fig`` names the figure.
 
 The full reproduction of each figure with the comparison table is ``fpu paper --out report.html``
 (and docs/paper_comparison.md).  The thumbnails are the committed docs/figures/<label>.png
@@ -23,35 +24,14 @@ import panel as pn
 from fpucore.paper import FIGURES, report
 from fpucore.paper.plot import THUMB_WIDTH
 
+from ..paper_figures import FIGURE_STATE, W_PLUS_5_2
 from .formatting import fmt_num
 from .report import Info
 from .scene import Scene
 from .untrusted import md_literal
 
-#: w₊ ahead of the superkink V = 5.2 (the paper's example, Figs. Floquet_example, stabSK (b)):
-#: qc.superkink_from_V(CubicLaw(-1, 10), 5.2).w_plus — the state sets V = V_SK(w₊) from it
-W_PLUS_5_2 = 0.6327161199294542
-#: the state that shows each figure: (tab, mode, w_plus, V, N); in superkink mode V follows
-#: w_plus (V = V_SK(w_plus), eq. cubic_cond2), so V is None there.  a = −1, b = 10 throughout.
-FIGURE_STATE: dict[str, tuple[str, str, float, float | None, int]] = {
-    "superkink": ("force", "superkink", 1.0, None, 500),
-    "pplane": ("phase", "solitary", 1.0, 5.373838498865699, 500),  # V_SK − 0.001
-    "cubic": ("profiles", "superkink", 1.0, None, 500),
-    "SWvelocities_cubic": ("diagram", "solitary", 1.0, 5.0, 500),
-    "SWs_cubic": ("profiles", "solitary", 1.0, 5.0, 500),
-    "SWamp_energy_QCcubic": ("diagram", "solitary", 1.0, 5.0, 500),
-    "TWcubic": ("profiles", "superkink", W_PLUS_5_2, None, 500),
-    "SWs_cubic_DvsQC": ("profiles", "solitary", 1.0, 5.2, 500),
-    "SWamp_cubic_DvsQC": ("diagram", "solitary", 6.0, 5.0, 500),
-    "SWenergy_cubic_DvsQC": ("diagram", "solitary", 6.0, 5.0, 500),
-    "floquet_SK": ("floquet", "superkink", W_PLUS_5_2, None, 500),
-    "Floquet_example": ("floquet", "superkink", W_PLUS_5_2, None, 500),
-    "stabSK": ("simulation", "superkink", W_PLUS_5_2, None, 500),
-    "Riemann1": ("simulation", "superkink", 20.0 / 3.0 - 4.6, None, 500),  # V = 5.7209
-    "floquet_cubicSW": ("floquet", "solitary", 1.0, 5.38, 500),
-    "stabSW": ("simulation", "solitary", 6.0, 5.2174919476, 500),
-    "SWdyn": ("simulation", "solitary", 1.0, 5.2494, 500),
-}
+# the state each figure sets (FIGURE_STATE), its held curves and simulation: app.paper_figures
+__all__ = ["FIGURE_STATE", "W_PLUS_5_2", "PaperScene", "comparison_markdown"]
 
 DOCS = Path(__file__).resolve().parents[2] / "docs"
 FIGURES_DIR = DOCS / "figures"
@@ -142,19 +122,10 @@ class PaperScene(Scene):
         return out
 
     def open(self, label: str) -> None:
-        """Set the state to the scene of figure ``label`` in three updates: the tab first, alone,
-        so that a scene not built yet is built and sent to the browser exactly as on a tab
-        click, before any render of it (a render of a scene built in the same update as the
-        parameters sent patches for models the browser did not have yet: "reference … isn't
-        known"); then the law and mode, so that the state's tie of V to w₊ in superkink mode
-        acts on the new mode; then w₊, N and V."""
-        tab, mode, w_plus, V, N = FIGURE_STATE[label]
-        self.state.tab = tab
-        self.state.param.update(a=-1.0, b=10.0, expression="", mode=mode)
-        new = {"w_plus": w_plus, "N": N}
-        if V is not None:
-            new["V"] = V
-        self.state.param.update(**new)
+        """Show figure ``label``: the state's tab, law, mode, w₊, V, N, held curves and the
+        Simulation scene's initial data (ExplorerState.show_figure, in the steps it explains);
+        the URL's ``fig`` names the figure until the state moves off it."""
+        self.state.show_figure(label)
 
     def render(self, info: Info):
         """The list does not change; an invalid current state is named above it (the buttons

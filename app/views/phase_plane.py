@@ -20,8 +20,9 @@ from ..compute import exact
 from .bokeh_scene import BokehScene, Updates, add_legend, add_line, add_points, new_figure
 from .formatting import as_csv, fmt_num, provenance
 from .held import Held, HeldCurves
-from .python_code import law_source, python_preamble
+from .python_code import python_preamble
 from .report import Info, SceneMessage
+from .scene import Scene
 
 ORBIT_COLORS = {"kink": "#d62728", "antikink": "#2ca02c"}
 MAX_CLICKED = 8  # orbits drawn through clicked points at once (the oldest goes first)
@@ -53,6 +54,7 @@ class PhasePlaneScene(BokehScene):
         "with the current orbit highlighted. Paper: Fig. 2 (pplane)._"
     )
     cheap = True
+    depends = (*Scene.depends, "held")
 
     def build(self):
         fig = new_figure(
@@ -91,27 +93,34 @@ class PhasePlaneScene(BokehScene):
 
     def controls(self):
         self.clear_btn = pn.widgets.Button(label="Clear orbits", css_classes=["phase-clear"])
-        self.held = HeldCurves(self.request, "phase")
-        self.held.set_source(self._to_hold)
+        self.held = HeldCurves(self.state, self.request, "phase")
+        self.held.set_source(self._orbit_shown)
         return [pn.pane.Markdown("_Click in the plane: the orbit through that point._"),
                 self.clear_btn, pn.pane.Markdown("_Hold keeps the current orbit on the plot "
                                                  "while V and w₊ move._"),
                 *self.held.widgets()]  # fmt: skip
 
-    def _to_hold(self) -> Held | None:
-        """The orbit(s) on screen (last render's phase plane) as a held curve."""
+    def _orbit_shown(self) -> bool:
+        """Whether the current wave's orbit is on screen (what Hold holds)."""
         pp = getattr(self, "_pp", None)
-        if self.last_info is None or pp is None or not pp.orbits:
-            return None
-        s = self.state
+        return self.last_info is not None and pp is not None and bool(pp.orbits)
+
+    def _held_curve(self, wave) -> Held:
+        """A held wave's orbit(s) (the superkink's pair) from its own phase plane (cached)."""
+        lw = self.state.law()
+        V = compute.qc_wave(lw, wave.mode, wave.w_plus, wave.V).value.V
+        pp = compute.phase_plane(lw, wave.w_plus, V).value
         xs, ys = [], []
         for o in pp.orbits:
             xs += [o.w, [np.nan]]
             ys += [o.wp, [np.nan]]
-        wp, V = float(s.w_plus), float(s.V)
-        code = f"held.append(phase.phase_plane({{law}}, {wp!r}, {V!r}, n_grid=241))"
-        x, y, none = np.concatenate(xs[:-1]), np.concatenate(ys[:-1]), np.empty(0)
-        return Held(f"V = {V:.6g}, w₊ = {wp:.6g}", x, y, none, none, code, law_source(s))
+        wp = float(wave.w_plus)
+        code = f"held.append(phase.phase_plane(law, {wp!r}, {float(V)!r}, n_grid=241))"
+        none = np.empty(0)
+        if not xs:
+            return Held(wave.label(V), none, none, none, none, code)
+        x, y = np.concatenate(xs[:-1]), np.concatenate(ys[:-1])
+        return Held(wave.label(V), x, y, none, none, code)
 
     def _extra_watch(self) -> None:
         self.clicks: list[tuple[float, float]] = []
@@ -188,6 +197,7 @@ class PhasePlaneScene(BokehScene):
         up.data(self.r_seeds[1], x=[p[0] for p in seeds], y=[p[1] for p in seeds])
         up.show(self.r_clicked[0], self.clicked_item, bool(seeds))
         up.show(self.r_seeds[0], None, bool(seeds))
+        self.held.compute(self._held_curve, info)
         self.held.update(up, self.held_items)
         up.range(self.fig.x_range, pp.w[0], pp.w[-1])
         up.range(self.fig.y_range, pp.wp[0], pp.wp[-1])
@@ -244,4 +254,4 @@ class PhasePlaneScene(BokehScene):
         )
         for w0, wp0 in self.clicks:  # the orbits through the clicked points
             code += f"o = phase.orbit_through(law, {wv}, {w0!r}, {wp0!r}, (pp.w[0], pp.w[-1]))\n"
-        return code + self.held.code(law_source(s))
+        return code + self.held.code()

@@ -8,6 +8,8 @@ overlaid.  Near V_SK a solitary wave is a kink–antikink bundle: the superkink 
 
 from __future__ import annotations
 
+import time
+
 import numpy as np
 import panel as pn
 
@@ -25,8 +27,9 @@ from .bokeh_scene import (
 )
 from .formatting import as_csv, fmt_num, provenance
 from .held import Held, HeldCurves
-from .python_code import law_source, python_preamble
+from .python_code import python_preamble
 from .report import Info, SceneMessage
+from .scene import Scene
 from .untrusted import md_literal
 
 
@@ -50,12 +53,13 @@ class ProfilesScene(BokehScene):
         "discrete chain's wave at N sites (circles). Paper: Figs. 5, 7 and 8 (SWs_cubic, "
         "TWcubic, SWs_cubic_DvsQC)._"
     )
+    depends = (*Scene.depends, "held")
 
     def controls(self):
         self.show_discrete = pn.widgets.Checkbox(label="discrete wave (N, tol)", value=True)
         self.show_fronts = pn.widgets.Checkbox(label="kink/antikink fronts near V_SK", value=True)
-        self.held = HeldCurves(self.request, "profiles")
-        self.held.set_source(self._to_hold)
+        self.held = HeldCurves(self.state, self.request, "profiles")
+        self.held.set_source(lambda: self.last_info is not None and bool(getattr(self, "_cols", 0)))
         return [self.show_discrete, self.show_fronts, *self.held.widgets()]
 
     def _extra_watch(self):
@@ -91,28 +95,53 @@ class ProfilesScene(BokehScene):
         self.held_items = self.legend[3:]
         return fig
 
-    def _to_hold(self) -> Held | None:
-        """The curve on screen (last render's data) as a held curve."""
-        cols = getattr(self, "_cols", None)
-        if self.last_info is None or not cols:
-            return None
-        s, r = self.state, getattr(self, "_discrete", None)
-        wp, V = float(s.w_plus), float(s.V)
-        if s.mode == "superkink":
-            qcall, label = f"qc.superkink_from_w_plus({{law}}, {wp!r})", f"superkink V = {V:.6g}"
+    def _half(self, qcw, mode: str) -> float:
+        """Half-width of the ξ window that shows the wave ``qcw`` (and of its discrete sites)."""
+        half = max((8.0 if mode == "superkink" else 14.0) * qcw.width, 25.0)
+        return min(half, 0.5 * self.state.N) if self.show_discrete.value else half
+
+    def _held_curve(self, wave, dots: bool) -> Held:
+        """A held wave's QC profile on its own window and, with ``dots``, its discrete wave at
+        the current N and tol (both through app.compute, cached)."""
+        s = self.state
+        lw = s.law()
+        q = compute.qc_wave(lw, wave.mode, wave.w_plus, wave.V).value
+        wp = float(wave.w_plus)
+        if wave.mode == "superkink":
+            qcall = f"qc.superkink_from_w_plus(law, {wp!r})"
         else:
-            qcall, label = f"qc.solitary({{law}}, {wp!r}, {V!r})", f"V = {V:.6g}"
-        label += f", w₊ = {wp:.6g}"
-        dcall = "None"
+            qcall = f"qc.solitary(law, {wp!r}, {float(wave.V)!r})"
+        half = self._half(q, wave.mode)
+        xi = np.linspace(-half, half, 1601)
         px = py = np.empty(0)
-        if r is not None:
-            req = compute.WaveRequest(s.mode, s.w_plus, s.V, s.N, s.tol)
-            dcall = compute.wave_call(s.law(), req).code("{law}")
-            sel = np.abs(r.n) <= self._half
-            px, py = r.n[sel].astype(float), r.w[sel]
-            label += f", N = {r.N}"
+        dcall = "None"
+        if dots:
+            try:
+                r = compute.discrete_wave(lw, wave.mode, wp, q.V, s.N, s.tol, stop=self.superseded)
+            except compute.ParameterError:  # N too small for its tails: no points (noted)
+                r = None
+            if r is not None and r.value.converged:
+                r = r.value
+                req = compute.WaveRequest(wave.mode, wp, q.V, s.N, s.tol)
+                dcall = compute.wave_call(lw, req).code("law")
+                sel = np.abs(r.n) <= half
+                px, py = r.n[sel].astype(float), r.w[sel]
         code = f"held.append(({qcall}, {dcall}))"
-        return Held(label, cols["xi"], cols["w_qc"], px, py, code, law_source(s))
+        return Held(wave.label(q.V), xi, q.profile(xi), px, py, code)
+
+    def _held_dots_cached(self) -> bool:
+        """Whether every held wave's discrete wave is in the cache (no solve to wait for)."""
+        s = self.state
+        lw = s.law()
+
+        def cached(h) -> bool:
+            try:
+                V = compute.qc_wave(lw, h.mode, h.w_plus, h.V).value.V
+                return compute.discrete_wave_cached(lw, h.mode, h.w_plus, V, s.N, s.tol)
+            except compute.ParameterError:
+                return True  # no wave under this law: nothing to solve (the notes say why)
+
+        return all(cached(h) for h in s.held)
 
     def _qc_part(self, info: Info, up: Updates):
         s = self.state
@@ -122,20 +151,18 @@ class ProfilesScene(BokehScene):
         info.time(f"QC {compute.qc_method(lw)}", c)
         if s.mode == "superkink":
             info.error("QC Rayleigh residual", qcw.rayleigh_residual)
-            half = max(8.0 * qcw.width, 25.0)
             what = (
                 f"superkink V = {fmt_num(qcw.V)}, w₊ = {fmt_num(qcw.w_plus)}, "
                 f"w₋ = {fmt_num(qcw.w_minus)}"
             )
         else:
             info.error("QC first-integral residual", qcw.first_integral_residual)
-            half = max(14.0 * qcw.width, 25.0)
             what = (
                 f"{qcw.kind} solitary wave V = {fmt_num(qcw.V)}, w_B = {fmt_num(qcw.w_B)}, "
                 f"amplitude {fmt_num(qcw.amplitude)}"
             )
-        half = min(half, 0.5 * self.state.N) if self.show_discrete.value else half
-        self._half = half
+        half = self._half(qcw, s.mode)
+        self._half_shown = half
         xi = np.linspace(-half, half, 1601)
         wq = qcw.profile(xi)
         key = (s.mode, compute.law_key(lw), exact(s.w_plus), exact(s.V), exact(half))
@@ -190,12 +217,16 @@ class ProfilesScene(BokehScene):
         what, half, xi, ys = self._qc_part(info, up)
         info.shown = what
         self._discrete = None
+        self.held.compute(lambda w: self._held_curve(w, dots=False), info)  # QC: cheap
         if not self.show_discrete.value:
             info.notes.append("discrete wave off: QC only")
             return self._frame(up, half, ys)
         lw = s.law()
-        if not compute.discrete_wave_cached(lw, s.mode, s.w_plus, s.V, s.N, s.tol):
-            # the QC curve now, the dots when the solve is done
+        if not (
+            compute.discrete_wave_cached(lw, s.mode, s.w_plus, s.V, s.N, s.tol)
+            and self._held_dots_cached()
+        ):
+            # the QC curves now, the dots when the solves are done
             self.show_intermediate(self._frame(up, half, ys), info)
             up = Updates()
         try:
@@ -238,10 +269,20 @@ class ProfilesScene(BokehScene):
         else:
             amp = f"amplitude {fmt_num(r.amplitude)} ± {r.amplitude_error:.1e}"
         info.shown = what + f"; discrete {amp}"
+        if s.held:
+            self.set_stage(f"discrete waves of {len(s.held)} held curve(s)")
+            t0 = time.perf_counter()
+            # the QC pass named the held waves this law has not (Info(): not twice)
+            self.held.compute(lambda w: self._held_curve(w, dots=True), Info())
+            info.time(f"{len(s.held)} held (discrete)", time.perf_counter() - t0)
+            missing = [h.label for h in self.held.items if len(h.px) == 0]
+            if missing:
+                info.notes.append("held without discrete points (no converged wave at this N): "
+                                  + "; ".join(missing))  # fmt: skip
         return self._frame(up, half, ys, r.n[sel].astype(float), r.w[sel])
 
     def notebook_plot(self) -> str:
-        half = getattr(self, "_half", 25.0)
+        half = getattr(self, "_half_shown", 25.0)
         code = (
             "import numpy as np\nimport matplotlib.pyplot as plt\n\n"
             f"xi = np.linspace({-half!r}, {half!r}, 1601)\n"
@@ -277,7 +318,7 @@ class ProfilesScene(BokehScene):
                 "print(r.converged, r.residual, r.amplitude)\n"
                 "w_qc = q.profile(r.n)  # the QC curve at the sites\n"
             )
-        return code + self.held.code(law_source(s))
+        return code + self.held.code()
 
     def download_data(self):
         r = getattr(self, "_discrete", None)

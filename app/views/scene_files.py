@@ -17,7 +17,7 @@ import panel as pn
 import fpucore
 from fpucore.errors import ParameterError
 
-from ..state import URL_ATTRS, URL_PARAMS
+from ..state import URL_PARAMS, url_query
 from . import export
 from .report import SceneMessage
 
@@ -75,12 +75,8 @@ class SceneFiles:
 
     def url_query(self) -> str:
         """The state as the URL's query string (what a link to this view carries)."""
-        parts = []
-        for name in URL_PARAMS:
-            v = self.key if name == "tab" else getattr(self.state, URL_ATTRS.get(name, name))
-            if v != "" and v is not None:
-                parts.append(f"{name}={v!r}" if isinstance(v, float) else f"{name}={v}")
-        return "&".join(parts)
+        q = url_query(self.state) | {"tab": self.key}
+        return "&".join(f"{name}={q[name]}" for name in URL_PARAMS if name in q)
 
     def export_figure(self, fmt: str) -> bytes:
         """The scene's figures as drawn (the models of the last render), SVG or PNG bytes."""

@@ -184,6 +184,22 @@ class SimulationScene(BokehScene):
 
         self.run_btn.on_click(go)
 
+    def show_scenario(self, kind: str, run: bool = False, probes=(), **params) -> None:
+        """Set the initial-data widgets (a paper figure's run, app.paper_figures): ``kind``
+        ("seeded", "riemann", "gaussian"), L, t_end, guard, w_left, w_right (Riemann), w_B, A
+        (Gaussian) and the tracked sites; ``run``: the next render runs it (as "Run").  The
+        caller renders (the scene's base class: at once if the scene is shown)."""
+        widgets = {"L": self.L, "t_end": self.t_end, "guard": self.guard, "w_left": self.w_l,
+                   "w_right": self.w_r, "w_B": self.w_B, "A": self.A}  # fmt: skip
+        self.kind.value = kind
+        for name, value in params.items():
+            widgets[name].value = value
+        self.probes.value = ", ".join(str(int(k)) for k in probes)
+        self._want_run = bool(run)
+        if not run:  # not the previous run's result under the new widgets: "press Run"
+            self._params = None
+        self.stale = True
+
     def build(self):
         fi = new_figure(
             "Strain w_n(t) in space and time",

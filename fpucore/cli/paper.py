@@ -13,9 +13,11 @@ compared number); computed figures are cached (``$FPU_CACHE_DIR/paper``) and reu
 
 from __future__ import annotations
 
+import json
 import sys
 from pathlib import Path
 
+import fpucore
 from fpucore.cli.common import check_out_path, print_json
 from fpucore.errors import ParameterError
 
@@ -147,10 +149,7 @@ def table_json(results, missing, reduced: bool) -> str:
     """The comparison table as JSON (the explorer's Paper tab reads it when no ``fpu paper`` run
     is cached): the fpucore version and per figure its comparisons, the same numbers as the
     Markdown table."""
-    import json
-
-    import fpucore
-    from fpucore.result import jsonable
+    from fpucore.result import jsonable  # heavy: NumPy
 
     doc = {
         "generated_by": "fpu paper --table" + (" --reduced" if reduced else ""),

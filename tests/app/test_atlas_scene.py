@@ -119,7 +119,9 @@ def small_run(sc: AtlasScene, n_w: int, n_V: int, N: int):
 
 def test_the_small_atlas_is_a_cached_job_and_its_code_reproduces_it():
     """The same atlas asked again (by this session or another) is answered from the cache:
-    the same entry, with what the run cost; the Python shown recomputes the very numbers."""
+    the same entry, with what the run cost; the Python shown recomputes the very numbers.
+    (The cache is emptied first: another test of the session may have run this atlas.)"""
+    compute.CACHE.clear()
     sc = AtlasScene(ExplorerState())
     info = small_run(sc, 2, 3, 80)
     assert info is not None, sc.last_message

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 import time
 from pathlib import Path
 
@@ -24,45 +25,125 @@ from browser_harness import (
 pytestmark = pytest.mark.browser
 
 
+def wait_source(page, name: str, pred, timeout_ms: float = 180_000) -> dict:
+    """The browser's copy of source ``name`` once ``pred`` holds for it (bounded)."""
+    t_end = time.monotonic() + timeout_ms / 1000
+    while True:
+        s = source(page, name)
+        if s is not None and pred(s):
+            return s
+        assert time.monotonic() < t_end, (name, None if s is None else len(s["x"]))
+        page.wait_for_timeout(100)
+
+
+def sim_input(page, label: str) -> str:
+    field = page.locator(".scene-simulation .bk-input-group", has_text=label).locator("input")
+    return field.first.input_value()
+
+
 def test_paper_tab_opens_three_figures(page):
-    """The Paper tab: a click on a figure sets the state (law, mode, w₊, V, N, tab), the URL
-    carries it and the scene that shows the figure renders exactly that state."""
+    """The Paper tab: a click on a figure sets the state (law, mode, w₊, V, N, tab, held
+    curves, the Simulation scene's initial data), the URL carries it (``fig``, ``hold``) and the
+    scene shows exactly that: the phase plane of Fig. pplane, the family of superkinks of Fig.
+    TWcubic (current and five held, with their discrete points) and the Riemann run of Fig.
+    Riemann1 with its tracked sites (its widgets set to the caption's values and the run
+    started by the click)."""
     page.goto(f"{page.server}/main?a=-2&b=12&w_plus=0.5&V=4&{FAST}&mode=solitary&tab=paper")
+    v_sk = 2 * 65**0.5 / 3
     cases = [
-        # label, tab, mode, V (the paper's parameters), what the scene must show
-        ("pplane", "phase", "solitary", 2 * 65**0.5 / 3 - 0.001, "Time:"),
-        ("superkink", "force", "superkink", 2 * 65**0.5 / 3, "Time:"),
-        ("stabSW", "simulation", "solitary", 5.2174919476, "Run simulation"),
+        # label, tab, mode, V (the paper's parameters)
+        ("pplane", "phase", "solitary", v_sk - 0.001),
+        ("TWcubic", "profiles", "superkink", 5.2),
+        ("Riemann1", "simulation", "superkink", 5.720916787446649),
     ]
     # each figure's comparison row is filled (from fpu paper's cache, or the command to run)
     page.locator(".paper-cmp-pplane").get_by_text("fpu paper", exact=False).or_(
         page.locator(".paper-cmp-pplane").get_by_text("agree", exact=False)
     ).first.wait_for()
     page.screenshot(path="/tmp/fpu-paper-tab.png", full_page=False)
-    for label, tab, mode, V, shows in cases:
+    for label, tab, mode, V in cases:
         if query(page).get("tab") != "paper":
             open_tab(page, "Paper")
             wait_url(page, lambda q: q.get("tab") == "paper")
         page.locator(f".paper-open-{label} button").click()
-        # the state changes in steps (tab, then law and mode, then w₊, N, V): wait for the last
-        q = wait_url(
-            page,
-            lambda q, t=tab, m=mode, v=V: (
-                q.get("tab") == t
-                and q.get("mode") == m
-                and q.get("a") == "-1.0"
-                and abs(float(q.get("V", "nan")) - v) < 1e-9
-            ),
-        )
+        # the state changes in steps (tab, then law and mode, then w₊, N, V, held, fig)
+        q = wait_url(page, lambda q, lab=label: q.get("fig") == lab, timeout=60.0)
         assert q.get("tab") == tab and q.get("mode") == mode, (label, q)
         assert (float(q["a"]), float(q["b"]), int(q["N"])) == (-1.0, 10.0, 500), q
         assert abs(float(q["V"]) - V) < 1e-9, (label, q["V"])
-        if shows == "Time:":
+        # the sidebar's exact V box shows the state's V
+        box = page.locator(".in-V input").first
+        assert abs(float(box.input_value()) - V) < 1e-9, box.input_value()
+        if label == "TWcubic":
+            # five held superkinks (sk@w₊) drawn beside the current one, with their points
+            held = q["hold"].split(",")
+            assert len(held) == 5 and all(h.startswith("sk@") for h in held), q["hold"]
+            text = wait_rendered(page, "profiles", 300.0)
+            assert stamp(q) in text, text
+            for k in range(5):
+                s = wait_source(page, f"profile-held-{k}", lambda s: len(s["x"]) == 1601)
+                w_plus = float(held[k][3:])
+                assert abs(min(s["y"]) - w_plus) < 1e-3  # the plateau ahead: w₊ of the entry
+            assert len(source(page, "profile-held-5")["x"]) == 0
+            page.screenshot(path="/tmp/fpu-paper-TWcubic.png", full_page=True)
+        elif label == "Riemann1":
+            # the caption's run: Riemann data w^l = 4.6, w^r = 0, L = 3600, t = 300, sites
+            # 100, 200, 3000 — in the widgets, and run at once (measured ~1-3 s)
+            active = page.locator(".scene-simulation .bk-btn-group button.bk-active")
+            assert active.inner_text().strip() == "Riemann"
+            assert int(sim_input(page, "L (sites)")) == 3600
+            assert float(sim_input(page, "t_end")) == 300.0
+            assert float(sim_input(page, "w^l")) == 4.6 and float(sim_input(page, "w^r")) == 0
+            assert sim_input(page, "tracked sites") == "100, 200, 3000"
+            text = wait_rendered(page, "simulation", 300.0)
+            assert "simulation of Riemann data to t = 300" in text, text
+            pairs = re.findall(r"(-?\d+\.\d+) ± (\S+?),? ", text)  # "V ± error" of each wave
+            tracked = [(float(v), float(e)) for v, e in pairs]
+            for printed in (-5.7209, -5.6159, 4.6404):  # the caption's V, within the error bar
+                v, e = min(tracked, key=lambda t, p=printed: abs(t[0] - p))
+                assert abs(v - printed) <= e + 5e-5, (printed, tracked, text)
+            for k in range(3):  # panels (c)-(e): the tracked site and the wave at its V, w_B
+                wait_source(page, f"sim-probe-{k}", lambda s: len(s["x"]) > 50)
+                wait_source(page, f"sim-probe-wave-{k}", lambda s: len(s["x"]) > 10)
+            page.screenshot(path="/tmp/fpu-paper-Riemann1.png", full_page=True)
+        else:
+            assert "hold" not in q
             text, msg, q = settled(page)
             assert stamp(q) in text and not msg, (label, text, msg)
-        else:
-            page.locator(f".scene-{tab} .scene-message").get_by_text(shows).wait_for()
         assert not app_tracebacks()
+
+
+def test_a_link_with_held_curves_reproduces_them_after_reload(page):
+    """``hold=`` in the URL: the page draws the held profiles (the closed forms at those V)
+    and the same held orbits on the phase plane; Hold adds the current wave to the URL, a
+    reload draws all three again, and Clear held removes them from the URL."""
+    page.goto(f"{page.server}/main?tab=profiles&{FAST}&V=5.0&mode=solitary&hold=4.6,5.37")
+    wait_rendered(page, "profiles", 180.0)
+    first = [wait_source(page, f"profile-held-{k}", lambda s: len(s["x"]) == 1601)
+             for k in range(2)]  # fmt: skip
+    # the QC solitary wave's crest w(0) = w₊ + amplitude, its tails at w₊ = 1
+    assert all(abs(s["y"][0] - 1.0) < 1e-3 and abs(s["y"][-1] - 1.0) < 1e-3 for s in first)
+    assert len(source(page, "profile-held-2")["x"]) == 0
+    page.locator(".profiles-hold button").click()
+    q = wait_url(page, lambda q: q.get("hold") == "4.6,5.37,5.0")
+    assert q.get("hold") == "4.6,5.37,5.0", q
+    wait_source(page, "profile-held-2", lambda s: len(s["x"]) == 1601)
+    page.reload()
+    wait_rendered(page, "profiles", 180.0)
+    assert query(page).get("hold") == "4.6,5.37,5.0"
+    again = [wait_source(page, f"profile-held-{k}", lambda s: len(s["x"]) == 1601)
+             for k in range(3)]  # fmt: skip
+    assert again[:2] == first  # the same curves, recomputed from the link
+    open_tab(page, "Phase plane")
+    wait_rendered(page, "phase", 120.0)
+    for k in range(3):
+        wait_source(page, f"phase-held-{k}", lambda s: len(s["x"]) > 10)
+    page.screenshot(path="/tmp/fpu-phase-held-from-url.png", full_page=True)
+    page.locator(".phase-clear-held button").click()
+    q = wait_url(page, lambda q: "hold" not in q)
+    assert "hold" not in q, q
+    wait_source(page, "phase-held-0", lambda s: len(s["x"]) == 0)
+    assert not app_tracebacks()
 
 
 def test_hold_curves_and_export_the_scene(page):
