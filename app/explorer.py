@@ -1,4 +1,4 @@
-"""Composition of the dashboard: sidebar widgets ↔ state, lazy tabs, URL sync.
+"""The dashboard page: sidebar widgets ↔ state, lazy tabs, the template.
 
 * Sliders are throttled (they act on release) and keyboard-accessible; each sits next to an
   exact numeric input.  Their ranges follow the theory and are updated from the state: w₊ over
@@ -11,126 +11,51 @@
   is built when its tab is opened, and is in the browser before it first renders (its tab's
   models are queued before its render's updates; Panel's own lazy tabs, Tabs(dynamic=True),
   created them concurrently with the render's updates, which were lost).
-* A typed law (box or URL) is built in a worker process within a time and memory budget
-  (:func:`app.compute.request_law`) and applied from its answer; never in a handler or the build.
-* The law: the cubic with its a, b sliders, or an expression (fpucore.law_from_expression, e.g.
-  ``w + 10*w**2 - w**3 - 0.01*w**4``) with one slider per coefficient; a coefficient slider
-  rewrites the expression (exact reprs), so the text, the URL and "copy as Python" follow it.
-* (a, b, law, w_plus, V, mode, tab, N, tol) live in the URL query string.  A URL is validated like
-  any input (:func:`app.url_state.parse_url`): an invalid value is named with its valid range in
-  the sidebar, every other value is kept, and the address bar is rewritten to what is shown.
 * Slider and exact box always show the state's value: a value outside a slider's theoretical
   range (typed, or from a URL) widens the slider to include it, and the sidebar says why the
   scenes show a message.
+
+Beside it: the law editor (:mod:`app.law_editor`), the widgets kept in step with the server
+(:mod:`app.widgets`) and the URL (:mod:`app.url_sync`, which builds a served session's page).
 """
 
 from __future__ import annotations
 
-import logging
 import math
 import threading
-import urllib.parse
 
 import panel as pn
-import param
-from bokeh.core.property.descriptors import UnsetValueError
 from panel.io.state import set_curdoc
 
 from fpucore.errors import ParameterError
-from fpucore.law import PolynomialLaw, expression_of
 
-from . import compute
+from .law_editor import LawEditor
 from .slider_marks import SliderMark
-from .state import (
-    A_RANGE,
-    B_RANGE,
-    N_RANGE,
-    STATE_PARAMS,
-    TABS,
-    TOL_OPTIONS,
-    URL_PARAMS,
-    ExplorerState,
-)
-from .url_state import state_from_url, url_query
+from .state import N_RANGE, STATE_PARAMS, TABS, TOL_OPTIONS, ExplorerState
 from .views import SCENES
-from .views.base import LITERAL_MD, md_literal
-
-log = logging.getLogger("fpu-explorer")
-
-#: at most this many coefficient sliders (a law of higher degree is edited as text only)
-MAX_COEFF_SLIDERS = 8
+from .views.untrusted import LITERAL_MD, md_literal
+from .widgets import FloatInput, FloatSlider, IntInput, IntSlider, put, widened
 
 CSS = """
 .scene-status p { margin: 0.2em 0; font-size: 0.92em; }
 """
 
 
-class _ThrottledInStep:
-    """A widget whose browser-side ``value_throttled`` follows every value the server sets.
-
-    With ``pn.extension(throttled=True)`` a slider or number box reaches the server only
-    through ``value_throttled`` (its bare ``value`` events are dropped), and BokehJS sends a
-    property only when it changes.  Panel never sends ``value_throttled`` to the browser, so
-    the browser kept the user's last value: after the state moved the widget elsewhere (a
-    typed V moves the V slider, a slider moves the V box), a user action that returned it to
-    that last value changed nothing in the browser's ``value_throttled``, nothing was sent,
-    and the widget showed a value the state, URL and plot did not have (the state walk: V = 5.2
-    typed a second time kept V = 5.200694; a slider released where it was last released).
-    Here each value sent to the browser carries the same ``value_throttled``."""
-
-    def _update_model(self, events, msg, root, model, doc, comm) -> None:
-        value = msg.get("value", _UNSET)
-        super()._update_model(events, msg, root, model, doc, comm)
-        if value is _UNSET or "value_throttled" not in model.properties():
-            return
-        try:
-            old = model.value_throttled
-        except UnsetValueError:  # a number box's, until the browser first sets it
-            old = None
-        if old == value:
-            return
-        ref = root.ref["id"]
-        # marked as the server's own change, as Panel marks the properties it sets, so its
-        # change handler does not take it for a browser event
-        self._changing[ref] = pending = ["value_throttled"]
-        try:
-            model.lookup("value_throttled")._set(model, old, value)  # Readonly: no setattr
-        finally:
-            if self._changing.get(ref) is pending:
-                del self._changing[ref]
-
-
-_UNSET = object()
-
-
-class FloatSlider(_ThrottledInStep, pn.widgets.FloatSlider):
-    pass
-
-
-class IntSlider(_ThrottledInStep, pn.widgets.IntSlider):
-    pass
-
-
-class FloatInput(_ThrottledInStep, pn.widgets.FloatInput):
-    pass
-
-
-class IntInput(_ThrottledInStep, pn.widgets.IntInput):
-    pass
-
-
-class Explorer:
-    """One browser session's dashboard (state + widgets + scenes)."""
+class Explorer(pn.viewable.Viewer):
+    """One browser session's dashboard (state + widgets + scenes); ``__panel__`` is the page
+    (a BootstrapTemplate: sidebar and tabs)."""
 
     def __init__(
         self,
         state: ExplorerState | None = None,
         url_errors: list[str] | None = None,
         lazy: bool = False,
+        **params,
     ):
         """``lazy``: build only the visible scene now (a served page: the build runs on the
         server's event loop, and the seven scenes' figures were ~85 % of it); the others are
         built when their tab is opened (:meth:`scene`)."""
+        super().__init__(**params)
         self.state = state or ExplorerState()
         self._doc = pn.state.curdoc
         self._scene_lock = threading.RLock()
@@ -138,6 +63,7 @@ class Explorer:
             cls.key: cls(self.state) for cls in SCENES if not lazy or cls.key == self.state.tab
         }
         self._syncing = False
+        self._page = None  # the template, built by __panel__
         self._build_widgets()
         self.url_errors = list(url_errors or [])
         self.url_alert = pn.pane.Alert(
@@ -170,27 +96,8 @@ class Explorer:
             css_classes=["w-mode"],
         )
         mk = dict(sizing_mode="stretch_width", show_value=True)
-        self.a = FloatSlider(
-            label="a",
-            start=A_RANGE[0],
-            end=A_RANGE[1],
-            step=0.01,
-            value=st.a,
-            css_classes=["w-a"],
-            format="0.00",
-            **mk,
-        )
-        self.b = FloatSlider(
-            label="b",
-            start=B_RANGE[0],
-            end=B_RANGE[1],
-            step=0.05,
-            value=st.b,
-            css_classes=["w-b"],
-            format="0.00",
-            **mk,
-        )
-        self._build_law_widgets()
+        self.law_editor = LawEditor(st)
+        self.law_editor.param.watch(self._on_checking, "checking", onlychanged=False)
         self.w_plus = FloatSlider(
             label="w₊",
             start=0.0,
@@ -246,7 +153,7 @@ class Explorer:
             sizing_mode="stretch_width",
         )
         self.mode.param.watch(lambda e: self._set(mode=e.new), "value")
-        for name in ("a", "b", "w_plus", "V", "N"):
+        for name in ("w_plus", "V", "N"):
             getattr(self, name).param.watch(
                 lambda e, n=name: self._set(**{n: e.new}), "value_throttled"
             )
@@ -262,127 +169,9 @@ class Explorer:
         if int(self.state.N) != event.new:  # evened or clamped: show what is used
             self._sync_widgets()
 
-    def _build_law_widgets(self) -> None:
-        """Law selector: cubic (a, b sliders) or an expression with its coefficient sliders."""
-        st = self.state
-        self.law_kind = pn.widgets.RadioButtonGroup(
-            options={"cubic (a, b)": "cubic", "expression": "expression"},
-            value="expression" if st.expression else "cubic",
-            css_classes=["w-law-kind"],
-        )
-        self.law_text = pn.widgets.TextInput(
-            label="f(w) = (polynomial in w, Enter to apply)",
-            value=st.expression,
-            placeholder="w + 10*w**2 - w**3 - 0.01*w**4",
-            css_classes=["in-law"],
-            sizing_mode="stretch_width",
-        )
-        self.coeff_box = pn.Column(sizing_mode="stretch_width", css_classes=["law-coeffs"])
-        self.coeff_sliders: list = []
-        self._coeff_anchor: tuple[float, ...] | None = None  # the coefficients the ranges follow
-        self._last_expression = st.expression
-        self._from_slider = False
-        self.law_kind.param.watch(self._on_law_kind, "value")
-        self._law_wanted = st.expression
-        self.law_text.param.watch(lambda e: self._apply_expression(e.new), "value")
-
-    def _on_law_kind(self, event) -> None:
-        if self._syncing:
-            return
-        st = self.state
-        if event.new == "cubic":
-            self._last_expression = st.expression or self._last_expression
-            self._set(expression="")
-        elif not st.expression:
-            # start from the last expression, else from the current cubic as a polynomial
-            text = self._last_expression
-            if not text:
-                try:
-                    text = compute.law(st.a, st.b).as_polynomial().expression
-                except ParameterError:
-                    text = "w + 10*w**2 - w**3 - 0.01*w**4"
-                try:  # written by the app: bounded, built here at once
-                    compute.trusted_expression_law(text)
-                except ParameterError:
-                    pass
-            self._apply_expression(text)
-
-    def _on_coeff(self, k: int, value) -> None:
-        """Coefficient slider k (c_{k+1}) moved: the expression is rewritten from the sliders."""
-        if self._syncing or value is None:
-            return
-        coeffs = [float(s.value) for s in self.coeff_sliders]
-        coeffs[k] = float(f"{float(value):.6g}")  # no 10.059999999999999 from the slider step
-        text = expression_of(coeffs)
-        try:  # written by the app from ≤ MAX_COEFF_SLIDERS floats: bounded, built here at once
-            compute.trusted_expression_law(text)
-        except ParameterError:
-            pass  # the state shows why
-        self._law_wanted = text
-        self._from_slider = True
-        try:
-            self._set(expression=text)
-        finally:
-            self._from_slider = False
-
-    def _sync_law(self) -> None:
-        """State → law widgets (called while syncing)."""
-        st = self.state
-        poly = bool(st.expression)
-        self.law_kind.value = "expression" if poly else "cubic"
-        self.a.visible = self.b.visible = not poly
-        self.law_text.visible = poly
-        self.law_text.value = st.expression
-        lw = None
-        if poly:
-            try:
-                lw = st.law()
-            except ParameterError:
-                lw = None
-        if isinstance(lw, PolynomialLaw):
-            coeffs = lw.coeffs
-            if self._from_slider and self._coeff_anchor:  # c_n → 0 drops a degree: keep c_n
-                coeffs += (0.0,) * (len(self._coeff_anchor) - len(coeffs))
-            if self._coeff_anchor is None or len(coeffs) != len(self._coeff_anchor):
-                self._anchor_sliders(coeffs)  # another degree: new sliders
-            elif not self._from_slider and coeffs != tuple(s.value for s in self.coeff_sliders):
-                self._coeff_anchor = tuple(coeffs)  # a typed law: ranges around it
-            for sl, c, c0 in zip(self.coeff_sliders, coeffs, self._coeff_anchor):
-                lo, hi = coeff_range(c0)
-                self._put(sl, c, step=(hi - lo) / 1000, **widened(c, lo, hi))
-            self.coeff_box.visible = True
-        else:
-            # an invalid law: the sliders stay only if they made it (so they can move back)
-            made = bool(self.coeff_sliders) and st.expression == expression_of(
-                [float(s.value) for s in self.coeff_sliders]
-            )
-            self.coeff_box.visible = poly and made
-
-    def _apply_expression(self, text: str | None) -> None:
-        """A law typed in the box (or chosen): applied once it is built.  A typed text is built
-        in the law worker within its budgets (app.compute.request_law), never in this handler:
-        a law not built yet is applied from the worker's answer (if it is still the one
-        wanted), and the sidebar says it is being checked meanwhile."""
-        if self._syncing or text is None:
-            return
-        text = text.strip()
-        self._law_wanted = text
-        if not text or compute.lookup_law(text) is not None:
-            self._set(expression=text)
-            return
-        self.ranges.object = f"_checking the law {md_literal(text[:60])} …_"
-        doc = pn.state.curdoc
-
-        def built(_fut) -> None:  # in the law worker's watcher thread
-            if self._law_wanted != text:
-                return  # another law was typed meanwhile
-            try:
-                with set_curdoc(doc):
-                    self._set(expression=text)
-            except Exception:  # noqa: BLE001 - a session closed meanwhile
-                log.exception("applying the law %r", text[:60])
-
-        compute.request_law(text).add_done_callback(built)
+    def _on_checking(self, event) -> None:
+        """The law editor has a typed law built in the law worker: the sidebar says so."""
+        self.ranges.object = f"_checking the law {md_literal(event.new[:60])} …_"
 
     def url_law_checked(self, text: str, outcome) -> None:
         """The URL's law, still being built when the page was (app.state.URL_LAW_WAIT_S), is
@@ -395,41 +184,12 @@ class Explorer:
             self.url_alert.param.update(
                 object="\n\n".join(md_literal(e) for e in self.url_errors), visible=True
             )
-            self._law_wanted = ""
-            self._set(expression="")
+            self.law_editor.apply("")
             return
         self._sync_widgets()
         for s in self.scenes:
             s.stale = True
         self.active_scene().request()
-
-    def _anchor_sliders(self, coeffs: tuple[float, ...]) -> None:
-        """(Re)build the coefficient sliders with ranges around ``coeffs``."""
-        self._coeff_anchor = tuple(coeffs)
-        if len(coeffs) > MAX_COEFF_SLIDERS:
-            self.coeff_sliders = []
-            self.coeff_box.objects = [
-                pn.pane.Markdown(f"_degree {len(coeffs)} > {MAX_COEFF_SLIDERS}: edit the text_")
-            ]
-            return
-        sliders = []
-        for k, c in enumerate(coeffs):
-            lo, hi = coeff_range(c)
-            sl = FloatSlider(
-                label=f"c{k + 1} (w^{k + 1})" if k else "c1 (w) = f′(0)",
-                start=lo,
-                end=hi,
-                step=(hi - lo) / 1000,
-                value=c,
-                css_classes=[f"w-c{k + 1}"],
-                format="0.0[000]",
-                sizing_mode="stretch_width",
-                show_value=True,
-            )
-            sl.param.watch(lambda e, k=k: self._on_coeff(k, e.new), "value_throttled")
-            sliders.append(sl)
-        self.coeff_sliders = sliders
-        self.coeff_box.objects = sliders
 
     def _typed(self, name: str, value) -> None:
         """A value typed in an exact box: a non-finite one (``1e309`` arrives as inf) is
@@ -453,14 +213,6 @@ class Explorer:
             return
         self.state.param.update(**kw)
 
-    def _put(self, widget, value, **bounds):
-        """Programmatic widget update that the watchers ignore (and that keeps value_throttled
-        in step, so a later drag back to the old value still registers)."""
-        widget.param.update(**bounds, value=value)
-        if "value_throttled" in widget.param:
-            with param.edit_constant(widget):
-                widget.value_throttled = value
-
     def _sync_widgets(self):
         """State → widgets: ranges from the theory; the value shown is always the state's (a
         value outside the theoretical range widens the slider, and the sidebar says so)."""
@@ -468,22 +220,20 @@ class Explorer:
         self._syncing = True
         try:
             self.mode.value = st.mode
-            self._put(self.a, st.a, **widened(st.a, *A_RANGE))
-            self._put(self.b, st.b, **widened(st.b, *B_RANGE))
-            self._sync_law()
-            self._put(self.N, int(st.N), **widened(st.N, *N_RANGE))
+            self.law_editor.sync()
+            put(self.N, int(st.N), **widened(st.N, *N_RANGE))
             self.N_exact.value = int(st.N)
-            self._put(self.tol, nearest_tol(st.tol))
+            put(self.tol, nearest_tol(st.tol))
             summ = st.summary()
             if "alpha" in summ:
                 lo, hi = summ["w_lo"], summ["w_hi"]
                 span = hi - lo
                 lo, hi = lo + 1e-6 * span, hi - 1e-6 * span
-                self._put(self.w_plus, st.w_plus, step=span / 2000, **widened(st.w_plus, lo, hi))
+                put(self.w_plus, st.w_plus, step=span / 2000, **widened(st.w_plus, lo, hi))
             self.w_plus_mark.show(summ.get("w_star"), self.w_plus.start, self.w_plus.end)
             try:
                 lo, hi = st.V_range()
-                self._put(self.V, st.V, step=(hi - lo) / 4000, **widened(st.V, lo, hi))
+                put(self.V, st.V, step=(hi - lo) / 4000, **widened(st.V, lo, hi))
             except Exception:  # noqa: BLE001 - w_plus invalid: keep the V slider where it was
                 pass
             self.V_mark.show(summ.get("V_SK"), self.V.start, self.V.end)
@@ -602,12 +352,7 @@ class Explorer:
         return [
             self.url_alert,
             self.mode,
-            pn.pane.Markdown("**force law**", margin=(0, 10)),
-            self.law_kind,
-            self.a,
-            self.b,
-            self.law_text,
-            self.coeff_box,
+            self.law_editor,
             self.w_plus,
             self.w_plus_mark.pane,
             self.V,
@@ -617,6 +362,11 @@ class Explorer:
             self.ranges,
             accuracy,
         ]
+
+    def __panel__(self):
+        if self._page is None:
+            self._page = self.template()
+        return self._page
 
     def template(self):
         pn.config.raw_css.append(CSS) if CSS not in pn.config.raw_css else None
@@ -642,76 +392,3 @@ def nearest_tol(tol: float) -> float:
     """The tolerance option closest (in log) to tol."""
     t = float(tol) if math.isfinite(tol) and tol > 0 else 1e-10
     return min(TOL_OPTIONS, key=lambda o: abs(math.log10(o / t)))
-
-
-def coeff_range(c0: float) -> tuple[float, float]:
-    """Slider range of a law coefficient around the typed value c0: c0 ± 2|c0| (so its sign can
-    change), [−1, 1] for a zero coefficient."""
-    r = 2.0 * abs(c0) if c0 != 0.0 and math.isfinite(c0) else 1.0
-    return c0 - r, c0 + r
-
-
-def widened(x: float, lo: float, hi: float) -> dict:
-    """Slider start/end: the theoretical range, widened to include x if x lies outside (so the
-    slider shows the state's value, never a clipped one)."""
-    if not math.isfinite(x):
-        return {"start": lo, "end": hi}
-    return {"start": min(lo, x), "end": max(hi, x)}
-
-
-def session_query() -> dict[str, str]:
-    """The page's URL query as {name: first value} (server sessions; empty otherwise)."""
-    args = pn.state.session_args or {}
-    out = {}
-    for k, v in args.items():
-        if k in URL_PARAMS and v:
-            raw = v[0]
-            out[k] = raw.decode("utf-8", "replace") if isinstance(raw, bytes) else str(raw)
-    return out
-
-
-def from_url(lazy: bool = True) -> Explorer:
-    """The session's Explorer built from its validated URL (one state, no default-then-URL
-    double render), with the URL rewritten to the state and kept in sync with it; ``lazy``:
-    a hidden scene is built when its tab is opened (see Explorer)."""
-    state, errors = state_from_url(session_query())
-    text = state.expression
-    # a law still being built (see parse_url_value): the page is built meanwhile, and once the
-    # law's outcome is known (maybe during this build) the explorer shows it or names it
-    pending = bool(text) and compute.lookup_law(text) is None
-    explorer = Explorer(state, url_errors=errors, lazy=lazy)
-    if pending:
-        doc = pn.state.curdoc
-
-        def built(fut) -> None:  # in the law worker's watcher thread (or here, if done)
-            try:
-                with set_curdoc(doc):
-                    explorer.url_law_checked(text, fut.result())
-            except Exception:  # noqa: BLE001 - a session closed meanwhile
-                log.exception("applying the URL's law %r", text[:60])
-
-        compute.request_law(text).add_done_callback(built)
-    loc = pn.state.location
-    if loc is not None:
-        st = explorer.state
-
-        def wanted() -> str:
-            # the whole query is rewritten (not Location.update_query, which parses the old
-            # query — and raises on a 5000-digit value)
-            return "?" + urllib.parse.urlencode(url_query(st))
-
-        def push(*_):
-            loc.search = wanted()
-
-        def reassert(event):
-            # The browser's Location view reports its own (original) search once it starts;
-            # under load that report can arrive after the onload push, and would leave the
-            # address bar stale.  Any search that is not the state's is answered with the state's.
-            if event.new != wanted():
-                push()
-
-        push()
-        pn.state.onload(push)  # again once the browser's own location has been synced
-        st.param.watch(push, list(STATE_PARAMS))
-        loc.param.watch(reassert, ["search"])
-    return explorer

@@ -9,7 +9,6 @@ os.environ.setdefault("BOKEH_RESOURCES", "server")
 import panel as pn  # noqa: E402
 
 from app import compute  # noqa: E402
-from app.explorer import from_url  # noqa: E402
 from app.resources import serve_locally  # noqa: E402
 from app.server_guards import (  # noqa: E402
     schedule_callbacks_in_order,
@@ -17,6 +16,7 @@ from app.server_guards import (  # noqa: E402
     tolerate_detached_sessions,
     tolerate_long_url_values,
 )
+from app.url_sync import from_url  # noqa: E402
 
 serve_locally()
 serve_document_locally(pn.state.curdoc)
@@ -33,4 +33,4 @@ pn.state.onload(explorer.start)
 # One recompute of the document's model graph instead of one per template root (~20, each
 # walking ~1400 models): the session's page was built in 2.7 s, now 0.7 s.
 with pn.state.curdoc.models.freeze():
-    explorer.template().servable()
+    explorer.servable()

@@ -4,7 +4,7 @@ The mark is its own small HTML pane placed right below the slider, never a chang
 model: a change of a slider's label, stylesheet or styles re-renders it in the browser, and a
 mark that moves with w₊ would do that on every state change.  Only this pane re-renders when the
 mark moves.  (A typed V = 5.2 that ended at 5.200694 was a stale ``value_throttled`` in the
-browser, fixed in app/explorer.py, not a snap of the re-rendered slider.)
+browser, fixed in app/widgets.py, not a snap of the re-rendered slider.)
 
 Geometry (measured in Chromium): a Panel slider with horizontal margin 10 px draws its track
 (``.noUi-base``) inside a 1 px border, so a value at fraction x of (start, end) sits at

@@ -27,8 +27,11 @@ from .. import compute
 from ..compute import Computed
 from ..state import N_RANGE
 from ..url_state import resolve_atlas_store
-from .base import Info, SceneMessage, as_csv, md_literal, python_preamble
 from .bokeh_scene import BokehScene, Updates, new_figure
+from .formatting import as_csv
+from .python_code import python_preamble
+from .report import Info, SceneMessage
+from .untrusted import md_literal
 
 #: the heat map's quantities: name → its (rows, V) values in an atlas
 QUANTITIES = {

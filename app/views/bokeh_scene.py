@@ -28,7 +28,7 @@ from bokeh.models import (
 from bokeh.plotting import figure
 from panel.viewable import Layoutable
 
-from .base import Scene
+from .scene import Scene
 
 TOOLS = "pan,wheel_zoom,box_zoom,save,reset"
 

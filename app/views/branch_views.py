@@ -21,9 +21,9 @@ from fpucore import qc
 from fpucore.floquet import CLASSES
 
 from .. import compute
-from .base import Info
 from .bokeh_scene import Updates
 from .floquet import CLASS_STYLE
+from .report import Info
 
 
 class BranchViews:

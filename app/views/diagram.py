@@ -33,7 +33,6 @@ from fpucore.floquet import CLASSES
 
 from .. import compute
 from ..compute import exact
-from .base import Info, SceneMessage, as_csv, fmt_num, md_literal, provenance, python_preamble
 from .bokeh_scene import (
     BokehScene,
     FigurePane,
@@ -50,6 +49,10 @@ from .bokeh_scene import (
 from .branch_views import BranchViews
 from .energy_marks import ExtremumMarks, criterion_words, fmt_extremum
 from .floquet import CLASS_STYLE
+from .formatting import as_csv, fmt_num, provenance
+from .python_code import python_preamble
+from .report import Info, SceneMessage
+from .untrusted import md_literal
 
 TSW, CSW = "#6a51a3", "#cbc9e2"
 CSW_LINE = "#9e9ac8"

@@ -28,7 +28,6 @@ from fpucore import qc
 from fpucore.floquet import CLASSES, changes_summary
 
 from .. import compute
-from .base import Info, SceneMessage, as_json, fmt_num, md_literal, provenance, python_preamble
 from .bokeh_scene import (
     BokehScene,
     Updates,
@@ -40,6 +39,10 @@ from .bokeh_scene import (
     new_figure,
 )
 from .energy_marks import ExtremumMarks, criterion_words, fmt_extremum
+from .formatting import as_json, fmt_num, provenance
+from .python_code import python_preamble
+from .report import Info, SceneMessage
+from .untrusted import md_literal
 
 TH = np.linspace(0.0, 2.0 * np.pi, 721)
 #: side of the square frames of (a) and (b) (px): both fit side by side in the main column of a

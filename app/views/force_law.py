@@ -15,7 +15,6 @@ from fpucore import qc
 
 from .. import compute
 from ..compute import exact
-from .base import Info, SceneMessage, as_csv, fmt_num, provenance, python_preamble
 from .bokeh_scene import (
     BokehScene,
     Updates,
@@ -27,6 +26,9 @@ from .bokeh_scene import (
     add_vline,
     new_figure,
 )
+from .formatting import as_csv, fmt_num, provenance
+from .python_code import python_preamble
+from .report import Info, SceneMessage
 
 
 class ForceLawScene(BokehScene):

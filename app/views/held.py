@@ -22,8 +22,9 @@ import panel as pn
 from fpucore.errors import ParameterError
 
 from ..state import MAX_HELD
-from .base import Info, md_literal
 from .bokeh_scene import Updates, add_line, add_points
+from .report import Info
+from .untrusted import md_literal
 
 HELD_COLORS = ("#ff7f0e", "#2ca02c", "#9467bd", "#8c564b", "#e377c2", "#17becf")
 

@@ -25,7 +25,10 @@ from fpucore.paper import FIGURES, report
 from fpucore.paper.plot import THUMB_WIDTH
 
 from ..paper_figures import FIGURE_STATE, W_PLUS_5_2
-from .base import Info, Scene, fmt_num, md_literal
+from .formatting import fmt_num
+from .report import Info
+from .scene import Scene
+from .untrusted import md_literal
 
 # the state each figure sets (FIGURE_STATE), its held curves and simulation: app.paper_figures
 __all__ = ["FIGURE_STATE", "W_PLUS_5_2", "PaperScene", "comparison_markdown"]

@@ -17,9 +17,12 @@ from bokeh.events import Tap
 
 from .. import compute
 from ..compute import exact
-from .base import Info, Scene, SceneMessage, as_csv, fmt_num, provenance, python_preamble
 from .bokeh_scene import BokehScene, Updates, add_legend, add_line, add_points, new_figure
+from .formatting import as_csv, fmt_num, provenance
 from .held import Held, HeldCurves
+from .python_code import python_preamble
+from .report import Info, SceneMessage
+from .scene import Scene
 
 ORBIT_COLORS = {"kink": "#d62728", "antikink": "#2ca02c"}
 MAX_CLICKED = 8  # orbits drawn through clicked points at once (the oldest goes first)

@@ -16,16 +16,6 @@ import panel as pn
 from .. import compute
 from ..compute import exact
 from ..state import N_RANGE
-from .base import (
-    Info,
-    Scene,
-    SceneMessage,
-    as_csv,
-    fmt_num,
-    md_literal,
-    provenance,
-    python_preamble,
-)
 from .bokeh_scene import (
     BokehScene,
     Updates,
@@ -35,7 +25,12 @@ from .bokeh_scene import (
     finite_extent,
     new_figure,
 )
+from .formatting import as_csv, fmt_num, provenance
 from .held import Held, HeldCurves
+from .python_code import python_preamble
+from .report import Info, SceneMessage
+from .scene import Scene
+from .untrusted import md_literal
 
 
 def n_advice(need: int, N: int) -> str:

@@ -28,8 +28,11 @@ from fpucore import qc
 from fpucore.paper.figures_dynamics import WINDOW_SITES, passage_time, site_overlay
 
 from .. import compute
-from .base import Info, SceneMessage, fmt_num, md_literal, provenance, python_preamble
 from .bokeh_scene import BokehScene, Updates, add_legend, add_line, new_figure
+from .formatting import fmt_num, provenance
+from .python_code import python_preamble
+from .report import Info, SceneMessage
+from .untrusted import md_literal
 
 MAX_PROBES = 3  # tracked-site panels drawn (the paper's (c), (d), (e))
 SHORT_NAMES = {"dsw_edge": "DSW edge", "solitary": "solitary wave"}  # panel titles

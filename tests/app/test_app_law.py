@@ -14,6 +14,7 @@ import math
 import os
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import numpy as np
@@ -31,7 +32,8 @@ from app.explorer import Explorer  # noqa: E402
 from app.state import MAX_URL_LAW, STATE_PARAMS, ExplorerState
 from app.url_state import parse_url, url_query
 from app.views import SCENES  # noqa: E402
-from app.views.base import md_literal, state_stamp  # noqa: E402
+from app.views.formatting import state_stamp  # noqa: E402
+from app.views.untrusted import md_literal  # noqa: E402
 from fpucore.law import (  # noqa: E402
     CubicLaw,
     PolynomialLaw,
@@ -181,14 +183,15 @@ def test_changing_the_law_makes_every_scene_stale_and_redraws_the_force_law():
 # ---------------------------------------------------------------------------- explorer widgets
 def test_law_selector_switches_between_cubic_and_expression():
     ex = Explorer()
-    assert ex.law_kind.value == "cubic" and ex.a.visible and not ex.law_text.visible
-    ex.law_kind.value = "expression"  # starts from the current cubic as a polynomial
+    law = ex.law_editor
+    assert law.law_kind.value == "cubic" and law.a.visible and not law.law_text.visible
+    law.law_kind.value = "expression"  # starts from the current cubic as a polynomial
     assert ex.state.expression == "w + 10.0*w**2 - w**3"
     assert ex.state.law().coeffs == (1.0, 10.0, -1.0)
-    assert not ex.a.visible and ex.law_text.visible and len(ex.coeff_sliders) == 3
-    ex.law_text.value = Q
-    assert ex.state.expression == Q and len(ex.coeff_sliders) == 4
-    assert [s.value for s in ex.coeff_sliders] == [1.0, 10.0, -1.0, -0.01]
+    assert not law.a.visible and law.law_text.visible and len(law.coeff_sliders) == 3
+    law.law_text.value = Q
+    assert ex.state.expression == Q and len(law.coeff_sliders) == 4
+    assert [s.value for s in law.coeff_sliders] == [1.0, 10.0, -1.0, -0.01]
     # the w₊ and V sliders follow the quartic's ranges (fpucore's general QC)
     lo, ws, hi = ex.state.w_plus_range()
     assert ex.w_plus.start == pytest.approx(lo, abs=1e-5 * (hi - lo))
@@ -196,9 +199,9 @@ def test_law_selector_switches_between_cubic_and_expression():
     cp, _, cm = ex.state.speeds()
     assert (ex.V.start, ex.V.end) == (pytest.approx(cp), pytest.approx(cm))
     assert cp == pytest.approx(math.sqrt(P.polyval(1.0, P.polyder(QC))), rel=1e-14)  # eq. cplus
-    ex.law_kind.value = "cubic"
+    law.law_kind.value = "cubic"
     assert ex.state.expression == "" and isinstance(ex.state.law(), CubicLaw)
-    ex.law_kind.value = "expression"  # back to the last expression
+    law.law_kind.value = "expression"  # back to the last expression
     assert ex.state.expression == Q
 
 
@@ -211,30 +214,60 @@ def move(slider, value: float) -> None:
 
 def test_coefficient_slider_rewrites_the_expression_and_the_law():
     ex = Explorer(ExplorerState(expression=Q))
-    c4 = ex.coeff_sliders[3]
+    law = ex.law_editor
+    c4 = law.coeff_sliders[3]
     assert c4.start <= -0.01 <= c4.end and c4.start < 0 < c4.end  # its sign can change
     move(c4, -0.02)
     assert ex.state.expression == "w + 10.0*w**2 - w**3 - 0.02*w**4"
     assert ex.state.law().coeffs == (1.0, 10.0, -1.0, -0.02)
-    assert ex.law_text.value == ex.state.expression
+    assert law.law_text.value == ex.state.expression
     assert (c4.start, c4.end) == (-0.03, 0.01)  # ranges stay anchored to the typed law
     # a move out of the law class: explained, and the sliders stay to move back
-    move(ex.coeff_sliders[2], 0.5)  # w + 10w² + 0.5w³ − 0.02w⁴ ... still a valid law?
-    move(ex.coeff_sliders[0], 0.0)  # f′(0) = 0: refused by fpucore
+    move(law.coeff_sliders[2], 0.5)  # w + 10w² + 0.5w³ − 0.02w⁴ ... still a valid law?
+    move(law.coeff_sliders[0], 0.0)  # f′(0) = 0: refused by fpucore
     assert ex.state.problem() is not None and "f'(0) must be positive" in ex.state.problem()
-    assert ex.coeff_box.visible
-    move(ex.coeff_sliders[0], 1.0)
-    move(ex.coeff_sliders[2], -1.0)
+    assert law.coeff_box.visible
+    move(law.coeff_sliders[0], 1.0)
+    move(law.coeff_sliders[2], -1.0)
     assert ex.state.law().coeffs == (1.0, 10.0, -1.0, -0.02) and ex.state.problem() is None
 
 
 def test_typed_invalid_expression_hides_the_sliders_and_names_the_problem():
     ex = Explorer(ExplorerState(expression=Q))
-    ex.law_text.value = "w + 10*w**2 - w**3 +"
+    law = ex.law_editor
+    law.law_text.value = "w + 10*w**2 - w**3 +"
     assert ex.state.expression == "w + 10*w**2 - w**3 +"
-    assert "could not parse" in ex.ranges.object and not ex.coeff_box.visible
-    ex.law_text.value = Q
-    assert ex.coeff_box.visible and ex.state.problem() is None
+    assert "could not parse" in ex.ranges.object and not law.coeff_box.visible
+    law.law_text.value = Q
+    assert law.coeff_box.visible and ex.state.problem() is None
+
+
+def test_a_typed_law_is_named_as_being_checked_until_the_law_worker_has_built_it():
+    """The law editor names a typed law while the law worker builds it (the page shows it in
+    the sidebar), then applies it: state, coefficient sliders and the sidebar's ranges."""
+    ex = Explorer()
+    law = ex.law_editor
+    text = "w + 9.25*w**2 - w**3"  # typed nowhere else: not built yet
+    assert compute.lookup_law(text) is None
+    law.law_kind.value = "expression"
+    # every text of the sidebar's ranges pane, recorded (a warm law worker answers within ms)
+    shown: list[str] = []
+    ex.ranges.param.watch(lambda e: shown.append(e.new), "object")
+    law.law_text.value = text
+
+    def coefficients() -> list[float]:
+        return [s.value for s in law.coeff_sliders]
+
+    # applied in the law worker's watcher thread: wait until the sidebar has followed it
+    t_end = time.monotonic() + 60.0
+    while time.monotonic() < t_end and (
+        "checking" in ex.ranges.object or coefficients() != [1.0, 9.25, -1.0]
+    ):
+        time.sleep(0.05)
+    assert shown and shown[0] == f"_checking the law {md_literal(text)} …_", shown
+    assert ex.state.expression == text, ex.ranges.object
+    assert coefficients() == [1.0, 9.25, -1.0], ex.ranges.object
+    assert "checking" not in ex.ranges.object and "w₊ ∈ (α, β)" in ex.ranges.object
 
 
 @pytest.mark.parametrize(
@@ -369,11 +402,12 @@ def test_atlas_scene_runs_a_tiny_atlas_for_the_quartic():
 
 def test_top_coefficient_to_zero_keeps_its_slider_and_other_state_changes_keep_the_sliders():
     ex = Explorer(ExplorerState(expression=Q))
-    sliders = list(ex.coeff_sliders)
+    law = ex.law_editor
+    sliders = list(law.coeff_sliders)
     ex.state.w_plus = 1.2  # not a law change: the same slider widgets
-    assert ex.coeff_sliders == sliders
-    move(ex.coeff_sliders[3], 0.0)  # the cubic again, as a polynomial
+    assert law.coeff_sliders == sliders
+    move(law.coeff_sliders[3], 0.0)  # the cubic again, as a polynomial
     assert ex.state.law().coeffs == (1.0, 10.0, -1.0)
-    assert ex.coeff_sliders == sliders and ex.coeff_sliders[3].value == 0.0
-    move(ex.coeff_sliders[3], -0.01)
+    assert law.coeff_sliders == sliders and law.coeff_sliders[3].value == 0.0
+    move(law.coeff_sliders[3], -0.01)
     assert ex.state.law().coeffs == (1.0, 10.0, -1.0, -0.01)

@@ -15,7 +15,7 @@ from slow_law import slow_law_job  # noqa: E402 - tests/support: a stand-in law 
 
 from app import compute  # noqa: E402
 from app.url_state import parse_url, resolve_atlas_store  # noqa: E402
-from app.views.base import LITERAL_MD, md_literal  # noqa: E402
+from app.views.untrusted import LITERAL_MD, md_literal  # noqa: E402
 
 PAYLOADS = [
     "<script>alert(1)</script>",

@@ -18,7 +18,7 @@ from app import compute  # noqa: E402
 from app.explorer import Explorer  # noqa: E402
 from app.state import ExplorerState  # noqa: E402
 from app.views import SCENES  # noqa: E402
-from app.views.base import SceneMessage  # noqa: E402
+from app.views.report import SceneMessage  # noqa: E402
 
 QC_SCENES = ("force", "phase", "diagram")
 

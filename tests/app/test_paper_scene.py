@@ -14,7 +14,7 @@ import panel as pn  # noqa: E402
 from app.explorer import Explorer  # noqa: E402
 from app.state import TABS, ExplorerState
 from app.url_state import url_query
-from app.views.base import fmt_num, md_literal  # noqa: E402
+from app.views.formatting import fmt_num  # noqa: E402
 from app.views.paper import (  # noqa: E402
     FIGURE_STATE,
     FIGURES_DIR,
@@ -24,6 +24,7 @@ from app.views.paper import (  # noqa: E402
     comparison_markdown,
     docs_table,
 )
+from app.views.untrusted import md_literal  # noqa: E402
 from fpucore import paper  # noqa: E402
 from fpucore.paper import report  # noqa: E402
 

@@ -12,7 +12,7 @@ def test_server_log_check_tells_app_errors_from_disconnects():
     log = (
         'Traceback (most recent call last):\n  File "x.py", line 1, in f\n'
         "tornado.websocket.WebSocketClosedError\n"
-        'Traceback (most recent call last):\n  File "app/views/base.py", line 2, in g\n'
+        'Traceback (most recent call last):\n  File "app/views/scene.py", line 2, in g\n'
         "RuntimeError: boom\n"
     )
     tbs = tracebacks(log)

@@ -1,0 +1,259 @@
+"""The sidebar's law editor: the cubic with its a, b sliders, or an expression with one slider
+per coefficient.
+
+* A typed law (box or a choice) is built in a worker process within a time and memory budget
+  (:func:`app.compute.request_law`) and applied from its answer; never in a handler or the build.
+  Meanwhile :attr:`LawEditor.checking` names it (the page says it is being checked).
+* An expression (fpucore.law_from_expression, e.g. ``w + 10*w**2 - w**3 - 0.01*w**4``) gets one
+  slider per coefficient; a coefficient slider rewrites the expression (exact reprs), so the text,
+  the URL and "copy as Python" follow it.
+
+Kept apart from the page (:mod:`app.explorer`): the editor talks to the
+:class:`~app.state.ExplorerState` only through its parameters (reads a, b, expression and the law
+they make; sets a, b, expression with ``param.update``), and the page only calls
+:meth:`LawEditor.sync` (state → widgets, with the rest of the sidebar) and :meth:`LawEditor.apply`,
+and watches :attr:`LawEditor.checking`.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+
+import panel as pn
+import param
+from panel.io.state import set_curdoc
+
+from fpucore.errors import ParameterError
+from fpucore.law import PolynomialLaw, expression_of
+
+from . import compute
+from .state import A_RANGE, B_RANGE, ExplorerState
+from .widgets import FloatSlider, put, widened
+
+log = logging.getLogger("fpu-explorer")
+
+#: at most this many coefficient sliders (a law of higher degree is edited as text only)
+MAX_COEFF_SLIDERS = 8
+
+
+class LawEditor(pn.viewable.Viewer):
+    """Law selector: cubic (a, b sliders) or an expression with its coefficient sliders."""
+
+    checking = param.String(
+        "", doc="a typed law being built in the law worker (set again for every new one)"
+    )
+
+    def __init__(self, state: ExplorerState, **params):
+        super().__init__(**params)
+        self.state = st = state
+        self._syncing = False
+        self.law_kind = pn.widgets.RadioButtonGroup(
+            options={"cubic (a, b)": "cubic", "expression": "expression"},
+            value="expression" if st.expression else "cubic",
+            css_classes=["w-law-kind"],
+        )
+        mk = dict(sizing_mode="stretch_width", show_value=True)
+        self.a = FloatSlider(
+            label="a",
+            start=A_RANGE[0],
+            end=A_RANGE[1],
+            step=0.01,
+            value=st.a,
+            css_classes=["w-a"],
+            format="0.00",
+            **mk,
+        )
+        self.b = FloatSlider(
+            label="b",
+            start=B_RANGE[0],
+            end=B_RANGE[1],
+            step=0.05,
+            value=st.b,
+            css_classes=["w-b"],
+            format="0.00",
+            **mk,
+        )
+        self.law_text = pn.widgets.TextInput(
+            label="f(w) = (polynomial in w, Enter to apply)",
+            value=st.expression,
+            placeholder="w + 10*w**2 - w**3 - 0.01*w**4",
+            css_classes=["in-law"],
+            sizing_mode="stretch_width",
+        )
+        self.coeff_box = pn.Column(sizing_mode="stretch_width", css_classes=["law-coeffs"])
+        self.coeff_sliders: list = []
+        self._coeff_anchor: tuple[float, ...] | None = None  # the coefficients the ranges follow
+        self._last_expression = st.expression
+        self._from_slider = False
+        self._law_wanted = st.expression
+        for name in ("a", "b"):
+            getattr(self, name).param.watch(
+                lambda e, n=name: self._set(**{n: e.new}), "value_throttled"
+            )
+        self.law_kind.param.watch(self._on_law_kind, "value")
+        self.law_text.param.watch(lambda e: self.apply(e.new), "value")
+        self._layout = pn.Column(
+            pn.pane.Markdown("**force law**", margin=(0, 10)),
+            self.law_kind,
+            self.a,
+            self.b,
+            self.law_text,
+            self.coeff_box,
+            sizing_mode="stretch_width",
+            margin=0,
+        )
+
+    def __panel__(self):
+        return self._layout
+
+    # ------------------------------------------------------------------ user → state
+    def _set(self, **kw) -> None:
+        if self._syncing or any(v is None for v in kw.values()):
+            return
+        self.state.param.update(**kw)
+
+    def _on_law_kind(self, event) -> None:
+        if self._syncing:
+            return
+        st = self.state
+        if event.new == "cubic":
+            self._last_expression = st.expression or self._last_expression
+            self._set(expression="")
+        elif not st.expression:
+            # start from the last expression, else from the current cubic as a polynomial
+            text = self._last_expression
+            if not text:
+                try:
+                    text = compute.law(st.a, st.b).as_polynomial().expression
+                except ParameterError:
+                    text = "w + 10*w**2 - w**3 - 0.01*w**4"
+                try:  # written by the app: bounded, built here at once
+                    compute.trusted_expression_law(text)
+                except ParameterError:
+                    pass
+            self.apply(text)
+
+    def _on_coeff(self, k: int, value) -> None:
+        """Coefficient slider k (c_{k+1}) moved: the expression is rewritten from the sliders."""
+        if self._syncing or value is None:
+            return
+        coeffs = [float(s.value) for s in self.coeff_sliders]
+        coeffs[k] = float(f"{float(value):.6g}")  # no 10.059999999999999 from the slider step
+        text = expression_of(coeffs)
+        try:  # written by the app from ≤ MAX_COEFF_SLIDERS floats: bounded, built here at once
+            compute.trusted_expression_law(text)
+        except ParameterError:
+            pass  # the state shows why
+        self._law_wanted = text
+        self._from_slider = True
+        try:
+            self._set(expression=text)
+        finally:
+            self._from_slider = False
+
+    def apply(self, text: str | None) -> None:
+        """A law typed in the box (or chosen; "" for the cubic): applied once it is built.  A
+        typed text is built in the law worker within its budgets (app.compute.request_law), never
+        in this handler: a law not built yet is applied from the worker's answer (if it is still
+        the one wanted), and :attr:`checking` names it meanwhile."""
+        if self._syncing or text is None:
+            return
+        text = text.strip()
+        self._law_wanted = text
+        if not text or compute.lookup_law(text) is not None:
+            self._set(expression=text)
+            return
+        self.checking = text
+        doc = pn.state.curdoc
+
+        def built(_fut) -> None:  # in the law worker's watcher thread
+            if self._law_wanted != text:
+                return  # another law was typed meanwhile
+            try:
+                with set_curdoc(doc):
+                    self._set(expression=text)
+            except Exception:  # noqa: BLE001 - a session closed meanwhile
+                log.exception("applying the law %r", text[:60])
+
+        compute.request_law(text).add_done_callback(built)
+
+    # ------------------------------------------------------------------ state → widgets
+    def sync(self) -> None:
+        """State → law widgets: a, b (their ranges widened to the state's values), the kind,
+        the text and the coefficient sliders.  The editor's watchers ignore these changes."""
+        st = self.state
+        self._syncing = True
+        try:
+            put(self.a, st.a, **widened(st.a, *A_RANGE))
+            put(self.b, st.b, **widened(st.b, *B_RANGE))
+            poly = bool(st.expression)
+            self.law_kind.value = "expression" if poly else "cubic"
+            self.a.visible = self.b.visible = not poly
+            self.law_text.visible = poly
+            self.law_text.value = st.expression
+            self._sync_coefficients(poly)
+        finally:
+            self._syncing = False
+
+    def _sync_coefficients(self, poly: bool) -> None:
+        st = self.state
+        lw = None
+        if poly:
+            try:
+                lw = st.law()
+            except ParameterError:
+                lw = None
+        if isinstance(lw, PolynomialLaw):
+            coeffs = lw.coeffs
+            if self._from_slider and self._coeff_anchor:  # c_n → 0 drops a degree: keep c_n
+                coeffs += (0.0,) * (len(self._coeff_anchor) - len(coeffs))
+            if self._coeff_anchor is None or len(coeffs) != len(self._coeff_anchor):
+                self._anchor_sliders(coeffs)  # another degree: new sliders
+            elif not self._from_slider and coeffs != tuple(s.value for s in self.coeff_sliders):
+                self._coeff_anchor = tuple(coeffs)  # a typed law: ranges around it
+            for sl, c, c0 in zip(self.coeff_sliders, coeffs, self._coeff_anchor):
+                lo, hi = coeff_range(c0)
+                put(sl, c, step=(hi - lo) / 1000, **widened(c, lo, hi))
+            self.coeff_box.visible = True
+        else:
+            # an invalid law: the sliders stay only if they made it (so they can move back)
+            made = bool(self.coeff_sliders) and st.expression == expression_of(
+                [float(s.value) for s in self.coeff_sliders]
+            )
+            self.coeff_box.visible = poly and made
+
+    def _anchor_sliders(self, coeffs: tuple[float, ...]) -> None:
+        """(Re)build the coefficient sliders with ranges around ``coeffs``."""
+        self._coeff_anchor = tuple(coeffs)
+        if len(coeffs) > MAX_COEFF_SLIDERS:
+            self.coeff_sliders = []
+            self.coeff_box.objects = [
+                pn.pane.Markdown(f"_degree {len(coeffs)} > {MAX_COEFF_SLIDERS}: edit the text_")
+            ]
+            return
+        sliders = []
+        for k, c in enumerate(coeffs):
+            lo, hi = coeff_range(c)
+            sl = FloatSlider(
+                label=f"c{k + 1} (w^{k + 1})" if k else "c1 (w) = f′(0)",
+                start=lo,
+                end=hi,
+                step=(hi - lo) / 1000,
+                value=c,
+                css_classes=[f"w-c{k + 1}"],
+                format="0.0[000]",
+                sizing_mode="stretch_width",
+                show_value=True,
+            )
+            sl.param.watch(lambda e, k=k: self._on_coeff(k, e.new), "value_throttled")
+            sliders.append(sl)
+        self.coeff_sliders = sliders
+        self.coeff_box.objects = sliders
+
+
+def coeff_range(c0: float) -> tuple[float, float]:
+    """Slider range of a law coefficient around the typed value c0: c0 ± 2|c0| (so its sign can
+    change), [−1, 1] for a zero coefficient."""
+    r = 2.0 * abs(c0) if c0 != 0.0 and math.isfinite(c0) else 1.0
+    return c0 - r, c0 + r

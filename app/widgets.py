@@ -1,0 +1,88 @@
+"""Sidebar widgets that stay in step with the server, and how the page moves them.
+
+With ``pn.extension(throttled=True)`` a slider or number box reaches the server only through
+``value_throttled``, which Panel never sends back to the browser; the subclasses here keep it in
+step (see :class:`_ThrottledInStep`).  :func:`put` moves a widget and its ``value_throttled``
+together, and :func:`widened` keeps a slider's range around the state's value.  Kept
+apart from the page (:mod:`app.explorer`) and the law editor (:mod:`app.law_editor`), which both
+use them: this is the one place that reaches below Panel's public API.
+"""
+
+from __future__ import annotations
+
+import math
+
+import panel as pn
+import param
+from bokeh.core.property.descriptors import UnsetValueError
+
+
+class _ThrottledInStep:
+    """A widget whose browser-side ``value_throttled`` follows every value the server sets.
+
+    With ``pn.extension(throttled=True)`` a slider or number box reaches the server only
+    through ``value_throttled`` (its bare ``value`` events are dropped), and BokehJS sends a
+    property only when it changes.  Panel never sends ``value_throttled`` to the browser, so
+    the browser kept the user's last value: after the state moved the widget elsewhere (a
+    typed V moves the V slider, a slider moves the V box), a user action that returned it to
+    that last value changed nothing in the browser's ``value_throttled``, nothing was sent,
+    and the widget showed a value the state, URL and plot did not have (the state walk: V = 5.2
+    typed a second time kept V = 5.200694; a slider released where it was last released).
+    Here each value sent to the browser carries the same ``value_throttled``."""
+
+    def _update_model(self, events, msg, root, model, doc, comm) -> None:
+        value = msg.get("value", _UNSET)
+        super()._update_model(events, msg, root, model, doc, comm)
+        if value is _UNSET or "value_throttled" not in model.properties():
+            return
+        try:
+            old = model.value_throttled
+        except UnsetValueError:  # a number box's, until the browser first sets it
+            old = None
+        if old == value:
+            return
+        ref = root.ref["id"]
+        # marked as the server's own change, as Panel marks the properties it sets, so its
+        # change handler does not take it for a browser event
+        self._changing[ref] = pending = ["value_throttled"]
+        try:
+            model.lookup("value_throttled")._set(model, old, value)  # Readonly: no setattr
+        finally:
+            if self._changing.get(ref) is pending:
+                del self._changing[ref]
+
+
+_UNSET = object()
+
+
+class FloatSlider(_ThrottledInStep, pn.widgets.FloatSlider):
+    pass
+
+
+class IntSlider(_ThrottledInStep, pn.widgets.IntSlider):
+    pass
+
+
+class FloatInput(_ThrottledInStep, pn.widgets.FloatInput):
+    pass
+
+
+class IntInput(_ThrottledInStep, pn.widgets.IntInput):
+    pass
+
+
+def put(widget, value, **bounds) -> None:
+    """Programmatic widget update (its caller's watchers ignore it while the caller syncs) that
+    keeps value_throttled in step, so a later drag back to the old value still registers."""
+    widget.param.update(**bounds, value=value)
+    if "value_throttled" in widget.param:
+        with param.edit_constant(widget):
+            widget.value_throttled = value
+
+
+def widened(x: float, lo: float, hi: float) -> dict:
+    """Slider start/end: the theoretical range, widened to include x if x lies outside (so the
+    slider shows the state's value, never a clipped one)."""
+    if not math.isfinite(x):
+        return {"start": lo, "end": hi}
+    return {"start": min(lo, x), "end": max(hi, x)}
