@@ -210,10 +210,14 @@ JS_DATA_TO_PAGE = """([title, x, y]) => {
 }"""
 
 
-def test_branch_view_click_opens_the_wave(page):
-    """Diagrams (b): "Classify stability" draws the family's waves coloured by their Floquet
-    class; a click on one makes it the current wave (the URL's V)."""
-    page.goto(f"{page.server}/main?tab=diagram&N=96&tol=1e-08&V=5.0&mode=solitary&w_plus=1.0")
+def classify_and_click_first(
+    page, query: str, status: str, prefix: str, title: str
+) -> tuple[float, dict]:
+    """Open Diagrams at ``query`` with 2 discrete points per interval, press "Classify
+    stability", wait (bounded) for the status line ``status``, read the 4 classified points of
+    the sources ``prefix-<class>`` and click the one of smallest V on the panel titled
+    ``title`` (data → screen through BokehJS's own frame mapping).  (that V, {V: y})."""
+    page.goto(f"{page.server}/main?{query}")
     wait_rendered(page, "diagram", 180.0)
     field = page.locator(".scene-diagram .bk-input-group", has_text="discrete points").locator(
         "input"
@@ -222,20 +226,30 @@ def test_branch_view_click_opens_the_wave(page):
     field.press("Enter")
     inputs_reach_the_server(page)
     page.locator(".diagram-classify button").click()
-    page.locator(".scene-diagram .scene-status").get_by_text("branch view").wait_for(
-        timeout=400_000
-    )
+    page.locator(".scene-diagram .scene-status").get_by_text(status).wait_for(timeout=400_000)
     points = {}
     for c in ("stable", "finite_size", "unstable", "undetermined"):
-        s = source(page, f"diagram-branch-{c}")
+        s = source(page, f"{prefix}-{c}")
         points |= {x: y for x, y in zip(s["x"], s["y"])}
     assert len(points) == 4, points
-    V, E = sorted(points.items())[0]
-    page.screenshot(path="/tmp/fpu-diagram-branch.png", full_page=True)
-    # click the point: data → screen through the figure's frame (BokehJS's own mapping)
-    box = page.evaluate(JS_DATA_TO_PAGE, ["(b) renormalized", V, E])
+    page.screenshot(path=f"/tmp/fpu-{prefix}.png", full_page=True)
+    V, y = sorted(points.items())[0]
+    box = page.evaluate(JS_DATA_TO_PAGE, [title, V, y])
     assert box is not None
     page.mouse.click(box[0], box[1])
+    return V, points
+
+
+def test_branch_view_click_opens_the_wave(page):
+    """Diagrams (b): "Classify stability" draws the family's waves coloured by their Floquet
+    class; a click on one makes it the current wave (the URL's V)."""
+    V, _ = classify_and_click_first(
+        page,
+        "tab=diagram&N=96&tol=1e-08&V=5.0&mode=solitary&w_plus=1.0",
+        "branch view",
+        "diagram-branch",
+        "(b) renormalized",
+    )
     q = wait_url(page, lambda q: abs(float(q.get("V", "nan")) - V) < 1e-9)
     assert float(q["V"]) == pytest.approx(V, abs=1e-9)
     assert not app_tracebacks()
@@ -263,29 +277,14 @@ def test_superkink_branch_view_click_opens_the_superkink(page):
     floquet_SK) and draws each superkink by its Floquet class; a click on one sets V and w₊
     (V = V_SK(w₊)) in the URL."""
     w0 = 0.6327161199294542  # V_SK = 5.2
-    page.goto(f"{page.server}/main?tab=diagram&N=64&tol=1e-08&V=5.2&mode=superkink&w_plus={w0}")
-    wait_rendered(page, "diagram", 180.0)
-    field = page.locator(".scene-diagram .bk-input-group", has_text="discrete points").locator(
-        "input"
+    V, points = classify_and_click_first(
+        page,
+        f"tab=diagram&N=64&tol=1e-08&V=5.2&mode=superkink&w_plus={w0}",
+        "superkink branch view",
+        "diagram-sk-branch",
+        "(d) superkinks",
     )
-    field.fill("2")
-    field.press("Enter")
-    inputs_reach_the_server(page)
-    page.locator(".diagram-classify button").click()
-    page.locator(".scene-diagram .scene-status").get_by_text("superkink branch view").wait_for(
-        timeout=400_000
-    )
-    points = {}
-    for c in ("stable", "finite_size", "unstable", "undetermined"):
-        s = source(page, f"diagram-sk-branch-{c}")
-        points |= {x: y for x, y in zip(s["x"], s["y"])}
-    assert len(points) == 4, points
-    assert all(4.78423 < V < 5.85947 for V in points)  # the paper's superkink interval
-    V, amp = sorted(points.items())[0]
-    page.screenshot(path="/tmp/fpu-diagram-superkink-branch.png", full_page=True)
-    box = page.evaluate(JS_DATA_TO_PAGE, ["(d) superkinks", V, amp])
-    assert box is not None
-    page.mouse.click(box[0], box[1])
+    assert all(4.78423 < v < 5.85947 for v in points)  # the paper's superkink interval
     q = wait_url(page, lambda q: abs(float(q.get("V", "nan")) - V) < 1e-9)
     assert q["mode"] == "superkink"
     w = float(q["w_plus"])  # V = V_SK(w₊) (eq. cubic_cond2, a = −1, b = 10)
