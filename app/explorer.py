@@ -200,7 +200,8 @@ class Explorer(pn.viewable.Viewer):
             box = self.w_plus_exact if name == "w_plus" else self.V_exact
             self._syncing = True
             try:
-                box.value = getattr(self.state, name)
+                with self.law_editor.muted():
+                    box.value = getattr(self.state, name)
             finally:
                 self._syncing = False
             err = ParameterError(name, value, "a finite number")
@@ -219,27 +220,28 @@ class Explorer(pn.viewable.Viewer):
         st = self.state
         self._syncing = True
         try:
-            self.mode.value = st.mode
-            self.law_editor.sync()
-            put(self.N, int(st.N), **widened(st.N, *N_RANGE))
-            self.N_exact.value = int(st.N)
-            put(self.tol, nearest_tol(st.tol))
-            summ = st.summary()
-            if "alpha" in summ:
-                lo, hi = summ["w_lo"], summ["w_hi"]
-                span = hi - lo
-                lo, hi = lo + 1e-6 * span, hi - 1e-6 * span
-                put(self.w_plus, st.w_plus, step=span / 2000, **widened(st.w_plus, lo, hi))
-            self.w_plus_mark.show(summ.get("w_star"), self.w_plus.start, self.w_plus.end)
-            try:
-                lo, hi = st.V_range()
-                put(self.V, st.V, step=(hi - lo) / 4000, **widened(st.V, lo, hi))
-            except Exception:  # noqa: BLE001 - w_plus invalid: keep the V slider where it was
-                pass
-            self.V_mark.show(summ.get("V_SK"), self.V.start, self.V.end)
-            self.w_plus_exact.value = st.w_plus
-            self.V_exact.value = st.V
-            self.ranges.object = self._ranges_text(summ)
+            with self.law_editor.muted():
+                self.mode.value = st.mode
+                self.law_editor.sync()
+                put(self.N, int(st.N), **widened(st.N, *N_RANGE))
+                self.N_exact.value = int(st.N)
+                put(self.tol, nearest_tol(st.tol))
+                summ = st.summary()
+                if "alpha" in summ:
+                    lo, hi = summ["w_lo"], summ["w_hi"]
+                    span = hi - lo
+                    lo, hi = lo + 1e-6 * span, hi - 1e-6 * span
+                    put(self.w_plus, st.w_plus, step=span / 2000, **widened(st.w_plus, lo, hi))
+                self.w_plus_mark.show(summ.get("w_star"), self.w_plus.start, self.w_plus.end)
+                try:
+                    lo, hi = st.V_range()
+                    put(self.V, st.V, step=(hi - lo) / 4000, **widened(st.V, lo, hi))
+                except Exception:  # noqa: BLE001 - w_plus invalid: keep the V slider where it was
+                    pass
+                self.V_mark.show(summ.get("V_SK"), self.V.start, self.V.end)
+                self.w_plus_exact.value = st.w_plus
+                self.V_exact.value = st.V
+                self.ranges.object = self._ranges_text(summ)
         finally:
             self._syncing = False
 

@@ -17,6 +17,7 @@ and watches :attr:`LawEditor.checking`.
 
 from __future__ import annotations
 
+import contextlib
 import logging
 import math
 
@@ -179,12 +180,23 @@ class LawEditor(pn.viewable.Viewer):
         compute.request_law(text).add_done_callback(built)
 
     # ------------------------------------------------------------------ state → widgets
+    @contextlib.contextmanager
+    def muted(self):
+        """The editor ignores widget events meanwhile: the page holds it muted for its whole
+        sync, as one flag did before the split (a law typed while another handler thread syncs
+        the sidebar is dropped, not applied under a sync that then writes the older state)."""
+        was = self._syncing
+        self._syncing = True
+        try:
+            yield
+        finally:
+            self._syncing = was
+
     def sync(self) -> None:
         """State → law widgets: a, b (their ranges widened to the state's values), the kind,
         the text and the coefficient sliders.  The editor's watchers ignore these changes."""
         st = self.state
-        self._syncing = True
-        try:
+        with self.muted():
             put(self.a, st.a, **widened(st.a, *A_RANGE))
             put(self.b, st.b, **widened(st.b, *B_RANGE))
             poly = bool(st.expression)
@@ -193,8 +205,6 @@ class LawEditor(pn.viewable.Viewer):
             self.law_text.visible = poly
             self.law_text.value = st.expression
             self._sync_coefficients(poly)
-        finally:
-            self._syncing = False
 
     def _sync_coefficients(self, poly: bool) -> None:
         st = self.state
