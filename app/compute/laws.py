@@ -208,7 +208,7 @@ def expression_law(expression: str) -> PolynomialLaw:
     worker within its budgets, memoised).  Raises its ParameterError.
 
     Never blocks the server's event loop: there, a law not built yet raises a ParameterError
-    saying it is being checked (the explorer re-renders once it is, see app.explorer);
+    saying it is being checked (the explorer re-renders once it is, see app.law_editor);
     elsewhere (a websocket handler thread, a scene's thread, a script) it waits for the outcome,
     at most LAW_START_S + LAW_TIME_S."""
     outcome = lookup_law(expression)
