@@ -50,7 +50,8 @@ class SliderMark:
 
     def show(self, value: float | None, start: float, end: float) -> None:
         """Place the mark at ``value`` on a track over (start, end), or hide it when it is off
-        the track; the pane is updated only when the mark moves."""
+        the track; the pane is updated only when the mark moves or its value changes (w* keeps
+        its place, the middle of the cubic's w₊ range, when the law changes)."""
         x = mark_fraction(value, start, end)
         if x is None:
             self.fraction = self.value = None
@@ -58,7 +59,7 @@ class SliderMark:
                 self.pane.visible = False
             return
         x = round(x, 6)
-        if x == self.fraction and self.pane.visible:
+        if x == self.fraction and float(value) == self.value and self.pane.visible:
             return
         self.fraction, self.value = x, float(value)
         # the label sits beside the tick, on the side with room for it

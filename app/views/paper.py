@@ -65,6 +65,19 @@ def thumbnail(label: str):
     )
 
 
+#: every scrolled element of the page (light DOM and shadow roots) back to its top
+SCROLL_TO_TOP_JS = """
+const top = (root) => {
+  for (const el of root.querySelectorAll('*')) {
+    if (el.scrollTop > 0) { el.scrollTop = 0; }
+    if (el.shadowRoot) { top(el.shadowRoot); }
+  }
+};
+top(document);
+window.scrollTo(0, 0);
+"""
+
+
 class PaperScene(Scene):
     key = "paper"
     title = "Paper"
@@ -89,6 +102,9 @@ class PaperScene(Scene):
                 css_classes=["paper-open", f"paper-open-{label}"],
             )
             btn.on_click(lambda _e, lab=label: self.open(lab))
+            # the figure's scene opens at its top: the list was scrolled down to this button,
+            # and the scrolled page kept that offset over the (shorter) scene — a blank view
+            btn.js_on_click(code=SCROLL_TO_TOP_JS)
             self.buttons[label] = btn
             text = f"**Fig. {fig.number}** `{label}` ({fig.section}) — {md_literal(fig.caption)}"
             cmp = pn.pane.Markdown(

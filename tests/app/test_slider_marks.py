@@ -69,3 +69,16 @@ def test_no_mark_off_the_track_or_for_an_invalid_law():
     ex = Explorer(ExplorerState(w_plus=1.0, V=5.0))
     ex.state.param.update(expression="w**2")  # no hardening-softening law: no V_SK, no w*
     assert not ex.V_mark.pane.visible and not ex.w_plus_mark.pane.visible
+
+
+def test_a_mark_at_the_same_place_with_a_new_value_is_relabelled():
+    """w* is the midpoint of the cubic's w₊ range (α, β), so a change of law leaves its mark at
+    the same fraction of the slider: the label must still follow (w* = −b/(3a): 2 for a = −2,
+    b = 12; 10/3 for a = −1, b = 10 — a Paper-figure click made exactly this change)."""
+    ex = Explorer(ExplorerState(a=-2.0, b=12.0, w_plus=0.5, V=4.0))
+    assert "w* = 2<" in ex.w_plus_mark.pane.object
+    x0 = ex.w_plus_mark.fraction
+    ex.state.param.update(a=-1.0, b=10.0)
+    assert ex.w_plus_mark.fraction == pytest.approx(x0, abs=1e-6)  # the same place
+    assert f"w* = {10 / 3:.6g}<" in ex.w_plus_mark.pane.object
+    assert ex.w_plus_mark.value == pytest.approx(10 / 3, rel=1e-12)

@@ -17,6 +17,7 @@ from browser_harness import (
     settled,
     source,
     stamp,
+    status,
     status_text,
     wait_rendered,
     wait_url,
@@ -39,6 +40,13 @@ def wait_source(page, name: str, pred, timeout_ms: float = 180_000) -> dict:
 def sim_input(page, label: str) -> str:
     field = page.locator(".scene-simulation .bk-input-group", has_text=label).locator("input")
     return field.first.input_value()
+
+
+def top_in_view(page, scene: str) -> bool:
+    """Whether the scene's status (the top of its right column) is inside the window: the
+    Paper list is long, and the button a person clicks sits far down it."""
+    box = status(page, scene).bounding_box()
+    return box is not None and 0 <= box["y"] < page.viewport_size["height"]
 
 
 def test_paper_tab_opens_three_figures(page):
@@ -86,6 +94,7 @@ def test_paper_tab_opens_three_figures(page):
                 assert abs(min(s["y"]) - w_plus) < 1e-3  # the plateau ahead: w₊ of the entry
             assert len(source(page, "profile-held-5")["x"]) == 0
             page.screenshot(path="/tmp/fpu-paper-TWcubic.png", full_page=True)
+            assert top_in_view(page, "profiles")  # the scene opens at its top, not scrolled
         elif label == "Riemann1":
             # the caption's run: Riemann data w^l = 4.6, w^r = 0, L = 3600, t = 300, sites
             # 100, 200, 3000 — in the widgets, and run at once (measured ~1-3 s)
@@ -106,6 +115,7 @@ def test_paper_tab_opens_three_figures(page):
                 wait_source(page, f"sim-probe-{k}", lambda s: len(s["x"]) > 50)
                 wait_source(page, f"sim-probe-wave-{k}", lambda s: len(s["x"]) > 10)
             page.screenshot(path="/tmp/fpu-paper-Riemann1.png", full_page=True)
+            assert top_in_view(page, "simulation")  # the scene opens at its top, not scrolled
         else:
             assert "hold" not in q
             text, msg, q = settled(page)
