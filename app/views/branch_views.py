@@ -21,7 +21,7 @@ from fpucore import qc
 from fpucore.floquet import CLASSES
 
 from .. import compute
-from .bokeh_scene import Updates
+from .bokeh_scene import Updates, add_legend, add_points
 from .floquet import CLASS_STYLE
 from .report import Info
 
@@ -97,12 +97,8 @@ class BranchViews:
                 up.data(src, x=np.asarray(sw.V, float)[sel], y=E[sel])
             up.show(r, self.branch_legend[CLASSES.index(c)], bool(sel.any()))
         if sw is not None:
-            counts = {c: int((cls == c).sum()) for c in CLASSES if (cls == c).any()}
-            words = ", ".join(f"{n} {CLASS_STYLE[c][0].split(' (')[0]}" for c, n in counts.items())
+            words = _class_counts(info, cls, sw, "sweep")
             info.notes.append(f"branch view (N = {int(s.N)}): {words}; click a point to open it")
-            err = np.asarray(sw.max_modulus_error, float)
-            if np.isfinite(err).any():
-                info.error("max |μ| error bound (sweep)", float(np.nanmax(err)))
         self._superkink_branch(info, up)
 
     def _superkink_args(self):
@@ -163,16 +159,12 @@ class BranchViews:
             up.show(r, self.sk_legend[CLASSES.index(c)], bool(sel.any()))
         if self._sk_branch is not None:
             sw = self._sk_branch[0]
-            counts = {c: int((cls == c).sum()) for c in CLASSES if (cls == c).any()}
-            words = ", ".join(f"{n} {CLASS_STYLE[c][0].split(' (')[0]}" for c, n in counts.items())
+            words = _class_counts(info, cls, sw, "superkink sweep")
             info.notes.append(
                 f"superkink branch view (N = {int(s.N)}, {len(sw.V)} V): {words}; a superkink "
                 "has no E_ren (it joins two different states), so (d) draws its amplitude; "
                 "click a point to open it"
             )
-            err = np.asarray(sw.max_modulus_error, float)
-            if np.isfinite(err).any():
-                info.error("max |μ| error bound (superkink sweep)", float(np.nanmax(err)))
         self._want_branch = False  # a request neither view could serve (no valid family) ends
 
 
@@ -192,3 +184,24 @@ def _nearest(xs_data, ys_data, x, y, fig) -> float | None:
     d = np.where(np.isfinite(dx) & np.isfinite(dy), np.hypot(dx, dy), np.inf)
     k = int(np.argmin(d)) if d.size else -1
     return float(xs_data[k]) if k >= 0 and d[k] < 0.03 else None
+
+
+def _class_counts(info: Info, cls: np.ndarray, sw, what: str) -> str:
+    """ "2 stable, 2 not determined …" for the classes ``cls`` of the sweep ``sw``; its largest
+    max|μ| error bar goes into the status's errors."""
+    counts = {c: int((cls == c).sum()) for c in CLASSES if (cls == c).any()}
+    err = np.asarray(sw.max_modulus_error, float)
+    if np.isfinite(err).any():
+        info.error(f"max |μ| error bound ({what})", float(np.nanmax(err)))
+    return ", ".join(f"{n} {CLASS_STYLE[c][0].split(' (')[0]}" for c, n in counts.items())
+
+
+def class_points(fig, name: str) -> tuple[dict, list]:
+    """One point renderer per Floquet class on ``fig`` (its source named ``name-<class>``, read
+    by the tests) and their legend at the right: ({class: (renderer, source)}, legend items)."""
+    rs = {}
+    for c in CLASSES:
+        r = add_points(fig, "circle", 9, color=CLASS_STYLE[c][1], line_color="black")
+        r[1].name = f"{name}-{c}"
+        rs[c] = r
+    return rs, add_legend(fig, "right", [(CLASS_STYLE[c][0], [rs[c][0]]) for c in CLASSES])

@@ -29,8 +29,6 @@ from bokeh.events import Tap
 from bokeh.layouts import column, row
 from panel.io.state import set_curdoc
 
-from fpucore.floquet import CLASSES
-
 from .. import compute
 from ..compute import exact
 from .bokeh_scene import (
@@ -46,9 +44,8 @@ from .bokeh_scene import (
     finite_extent,
     new_figure,
 )
-from .branch_views import BranchViews
+from .branch_views import BranchViews, class_points
 from .energy_marks import ExtremumMarks, criterion_words, fmt_extremum
-from .floquet import CLASS_STYLE
 from .formatting import as_csv, fmt_num, provenance
 from .python_code import python_preamble
 from .report import Info, SceneMessage
@@ -140,14 +137,7 @@ class DiagramScene(BranchViews, BokehScene):
              ("discrete E_ren extremum", self.ext_d.renderers)],
         )  # fmt: skip
         # branch view: the sweep's waves on (b), one renderer per stability class
-        self.r_branch = {}
-        for c in CLASSES:
-            r = add_points(fe, "circle", 9, color=CLASS_STYLE[c][1], line_color="black")
-            r[1].name = f"diagram-branch-{c}"  # read by the tests
-            self.r_branch[c] = r
-        self.branch_legend = add_legend(
-            fe, "right", [(CLASS_STYLE[c][0], [self.r_branch[c][0]]) for c in CLASSES]
-        )
+        self.r_branch, self.branch_legend = class_points(fe, "diagram-branch")
         fe.on_event(Tap, self._on_branch_tap)
         pa = self.panels["amp"]
         self.amp_legend = add_legend(
@@ -198,14 +188,7 @@ class DiagramScene(BranchViews, BokehScene):
         self.fig_sk = fs
         self.sk_line = add_line(fs, "#d62728", 1.5)  # eq. wpm_cubic over the interval
         self.sk_V = add_vline(fs, "black")
-        self.r_sk = {}
-        for c in CLASSES:
-            r = add_points(fs, "circle", 9, color=CLASS_STYLE[c][1], line_color="black")
-            r[1].name = f"diagram-sk-branch-{c}"  # read by the tests
-            self.r_sk[c] = r
-        self.sk_legend = add_legend(
-            fs, "right", [(CLASS_STYLE[c][0], [self.r_sk[c][0]]) for c in CLASSES]
-        )
+        self.r_sk, self.sk_legend = class_points(fs, "diagram-sk-branch")
         fs.on_event(Tap, self._on_sk_tap)
         fs.visible = False
         return column(row(fa, fe), fs)
