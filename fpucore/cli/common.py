@@ -66,7 +66,9 @@ def check_out_path(path: str, name: str = "--out", store: bool = False) -> None:
 
 LAW_HELP = (
     "any hardening-softening polynomial f(w) of degree <= 16, instead of --a/--b, e.g. --law "
-    '"w + 10*w**2 - w**3 - 0.01*w**4" (an expression with a leading minus: --law="-...")'
+    '"w + 10*w**2 - w**3 - 0.01*w**4" (an expression with a leading minus: --law="-..."), '
+    'or a piecewise-linear law: "trilinear(w1=0.5, w2=1.5, E1=1, E2=4, E3=0.2)" or '
+    '"piecewise(breakpoints=[0.5, 1.5], slopes=[1, 4, 0.2])"'
 )
 DEFAULT_A, DEFAULT_B = -1.0, 10.0  # the paper's cubic
 
@@ -102,4 +104,7 @@ def law_fields(law: HardeningSofteningLaw) -> dict:
 
     if isinstance(law, CubicLaw):
         return {"a": law.a, "b": law.b, "law": law.describe()}
+    if hasattr(law, "breakpoints"):  # piecewise-linear
+        return {"law": law.expression, "breakpoints": list(law.breakpoints),
+                "slopes": list(law.slopes)}  # fmt: skip
     return {"law": law.expression, "coeffs": list(law.coeffs)}

@@ -8,12 +8,14 @@ handle ``(law_id, params)`` that the Numba kernels in :mod:`.kernels` take.
     →  cubic  ·  expression_bounds (degree, exponents, sizes of a text, before any algebra)
     →  expansion (its coefficients by exact arithmetic)
     →  expression (text → law)
+    ·  piecewise (continuous piecewise-linear laws, the soft–hard–soft trilinear family)
 """
 
 from .base import HardeningSofteningLaw, require_law
 from .cubic import CubicLaw
 from .expression import law_from_expression
-from .kernels import LAW_CUBIC, LAW_POLY, POLY_IDS, ddforce, dforce, force, forces_into
+from .kernels import LAW_CUBIC, LAW_POLY, LAW_PWL, POLY_IDS, ddforce, dforce, force, forces_into
+from .piecewise import PiecewiseLinearLaw, TrilinearLaw, law_from_piecewise_text
 from .polynomial import PolynomialLaw, expression_of, real_roots
 
 __all__ = [
@@ -26,6 +28,10 @@ __all__ = [
     "real_roots",
     "LAW_CUBIC",
     "LAW_POLY",
+    "LAW_PWL",
+    "PiecewiseLinearLaw",
+    "TrilinearLaw",
+    "law_from_piecewise_text",
     "POLY_IDS",
     "force",
     "forces_into",

@@ -37,7 +37,7 @@ def _numeric(fn):
     return lambda *args, **_: fn(*args, evaluate=False).evalf(_DIGITS)
 
 
-def law_from_expression(expression: str) -> PolynomialLaw:
+def law_from_expression(expression: str):
     """Build a :class:`PolynomialLaw` from text, e.g. ``"w + 10*w**2 - w**3 - 0.01*w**4"``.
 
     The text is tokenized first and only numbers, the operators + - * / ** ^ ( ), the variable
@@ -48,7 +48,15 @@ def law_from_expression(expression: str) -> PolynomialLaw:
     :mod:`.expression_bounds` (degree <= MAX_DEGREE); then unparsable text, unknown names,
     non-polynomial expressions, non-real or non-finite coefficients, a constant term (f(0) ≠ 0);
     the law's own hypotheses are then checked by :class:`PolynomialLaw`.
+
+    Piecewise-linear laws: ``trilinear(w1=.., w2=.., E1=.., E2=.., E3=..)`` or
+    ``piecewise(breakpoints=[..], slopes=[..])`` (parsed, never evaluated, by
+    :func:`fpucore.law.piecewise.law_from_piecewise_text`).
     """
+    from fpucore.law.piecewise import is_piecewise_text, law_from_piecewise_text
+
+    if is_piecewise_text(expression):
+        return law_from_piecewise_text(expression)
     if not isinstance(expression, str):
         raise ParameterError("expression", expression, _VALID, "the expression must be a string")
     if not expression.strip():

@@ -9,7 +9,7 @@ p[k−1] = c_k, one compiled kernel for every polynomial: ``LAW_POLY3`` … ``LA
 3–8 (unrolled Horner, selected by the law id alone so the branch is as cheap as the cubic's; the
 same operations in the same order as the loop, so bit-identical to it) and ``LAW_POLY`` for any
 degree (Horner loop over p, used beyond degree 8; 1.5–1.9× the cubic in-jit —
-benchmarks/README.md).
+benchmarks/README.md).  ``LAW_PWL``: continuous piecewise-linear laws (:mod:`.piecewise`).
 """
 
 from __future__ import annotations
@@ -23,6 +23,17 @@ LAW_CUBIC = 0
 LAW_POLY = 1  # any degree (loop)
 LAW_POLY3, LAW_POLY4, LAW_POLY5, LAW_POLY6, LAW_POLY7, LAW_POLY8 = 3, 4, 5, 6, 7, 8  # id = degree
 POLY_IDS = (LAW_POLY, LAW_POLY3, LAW_POLY4, LAW_POLY5, LAW_POLY6, LAW_POLY7, LAW_POLY8)
+LAW_PWL = 20  # continuous piecewise-linear: p = [m, b_1..b_m, s_0..s_m, f(b_1)..f(b_m)]
+
+
+@njit(cache=True, nogil=True)
+def _pwl_piece(p: np.ndarray, w: float) -> int:
+    """Piece j of w for a PL law (number of breakpoints <= w; a breakpoint goes right)."""
+    m = int(p[0])
+    j = 0
+    while j < m and w >= p[1 + j]:
+        j += 1
+    return j
 
 
 @njit(cache=True, nogil=True)
@@ -52,6 +63,11 @@ def force(law_id: int, p: np.ndarray, w: float) -> float:
         for k in range(p.shape[0] - 1, -1, -1):
             acc = acc * w + p[k]
         return acc * w
+    if law_id == LAW_PWL:  # f(b_k) + s_j (w - b_k), anchored at the piece's left breakpoint
+        m = int(p[0])
+        j = _pwl_piece(p, w)
+        k = j - 1 if j > 0 else 0
+        return p[2 + 2 * m + k] + p[1 + m + j] * (w - p[1 + k])
     return math.nan
 
 
@@ -94,6 +110,8 @@ def dforce(law_id: int, p: np.ndarray, w: float) -> float:
         for k in range(p.shape[0] - 1, -1, -1):
             acc = acc * w + (k + 1) * p[k]
         return acc
+    if law_id == LAW_PWL:  # the slope of w's piece (on a breakpoint: the right one)
+        return p[1 + int(p[0]) + _pwl_piece(p, w)]
     return math.nan
 
 
@@ -131,6 +149,8 @@ def ddforce(law_id: int, p: np.ndarray, w: float) -> float:
         for k in range(p.shape[0] - 1, 0, -1):
             acc = acc * w + (k + 1) * k * p[k]
         return acc
+    if law_id == LAW_PWL:  # zero between breakpoints (the Dirac masses are located, not sampled)
+        return 0.0
     return math.nan
 
 
