@@ -15,7 +15,8 @@ from .base import HardeningSofteningLaw, require_law
 from .cubic import CubicLaw
 from .expression import law_from_expression
 from .kernels import LAW_CUBIC, LAW_POLY, LAW_PWL, POLY_IDS, ddforce, dforce, force, forces_into
-from .piecewise import PiecewiseLinearLaw, TrilinearLaw, law_from_piecewise_text
+from .piecewise import PiecewiseLinearLaw, TrilinearLaw
+from .piecewise_text import law_from_piecewise_text
 from .polynomial import PolynomialLaw, expression_of, real_roots
 
 __all__ = [

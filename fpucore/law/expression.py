@@ -51,9 +51,9 @@ def law_from_expression(expression: str):
 
     Piecewise-linear laws: ``trilinear(w1=.., w2=.., E1=.., E2=.., E3=..)`` or
     ``piecewise(breakpoints=[..], slopes=[..])`` (parsed, never evaluated, by
-    :func:`fpucore.law.piecewise.law_from_piecewise_text`).
+    :func:`fpucore.law.piecewise_text.law_from_piecewise_text`).
     """
-    from fpucore.law.piecewise import is_piecewise_text, law_from_piecewise_text
+    from fpucore.law.piecewise_text import is_piecewise_text, law_from_piecewise_text
 
     if is_piecewise_text(expression):
         return law_from_piecewise_text(expression)
