@@ -17,6 +17,23 @@ from fpucore.qc import general as gen
 BRANCHES = ("lower", "upper")
 
 
+def _pl(law):
+    """The closed-form module for a piecewise-linear law (fpucore.qc.piecewise*), else None:
+    the general route integrates f″, which is zero between breakpoints."""
+    if hasattr(require_law(law), "hard_regime"):
+        from fpucore.qc import piecewise, piecewise_orbit
+
+        return piecewise, piecewise_orbit
+    return None
+
+
+def _pl_refuse(law, what: str):
+    raise ParameterError(
+        "law", law.expression, "a cubic or polynomial law",
+        f"{what} is not available for piecewise-linear laws yet (use the state w_plus)",
+    )  # fmt: skip
+
+
 def is_closed_form(law: HardeningSofteningLaw) -> bool:
     """True when the closed forms of paper §4 apply (the cubic law object); ParameterError
     naming ``law`` when it is no law at all (None, a string ...)."""
@@ -25,6 +42,9 @@ def is_closed_form(law: HardeningSofteningLaw) -> bool:
 
 def sound_speeds(law: HardeningSofteningLaw, w_plus: float) -> tuple[float, float, float]:
     """(c₊, V_SK, c₋) for the state w₊ ahead (eqs. cplus, Rline + zero_G, cminus)."""
+    if pl := _pl(law):
+        sp = pl[0].speeds(law, w_plus)
+        return sp.c_plus, sp.V_SK, sp.c_minus
     if is_closed_form(law):
         return cf.sound_speeds(law, w_plus)
     return gen.sound_speeds(law, w_plus)
@@ -32,6 +52,8 @@ def sound_speeds(law: HardeningSofteningLaw, w_plus: float) -> tuple[float, floa
 
 def solitary_intervals(law: HardeningSofteningLaw, w_plus: float):
     """((c₊, V_SK), (V_SK, c₋)): the two velocity intervals of solitary waves for w₊."""
+    if pl := _pl(law):
+        return pl[0].solitary_intervals(law, w_plus)
     if is_closed_form(law):
         return cf.solitary_intervals(law, w_plus)
     return gen.solitary_intervals(law, w_plus)
@@ -39,6 +61,8 @@ def solitary_intervals(law: HardeningSofteningLaw, w_plus: float):
 
 def w_minus_sonic(law: HardeningSofteningLaw, w_plus: float) -> float:
     """w₋ˢ, the tangency point of the c₋ Rayleigh line (eq. cminus)."""
+    if pl := _pl(law):
+        return pl[0].c_minus_sonic(law, pl[0].require_state(law, w_plus))[1]
     if is_closed_form(law):
         return cf.w_minus_sonic(law, w_plus)
     return gen.w_minus_sonic(law, w_plus)
@@ -47,6 +71,21 @@ def w_minus_sonic(law: HardeningSofteningLaw, w_plus: float) -> float:
 def rayleigh_roots(law: HardeningSofteningLaw, w_plus: float, V):
     """(w_near, w_far): the other intersections of f with the Rayleigh line (V may be an array,
     each V in (0, c₋]; ParameterError naming V otherwise, where NaN was once returned)."""
+    if pl := _pl(law):
+        w_plus = pl[0].require_state(law, w_plus)
+        out = []
+        for v in np.ravel(cf.finite_array("V", V)):
+            side = [x for x in pl[0].rayleigh_roots(law, w_plus, float(v))
+                    if (x > w_plus) == (w_plus < law.w_star)]  # fmt: skip
+            if len(side) < 2 or not v > 0:
+                cm = pl[0].c_minus_sonic(law, w_plus)[0]
+                raise ParameterError("V", float(v), f"(0, {cm:.10g})", "no centre and saddle")
+            side.sort(key=lambda x: abs(x - w_plus))
+            out.append(side[:2])
+        arr = np.array(out)
+        if np.ndim(V):
+            return arr[:, 0].reshape(np.shape(V)), arr[:, 1].reshape(np.shape(V))
+        return float(arr[0, 0]), float(arr[0, 1])
     if is_closed_form(law):
         return cf.rayleigh_roots(law, w_plus, V)
     cm = gen.sound_speeds(law, w_plus)[2]
@@ -61,6 +100,12 @@ def rayleigh_roots(law: HardeningSofteningLaw, w_plus: float, V):
 
 def w_S(law: HardeningSofteningLaw, w_plus: float, V):
     """Saddle w_S(V) ≠ w₊ of eq. wS, the far Rayleigh root (V in (0, c₋], may be an array)."""
+    if pl := _pl(law):
+        if np.ndim(V):
+            return np.array([pl[0].w_S(law, w_plus, float(v)) for v in np.ravel(V)]).reshape(
+                np.shape(V)
+            )
+        return pl[0].w_S(law, w_plus, V)
     return rayleigh_roots(law, w_plus, V)[1]
 
 
@@ -69,6 +114,8 @@ def superkink_velocity_bounds(
 ) -> tuple[float, float]:
     """(V_lo, V_hi) of superkinks on a branch.  The cubic's two branches share eq.
     V_bounds_cubic; for a general law they may differ."""
+    if _pl(law):
+        _pl_refuse(law, "superkink_velocity_bounds")
     if is_closed_form(law):
         return cf.superkink_velocity_bounds(law)
     return gen.superkink_velocity_bounds(law, branch)
@@ -77,6 +124,8 @@ def superkink_velocity_bounds(
 def superkink_w_plus_range(law: HardeningSofteningLaw, branch: str = "lower"):
     """Open w₊-interval of superkinks on a branch ((α, w*) or (w*, β) for the cubic, whose
     convex interval is symmetric about w*)."""
+    if pl := _pl(law):
+        return pl[0].superkink_w_plus_range(law, branch)
     if is_closed_form(law):
         if branch not in BRANCHES:
             return gen.superkink_w_plus_range(law, branch)  # raises the ParameterError
@@ -86,6 +135,8 @@ def superkink_w_plus_range(law: HardeningSofteningLaw, branch: str = "lower"):
 
 def superkink_from_V(law: HardeningSofteningLaw, V: float, branch: str = "lower"):
     """Superkink with velocity V on a branch (eq. wpm_cubic for the cubic)."""
+    if _pl(law):
+        _pl_refuse(law, "superkink_from_V")
     if is_closed_form(law):
         return cf.superkink_from_V(law, V, branch)
     return gen.superkink_from_V(law, V, branch)
@@ -93,6 +144,8 @@ def superkink_from_V(law: HardeningSofteningLaw, V: float, branch: str = "lower"
 
 def superkink_from_w_plus(law: HardeningSofteningLaw, w_plus: float):
     """Superkink with state w₊ ahead (eqs. Rline, zero_G)."""
+    if pl := _pl(law):
+        return pl[1].superkink(law, w_plus)
     if is_closed_form(law):
         return cf.superkink_from_w_plus(law, w_plus)
     return gen.superkink_from_w_plus(law, w_plus)
@@ -100,6 +153,8 @@ def superkink_from_w_plus(law: HardeningSofteningLaw, w_plus: float):
 
 def solitary(law: HardeningSofteningLaw, w_plus: float, V: float):
     """QC solitary wave for the state w₊ ahead of the associated superkink, velocity V."""
+    if pl := _pl(law):
+        return pl[1].solitary(law, w_plus, V)
     if is_closed_form(law):
         return cf.solitary(law, w_plus, V)
     return gen.solitary(law, w_plus, V)

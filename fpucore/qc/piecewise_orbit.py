@@ -87,6 +87,20 @@ class Arc:
             return self.e + u_a * np.cos(nu * s) + self.dw_a / nu * np.sin(nu * s)
         return self.w_a + self.dw_a * s + 0.5 * self.c * s * s
 
+    def dw(self, s):
+        """w′ at ξ = ξ_a + s."""
+        u_a = self.w_a - self.e
+        if self.lam > 0:
+            r = math.sqrt(self.lam)
+            if math.isinf(self.xi_b):
+                return -r * u_a * np.exp(-r * s)
+            p, q = _pq(u_a, self.dw_a, r, self.K)
+            return 0.5 * (p * np.exp(r * s) + q * np.exp(-r * s))
+        if self.lam < 0:
+            nu = math.sqrt(-self.lam)
+            return -u_a * nu * np.sin(nu * s) + self.dw_a * np.cos(nu * s)
+        return self.dw_a + self.c * s
+
 
 def _pq(u: float, du: float, r: float, K: float) -> tuple[float, float]:
     """(u′ + r u, u′ − r u), the one with equal signs evaluated, the other as K/it."""
@@ -172,11 +186,11 @@ def _moments(arcs: list[Arc], wB: float) -> tuple[float, float]:
     return m1, m2
 
 
-def _evaluate(arcs: list[Arc], xi: np.ndarray) -> np.ndarray:
+def _evaluate(arcs: list[Arc], xi: np.ndarray, derivative: bool = False) -> np.ndarray:
     out = np.empty_like(xi)
     for a in arcs:
         m = (xi >= a.xi_a) & (xi <= a.xi_b)
-        out[m] = a.w(xi[m] - a.xi_a)
+        out[m] = (a.dw if derivative else a.w)(xi[m] - a.xi_a)
     return out
 
 
@@ -200,9 +214,12 @@ class PLSolitary(Result):
     mass: float
     first_integral_residual: float
     elapsed_s: float
+    w_T: float = math.nan  # the next zero of Q beyond w_M (the cubic's w_T), NaN if none
+    gamma: float = math.nan  # decay rate of the tails, w − w_B ∝ e^{−γ|ξ|}
+    energy_error: float = math.nan  # rounding bound of E_ren
     arcs: tuple = field(default=(), repr=False, compare=False)
 
-    ERROR_FIELDS: ClassVar = ("first_integral_residual",)
+    ERROR_FIELDS: ClassVar = ("first_integral_residual", "energy_error")
     DERIVED: ClassVar = ("amplitude", "converged", "status", "message")
     EXCLUDE: ClassVar = ("law", "arcs")
 
@@ -214,6 +231,11 @@ class PLSolitary(Result):
         """w(ξ) (even in ξ), vectorised."""
         xi = np.asarray(xi, dtype=float)
         return _evaluate(list(self.arcs), np.abs(xi))
+
+    def dprofile(self, xi):
+        """w′(ξ) (odd in ξ)."""
+        xi = np.asarray(xi, dtype=float)
+        return np.sign(xi) * _evaluate(list(self.arcs), np.abs(xi), derivative=True)
 
     @property
     def converged(self) -> bool:
@@ -228,8 +250,10 @@ class PLSolitary(Result):
         return "" if self.converged else "first-integral residual above 1e-9"
 
 
-def _turning_point(law, wB: float, V2: float, d: float) -> float:
-    """First zero of Q beyond w_B in direction d: on piece j, λ u² + K = 0 (closed form)."""
+def _turning_point(law, wB: float, V2: float, d: float, count: int = 1):
+    """First zero of Q beyond w_B in direction d (the first ``count`` zeros, in order, when
+    count > 1; NaN where there are fewer): on piece j, λ u² + K = 0 (closed form)."""
+    found: list[float] = []
     b = law._b
     j = int(law.piece(wB))
     fB = float(law.f(wB))
@@ -250,9 +274,11 @@ def _turning_point(law, wB: float, V2: float, d: float) -> float:
             K = Qa - lam * (a - e) ** 2
             rr = -K / lam
             roots = [e - math.sqrt(rr), e + math.sqrt(rr)] if rr >= 0 else []
-        roots = sorted((x for x in roots if lo <= x <= hi), reverse=d < 0)
-        if roots:
-            return roots[0]
+        found += sorted((x for x in roots if lo <= x <= hi), reverse=d < 0)
+        if len(found) >= count:
+            return found[0] if count == 1 else found[:count]
+    if count > 1 and found:
+        return found + [math.nan] * (count - len(found))
     raise ParameterError("V", math.sqrt(V2), "a velocity of a solitary wave", "no turning point")
 
 
@@ -271,11 +297,13 @@ def solitary(law, w_plus: float, V: float) -> PLSolitary:
     wB = w_plus if below else w_S(law, w_plus, V)
     V2 = V * V
     d = 1.0 if wB < law.w_star else -1.0
-    wM = _turning_point(law, wB, V2, d)
+    wM, wT = _turning_point(law, wB, V2, d, count=2)
     arcs = _half_orbit(law, wB, V2, wM, wB, turning=True)
     m1, m2 = _moments(arcs, wB)
     fB = float(law.f(wB))
     energy = 2.0 * ((V2 * wB + fB) * m1 + V2 * m2)
+    energy_error = 64 * EPS * 2.0 * (abs((V2 * wB + fB) * m1) + V2 * m2)
+    gamma = math.sqrt(12.0 * (V2 - float(law.df(wB))) / V2)
     qs = max(24.0 * _P(law, wB, V2, a.w_a) / V2 for a in arcs) or 1.0
     res = (
         max((abs(a.dw_a**2 - 24.0 * _P(law, wB, V2, a.w_a) / V2) for a in arcs[1:]), default=0.0)
@@ -285,7 +313,7 @@ def solitary(law, w_plus: float, V: float) -> PLSolitary:
     return PLSolitary(
         law, V, w_plus, wB, wM, "tensile" if wM > wB else "compressive",
         "below" if below else "above", sp.V_SK, sp.c_plus, sp.c_minus, energy, 2.0 * m1,
-        res, time.perf_counter() - t0, tuple(arcs),
+        res, time.perf_counter() - t0, wT, gamma, energy_error, tuple(arcs),
     )  # fmt: skip
 
 
@@ -301,11 +329,14 @@ class PLSuperkink(Result):
     branch: str
     driving_force: float
     elapsed_s: float
+    p: float = math.nan  # half the decay rate ahead, √(12(V² − f′(w₊)))/(2V) (as fpucore.qc)
+    p_minus: float = math.nan  # the same behind
+    rayleigh_residual: float = math.nan  # |f₊ − f₋ − V²(w₊ − w₋)| / (|f₊| + |f₋|)
     arcs_plus: tuple = field(default=(), repr=False, compare=False)
     arcs_minus: tuple = field(default=(), repr=False, compare=False)
 
-    ERROR_FIELDS: ClassVar = ("driving_force",)
-    DERIVED: ClassVar = ("amplitude", "converged", "status", "message")
+    ERROR_FIELDS: ClassVar = ("driving_force", "rayleigh_residual")
+    DERIVED: ClassVar = ("amplitude", "w_center", "converged", "status", "message")
     EXCLUDE: ClassVar = ("law", "arcs_plus", "arcs_minus")
 
     @property
@@ -322,6 +353,15 @@ class PLSuperkink(Result):
         pos = xi >= 0
         out[pos] = _evaluate(list(self.arcs_plus), xi[pos])
         out[~pos] = _evaluate(list(self.arcs_minus), -xi[~pos])
+        return out
+
+    def dprofile(self, xi):
+        """w′(ξ)."""
+        xi = np.asarray(xi, dtype=float)
+        out = np.empty_like(xi)
+        pos = xi >= 0
+        out[pos] = _evaluate(list(self.arcs_plus), xi[pos], derivative=True)
+        out[~pos] = -_evaluate(list(self.arcs_minus), -xi[~pos], derivative=True)
         return out
 
     @property
@@ -345,9 +385,12 @@ def superkink(law, w_plus: float) -> PLSuperkink:
     wc = 0.5 * (sp.w_plus + sp.w_minus)
     ap = _half_orbit(law, sp.w_plus, V2, wc, sp.w_plus)
     am = _half_orbit(law, sp.w_plus, V2, wc, sp.w_minus)
+    half = lambda w: math.sqrt(12.0 * (V2 - float(law.df(w)))) / (2.0 * sp.V_SK)  # noqa: E731
+    fp, fm = float(law.f(sp.w_plus)), float(law.f(sp.w_minus))
+    rr = abs(fp - fm - V2 * (sp.w_plus - sp.w_minus)) / max(abs(fp) + abs(fm), EPS)
     return PLSuperkink(
         law, sp.V_SK, sp.w_plus, sp.w_minus, sp.branch, sp.driving_force,
-        time.perf_counter() - t0, tuple(ap), tuple(am),
+        time.perf_counter() - t0, half(sp.w_plus), half(sp.w_minus), rr, tuple(ap), tuple(am),
     )  # fmt: skip
 
 

@@ -1,0 +1,73 @@
+"""fpucore.qc's public functions route piecewise-linear laws to their closed forms (the general
+route integrates f″, zero between breakpoints, and returned wrong states); text = object."""
+
+import pytest
+
+from fpucore import ParameterError, qc
+from fpucore.law import TrilinearLaw, law_from_expression
+
+LAW = TrilinearLaw(0.5, 1.5, 1.0, 4.0, 0.2)
+TEXT = "trilinear(w1=0.5, w2=1.5, E1=1, E2=4, E3=0.2)"
+
+
+def trilinear_w_minus(wp, w1=0.5, w2=1.5, E1=1.0, E2=4.0, E3=0.2):
+    """The trilinear equal-area partner written out by hand (qc.piecewise module docstring)."""
+    A, B = E2 - E1, E2 - E3
+    return (A * w1 * (w1 - wp) - B * w2 * (w2 - wp)) / (A * (w1 - wp) - B * (w2 - wp))
+
+
+@pytest.mark.parametrize("wp", [0.3, -1.0, 2.0, 4.0])
+def test_public_qc_functions_use_the_closed_forms(wp):
+    sk = qc.superkink_from_w_plus(LAW, wp)
+    assert sk.w_minus == pytest.approx(trilinear_w_minus(wp), rel=1e-14)
+    V2 = (float(LAW.f(sk.w_minus)) - float(LAW.f(wp))) / (sk.w_minus - wp)
+    cp, vsk, cm = qc.sound_speeds(LAW, wp)
+    assert vsk == pytest.approx(V2**0.5, rel=1e-14) and sk.V == vsk
+    assert cp == pytest.approx(float(LAW.df(wp)) ** 0.5, rel=1e-15)
+    # c₋: chord slope to the corner at the far end of the hard regime
+    corner = 1.5 if wp < 0.5 else 0.5
+    c2 = (float(LAW.f(corner)) - float(LAW.f(wp))) / (corner - wp)
+    assert cm == pytest.approx(c2**0.5, rel=1e-14)
+    assert qc.w_minus_sonic(LAW, wp) == corner
+    (lo, mid), (mid2, hi) = qc.solitary_intervals(LAW, wp)
+    assert (lo, mid, mid2, hi) == (cp, vsk, vsk, cm)
+    for V in (0.5 * (cp + vsk), 0.5 * (vsk + cm)):
+        sw = qc.solitary(LAW, wp, V)
+        assert sw.converged and sw.amplitude > 0
+
+
+def test_text_gives_the_same_results_as_the_object():
+    law = law_from_expression(TEXT)
+    a = qc.solitary(law, 0.3, 1.7).as_dict()
+    b = qc.solitary(LAW, 0.3, 1.7).as_dict()
+    a.pop("elapsed_s"), b.pop("elapsed_s")
+    assert a == b
+
+
+def test_cli_qc_numbers_for_a_trilinear_law():
+    from fpucore.cli.qc import compute
+
+    out = compute(law_from_expression(TEXT), 0.3, 1.7)
+    assert out["superkink"]["w_minus"] == pytest.approx(trilinear_w_minus(0.3), rel=1e-14)
+    assert out["breakpoints"] == [0.5, 1.5] and out["solitary"]["kind"] == "tensile"
+
+
+def test_unported_functions_refuse_instead_of_guessing():
+    for fn, args in ((qc.superkink_from_V, (1.8,)), (qc.superkink_velocity_bounds, ())):
+        with pytest.raises(ParameterError) as e:
+            fn(LAW, *args)
+        assert e.value.name == "law" and "piecewise-linear" in str(e.value)
+    with pytest.raises(ParameterError) as e:
+        qc.superkink_from_w_plus(LAW, 1.0)  # inside the hard regime
+    assert e.value.name == "w_plus"
+
+
+def test_slopes_are_the_derivative_of_the_profiles():
+    import numpy as np
+
+    xi = np.linspace(-4, 4, 81) + 0.013
+    h = 1e-6
+    for wave in (qc.solitary(LAW, 0.3, 1.7), qc.solitary(LAW, 0.3, 1.85),
+                 qc.superkink_from_w_plus(LAW, 0.3)):  # fmt: skip
+        fd = (wave.profile(xi + h) - wave.profile(xi - h)) / (2 * h)
+        assert np.max(np.abs(wave.dprofile(xi) - fd)) <= 1e-8
