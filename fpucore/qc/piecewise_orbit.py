@@ -257,8 +257,10 @@ def _turning_point(law, wB: float, V2: float, d: float, count: int = 1):
     b = law._b
     j = int(law.piece(wB))
     fB = float(law.f(wB))
-    while 0 <= j <= b.size:
+    while True:
         j += 1 if d > 0 else -1
+        if not 0 <= j <= b.size:
+            break
         lo = b[j - 1] if j > 0 else -math.inf
         hi = b[j] if j < b.size else math.inf
         a = lo if d > 0 else hi

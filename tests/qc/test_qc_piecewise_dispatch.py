@@ -71,3 +71,51 @@ def test_slopes_are_the_derivative_of_the_profiles():
                  qc.superkink_from_w_plus(LAW, 0.3)):  # fmt: skip
         fd = (wave.profile(xi + h) - wave.profile(xi - h)) / (2 * h)
         assert np.max(np.abs(wave.dprofile(xi) - fd)) <= 1e-8
+
+
+def test_solitary_with_a_single_turning_point():
+    """V low in (c₊, V_SK) on a zero-modulus background: Q has one zero beyond w_M's piece
+    (w_T is NaN), once an IndexError."""
+    import math
+
+    law = TrilinearLaw(0.5, 1.5, 0.0, 4.0, 0.2)
+    sw = qc.solitary(law, 0.2, 0.35)
+    assert sw.converged and sw.c_plus == 0.0 and (math.isnan(sw.w_T) or sw.w_T > sw.w_M)
+
+
+@pytest.mark.parametrize(
+    "law",
+    [
+        LAW,
+        TrilinearLaw(0.5, 1.5, 0.2, 4.0, 1.0),
+        TrilinearLaw(0.5, 1.5, 0.0, 4.0, 0.2),
+        TrilinearLaw(0.5, 1.5, 1.0, 4.0, 0.0),
+        TrilinearLaw(0.1, 3.0, 2.0, 2.5, 1.9),
+    ],
+)
+def test_sweep_states_and_velocities_answer_or_refuse(law):
+    """Over each superkink range and both velocity intervals: a converged closed-form wave
+    whose tails decay (V² > f′(w_B)) and whose amplitude is below the superkink's, or a
+    ParameterError — never another exception."""
+    import math
+
+    import numpy as np
+
+    from fpucore.qc import piecewise as P
+
+    for branch in ("lower", "upper"):
+        lo, hi = P.superkink_w_plus_range(law, branch)
+        lo, hi = (max(lo, hi - 6.0), hi) if branch == "lower" else (lo, min(hi, lo + 6.0))
+        for wp in np.linspace(lo, hi, 9)[1:-1]:
+            if np.any(np.isclose(law._b, wp)):
+                continue
+            sk = qc.superkink_from_w_plus(law, wp)
+            cp, vsk, cm = qc.sound_speeds(law, wp)
+            for V in np.concatenate((np.linspace(cp, vsk, 7)[1:-1], np.linspace(vsk, cm, 7)[1:-1])):
+                try:
+                    sw = qc.solitary(law, wp, V)
+                except ParameterError:
+                    continue
+                assert sw.converged and math.isfinite(sw.energy)
+                assert V * V > float(law.df(sw.w_B))
+                assert sw.amplitude < sk.amplitude + 1e-12
