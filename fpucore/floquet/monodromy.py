@@ -44,7 +44,7 @@ import scipy.linalg
 
 from fpucore.errors import ParameterError
 from fpucore.floquet.kernels import deflate_sums, extract_deflated, scatter_shifted
-from fpucore.law import require_law
+from fpucore.law import require_law, require_smooth_dynamics
 from fpucore.parallel.threads import on_budget
 from fpucore.wave import period_map as pm
 
@@ -106,6 +106,7 @@ def base_state(r):
     per period (w = 1e6 once overflowed the monodromy, which reached LAPACK as "illegal
     value")."""
     law = require_law(_attr(r, "law", lambda x: x), "r.law")
+    require_smooth_dynamics(law, "Floquet spectra")
     V = _attr(r, "V", float)
     w = _attr(r, "w", _strain_array)
     wd = _attr(r, "wdot", _strain_array)

@@ -11,7 +11,7 @@ handle ``(law_id, params)`` that the Numba kernels in :mod:`.kernels` take.
     ·  piecewise (continuous piecewise-linear laws, the soft–hard–soft trilinear family)
 """
 
-from .base import HardeningSofteningLaw, require_law
+from .base import HardeningSofteningLaw, require_law, require_smooth_dynamics
 from .cubic import CubicLaw
 from .expression import law_from_expression
 from .kernels import LAW_CUBIC, LAW_POLY, LAW_PWL, POLY_IDS, ddforce, dforce, force, forces_into
@@ -23,6 +23,7 @@ __all__ = [
     "expression_of",
     "HardeningSofteningLaw",
     "require_law",
+    "require_smooth_dynamics",
     "CubicLaw",
     "PolynomialLaw",
     "law_from_expression",

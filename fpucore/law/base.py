@@ -63,3 +63,21 @@ def require_law(law, name: str = "law") -> HardeningSofteningLaw:
             name, type(law).__name__, "a force law such as fpucore.CubicLaw(a=-1, b=10)"
         )
     return law
+
+
+def require_smooth_dynamics(law: HardeningSofteningLaw, route: str) -> HardeningSofteningLaw:
+    """Refuse a law with corners (a piecewise-linear law's breakpoints) on a route whose
+    integrator does not locate the crossings yet: its step-doubling and residual error bars assume
+    the method's order, which a corner crossed inside a step lowers (to ~2.5 for DOP853, measured
+    in tests/wave/test_wave_period_events.py), so its digits would be claimed, not earned."""
+    corners = getattr(law, "breakpoints", ())
+    if corners:
+        raise ParameterError(
+            "law",
+            str(law),
+            "a smooth law (cubic, polynomial or expression)",
+            f"{route} of a piecewise-linear law need event location at its corners "
+            f"{tuple(round(c, 12) for c in corners)}, which only the base period map has so far; "
+            "its QC quantities (fpucore.qc) and compact waves (fpucore.wave.compact) are exact",
+        )
+    return law

@@ -15,7 +15,7 @@ from scipy.optimize import brentq
 
 from fpucore.budget import fmt_bytes, require_memory, require_time_budget
 from fpucore.errors import ParameterError, require_finite, require_int
-from fpucore.law import HardeningSofteningLaw, require_law
+from fpucore.law import HardeningSofteningLaw, require_law, require_smooth_dynamics
 from fpucore.simulate.steppers import H_OMEGA_AT_1E10, METHODS, STEPPERS
 
 BOUNDARIES = ("fixed_particles", "fixed_strain", "free")
@@ -234,6 +234,7 @@ def configure(
     """Validate every option of a run of L sites to ``t_end`` and estimate its memory (refused
     above the budget, ParameterError naming the argument whose size dominates) and work, before
     anything is allocated.  ``n_extra``: full-resolution profiles requested at extra times."""
+    require_smooth_dynamics(require_law(law), "simulations")
     t_end = require_positive("t_end", t_end, 1e7)
     if boundary not in BOUNDARIES:
         raise ParameterError("boundary", boundary, " | ".join(BOUNDARIES))
