@@ -7,14 +7,18 @@ handle ``(law_id, params)`` that the Numba kernels in :mod:`.kernels` take.
     computable range shared by every law)  →  polynomial (Σ c_k w^k, hypotheses of §2 checked)
     →  cubic  ·  expression_bounds (degree, exponents, sizes of a text, before any algebra)
     →  expansion (its coefficients by exact arithmetic)
-    →  expression (text → law)
+    →  expression (text → law: a polynomial, else a smooth law)
+    ·  smooth_parse (allow-listed AST → SymPy) → smooth_eval (closures: float, longdouble,
+    mpmath) → smooth_class (α, β, w*) → chebyshev (the LAW_CHEB data and its measured error)
+    → smooth (SmoothLaw) → presets (the explorer's laws)
 """
 
 from .base import HardeningSofteningLaw, require_law
 from .cubic import CubicLaw
 from .expression import law_from_expression
-from .kernels import LAW_CUBIC, LAW_POLY, POLY_IDS, ddforce, dforce, force, forces_into
+from .kernels import LAW_CHEB, LAW_CUBIC, LAW_POLY, POLY_IDS, ddforce, dforce, force, forces_into
 from .polynomial import PolynomialLaw, expression_of, real_roots
+from .smooth import SmoothLaw
 
 __all__ = [
     "expression_of",
@@ -22,6 +26,8 @@ __all__ = [
     "require_law",
     "CubicLaw",
     "PolynomialLaw",
+    "SmoothLaw",
+    "LAW_CHEB",
     "law_from_expression",
     "real_roots",
     "LAW_CUBIC",

@@ -1,0 +1,160 @@
+"""Evaluation of a parsed smooth law without ``eval``: a SymPy expression → a tree of closures.
+
+Three back ends walk the same tree: NumPy float64 (the law's ``f, df, ddf``), NumPy longdouble
+(the 64-bit-mantissa values the Chebyshev representation is fitted to, :mod:`.chebyshev`) and
+mpmath at any precision (the extended-precision references of the error measurement and of the
+roots α, β, w*).  :func:`diagnose` walks the tree in Python floats at one strain and names the
+first operation that leaves the real numbers or the float range (log of a non-positive number,
+a fractional power of a negative one, exp overflow, division by zero).
+"""
+
+from __future__ import annotations
+
+import math
+
+import mpmath
+import numpy as np
+import sympy as sp
+
+ALLOWED = (sp.exp, sp.log, sp.tanh, sp.sinh, sp.cosh, sp.atan)
+
+
+class UnsupportedNode(ValueError):
+    """A SymPy node outside the allow-list (e.g. Abs from sqrt(w**2))."""
+
+
+def compile_tree(expr, w, values: dict, backend: str):
+    """A function x ↦ expr(x) on the back end ``"float"``, ``"long"`` (NumPy arrays) or ``"mp"``
+    (one mpmath number at the current mpmath precision); named constants from ``values``
+    ({Symbol: float})."""
+    if backend == "mp":
+        num = lambda z: mpmath.mpf(z) if not isinstance(z, sp.Rational) else (  # noqa: E731
+            mpmath.mpf(z.p) / z.q)
+        fns = {sp.exp: mpmath.exp, sp.log: mpmath.log, sp.tanh: mpmath.tanh,
+               sp.sinh: mpmath.sinh, sp.cosh: mpmath.cosh, sp.atan: mpmath.atan}  # fmt: skip
+    else:
+        dt = np.float64 if backend == "float" else np.longdouble
+
+        def num(z):
+            if isinstance(z, sp.Rational):
+                return dt(str(z.p)) / dt(str(z.q))
+            return dt(str(sp.Float(z, 25)))
+
+        fns = {sp.exp: np.exp, sp.log: np.log, sp.tanh: np.tanh, sp.sinh: np.sinh,
+               sp.cosh: np.cosh, sp.atan: np.arctan}  # fmt: skip
+    mp = backend == "mp"
+    dt = None if mp else (np.float64 if backend == "float" else np.longdouble)
+
+    def build(e):
+        if e == w:
+            return lambda x: x
+        if e.is_Symbol:
+            c = mpmath.mpf(values[e]) if mp else dt(values[e])
+            return lambda x: c
+        if e.is_Number or e.is_NumberSymbol:
+            if mp:
+                c = num(e) if isinstance(e, sp.Rational) else mpmath.mpf(sp.N(e, mpmath.mp.dps + 5))
+            else:
+                c = num(e) if isinstance(e, sp.Rational) else num(sp.N(e, 25))
+            return lambda x: c
+        if e.is_Add:
+            parts = [build(a) for a in e.args]
+
+            def add(x):
+                acc = parts[0](x)
+                for p in parts[1:]:
+                    acc = acc + p(x)
+                return acc
+
+            return add
+        if e.is_Mul:
+            parts = [build(a) for a in e.args]
+
+            def mul(x):
+                acc = parts[0](x)
+                for p in parts[1:]:
+                    acc = acc * p(x)
+                return acc
+
+            return mul
+        if e.is_Pow:
+            base, ex = build(e.base), e.exp
+            if ex.is_Integer:
+                k = int(ex)
+                if mp:
+                    return lambda x: mpmath.power(base(x), k)
+                if k == 2:
+                    return lambda x: (lambda b: b * b)(base(x))
+                if k == -1:
+                    return lambda x: 1 / base(x)
+                return lambda x: base(x) ** k if k > 0 else 1 / base(x) ** (-k)
+            if ex.is_Rational:
+                if ex == sp.Rational(1, 2):
+                    return (lambda x: mpmath.sqrt(base(x))) if mp else (lambda x: np.sqrt(base(x)))
+                if ex == sp.Rational(-1, 2):
+                    return (lambda x: 1 / mpmath.sqrt(base(x))) if mp else (
+                        lambda x: 1 / np.sqrt(base(x)))
+                r = num(ex)
+                return (lambda x: mpmath.power(base(x), r)) if mp else (
+                    lambda x: np.power(base(x), r))
+            pe = build(ex)  # an exponent with named constants
+            return (lambda x: mpmath.power(base(x), pe(x))) if mp else (
+                lambda x: np.power(base(x), pe(x)))
+        fn = fns.get(e.func)
+        if fn is None or len(e.args) != 1:
+            raise UnsupportedNode(f"{e.func.__name__} is not a smooth function of the allow-list")
+        arg = build(e.args[0])
+        return lambda x: fn(arg(x))
+
+    return build(expr)
+
+
+def _reason(e, w, x: float, values: dict) -> tuple[float, str | None]:
+    """(value, None) or (nan, reason) for one float x: the first failing operation, innermost."""
+    if e == w:
+        return x, None
+    if e.is_Symbol:
+        return float(values[e]), None
+    if e.is_Number or e.is_NumberSymbol:
+        return float(e), None
+    vals = []
+    for a in e.args:
+        v, why = _reason(a, w, x, values)
+        if why:
+            return math.nan, why
+        vals.append(v)
+    txt = sp.sstr(e)
+    txt = txt if len(txt) <= 40 else txt[:37] + "..."
+    try:
+        if e.is_Add:
+            out = math.fsum(vals)
+        elif e.is_Mul:
+            out = math.prod(vals)
+        elif e.is_Pow:
+            b, k = vals
+            if b == 0.0 and k < 0:
+                return math.nan, f"division by zero in {txt}"
+            if b < 0 and not float(k).is_integer():
+                return math.nan, (f"a fractional power of a negative number in {txt} (base "
+                                  f"{b:.6g})")  # fmt: skip
+            out = b**k
+        elif e.func == sp.log:
+            if vals[0] <= 0:
+                return math.nan, f"log of a non-positive number in {txt} (argument {vals[0]:.6g})"
+            out = math.log(vals[0])
+        else:
+            out = {sp.exp: math.exp, sp.tanh: math.tanh, sp.sinh: math.sinh, sp.cosh: math.cosh,
+                   sp.atan: math.atan}[e.func](vals[0])  # fmt: skip
+    except OverflowError:
+        return math.nan, f"overflow of {txt} (exceeds the float range)"
+    except ZeroDivisionError:
+        return math.nan, f"division by zero in {txt}"
+    if isinstance(out, complex) or not math.isfinite(out):
+        return math.nan, f"{txt} is not a finite real number"
+    return float(out), None
+
+
+def diagnose(expr, w, x: float, values: dict) -> str:
+    """Why expr is not a finite real number at w = x (the first failing operation)."""
+    why = _reason(expr, w, float(x), values)[1]
+    return why or "a non-finite intermediate result"
