@@ -10,8 +10,8 @@ Built in four steps, each refused with :class:`~fpucore.errors.ParameterError` (
    computable range of :mod:`.scale`; a value that is not a finite real number inside (α, β)
    (log of a negative number, a fractional power of a negative number, exp overflow) names the
    operation and the strain;
-3. the represented interval [lo, hi] = [α − W/2, β + W/2], W = β − max(α, −β) (so α = −∞ gives
-   lo = −β − W/2), shrunk to stay inside the domain of the expression: it holds every state of
+3. the represented interval [lo, hi] = [α − W/2, β + W/2], W = β − α (α = −∞: α replaced by
+   −β), shrunk to stay inside the domain of the expression: it holds every state of
    the QC and discrete waves (strains in [α, β]), of the Floquet spectra of those waves, and of
    simulations guarded by the convex interval; simulations with ``guard='bounded'`` are
    stopped at its ends;
@@ -159,7 +159,7 @@ class SmoothLaw(HardeningSofteningLaw):
             x = float(lo_probe[pv_bad][0])
             raise ClassFailure(f"f' is not finite at w = {x:.6g} inside the convex interval: "
                                f"{diag_df(x)}")  # fmt: skip
-        w_ref = max(alpha, -beta)
+        w_ref = alpha if math.isfinite(alpha) else -beta
         W = beta - w_ref
         lo, hi = w_ref - MARGIN * W, beta + MARGIN * W
         lo, hi = self._domain(fl, lo, hi, alpha, beta, diag_f)
@@ -177,7 +177,9 @@ class SmoothLaw(HardeningSofteningLaw):
         try:
             rep = cheb.build(lg, mp[:3], lo, hi)
         except ValueError as exc:
-            raise ClassFailure(f"the law cannot be represented on [{lo:.6g}, {hi:.6g}]: {exc}")
+            raise ClassFailure(
+                f"the law cannot be represented on [{lo:.6g}, {hi:.6g}]: {exc}"
+            ) from None
         set_(self, "interval", (float(lo), float(hi)))
         set_(self, "_rep", rep)
 

@@ -63,8 +63,10 @@ def convex_end(df, mp_df, mp_ddf, sign: float, diagnose) -> tuple[float, float, 
     bad = ~(v > 0)
     if not np.any(bad):
         if sign > 0:
-            raise ClassFailure("no softening: f'(w) > 0 for every w in (0, 1e30], so the convex "
-                               "interval has no upper end beta and no superkink exists")  # fmt: skip
+            raise ClassFailure(
+                "no softening: f'(w) > 0 for every w in (0, 1e30], so the convex interval has "
+                "no upper end beta and no superkink exists"
+            )
         return -math.inf, 0.0, False
     j = int(np.argmax(bad))
     if not np.isfinite(v[j]):
@@ -93,8 +95,10 @@ def inflection(ddf, mp_ddf, mp_dddf, alpha: float, beta: float, n: int) -> tuple
     iv = f"(alpha, beta) = ({alpha:.6g}, {beta:.6g})"
     if idx.size == 0:
         what = "hardening only (f'' > 0)" if ss.size and ss[0] > 0 else "softening only (f'' < 0)"
-        raise ClassFailure(f"f'' does not change sign on {iv}: {what}; a hardening-softening "
-                           "law needs f'' > 0 on (alpha, w*) and f'' < 0 on (w*, beta)")  # fmt: skip
+        raise ClassFailure(
+            f"f'' does not change sign on {iv}: {what}; a hardening-softening law needs "
+            "f'' > 0 on (alpha, w*) and f'' < 0 on (w*, beta)"
+        )
     if idx.size > 1:
         raise ClassFailure(f"f'' changes sign {idx.size} times on {iv}: at w ~ {where}; the law "
                            "must change from hardening to softening exactly once")  # fmt: skip
