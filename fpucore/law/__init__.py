@@ -13,7 +13,7 @@ handle ``(law_id, params)`` that the Numba kernels in :mod:`.kernels` take.
     → smooth (SmoothLaw) → presets (the explorer's laws)
 """
 
-from .base import HardeningSofteningLaw, require_law
+from .base import HardeningSofteningLaw, interval_note, require_law
 from .cubic import CubicLaw
 from .expression import law_from_expression
 from .kernels import LAW_CHEB, LAW_CUBIC, LAW_POLY, POLY_IDS, ddforce, dforce, force, forces_into
@@ -24,6 +24,7 @@ __all__ = [
     "expression_of",
     "HardeningSofteningLaw",
     "require_law",
+    "interval_note",
     "CubicLaw",
     "PolynomialLaw",
     "SmoothLaw",
