@@ -52,14 +52,19 @@ MARGIN = 0.5  # represented interval: W/2 beyond each end of the convex interval
 
 @functools.lru_cache(maxsize=64)
 def _symbolic(text: str, names: frozenset):
-    """(w, symbols, (f, f′, f″, f‴)) — SymPy derivatives, cached per text."""
+    """(w, symbols, (f, f′, f″)) — SymPy derivatives, cached per text."""
     import sympy as sp
 
+    from fpucore.law.smooth_eval import UnsupportedNode, derivative
+
     expr, w, syms = parse_smooth(text, names)
-    d1 = sp.diff(expr, w)
-    d2 = sp.diff(d1, w)
-    d3 = sp.diff(d2, w)
-    return w, syms, (expr, d1, d2, d3)
+    try:
+        d1 = derivative(expr, w)
+        d2 = derivative(d1, w) if d1 is not None else None
+    except UnsupportedNode as exc:
+        raise ParameterError("expression", abbreviate(text), VALID, str(exc)) from None
+    zero = sp.Integer(0)
+    return w, syms, (expr, d1 if d1 is not None else zero, d2 if d2 is not None else zero)
 
 
 def _constants(constants) -> tuple[tuple[str, float], ...]:
@@ -111,7 +116,7 @@ class SmoothLaw(HardeningSofteningLaw):
 
         try:
             fl = tuple(compile_tree(e, w, values, "float") for e in exprs)
-            lg = tuple(compile_tree(e, w, values, "long") for e in exprs[:3])
+            lg = tuple(compile_tree(e, w, values, "long") for e in exprs)
             mp = tuple(compile_tree(e, w, values, "mp") for e in exprs)
         except UnsupportedNode as exc:
             self._refuse(str(exc))
@@ -131,7 +136,7 @@ class SmoothLaw(HardeningSofteningLaw):
         import mpmath
 
         set_ = object.__setattr__
-        f, df, ddf, _ = fl
+        f, df, ddf = fl
         with np.errstate(all="ignore"):
             d0 = float(df(np.float64(0.0)))
         if not math.isfinite(d0):
@@ -164,7 +169,7 @@ class SmoothLaw(HardeningSofteningLaw):
         lo, hi = w_ref - MARGIN * W, beta + MARGIN * W
         lo, hi = self._domain(fl, lo, hi, alpha, beta, diag_f)
         n_grid = 8 * cheb.MAX_PANELS
-        w_star, w_star_err = inflection(ddf, mp[2], mp[3], alpha if math.isfinite(alpha) else lo,
+        w_star, w_star_err = inflection(ddf, mp[2], None, alpha if math.isfinite(alpha) else lo,
                                         beta, n_grid)  # fmt: skip
         set_(self, "alpha", alpha)
         set_(self, "beta", beta)
@@ -175,7 +180,7 @@ class SmoothLaw(HardeningSofteningLaw):
         c2 = float(df(np.float64(w_star)))
         require_computable("expression", self.text, alpha, beta, w_star, c2, "f'(w*)")
         try:
-            rep = cheb.build(lg, mp[:3], lo, hi)
+            rep = cheb.build(lg, mp, lo, hi)
         except ValueError as exc:
             raise ClassFailure(
                 f"the law cannot be represented on [{lo:.6g}, {hi:.6g}]: {exc}"
