@@ -18,7 +18,8 @@ largest difference between the Clenshaw evaluation in float64 (the kernel's own 
 the longdouble exact expression at 3 points per Chebyshev node interval, relative to the
 function's largest magnitude on [lo, hi] — is below :data:`TARGET` (at most :data:`MAX_PANELS`).
 The longdouble reference is itself checked against mpmath at 30 digits at :data:`N_MP` points;
-its own error is added to the stored error.
+its own error is added; the stored error is that measurement × :data:`SAFETY` + 8 eps × scale
+(sampled, not a bound: the rounding of Clenshaw between the check points).
 """
 
 from __future__ import annotations
@@ -35,6 +36,8 @@ TARGET = 4e-14  # relative error of f, f′, f″ at which panel doubling stops
 ACCEPT = 1e-9  # relative error above which a law is refused (cannot be represented)
 N_MP = 24  # points of the 30-digit check
 MP_DIGITS = 30
+SAFETY = 2.0
+EPS = float(np.finfo(float).eps)
 
 
 @dataclass(frozen=True)
@@ -175,6 +178,9 @@ def build(long_fns, mp_fns, lo: float, hi: float) -> Representation:
             rv = clenshaw(c, lo, hi, pts)
             mp_err[k] = max(float(np.max(np.abs(lv - ref))), 0.0)
             errs[k] = max(errs[k] + mp_err[k], float(np.max(np.abs(rv - ref))))
+    # a measurement on sample points, not a bound: x SAFETY, plus the rounding of one Clenshaw
+    # evaluation anywhere (8 eps of the function's scale)
+    errs = [SAFETY * e + 8 * EPS * sc for e, sc in zip(errs, scales)]
     params = np.concatenate(
         [np.array([lo, hi, npan, NCOEF, npan / (hi - lo), 0.0, 0.0, 0.0])]
         + [c.ravel() for c in coef]

@@ -60,7 +60,7 @@ def convex_end(df, mp_df, mp_ddf, sign: float, diagnose) -> tuple[float, float, 
     """(end, error, finite?) of the convex interval on the side ``sign`` of 0."""
     x = sign * GRID
     v = _finite(df, x)
-    bad = ~(v > 0)
+    bad = ~(v > 0) | ~np.isfinite(v)
     if not np.any(bad):
         if sign > 0:
             raise ClassFailure(

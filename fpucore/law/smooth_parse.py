@@ -160,11 +160,28 @@ class _Walk:
         if isinstance(node, ast.Call) and isinstance(node.func, ast.Name):
             if node.func.id in FUNCS and len(node.args) == 1 and not node.keywords:
                 arg = self(node.args[0], depth + 1)
+                if not arg.free_symbols:
+                    self.constant_domain(node.func.id, arg)
                 if node.func.id == "atan":
                     return sp.atan(arg)
                 return getattr(sp, node.func.id)(arg)
             refuse(self.text, f"{node.func.id}(...) takes exactly one argument")
         refuse(self.text, f"could not parse: {type(node).__name__} is not allowed")
+
+    def constant_domain(self, fn: str, arg) -> None:
+        """A function of a number: real and finite, or refused with the reason."""
+        try:
+            x = float(arg)
+        except (TypeError, ValueError, OverflowError):
+            refuse(self.text, f"{fn}({abbreviate(str(arg), 30)}): the argument is not a finite "
+                              "real number")  # fmt: skip
+        if fn == "log" and not x > 0:
+            refuse(self.text, f"log of a non-positive number: log({abbreviate(str(arg), 30)})")
+        if fn == "sqrt" and not x >= 0:
+            refuse(self.text, f"sqrt of a negative number: sqrt({abbreviate(str(arg), 30)})")
+        if fn in ("exp", "sinh", "cosh") and abs(x) > 709.0:
+            refuse(self.text, f"overflow of {fn}({abbreviate(str(arg), 30)}) (exceeds the "
+                              "float range)")  # fmt: skip
 
     def number(self, node):
         v = node.value

@@ -32,10 +32,13 @@ def gauss_legendre01(n: int) -> tuple[np.ndarray, np.ndarray]:
 
 def inner_rule(law: HardeningSofteningLaw) -> tuple[np.ndarray, np.ndarray]:
     """Nodes for the t-integrals: exact for a polynomial law (integrands have degree ≤ n),
-    32 nodes otherwise (spectrally accurate for analytic f)."""
+    ``law.quadrature_nodes`` for a smooth law (converged on its convex interval, see
+    :attr:`fpucore.law.SmoothLaw.quadrature_nodes`), 32 otherwise."""
     if isinstance(law, PolynomialLaw):
         return gauss_legendre01(law.degree // 2 + 2)
-    return gauss_legendre01(3 if isinstance(law, CubicLaw) else 32)
+    if isinstance(law, CubicLaw):
+        return gauss_legendre01(3)
+    return gauss_legendre01(int(getattr(law, "quadrature_nodes", 32)))
 
 
 # =============================================================================== integrals
