@@ -47,6 +47,7 @@ from fpucore.law.smooth_parse import (
     parse_smooth,
 )
 
+EPS = float(np.finfo(float).eps)
 MARGIN = 0.5  # represented interval: W/2 beyond each end of the convex interval
 
 
@@ -282,7 +283,7 @@ class SmoothLaw(HardeningSofteningLaw):
         n = 32
         while n < 1024:
             (v1, s1), (v2, _s2) = rule(n), rule(2 * n)
-            if abs(v1 - v2) <= 1e-14 * s1:
+            if abs(v1 - v2) <= 4 * EPS * s1:
                 break
             n *= 2
         return n

@@ -102,9 +102,14 @@ def tangency_defect(law, a, d):
 
 
 # =============================================================================== roots
-def bracketed_root(F: Callable[[float], float], a: float, b: float) -> tuple[float, float]:
+def bracketed_root(
+    F: Callable[[float], float], a: float, b: float, noisy: bool = False
+) -> tuple[float, float]:
     """Root of F in [a, b] (F(a), F(b) of opposite signs) and its error bar: the larger of the
-    half-width of the smallest sign-change bracket found around it and |F(x)|/|F′(x)|."""
+    half-width of the smallest sign-change bracket found around it and |F(x)|/|F′(x)|.
+    ``noisy`` (a smooth law, whose f is an expression evaluated in float64 with rounding that
+    does not vanish at the root): plus (2 × the scatter of F about its secant at 9 points
+    within ±16 ulp of x + 64 eps max(|F(a)|, |F(b)|)) / |F′(x)|."""
     fa, fb = F(a), F(b)
     if fa == 0.0:
         return a, 0.0
@@ -122,7 +127,14 @@ def bracketed_root(F: Callable[[float], float], a: float, b: float) -> tuple[flo
         d *= 2.0
     slope = (fr - fl) / (min(hi, x + d) - max(lo, x - d))
     resid = abs(fx / slope) if slope != 0 else d
-    return x, max(d, resid)
+    err = max(d, resid)
+    if noisy and slope != 0:
+        h = 4 * EPS * max(abs(x), EPS * scale)
+        pts = [x + k * h for k in range(-4, 5)]
+        scatter = max(abs(F(p) - fx - slope * (p - x)) for p in pts)
+        # systematic rounding of the expression (not seen as scatter): 64 eps of F's scale
+        err += (2.0 * scatter + 64 * EPS * max(abs(fa), abs(fb))) / abs(slope)
+    return x, err
 
 
 def march_outward(F, x0: float, direction: float, h0: float, n: int = 120):
@@ -152,6 +164,12 @@ def bracket_to_end(F, x0: float, end: float, direction: float, h0: float):
 
 
 # =============================================================================== validation
+def is_smooth(law) -> bool:
+    """A law evaluated from an expression (:class:`fpucore.law.SmoothLaw`): its roots carry the
+    rounding scatter of the expression (``bracketed_root(..., noisy=True)``)."""
+    return getattr(law, "representation_error", None) is not None
+
+
 def search_direction(law, w_plus: float) -> float:
     """+1 on the lower branch (w₊ < w*, partner w₋ > w*), −1 on the upper branch."""
     return 1.0 if w_plus < law.w_star else -1.0
