@@ -37,6 +37,9 @@ ACCEPT = 1e-9  # relative error above which a law is refused (cannot be represen
 N_MP = 24  # points of the 30-digit check
 MP_DIGITS = 30
 SAFETY = 2.0
+# still unresolved here (error > 1 %) means the law varies on a scale the 4096 panels will not
+# reach either (convergence is ~ (h/scale)^NCOEF once resolved): refused at once, not after 4 s
+UNRESOLVED_PANELS, UNRESOLVED = 256, 1e-2
 EPS = float(np.finfo(float).eps)
 
 
@@ -159,6 +162,11 @@ def build(long_fns, mp_fns, lo: float, hi: float) -> Representation:
         rel = [e / s if s > 0 else e for e, s in zip(errs, scales)]
         if max(rel) <= TARGET or npan >= MAX_PANELS:
             break
+        if npan >= UNRESOLVED_PANELS and max(rel) > UNRESOLVED:  # refuse fast (≤ 50 ms)
+            raise ValueError(
+                f"the law varies on a scale below 1/{npan * NCOEF} of [{lo:.6g}, {hi:.6g}] "
+                f"(relative error {max(rel):.2g} with {npan} panels): too steep to represent"
+            )
         npan *= 2
     if max(rel) > ACCEPT:
         which = ("f", "f'", "f''")[int(np.argmax(rel))]
