@@ -128,6 +128,11 @@ class SmoothLaw(HardeningSofteningLaw):
         except ClassFailure as exc:
             self._refuse(str(exc))
 
+    def __reduce__(self):
+        # rebuilt from its text and constants (the evaluators are closures, not picklable):
+        # a law sent to a worker process (atlas pool, Dask) arrives as the same law
+        return (_rebuild, (self.text, dict(self.constants)))
+
     def _refuse(self, reason: str):
         shown = self.text if not self.constants else (
             f"{self.text}; " + ", ".join(f"{n}={v:g}" for n, v in self.constants))
@@ -311,3 +316,7 @@ class SmoothLaw(HardeningSofteningLaw):
     def describe(self) -> str:
         tail = ", ".join(f"{n}={v:g}" for n, v in self.constants)
         return f"f(w) = {self.text}" + (f" with {tail}" if tail else "")
+
+
+def _rebuild(text: str, constants: dict) -> SmoothLaw:
+    return SmoothLaw(text, constants)
