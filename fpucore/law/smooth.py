@@ -102,6 +102,7 @@ class SmoothLaw(HardeningSofteningLaw):
     interval: tuple = field(init=False, default=(math.nan, math.nan))
     _rep: object = field(init=False, repr=False, compare=False, default=None)
     _fns: tuple = field(init=False, repr=False, compare=False, default=())
+    _trees: tuple = field(init=False, repr=False, compare=False, default=())
 
     def __post_init__(self):
         set_ = object.__setattr__
@@ -113,15 +114,19 @@ class SmoothLaw(HardeningSofteningLaw):
             raise ParameterError("expression", self.text, VALID, "the expression must be a string")
         w, syms, exprs = _symbolic(self.text, frozenset(n for n, _ in consts))
         values = {syms[n]: v for n, v in consts}
-        from fpucore.law.smooth_eval import UnsupportedNode, compile_tree, diagnose
+        from fpucore.law.smooth_eval import UnsupportedNode, diagnose, to_node
+        from fpucore.law.smooth_tree import compile_node
 
         try:
-            fl = tuple(compile_tree(e, w, values, "float") for e in exprs)
-            lg = tuple(compile_tree(e, w, values, "long") for e in exprs)
-            mp = tuple(compile_tree(e, w, values, "mp") for e in exprs)
+            trees = tuple(to_node(e, w) for e in exprs)
         except UnsupportedNode as exc:
             self._refuse(str(exc))
+        named = dict(consts)
+        fl = tuple(compile_node(t, named, "float") for t in trees)
+        lg = tuple(compile_node(t, named, "long") for t in trees)
+        mp = tuple(compile_node(t, named, "mp") for t in trees)
         set_(self, "_fns", fl)
+        set_(self, "_trees", trees)
         diag = lambda x: diagnose(exprs[1], w, x, values)  # noqa: E731
         try:
             self._check(fl, lg, mp, diag, lambda x: diagnose(exprs[0], w, x, values))
@@ -129,9 +134,11 @@ class SmoothLaw(HardeningSofteningLaw):
             self._refuse(str(exc))
 
     def __reduce__(self):
-        # rebuilt from its text and constants (the evaluators are closures, not picklable):
-        # a law sent to a worker process (atlas pool, Dask) arrives as the same law
-        return (_rebuild, (self.text, dict(self.constants)))
+        # the evaluators are closures (not picklable): rebuilt from the plain-tuple trees, so a
+        # law sent to another process (the explorer's server, an atlas worker) arrives as the
+        # same law without SymPy and without a new class check
+        state = {k: getattr(self, k) for k in _STATE}
+        return (_restore, (state,))
 
     def _refuse(self, reason: str):
         shown = self.text if not self.constants else (
@@ -318,5 +325,17 @@ class SmoothLaw(HardeningSofteningLaw):
         return f"f(w) = {self.text}" + (f" with {tail}" if tail else "")
 
 
-def _rebuild(text: str, constants: dict) -> SmoothLaw:
-    return SmoothLaw(text, constants)
+_STATE = ("text", "constants", "alpha", "beta", "w_star", "alpha_error", "beta_error",
+          "w_star_error", "interval", "_rep", "_trees")  # fmt: skip
+
+
+def _restore(state: dict) -> SmoothLaw:
+    from fpucore.law.smooth_tree import compile_node
+
+    law = object.__new__(SmoothLaw)
+    for k, v in state.items():
+        object.__setattr__(law, k, v)
+    object.__setattr__(law, "law_id", LAW_CHEB)
+    named = dict(state["constants"])
+    object.__setattr__(law, "_fns", tuple(compile_node(t, named, "float") for t in state["_trees"]))
+    return law

@@ -12,101 +12,52 @@ from __future__ import annotations
 
 import math
 
-import mpmath
-import numpy as np
 import sympy as sp
 
-ALLOWED = (sp.exp, sp.log, sp.tanh, sp.sinh, sp.cosh, sp.atan)
+from fpucore.law.smooth_tree import compile_node
 
 
 class UnsupportedNode(ValueError):
     """A SymPy node outside the allow-list (e.g. Abs from sqrt(w**2))."""
 
 
+_FN_NAMES = {sp.exp: "exp", sp.log: "log", sp.tanh: "tanh", sp.sinh: "sinh", sp.cosh: "cosh",
+             sp.atan: "atan"}  # fmt: skip
+
+
+def to_node(e, w) -> tuple:
+    """The SymPy expression as plain tuples (:mod:`.smooth_tree`); UnsupportedNode outside the
+    allow-list (e.g. Abs)."""
+    if e == w:
+        return ("w",)
+    if e.is_Symbol:
+        return ("const", e.name)
+    if isinstance(e, sp.Rational):
+        return ("num", int(e.p), int(e.q))
+    if e.is_Number or e.is_NumberSymbol:
+        return ("flt", str(sp.N(e, 40)))
+    if e.is_Add:
+        return ("add", tuple(to_node(a, w) for a in e.args))
+    if e.is_Mul:
+        return ("mul", tuple(to_node(a, w) for a in e.args))
+    if e.is_Pow:
+        base, ex = to_node(e.base, w), e.exp
+        if ex.is_Integer:
+            return ("ipow", base, int(ex))
+        if isinstance(ex, sp.Rational):
+            return ("rpow", base, int(ex.p), int(ex.q))
+        return ("pow", base, to_node(ex, w))
+    name = _FN_NAMES.get(e.func)
+    if name is None or len(e.args) != 1:
+        raise UnsupportedNode(f"{e.func.__name__} is not a smooth function of the allow-list")
+    return ("fn", name, to_node(e.args[0], w))
+
+
 def compile_tree(expr, w, values: dict, backend: str):
     """A function x ↦ expr(x) on the back end ``"float"``, ``"long"`` (NumPy arrays) or ``"mp"``
     (one mpmath number at the current mpmath precision); named constants from ``values``
     ({Symbol: float})."""
-    if backend == "mp":
-        num = lambda z: mpmath.mpf(z) if not isinstance(z, sp.Rational) else (  # noqa: E731
-            mpmath.mpf(z.p) / z.q)
-        fns = {sp.exp: mpmath.exp, sp.log: mpmath.log, sp.tanh: mpmath.tanh,
-               sp.sinh: mpmath.sinh, sp.cosh: mpmath.cosh, sp.atan: mpmath.atan}  # fmt: skip
-    else:
-        dt = np.float64 if backend == "float" else np.longdouble
-
-        def num(z):
-            if isinstance(z, sp.Rational):
-                return dt(str(z.p)) / dt(str(z.q))
-            return dt(str(sp.Float(z, 25)))
-
-        fns = {sp.exp: np.exp, sp.log: np.log, sp.tanh: np.tanh, sp.sinh: np.sinh,
-               sp.cosh: np.cosh, sp.atan: np.arctan}  # fmt: skip
-    mp = backend == "mp"
-    dt = None if mp else (np.float64 if backend == "float" else np.longdouble)
-
-    def build(e):
-        if e == w:
-            return lambda x: x
-        if e.is_Symbol:
-            c = mpmath.mpf(values[e]) if mp else dt(values[e])
-            return lambda x: c
-        if e.is_Number or e.is_NumberSymbol:
-            if mp:
-                c = num(e) if isinstance(e, sp.Rational) else mpmath.mpf(sp.N(e, mpmath.mp.dps + 5))
-            else:
-                c = num(e) if isinstance(e, sp.Rational) else num(sp.N(e, 25))
-            return lambda x: c
-        if e.is_Add:
-            parts = [build(a) for a in e.args]
-
-            def add(x):
-                acc = parts[0](x)
-                for p in parts[1:]:
-                    acc = acc + p(x)
-                return acc
-
-            return add
-        if e.is_Mul:
-            parts = [build(a) for a in e.args]
-
-            def mul(x):
-                acc = parts[0](x)
-                for p in parts[1:]:
-                    acc = acc * p(x)
-                return acc
-
-            return mul
-        if e.is_Pow:
-            base, ex = build(e.base), e.exp
-            if ex.is_Integer:
-                k = int(ex)
-                if mp:
-                    return lambda x: mpmath.power(base(x), k)
-                if k == 2:
-                    return lambda x: (lambda b: b * b)(base(x))
-                if k == -1:
-                    return lambda x: 1 / base(x)
-                return lambda x: base(x) ** k if k > 0 else 1 / base(x) ** (-k)
-            if ex.is_Rational:
-                if ex == sp.Rational(1, 2):
-                    return (lambda x: mpmath.sqrt(base(x))) if mp else (lambda x: np.sqrt(base(x)))
-                if ex == sp.Rational(-1, 2):
-                    return (lambda x: 1 / mpmath.sqrt(base(x))) if mp else (
-                        lambda x: 1 / np.sqrt(base(x)))
-                r = num(ex)
-                return (lambda x: mpmath.power(base(x), r)) if mp else (
-                    lambda x: np.power(base(x), r))
-            pe = build(ex)  # an exponent with named constants
-            return (lambda x: mpmath.power(base(x), pe(x))) if mp else (
-                lambda x: np.power(base(x), pe(x)))
-        fn = fns.get(e.func)
-        if fn is None or len(e.args) != 1:
-            raise UnsupportedNode(f"{e.func.__name__} is not a smooth function of the allow-list")
-        arg = build(e.args[0])
-        return lambda x: fn(arg(x))
-
-    return build(expr)
+    return compile_node(to_node(expr, w), {k.name: v for k, v in values.items()}, backend)
 
 
 def _reason(e, w, x: float, values: dict) -> tuple[float, str | None]:
