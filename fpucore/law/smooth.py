@@ -280,9 +280,11 @@ class SmoothLaw(HardeningSofteningLaw):
     @functools.cached_property
     def quadrature_nodes(self) -> int:
         """Gauss–Legendre nodes for the QC route's integrals over t ∈ [0, 1]
-        (:mod:`fpucore.qc.general_roots`): the smallest n in 32, 64, …, 1024 whose rule agrees
-        with the 2n rule to 1e-14 (relative to ∫|·|) on the hardest of them over the whole
-        convex interval, ∫₀¹ t(1−t) f″(a + t(β − a)) dt with a = max(α, lo)."""
+        (:mod:`fpucore.qc.general_roots`): the smallest n in 32, 64, …, 512 whose rule agrees
+        with the 2n rule to 1e-14 (relative to ∫|·|; or stops gaining: the rounding floor) on
+        the hardest of them over the whole convex interval, ∫₀¹ t(1−t) f″(a + t(β − a)) dt with
+        a = max(α, lo).  The root error bars' rounding term (64 eps of the integrand's scale,
+        :func:`fpucore.qc.general_roots.bracketed_root`) covers this tolerance."""
         a = max(self.alpha, self.interval[0])
         d = self.beta - a
 
@@ -292,12 +294,13 @@ class SmoothLaw(HardeningSofteningLaw):
             g = t * (1.0 - t) * self.ddf(a + t * d) * (0.5 * wt)
             return float(np.sum(g)), float(np.sum(np.abs(g)))
 
-        n = 32
-        while n < 1024:
+        n, prev = 32, math.inf
+        while n < 512:
             (v1, s1), (v2, _s2) = rule(n), rule(2 * n)
-            if abs(v1 - v2) <= 4 * EPS * s1:
+            diff = abs(v1 - v2)
+            if diff <= 1e-14 * s1 or diff >= 0.5 * prev:  # converged, or at its rounding floor
                 break
-            n *= 2
+            n, prev = 2 * n, diff
         return n
 
     # ----- constants
