@@ -98,3 +98,21 @@ def test_bounded_guard_stops_at_the_represented_interval():
     law = preset_law("tanh")
     lo, hi = simulate.restoring_interval(law)
     assert law.interval[0] <= lo < law.alpha and law.beta < hi <= law.interval[1]
+
+
+def test_floquet_refuses_a_state_outside_the_represented_interval():
+    from fpucore.errors import ParameterError
+
+    law = preset_law("exponential")
+    hi = law.interval[1]
+    state = floquet.HomogeneousState(law, 1.0, 5.0, 16)
+    fake = type("R", (), {})()
+    for k in ("law", "V", "N", "m"):
+        setattr(fake, k, getattr(state, k, None))
+    fake.law, fake.V = law, 5.0
+    fake.w = np.full(16, 1.0)
+    fake.w[3] = hi + 0.5
+    fake.wdot = np.zeros(16)
+    fake.w_left = fake.w_right = 1.0
+    with pytest.raises(ParameterError, match="represented interval"):
+        floquet.monodromy(fake, 16)
