@@ -48,6 +48,7 @@ from fpucore.law.smooth_parse import (
 )
 
 EPS = float(np.finfo(float).eps)
+MAX_QUAD_PANELS = 64  # composite Gauss–Legendre panels of the QC integrals (2048 nodes)
 MARGIN = 0.5  # represented interval: W/2 beyond each end of the convex interval
 
 
@@ -278,30 +279,43 @@ class SmoothLaw(HardeningSofteningLaw):
         return prim(np.asarray(w, dtype=float)) - prim(np.float64(0.0))
 
     @functools.cached_property
-    def quadrature_nodes(self) -> int:
-        """Gauss–Legendre nodes for the QC route's integrals over t ∈ [0, 1]
-        (:mod:`fpucore.qc.general_roots`): the smallest n in 32, 64, …, 512 whose rule agrees
-        with the 2n rule to 1e-14 (relative to ∫|·|; or stops gaining: the rounding floor) on
-        the hardest of them over the whole convex interval, ∫₀¹ t(1−t) f″(a + t(β − a)) dt with
-        a = max(α, lo).  The root error bars' rounding term (64 eps of the integrand's scale,
-        :func:`fpucore.qc.general_roots.bracketed_root`) covers this tolerance."""
+    def _quadrature(self) -> tuple[int, float]:
+        """(panels, relative error) of the composite Gauss–Legendre rule (32 nodes a panel) for
+        the QC route's integrals over t ∈ [0, 1] (:mod:`fpucore.qc.general_roots`): panels
+        double from 1 until the rule agrees with the doubled one to 1e-14 relative to ∫|·| (or
+        stops gaining near that level: its rounding floor) on the hardest of them over the whole
+        convex interval, ∫₀¹ t(1−t) f″(a + t(β − a)) dt, a = max(α, lo); at most
+        :data:`MAX_QUAD_PANELS`.  The error left (0 when converged) enters the QC root error
+        bars (:func:`fpucore.qc.general_roots.bracketed_root`)."""
         a = max(self.alpha, self.interval[0])
         d = self.beta - a
+        x0, w0 = np.polynomial.legendre.leggauss(32)
 
-        def rule(n):
-            x, wt = np.polynomial.legendre.leggauss(n)
-            t = 0.5 * (x + 1.0)
-            g = t * (1.0 - t) * self.ddf(a + t * d) * (0.5 * wt)
+        def rule(P):
+            t = ((np.arange(P)[:, None] + 0.5 * (x0[None, :] + 1.0)) / P).ravel()
+            wt = np.tile(w0, P) / (2.0 * P)
+            g = t * (1.0 - t) * self.ddf(a + t * d) * wt
             return float(np.sum(g)), float(np.sum(np.abs(g)))
 
-        n, prev = 32, math.inf
-        while n < 512:
-            (v1, s1), (v2, _s2) = rule(n), rule(2 * n)
-            diff = abs(v1 - v2)
-            if diff <= 1e-14 * s1 or diff >= 0.5 * prev:  # converged, or at its rounding floor
-                break
-            n, prev = 2 * n, diff
-        return n
+        P, prev = 1, math.inf
+        v1, s1 = rule(P)
+        while True:
+            v2, s2 = rule(2 * P)
+            diff = abs(v1 - v2) / max(s1, s2)
+            if diff <= 1e-14 or (diff <= 1e-11 and diff >= 0.5 * prev):
+                return P, 0.0 if diff <= 1e-14 else diff
+            if 2 * P >= MAX_QUAD_PANELS:
+                return 2 * P, diff
+            P, prev, v1, s1 = 2 * P, diff, v2, s2
+
+    @property
+    def quadrature_panels(self) -> int:
+        return self._quadrature[0]
+
+    @property
+    def quadrature_error(self) -> float:
+        """Relative error left in the QC route's t-integrals (0: converged to 1e-14)."""
+        return self._quadrature[1]
 
     # ----- constants
     def with_constants(self, **values) -> SmoothLaw | HardeningSofteningLaw:

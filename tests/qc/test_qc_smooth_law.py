@@ -79,3 +79,39 @@ def test_rayleigh_roots_and_solitary_turning_point(name):
                         - V2 / 2 * (w - wp) ** 2)  # fmt: skip
         ref_m = mpmath.findroot(GB, (ref_c, ref_s), solver="anderson")
         assert close(sw.w_M, ref_m, sw.w_M_error)
+
+
+STIFF = [
+    ("w + b*w**2 - c*w**3*exp(w/d)", {"b": 10, "c": 1, "d": 0.3}),  # steep exponential
+    ("w + k*(tanh((w - m)/s) + tanh(m/s)) - c*w**3",
+     {"c": 0.1, "k": 1, "m": 0.05, "s": 0.01}),  # narrow tanh transition
+    ("w + b*w**2 - c*w**3*exp(w/d)", {"b": 10, "c": 1, "d": 0.02}),  # w* near beta
+]  # fmt: skip
+
+
+def _mp_law(text, c):
+    c = {k: mpmath.mpf(repr(float(v))) for k, v in c.items()}
+    if "tanh" in text:
+        k, m, s = c["k"], c["m"], c["s"]
+        return lambda w: w + k * (mpmath.tanh((w - m) / s) + mpmath.tanh(m / s)) - c["c"] * w**3
+    return lambda w: w + c["b"] * w**2 - c["c"] * w**3 * mpmath.exp(w / c["d"])
+
+
+@pytest.mark.parametrize("text, consts", STIFF)
+def test_stiff_laws_partner_state_and_speed_within_error_bars(text, consts):
+    from fpucore.law import law_from_expression
+
+    law = law_from_expression(text, consts)
+    lo, hi = qc.superkink_w_plus_range(law, "lower")
+    w_plus = 0.5 * (max(lo, law.alpha) + hi)
+    sp = general.speeds(law, w_plus)
+    with mpmath.workdps(30):
+        f = _mp_law(text, consts)
+        wp = mpmath.mpf(w_plus)
+        fp = f(wp)
+        G = lambda w: -mpmath.quad(f, [wp, law.w_star, w]) + (w - wp) * (fp + f(w)) / 2  # noqa: E731
+        w_minus = mpmath.findroot(G, (mpmath.mpf(law.w_star), mpmath.mpf(law.beta)),
+                                  solver="anderson")  # fmt: skip
+        V = mpmath.sqrt((f(w_minus) - fp) / (w_minus - wp))
+        assert close(sp.w_minus, w_minus, sp.w_minus_error)
+        assert close(sp.V_SK, V, sp.V_SK_error)
