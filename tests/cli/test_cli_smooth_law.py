@@ -52,3 +52,10 @@ def test_help_describes_smooth_laws(capsys):
         main(["qc", "--help"])
     out = " ".join(capsys.readouterr().out.split())
     assert "--const NAME=VALUE" in out and "exp, log, sqrt, tanh" in out
+
+
+def test_top_level_help_names_law_and_const(capsys):
+    with pytest.raises(SystemExit):
+        main(["--help"])
+    out = " ".join(capsys.readouterr().out.split())
+    assert "--const NAME=VALUE" in out and "--law EXPR" in out
