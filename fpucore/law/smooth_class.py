@@ -17,7 +17,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.optimize import brentq
 
 EPS = float(np.finfo(float).eps)
 GRID = np.logspace(-30, 30, 961)
@@ -51,6 +50,8 @@ def polish(mp_fn, mp_dfn, x: float, a: float, b: float) -> tuple[float, float]:
 
 
 def root(fn, mp_fn, mp_dfn, a: float, b: float) -> tuple[float, float]:
+    from scipy.optimize import brentq  # SciPy on first use: `import fpucore.law` stays light
+
     g = lambda z: float(_finite(fn, z))  # noqa: E731
     x = brentq(g, a, b, xtol=4 * EPS * max(abs(a), abs(b)), rtol=4 * EPS, maxiter=500)
     return polish(mp_fn, mp_dfn, x, a, b)
