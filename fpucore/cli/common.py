@@ -65,11 +65,15 @@ def check_out_path(path: str, name: str = "--out", store: bool = False) -> None:
 
 
 LAW_HELP = (
-    "any hardening-softening polynomial f(w) of degree <= 16, instead of --a/--b, e.g. --law "
-    '"w + 10*w**2 - w**3 - 0.01*w**4" (an expression with a leading minus: --law="-..."), '
-    'or a piecewise-linear law: "trilinear(w1=0.5, w2=1.5, E1=1, E2=4, E3=0.2)" or '
+    "any hardening-softening law f(w), instead of --a/--b: a polynomial of degree <= 16 or a "
+    "smooth expression with exp, log, sqrt, tanh, sinh, cosh, atan, quotients, integer and "
+    "rational powers and named constants given by --const, e.g. --law "
+    '"w + b*w**2 - c*w**3*exp(w/d)" --const b=10 --const c=1 --const d=50 (an expression with '
+    'a leading minus: --law="-..."), or a piecewise-linear law: '
+    '"trilinear(w1=0.5, w2=1.5, E1=1, E2=4, E3=0.2)" or '
     '"piecewise(breakpoints=[0.5, 1.5], slopes=[1, 4, 0.2])"'
 )
+CONST_HELP = "a named constant of --law, NAME=VALUE (repeat for each constant)"
 DEFAULT_A, DEFAULT_B = -1.0, 10.0  # the paper's cubic
 
 
@@ -79,6 +83,8 @@ def add_law_args(p: argparse.ArgumentParser) -> None:
     p.add_argument("--a", type=float, default=None, help="cubic coefficient a < 0 (default -1)")
     p.add_argument("--b", type=float, default=None, help="quadratic coefficient b > 0 (default 10)")
     p.add_argument("--law", default=None, metavar="EXPR", help=LAW_HELP)
+    p.add_argument("--const", action="append", default=None, metavar="NAME=VALUE",
+                   help=CONST_HELP)  # fmt: skip
 
 
 def law_from_args(args) -> HardeningSofteningLaw:
@@ -94,8 +100,30 @@ def law_from_args(args) -> HardeningSofteningLaw:
                 "--law", args.law, "either --law EXPR or the cubic's --a/--b, not both",
                 f"{given} given too; write the cubic into the law (a*w**3 + b*w**2 + w)",
             )  # fmt: skip
-        return law_from_expression(args.law)
+        return law_from_expression(args.law, _constants_of(getattr(args, "const", None)))
+    if getattr(args, "const", None):
+        raise ParameterError("--const", args.const[0], "constants of a --law EXPR",
+                             "--const needs --law")  # fmt: skip
     return CubicLaw(DEFAULT_A if a is None else a, DEFAULT_B if b is None else b)
+
+
+def _constants_of(items) -> dict | None:
+    """{name: value} from --const NAME=VALUE items (ParameterError naming the item)."""
+    if not items:
+        return None
+    out = {}
+    for item in items:
+        name, sep, value = item.partition("=")
+        try:
+            val = float(value)
+        except ValueError:
+            val = None
+        if not sep or val is None:
+            raise ParameterError("--const", item, "NAME=VALUE with a real VALUE, e.g. b=10")
+        if name.strip() in out:
+            raise ParameterError("--const", item, "each constant once")
+        out[name.strip()] = val
+    return out
 
 
 def law_fields(law: HardeningSofteningLaw) -> dict:
@@ -107,4 +135,9 @@ def law_fields(law: HardeningSofteningLaw) -> dict:
     if hasattr(law, "breakpoints"):  # piecewise-linear
         return {"law": law.expression, "breakpoints": list(law.breakpoints),
                 "slopes": list(law.slopes)}  # fmt: skip
-    return {"law": law.expression, "coeffs": list(law.coeffs)}
+    if hasattr(law, "coeffs"):
+        return {"law": law.expression, "coeffs": list(law.coeffs)}
+    err = law.representation_error
+    return {"law": law.expression, "constants": law.constants_dict,
+            "represented_interval": list(law.interval),
+            "representation_error": {"f": err.f, "df": err.df, "ddf": err.ddf}}  # fmt: skip

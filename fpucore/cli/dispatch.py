@@ -47,8 +47,16 @@ def load_stack() -> None:
             signal.signal(signal.SIGINT, previous)
 
 
+LAWS_EPILOG = (
+    "Force law (every command): the paper's cubic by --a/--b, or --law EXPR: a polynomial or a "
+    "smooth expression in w (exp, log, sqrt, tanh, sinh, cosh, atan, quotients, integer and "
+    "rational powers) with named constants given by --const NAME=VALUE, e.g. "
+    "--law 'w + b*w**2 - c*w**3*exp(w/d)' --const b=10 --const c=1 --const d=50."
+)
+
+
 def build_parser() -> Parser:
-    parser = Parser(prog="fpu", description=__doc__.splitlines()[0])
+    parser = Parser(prog="fpu", description=__doc__.splitlines()[0], epilog=LAWS_EPILOG)
     sub = parser.add_subparsers(dest="command", required=True, parser_class=Parser)
     for mod in COMMANDS:
         mod.register(sub)

@@ -52,7 +52,7 @@ def run(args) -> int:
         return 0
     sk = out["superkink"]
     lines = [
-        f"law      {out['law']}   w* = {out['w_star']:.10g}",
+        f"law      {out['law']}{_consts(out)}   w* = {out['w_star']:.10g}",
         f"convex   (alpha, beta) = ({out['alpha']:.10g}, {out['beta']:.10g})",
         f"speeds   c+ = {out['c_plus']:.10g}   V_SK = {out['V_SK']:.10g}   "
         f"c- = {out['c_minus']:.10g}",
@@ -73,3 +73,16 @@ def run(args) -> int:
     lines.append(f"elapsed  {out['elapsed_s'] * 1e3:.3f} ms")
     print("\n".join(lines))
     return 0
+
+
+def _consts(out: dict) -> str:
+    """"  with b=10, d=50" for a smooth law's named constants and its representation."""
+    c = out.get("constants")
+    if c is None:
+        return ""
+    lo, hi = out["represented_interval"]
+    e = out["representation_error"]
+    head = ("  with " + ", ".join(f"{k}={v:g}" for k, v in c.items())) if c else ""
+    return (f"{head}\n         represented on [{lo:.6g}, {hi:.6g}]: |f - f_rep| <= {e['f']:.2g}, "
+            f"|f' - f'_rep| <= {e['df']:.2g}, |f'' - f''_rep| <= {e['ddf']:.2g}")
+

@@ -128,6 +128,13 @@ def base_state(r):
     # |μ| <= exp(2√(−f′)/V).  Beyond exp(GROWTH_MAX) the monodromy over- or underflows, which
     # reached LAPACK as "illegal value" (w = 1e6); unstable states short of it (the
     # homogeneous w0 = -0.2 of the finite-size tests) are fine.
+    iv = getattr(law, "interval", None)  # a smooth law: its kernels end at [lo, hi]
+    for name, x in (("r.w", w), ("r.w_left/r.w_right", np.array([wl, wr]))):
+        if iv and np.any((x < iv[0]) | (x > iv[1])):
+            bad = float(x[(x < iv[0]) | (x > iv[1])][0])
+            raise ParameterError(name, bad, f"[{iv[0]:.10g}, {iv[1]:.10g}]",
+                                 "the state left the represented interval of the smooth law "
+                                 "(its kernels are not defined beyond it)")  # fmt: skip
     for name, x in (("r.w", w), ("r.w_left/r.w_right", np.array([wl, wr]))):
         with np.errstate(over="ignore", invalid="ignore"):
             growth = 2.0 * np.sqrt(np.maximum(-law.df(x), 0.0)) / V

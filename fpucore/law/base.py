@@ -56,6 +56,16 @@ class HardeningSofteningLaw:
         return w
 
 
+def interval_note(law) -> str:
+    """For a law represented on an interval (:class:`~fpucore.law.SmoothLaw`): the clause that
+    names it, for messages about non-finite values (its kernels return NaN outside); else ""."""
+    iv = getattr(law, "interval", None)
+    if not iv:
+        return ""
+    return (f"; a strain may have left the represented interval [{iv[0]:.6g}, {iv[1]:.6g}] of "
+            "the smooth law (its kernels return NaN outside)")  # fmt: skip
+
+
 def require_law(law, name: str = "law") -> HardeningSofteningLaw:
     """The law itself, or ParameterError if it is not a force-law object (None, a string ...)."""
     if not isinstance(law, HardeningSofteningLaw):

@@ -37,7 +37,75 @@ def _numeric(fn):
     return lambda *args, **_: fn(*args, evaluate=False).evalf(_DIGITS)
 
 
-def law_from_expression(expression: str):
+def law_from_expression(expression: str, constants=None):
+    """A force law from text: a :class:`PolynomialLaw` when the text is a polynomial in w (the
+    same law, bit for bit, as before smooth laws existed), else a
+    :class:`~fpucore.law.SmoothLaw` (exp, log, sqrt, tanh, sinh, cosh, atan, rational and
+    integer powers, quotients).
+
+    ``constants``: {name: value} of named constants in the text, e.g.
+    ``law_from_expression("w + b*w**2 - c*w**3*exp(w/d)", {"b": 10, "c": 1, "d": 50})``; a
+    polynomial text with constants is the polynomial with their values (``repr``) put in.
+    Refused with :class:`ParameterError` (name ``"expression"``, or the constant's name) with
+    the reason.
+
+    Piecewise-linear laws: ``trilinear(w1=.., w2=.., E1=.., E2=.., E3=..)`` or
+    ``piecewise(breakpoints=[..], slopes=[..])`` (parsed, never evaluated, by
+    :func:`fpucore.law.piecewise_text.law_from_piecewise_text`; no constants).
+    """
+    from fpucore.law.piecewise_text import is_piecewise_text, law_from_piecewise_text
+    from fpucore.law.smooth import SmoothLaw, _constants
+
+    if is_piecewise_text(expression):
+        if constants:
+            raise ParameterError(
+                "constants", constants, "none", "a piecewise-linear law takes its numbers inline"
+            )
+        return law_from_piecewise_text(expression)
+
+    consts = _constants(constants)
+    text = expression
+    if consts and isinstance(expression, str) and len(expression) <= MAX_LENGTH:
+        text = _substitute(expression, dict(consts))
+        unused = [n for n, _ in consts if f"({dict(consts)[n]!r})" not in text]
+        if unused:
+            raise ParameterError(
+                "constants", ", ".join(unused), "names that appear in the expression",
+                f"the constant(s) {', '.join(unused)} do not appear in {abbreviate(expression)}",
+            )  # fmt: skip
+    try:
+        return polynomial_law_from_expression(text)
+    except ParameterError as exc:
+        if not _not_polynomial(exc):
+            raise
+    return SmoothLaw(expression, consts)
+
+
+_NOT_POLY = ("not a polynomial", "depends on w", "unknown name", "could not parse: unexpected '='")
+
+
+def _not_polynomial(exc: ParameterError) -> bool:
+    """A refusal of the polynomial route that the smooth route may answer (a function of w, a
+    quotient, a fractional power, a name outside the polynomial grammar)."""
+    return any(k in exc.reason for k in _NOT_POLY)
+
+
+def _substitute(text: str, values: dict) -> str:
+    """The text with each named constant replaced by ``(repr(value))`` (token by token)."""
+    try:
+        toks = list(tokenize.generate_tokens(io.StringIO(" ".join(text.split())).readline))
+    except (tokenize.TokenError, SyntaxError, IndentationError):
+        return text
+    out = []
+    for t in toks:
+        if t.type == tokenize.NAME and t.string in values:
+            out.append(f"({values[t.string]!r})")
+        elif t.type not in (tokenize.NEWLINE, tokenize.NL, tokenize.ENDMARKER):
+            out.append(t.string)
+    return " ".join(out)
+
+
+def polynomial_law_from_expression(expression: str) -> PolynomialLaw:
     """Build a :class:`PolynomialLaw` from text, e.g. ``"w + 10*w**2 - w**3 - 0.01*w**4"``.
 
     The text is tokenized first and only numbers, the operators + - * / ** ^ ( ), the variable
@@ -49,14 +117,7 @@ def law_from_expression(expression: str):
     non-polynomial expressions, non-real or non-finite coefficients, a constant term (f(0) ≠ 0);
     the law's own hypotheses are then checked by :class:`PolynomialLaw`.
 
-    Piecewise-linear laws: ``trilinear(w1=.., w2=.., E1=.., E2=.., E3=..)`` or
-    ``piecewise(breakpoints=[..], slopes=[..])`` (parsed, never evaluated, by
-    :func:`fpucore.law.piecewise_text.law_from_piecewise_text`).
     """
-    from fpucore.law.piecewise_text import is_piecewise_text, law_from_piecewise_text
-
-    if is_piecewise_text(expression):
-        return law_from_piecewise_text(expression)
     if not isinstance(expression, str):
         raise ParameterError("expression", expression, _VALID, "the expression must be a string")
     if not expression.strip():

@@ -10,6 +10,11 @@ p[k−1] = c_k, one compiled kernel for every polynomial: ``LAW_POLY3`` … ``LA
 same operations in the same order as the loop, so bit-identical to it) and ``LAW_POLY`` for any
 degree (Horner loop over p, used beyond degree 8; 1.5–1.9× the cubic in-jit —
 benchmarks/README.md).  ``LAW_PWL``: continuous piecewise-linear laws (:mod:`.piecewise`).
+
+``LAW_CHEB``: any smooth law (:class:`~fpucore.law.SmoothLaw`), one compiled kernel for all:
+p holds a piecewise Chebyshev representation of f, f′, f″ on [lo, hi] (layout in
+:mod:`.chebyshev`); NaN outside [lo, hi] (a state that left the represented interval is never
+extrapolated; the routes report it).
 """
 
 from __future__ import annotations
@@ -21,6 +26,7 @@ from numba import njit
 
 LAW_CUBIC = 0
 LAW_POLY = 1  # any degree (loop)
+LAW_CHEB = 2  # any smooth law: piecewise Chebyshev data (fpucore/law/chebyshev.py)
 LAW_POLY3, LAW_POLY4, LAW_POLY5, LAW_POLY6, LAW_POLY7, LAW_POLY8 = 3, 4, 5, 6, 7, 8  # id = degree
 POLY_IDS = (LAW_POLY, LAW_POLY3, LAW_POLY4, LAW_POLY5, LAW_POLY6, LAW_POLY7, LAW_POLY8)
 LAW_PWL = 20  # continuous piecewise-linear: p = [m, b_1..b_m, s_0..s_m, f(b_1)..f(b_m)]
@@ -34,6 +40,32 @@ def _pwl_piece(p: np.ndarray, w: float) -> int:
     while j < m and w >= p[1 + j]:
         j += 1
     return j
+
+
+_CHEB_HEADER = 8  # [lo, hi, npan, ncoef, npan/(hi - lo), 0, 0, 0]
+
+
+@njit(cache=True, nogil=True, inline="always")
+def _cheb(p: np.ndarray, which: int, w: float) -> float:
+    """Clenshaw on the panel of w of block ``which`` (0: f, 1: f′, 2: f″); NaN outside."""
+    x = (w - p[0]) * p[4]
+    npan = int(p[2])
+    if not (x >= 0.0 and x <= npan):
+        return math.nan
+    k = int(x)
+    if k >= npan:
+        k = npan - 1
+    t = 2.0 * (x - k) - 1.0
+    m = int(p[3])
+    base = _CHEB_HEADER + (which * npan + k) * m
+    b1 = 0.0
+    b2 = 0.0
+    t2 = 2.0 * t
+    for j in range(m - 1, 0, -1):
+        b0 = p[base + j] + t2 * b1 - b2
+        b2 = b1
+        b1 = b0
+    return p[base] + t * b1 - b2
 
 
 @njit(cache=True, nogil=True)
@@ -68,6 +100,8 @@ def force(law_id: int, p: np.ndarray, w: float) -> float:
         j = _pwl_piece(p, w)
         k = j - 1 if j > 0 else 0
         return p[2 + 2 * m + k] + p[1 + m + j] * (w - p[1 + k])
+    if law_id == LAW_CHEB:
+        return _cheb(p, 0, w)
     return math.nan
 
 
@@ -112,6 +146,8 @@ def dforce(law_id: int, p: np.ndarray, w: float) -> float:
         return acc
     if law_id == LAW_PWL:  # the slope of w's piece (on a breakpoint: the right one)
         return p[1 + int(p[0]) + _pwl_piece(p, w)]
+    if law_id == LAW_CHEB:
+        return _cheb(p, 1, w)
     return math.nan
 
 
@@ -151,6 +187,8 @@ def ddforce(law_id: int, p: np.ndarray, w: float) -> float:
         return acc
     if law_id == LAW_PWL:  # zero between breakpoints (the Dirac masses are located, not sampled)
         return 0.0
+    if law_id == LAW_CHEB:
+        return _cheb(p, 2, w)
     return math.nan
 
 

@@ -30,12 +30,27 @@ def gauss_legendre01(n: int) -> tuple[np.ndarray, np.ndarray]:
     return x, w
 
 
+@functools.cache
+def composite01(panels: int, n: int = 32) -> tuple[np.ndarray, np.ndarray]:
+    """Composite Gauss–Legendre on [0, 1]: ``panels`` equal panels of n nodes (read-only)."""
+    if panels == 1:
+        return gauss_legendre01(n)
+    x0, w0 = gauss_legendre01(n)
+    x = ((np.arange(panels)[:, None] + x0[None, :]) / panels).ravel()
+    w = np.tile(w0, panels) / panels
+    x.flags.writeable = w.flags.writeable = False
+    return x, w
+
+
 def inner_rule(law: HardeningSofteningLaw) -> tuple[np.ndarray, np.ndarray]:
     """Nodes for the t-integrals: exact for a polynomial law (integrands have degree ≤ n),
-    32 nodes otherwise (spectrally accurate for analytic f)."""
+    ``law.quadrature_panels`` panels of 32 nodes for a smooth law (converged on its convex
+    interval, see :attr:`fpucore.law.SmoothLaw.quadrature_error`), 32 nodes otherwise."""
     if isinstance(law, PolynomialLaw):
         return gauss_legendre01(law.degree // 2 + 2)
-    return gauss_legendre01(3 if isinstance(law, CubicLaw) else 32)
+    if isinstance(law, CubicLaw):
+        return gauss_legendre01(3)
+    return composite01(int(getattr(law, "quadrature_panels", 1)))
 
 
 # =============================================================================== integrals
@@ -99,9 +114,14 @@ def tangency_defect(law, a, d):
 
 
 # =============================================================================== roots
-def bracketed_root(F: Callable[[float], float], a: float, b: float) -> tuple[float, float]:
+def bracketed_root(
+    F: Callable[[float], float], a: float, b: float, noisy: bool | float = False
+) -> tuple[float, float]:
     """Root of F in [a, b] (F(a), F(b) of opposite signs) and its error bar: the larger of the
-    half-width of the smallest sign-change bracket found around it and |F(x)|/|F′(x)|."""
+    half-width of the smallest sign-change bracket found around it and |F(x)|/|F′(x)|.
+    ``noisy`` (a smooth law, whose f is an expression evaluated in float64 with rounding that
+    does not vanish at the root): plus (2 × the scatter of F about its secant at 9 points
+    within ±16 ulp of x + 64 eps max(|F(a)|, |F(b)|)) / |F′(x)|."""
     fa, fb = F(a), F(b)
     if fa == 0.0:
         return a, 0.0
@@ -119,7 +139,15 @@ def bracketed_root(F: Callable[[float], float], a: float, b: float) -> tuple[flo
         d *= 2.0
     slope = (fr - fl) / (min(hi, x + d) - max(lo, x - d))
     resid = abs(fx / slope) if slope != 0 else d
-    return x, max(d, resid)
+    err = max(d, resid)
+    if noisy and slope != 0:
+        h = 4 * EPS * max(abs(x), EPS * scale)
+        pts = [x + k * h for k in range(-4, 5)]
+        scatter = max(abs(F(p) - fx - slope * (p - x)) for p in pts)
+        # systematic rounding of the expression (not seen as scatter): 64 eps of F's scale
+        rel = 64 * EPS + (0.0 if noisy is True else float(noisy))  # + the quadrature's error
+        err += (2.0 * scatter + rel * max(abs(fa), abs(fb))) / abs(slope)
+    return x, err
 
 
 def march_outward(F, x0: float, direction: float, h0: float, n: int = 120):
@@ -149,6 +177,15 @@ def bracket_to_end(F, x0: float, end: float, direction: float, h0: float):
 
 
 # =============================================================================== validation
+def is_smooth(law) -> bool | float:
+    """A law evaluated from an expression (:class:`fpucore.law.SmoothLaw`): its roots carry the
+    rounding scatter of the expression and the error left in its quadrature
+    (``bracketed_root(..., noisy=is_smooth(law))``: True, or that relative error if nonzero)."""
+    if getattr(law, "representation_error", None) is None:
+        return False
+    return law.quadrature_error or True
+
+
 def search_direction(law, w_plus: float) -> float:
     """+1 on the lower branch (w₊ < w*, partner w₋ > w*), −1 on the upper branch."""
     return 1.0 if w_plus < law.w_star else -1.0

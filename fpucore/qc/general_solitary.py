@@ -27,6 +27,7 @@ from fpucore.qc.general_roots import (
     first_integral_J,
     gauss_legendre01,
     inner_rule,
+    is_smooth,
     march_outward,
     scalar_J,
 )
@@ -123,7 +124,7 @@ def solitary(
     Jw = lambda w: scalar_J(law, wB, w - wB, V2)  # noqa: E731
     if not (Jw(w_near) < 0 < Jw(other)):
         raise ParameterError("V", V, valid, "too close to an end of the interval to resolve")
-    wM, wM_err = bracketed_root(Jw, w_near, other)
+    wM, wM_err = bracketed_root(Jw, w_near, other, noisy=is_smooth(law))
     sgn = 1.0 if other > wB else -1.0
     br = march_outward(Jw, other, sgn, 0.125 * abs(other - wB), n=80)
     wT = bracketed_root(Jw, *br)[0] if br else math.nan

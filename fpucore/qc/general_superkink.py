@@ -15,7 +15,14 @@ from fpucore.errors import ParameterError, fmt_interval
 from fpucore.law import HardeningSofteningLaw
 from fpucore.qc.closed_forms import QC_CHECK, QCSuperkink, require_V
 from fpucore.qc.general_map import ProfileMap, sech_squared
-from fpucore.qc.general_roots import EPS, U_MAX, bracketed_root, first_integral_J, rayleigh_slope
+from fpucore.qc.general_roots import (
+    EPS,
+    U_MAX,
+    bracketed_root,
+    first_integral_J,
+    is_smooth,
+    rayleigh_slope,
+)
 from fpucore.qc.general_speeds import (
     speeds,
     superkink_velocity_bounds,
@@ -176,7 +183,7 @@ def superkink_from_V(
     wlo, whi = superkink_w_plus_range(law, branch)
     F = lambda wp: v_sk_of(law, wp) ** 2 - V * V  # noqa: E731
     a, b = (wlo, law.w_star) if branch == "lower" else (law.w_star, whi)
-    wp, wp_err = bracketed_root(F, a, b)
+    wp, wp_err = bracketed_root(F, a, b, noisy=is_smooth(law))
     wm, wm_err = w_minus_from_w_plus(law, wp)
     V2 = float(rayleigh_slope(law, wp, wm - wp))
     dwm = abs(V2 - float(law.df(wp))) / abs(V2 - float(law.df(wm)))  # |dw₋/dw₊| (implicit fn.)

@@ -69,7 +69,8 @@ def split_options(kw: dict) -> tuple[dict, dict]:
 def restoring_interval(law: HardeningSofteningLaw) -> tuple[float, float]:
     """The zeros of f adjacent to 0, (w_lo, w_hi) ⊃ (α, β): inside, f(w) has the sign of w (the
     spring resists); beyond them the potential Φ decreases without bound for the cubic law, so a
-    strain that passes them runs away.  Cubic a = −1, b = 10: (5 − √26, 5 + √26)."""
+    strain that passes them runs away.  Cubic a = −1, b = 10: (5 − √26, 5 + √26).  For a smooth
+    law, clipped to its represented interval (``law.interval``: its kernels return NaN beyond)."""
     law = require_law(law)
     out = []
     for edge, sgn in ((law.beta, 1.0), (law.alpha, -1.0)):
@@ -83,6 +84,9 @@ def restoring_interval(law: HardeningSofteningLaw) -> tuple[float, float]:
             x, step = nxt, 2 * step
         else:
             out.append(sgn * math.inf)
+    iv = getattr(law, "interval", None)  # a smooth law: its kernels end at the represented ends
+    if iv:
+        return (max(out[1], iv[0]), min(out[0], iv[1]))
     return (out[1], out[0])
 
 

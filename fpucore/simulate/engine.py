@@ -25,7 +25,7 @@ import numpy as np
 
 from fpucore.budget import Deadline
 from fpucore.errors import ParameterError
-from fpucore.law import HardeningSofteningLaw
+from fpucore.law import HardeningSofteningLaw, interval_note
 from fpucore.simulate import kernels as ck
 from fpucore.simulate import tracking
 from fpucore.simulate.config import RunConfig, output_schedule, restoring_interval
@@ -129,6 +129,14 @@ def _slice_steps(stepper, L: int) -> int:
 
 
 # --------------------------------------------------------------------------- the runner
+def _clipped_note(law, guard: tuple[float, float]) -> str:
+    """The represented interval of a smooth law when it is an end of the guard interval."""
+    iv = getattr(law, "interval", None)
+    if iv and (guard[0] == iv[0] or guard[1] == iv[1]):
+        return interval_note(law)
+    return ""
+
+
 def _guard_interval(law, w0: np.ndarray, v0: np.ndarray, cfg: RunConfig):
     """(convex interval, restoring interval, guard interval) after checking the initial data
     against the guard and the end condition (ParameterError)."""
@@ -261,7 +269,7 @@ def run_chain(
     w_min, w_max = float(zz[1].min()), float(zz[2].max())  # the strain range over all steps
     outcome = Outcome(
         st, float(t), int(stats[0]), int(stats[1]), float(work.bad[0]), int(work.bad[1]),
-        (w_min, w_max), conv, (lo, hi), rest,
+        (w_min, w_max), conv, (lo, hi), rest, _clipped_note(law, (lo, hi)),
     )  # fmt: skip
     msg = status_message(outcome, cfg, deadline)
     if st == "time_budget" and t >= t_end:

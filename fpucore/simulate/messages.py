@@ -24,6 +24,7 @@ class Outcome:
     convex: tuple[float, float]
     guard_interval: tuple[float, float]
     restoring: tuple[float, float]
+    note: str = ""  # the smooth law's represented interval, when it bounds the run
 
 
 def _msg_ok(o: Outcome, cfg: RunConfig, deadline: Deadline) -> str:
@@ -49,6 +50,12 @@ def _msg_left(o: Outcome, cfg: RunConfig, deadline: Deadline) -> str:
             "through transient excursions (stops only outside the zeros of f); for a "
             "Riemann run use boundary='fixed_particles' or 'fixed_strain'"
         )
+    if o.note:
+        return head + (
+            f"represented interval of the smooth law ({lo:.6g}, {hi:.6g}) (guard='bounded' is "
+            "bounded by it: beyond it the law's kernels are not defined). Suggestion: smaller "
+            "data, boundary='fixed_particles' or 'fixed_strain', or a longer chain"
+        )
     return head + (
         f"interval between the zeros of f ({lo:.6g}, {hi:.6g}); beyond it the "
         "cubic potential has no restoring force and the strain runs away. Suggestion: "
@@ -73,7 +80,9 @@ def _msg_time(o: Outcome, cfg: RunConfig, deadline: Deadline) -> str:
 
 
 def _msg_failed(o: Outcome, cfg: RunConfig, deadline: Deadline) -> str:
-    return f"integration failed ({o.status}) at t = {o.t:.6g}; suggestion: loosen rtol / reduce dt"
+    msg = f"integration failed ({o.status}) at t = {o.t:.6g}; suggestion: loosen rtol / reduce dt"
+    iv = o.note and o.guard_interval
+    return msg + (f"; a strain may have left the represented interval {iv}" if iv else "")
 
 
 MESSAGES: dict[str, Callable[[Outcome, RunConfig, Deadline], str]] = {

@@ -75,7 +75,11 @@ class WaveBounds:
 
 # =============================================================================== energy
 def phi_increment(law, w_B: float, w: np.ndarray) -> np.ndarray:
-    """Φ(w) − Φ(w_B) = ∫_{w_B}^{w} f, 3-point Gauss–Legendre (exact for f of degree ≤ 5)."""
+    """Φ(w) − Φ(w_B) = ∫_{w_B}^{w} f, 3-point Gauss–Legendre (exact for f of degree ≤ 5); a
+    smooth law (``law.interval``) integrates its represented f exactly (``law.phi``)."""
+    if getattr(law, "interval", None):
+        w = np.asarray(w, dtype=float)
+        return law.phi(w) - law.phi(np.float64(w_B))
     d = np.asarray(w, dtype=float) - w_B
     f = law.f(w_B + d[:, None] * _GL_X[None, :])
     return d * (f @ _GL_W)
@@ -171,6 +175,23 @@ def _boundary_column(S: WaveSystem, x: np.ndarray, F: np.ndarray, side: str) -> 
     return (Fp - F) / h
 
 
+def representation_residuals(S: WaveSystem) -> list[np.ndarray]:
+    """Residual perturbations of the size the law's representation error can cause (a smooth
+    law, ``law.representation_error``; else []): over one period T = 1/V, |δf| ≤ e_f changes
+    ẇ_n by ≤ 4 e_f T and w_n by ≤ 2 e_f T² (eq. FPUstrain).  Three sign patterns (all +,
+    alternating, random): their effects through J⁻¹ are sampled like the round-off."""
+    rep = getattr(S.law, "representation_error", None)
+    if rep is None:
+        return []
+    T = 1.0 / S.V
+    base = np.empty(2 * S.N)
+    base[0::2] = 2.0 * rep.f * T * T
+    base[1::2] = 4.0 * rep.f * T
+    rng = np.random.default_rng(2024)
+    alt = np.repeat(np.where(np.arange(S.N) % 2 == 0, 1.0, -1.0), 2)
+    return [base, base * alt, base * rng.choice([-1.0, 1.0], size=2 * S.N)]
+
+
 def error_bounds(S: WaveSystem, x: np.ndarray, fact: tuple, solitary: bool, order: int = 8):
     """:class:`WaveBounds` of the wave x (2N interleaved) solved on system S with factorisation
     ``fact`` (:func:`fpucore.wave.system.solve_with`); ``solitary`` selects amplitude/energy."""
@@ -197,6 +218,9 @@ def error_bounds(S: WaveSystem, x: np.ndarray, fact: tuple, solitary: bool, orde
     trunc = np.abs(t_L[0::2]) * tau_L + np.abs(t_R[0::2]) * tau_R
     newton_w = np.abs(delta[0::2]) + rest[0::2]
     roundoff = NOISE_FACTOR * max(float(np.max(np.abs(r[0::2]))) for r in [rho, *rho_model])
+    reps = representation_residuals(S)  # a smooth law: the kernels' f differs from the exact f
+    rep_w = max((float(np.max(np.abs(solve_with(fact, b)[0::2]))) for b in reps), default=0.0)
+    roundoff += NOISE_FACTOR * rep_w
     profile = SAFETY * (float(np.max(newton_w + trunc)) + roundoff)
     if not solitary:
         return WaveBounds(
@@ -213,7 +237,7 @@ def error_bounds(S: WaveSystem, x: np.ndarray, fact: tuple, solitary: bool, orde
     e_c = np.zeros(2 * N)
     e_c[2 * c] = 1.0
     z_c = solve_with(fact, e_c, trans=1)
-    amp_noise = max(abs(float(z_c @ n_k)) for n_k in [noise, *model])
+    amp_noise = max(abs(float(z_c @ n_k)) for n_k in [noise, *model, *reps])
     amp = SAFETY * (newton_w[c] + trunc[c] + NOISE_FACTOR * amp_noise)
     w_B = S.w_left
     E, e_sum = energy(law, w, wd, V, w_B)
@@ -222,10 +246,13 @@ def error_bounds(S: WaveSystem, x: np.ndarray, fact: tuple, solitary: bool, orde
     dE = (
         abs(float(z @ F_2m))
         + float(np.abs(z) @ (np.abs(F_2m - F_m) / 2.0**order))
-        + NOISE_FACTOR * max(abs(float(z @ n_k)) for n_k in [noise, *model])
+        + NOISE_FACTOR * max(abs(float(z @ n_k)) for n_k in [noise, *model, *reps])
         + abs(float(z @ c_L)) * tau_L
         + abs(float(z @ c_R)) * tau_R
     )
+    rep = getattr(law, "representation_error", None)
+    if rep is not None:  # Φ of the represented f: |ΔΦ(w) − ΔΦ(w_B)| ≤ e_f |w − w_B| per spring
+        dE += float(np.sum(np.abs(w - w_B))) * rep.f
     return WaveBounds(
         profile,
         amp,

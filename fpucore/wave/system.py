@@ -31,6 +31,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.linalg import lapack, lu_factor, lu_solve
 
+from fpucore.law import interval_note
 from fpucore.tableaux.rk import DOP853, Tableau
 from fpucore.wave import period_map as pm
 
@@ -276,7 +277,7 @@ def newton(
             tuple(hist),
             0,
             0.0,
-            "initial guess gives a non-finite residual",
+            "initial guess gives a non-finite residual" + interval_note(sys.law),
             0.0,
         )
     while res > tol or step_tol is not None:
@@ -312,7 +313,7 @@ def newton(
                 break
         dx = solve_with(fact, -F)
         if not np.all(np.isfinite(dx)):
-            msg = "non-finite Newton step (ill-conditioned Jacobian)"
+            msg = "non-finite Newton step (ill-conditioned Jacobian)" + interval_note(sys.law)
             break
         if done:
             corr = sys.correction_norm(dx)

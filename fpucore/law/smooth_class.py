@@ -1,0 +1,114 @@
+"""The hardening–softening class check of a smooth law on its own convex interval (paper §2).
+
+Roots in float64 by bracketing (brentq on the exact expression), polished by mpmath at 30 digits;
+each carries an error bar |x_float − x_30 digits| + 2 ulp.  The steps, each refused with the
+reason and the place:
+
+* f(0) = 0 (|f(0)| at 40 digits ≤ 1e-25 max(1, f′(0))) and f′(0) > 0;
+* β: the first zero of f′ above 0 found on the geometric grid 10^(−30 … 30) (16 points a decade),
+  then bracketed; α likewise below 0, or −∞ when f′ > 0 down to −1e30 (or f′ overflows only
+  beyond −4β); a non-finite value before f′ vanishes is a domain error inside (α, β);
+* w*: the sign changes of f″ on a grid of ≥ 20001 points of (α, β) — exactly one, from + to −,
+  at w* > 0.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+EPS = float(np.finfo(float).eps)
+GRID = np.logspace(-30, 30, 961)
+N_INFLECTION = 20001
+
+
+class ClassFailure(ValueError):
+    """A law outside the class (the message is the reason, with the place)."""
+
+
+def _finite(fn, x):
+    with np.errstate(all="ignore"):
+        v = np.asarray(fn(np.asarray(x, dtype=float)), dtype=float)
+    return np.broadcast_to(v, np.shape(x))
+
+
+def polish(mp_fn, mp_dfn, x: float, a: float, b: float) -> tuple[float, float]:
+    """(root, error bar) of mp_fn near the float root x in [a, b], at 30 digits."""
+    import mpmath
+
+    try:
+        with mpmath.workdps(30):
+            r = mpmath.findroot(lambda z: mp_fn(z), (mpmath.mpf(a), mpmath.mpf(b)),
+                                solver="anderson", verify=False)  # fmt: skip
+            r = float(r)
+    except (ValueError, ZeroDivisionError, TypeError):
+        return x, max(abs(b - a), 4 * EPS * abs(x))
+    if not (min(a, b) <= r <= max(a, b)):
+        return x, max(abs(b - a), 4 * EPS * abs(x))
+    return r, abs(r - x) + 2 * EPS * abs(r)
+
+
+def root(fn, mp_fn, mp_dfn, a: float, b: float) -> tuple[float, float]:
+    from scipy.optimize import brentq  # SciPy on first use: `import fpucore.law` stays light
+
+    g = lambda z: float(_finite(fn, z))  # noqa: E731
+    x = brentq(g, a, b, xtol=4 * EPS * max(abs(a), abs(b)), rtol=4 * EPS, maxiter=500)
+    return polish(mp_fn, mp_dfn, x, a, b)
+
+
+def convex_end(df, mp_df, mp_ddf, sign: float, diagnose) -> tuple[float, float, bool]:
+    """(end, error, finite?) of the convex interval on the side ``sign`` of 0."""
+    x = sign * GRID
+    v = _finite(df, x)
+    bad = ~(v > 0) | ~np.isfinite(v)
+    if not np.any(bad):
+        if sign > 0:
+            raise ClassFailure(
+                "no softening: f'(w) > 0 for every w in (0, 1e30], so the convex interval has "
+                "no upper end beta and no superkink exists"
+            )
+        return -math.inf, 0.0, False
+    j = int(np.argmax(bad))
+    if not np.isfinite(v[j]):
+        if sign < 0:
+            return -math.inf, 0.0, False  # decided by the caller against beta
+        raise ClassFailure(f"f' is not finite at w = {x[j]:.6g} before it vanishes: "
+                           f"{diagnose(x[j])}")  # fmt: skip
+    a = x[j - 1] if j > 0 else 0.0
+    if v[j] == 0.0:
+        return float(x[j]), 2 * EPS * abs(x[j]), True
+    r, e = root(df, mp_df, mp_ddf, a, float(x[j]))
+    return r, e, True
+
+
+def inflection(ddf, mp_ddf, mp_dddf, alpha: float, beta: float, n: int) -> tuple[float, float]:
+    """The unique sign change of f″ in (α, β), + to −, at w* > 0 (ClassFailure otherwise)."""
+    x = np.linspace(alpha, beta, max(n, N_INFLECTION))[1:-1]
+    v = _finite(ddf, x)
+    if not np.all(np.isfinite(v)):
+        raise ClassFailure(f"f'' is not finite at w = {x[~np.isfinite(v)][0]:.6g}")
+    s = np.sign(v)
+    nz = s != 0
+    xs, ss = x[nz], s[nz]
+    idx = np.nonzero(ss[1:] != ss[:-1])[0]
+    where = ", ".join(f"{0.5 * (xs[i] + xs[i + 1]):.6g}" for i in idx[:8])
+    iv = f"(alpha, beta) = ({alpha:.6g}, {beta:.6g})"
+    if idx.size == 0:
+        what = "hardening only (f'' > 0)" if ss.size and ss[0] > 0 else "softening only (f'' < 0)"
+        raise ClassFailure(
+            f"f'' does not change sign on {iv}: {what}; a hardening-softening law needs "
+            "f'' > 0 on (alpha, w*) and f'' < 0 on (w*, beta)"
+        )
+    if idx.size > 1:
+        raise ClassFailure(f"f'' changes sign {idx.size} times on {iv}: at w ~ {where}; the law "
+                           "must change from hardening to softening exactly once")  # fmt: skip
+    i = idx[0]
+    if ss[i] < 0:
+        raise ClassFailure(f"f'' changes from - to + at w ~ {where}: softening-hardening, not "
+                           "hardening-softening")  # fmt: skip
+    w_star, err = root(ddf, mp_ddf, mp_dddf, float(xs[i]), float(xs[i + 1]))
+    if not w_star > 0:
+        raise ClassFailure(f"the inflection w* = {w_star:.10g} must lie at positive strain "
+                           "(hardening at w = 0, paper §2)")  # fmt: skip
+    return w_star, err
