@@ -13,7 +13,9 @@ memory budget.  The budget is, in this order of precedence,
 A budget is given as a number of bytes (``2e9``), with a unit (``"512MiB"``, ``"2GiB"``,
 ``"1.5GB"``) or as a share of the machine's memory (``"50%"``).
 
-Time: :class:`Deadline` is a wall-clock budget started when it is made; long loops ask
+Time: :func:`work_clock` is the clock of the wave solvers' time budgets (CPU time of the
+solving thread: their path does not depend on how busy the machine is); :class:`Deadline` is a
+wall-clock budget started when it is made; long loops ask
 :meth:`Deadline.expired` between chunks of work and stop cleanly with their partial result
 (status ``"stopped"``, stop reason ``"time_budget"``, :meth:`Deadline.message`).
 
@@ -173,6 +175,17 @@ def require_time_budget(
     if not (0.0 < x <= 1e9):
         raise ParameterError(name, x, valid)
     return x
+
+
+def work_clock() -> float:
+    """Seconds of CPU time of the calling thread: the clock of the discrete-wave solvers' time
+    budgets (``time_budget_s`` of ``wave.solve_*``), whose rescues and continuations decide
+    their path by the time left.  On the wall clock that path depended on the machine's load:
+    at load 20 on 2 cores the paper's flat top (V_SK − 9.5e-12, 15 s of work) took 301 s and
+    ran out of its 300 s in the start wave of the plateau route (a different, unconverged
+    answer).  The work runs on this thread (one BLAS/Numba thread, :mod:`fpucore.parallel.
+    threads`); with more threads the budget counts this thread's share only."""
+    return time.thread_time()
 
 
 class Deadline:

@@ -14,10 +14,9 @@ grow on success).
 
 from __future__ import annotations
 
-import time
-
 import numpy as np
 
+from fpucore.budget import work_clock
 from fpucore.wave.setup import Spec, Tolerances
 from fpucore.wave.system import newton
 
@@ -48,12 +47,12 @@ def continue_to(
     middle of V's interval.  The path runs on the shortest chain that holds both ends
     (automatic N, at most N_cap sites).  tols : the solve's tolerances (its residual, step-count
     and tail tolerances serve every point of the path); deadline : the solve's time limit on
-    the ``time.perf_counter()`` clock (s).  Returns (x, N, note) with x the interleaved state at
-    spec.V on N sites, or (None, 0, note) on failure.
+    the :func:`~fpucore.budget.work_clock` (CPU s).  Returns (x, N, note) with x the interleaved
+    state at spec.V on N sites, or (None, 0, note) on failure.
     """
 
     def left() -> float:
-        return deadline - time.perf_counter()
+        return deadline - work_clock()
 
     lo, hi = spec.interval()
     easy, mid = spec.easy_end(), 0.5 * (lo + hi)

@@ -292,6 +292,8 @@ def solve_superkink(
     achievable level is used and reported (``residual_floor``, ``message``).  The result carries
     bounds against the infinite chain's exact wave (``profile_error`` …, :mod:`.bounds`).
     Non-convergence returns converged=False with the reason in ``message``.
+    time_budget_s : CPU seconds of the solving thread (:func:`fpucore.budget.work_clock`), so
+    that a busy machine takes longer but computes the same wave.
     """
     tol, time_budget_s = _check_common(law, tol, jacobian, max_iter, time_budget_s, predictor)
     spec = superkink_spec(law, require_finite("V", V), branch)

@@ -35,7 +35,6 @@ along the near-null direction into an error bar on the front position (sites).
 from __future__ import annotations
 
 import math
-import time
 from dataclasses import dataclass
 from dataclasses import replace as _replace
 
@@ -44,6 +43,7 @@ from scipy.linalg import lapack
 from scipy.optimize import brentq
 
 from fpucore import qc
+from fpucore.budget import work_clock
 from fpucore.wave import period_map as pm
 from fpucore.wave import tails as wt
 from fpucore.wave.setup import Spec
@@ -56,6 +56,10 @@ GX_FALLBACK = 7.0  # … from which it is tried after the ordinary route failed 
 GX_START = (5.5, 4.5)  # start waves: short plateau, where the ordinary route converges
 DS_NEWTON = 1.0  # largest change of s per Newton step (V(s) is exponential)
 DS_MAX = 3.0  # largest step in s = ln δ per continuation step (≈ 0.5 site of front motion)
+FRONT_STEP = 0.8  # sites: largest front move per step (translate_fronts moves by < 1 site)
+SECANT_AGREE = 0.25  # a secant of ln δ against M over >= SECANT_SPAN must agree with the exact
+SECANT_SPAN = 0.1  # tangent within this (measured, w₊ = 1: 2 % down to δ ≈ 2e-13·V_SK, then
+# 35 %, then opposite signs: ln δ no longer follows the mass in double precision)
 
 
 # =============================================================================== QC geometry
@@ -236,7 +240,7 @@ def bordered_newton(
     F, G, res = _state(fam, x, s, M)
     it, msg = 0, "converged"
     while res > 1e-2 * tol:
-        if it >= max_iter or time.perf_counter() > deadline or not math.isfinite(res):
+        if it >= max_iter or work_clock() > deadline or not math.isfinite(res):
             msg = f"bordered Newton: residual {res:.3g} after {it} iterations"
             break
         it += 1
@@ -330,7 +334,7 @@ def continue_in_mass(
 ) -> PlateauPath:
     """March in plateau mass M from the converged wave (x0, V0) to V_target = spec.V (same side
     of V_SK, same w₊) on N sites with m RK steps, window K; tol : residual tolerance; deadline :
-    ``time.perf_counter()`` time limit.
+    time limit on the :func:`~fpucore.budget.work_clock`.
 
     Predictor: both discrete fronts translated by ΔM/(2A) sites (:func:`translate_fronts`; the
     QC-difference and linear-tangent predictors were measured to allow only |Δs| ≲ 1 per step,
@@ -355,9 +359,9 @@ def continue_in_mass(
     lam = wt.decay_rate(spec.law, x[N], V0)
     ds_max = min(DS_MAX, 1.6 * lam)  # front step |Δ| = |Δs|/(2λ) ≤ 0.8 site
     ds_cap = ds_max
-    prev, steps = None, 0
+    prev, steps, floor = None, 0, ""
     best, extra = None, 0  # (residual at V_target, x, s): secant steps continue to the floor
-    while steps < max_steps and time.perf_counter() < deadline:
+    while steps < max_steps and work_clock() < deadline:
         res_t = float(np.max(np.abs(S_t.residual(x)[0])))
         if best is None or res_t < best[0]:
             best = (res_t, x, s)
@@ -371,13 +375,21 @@ def continue_in_mass(
             break
         dsdM = tg[1]
         if prev is not None and abs(s - prev[0]) > 1e-9:  # secant slope between exact points
-            dsdM = (s - prev[0]) / (M - prev[1])
+            sec = (s - prev[0]) / (M - prev[1])
+            if abs(s - prev[0]) >= SECANT_SPAN and not abs(sec / dsdM - 1.0) <= SECANT_AGREE:
+                floor = unresolved_note(math.exp(s), sec, dsdM)
+                break  # ln δ no longer follows M: the round-off floor of the plateau length
+            dsdM = sec  # (a short secant at the target is noisy; FRONT_STEP bounds its step)
         ds = max(-ds_cap, min(ds_cap, s_t - s))
         dM = ds / dsdM
         if abs(dM) < 1e-13 * max(1.0, abs(M)):
             break  # the secant cannot move M further: round-off floor reached
         A_signed = x[N] - fam.w_B(fam.V(s))  # w(n = 0) − w_B: the plateau height
-        pred = translate_fronts(fam.system(fam.V(s)), x, dM / (2.0 * A_signed))
+        shift = dM / (2.0 * A_signed)  # sites each front moves
+        if abs(shift) > FRONT_STEP:  # translate_fronts moves by less than one site
+            dM *= FRONT_STEP / abs(shift)
+            ds, shift = dM * dsdM, math.copysign(FRONT_STEP, shift)
+        pred = translate_fronts(fam.system(fam.V(s)), x, shift)
         o = bordered_newton(fam, pred, s + ds, M + dM, tol, max_iter=12, deadline=deadline)
         steps += 1
         if o.converged:
@@ -395,7 +407,17 @@ def continue_in_mass(
     V = fam.V(s)
     done = abs(s - s_t) < 1e-2
     note = f"mass continuation {'reached' if done else 'stopped at'} |V-V_SK|={abs(V - v_sk):.3g}"
-    return PlateauPath(x, V, done, note + f" in {steps} steps", tuple(pts), pts[0][0])
+    return PlateauPath(x, V, done, note + f" in {steps} steps{floor}", tuple(pts), pts[0][0])
+
+
+def unresolved_note(delta: float, secant: float, tangent: float) -> str:
+    """Why the mass continuation stopped short of V: below some |V − V_SK| the velocity no longer
+    follows the plateau mass in double precision (∂F/∂ln δ ∝ δ sinks to the residual's
+    round-off), seen as the secant of ln δ against M leaving the exact tangent."""
+    return (
+        f"; the plateau length is not resolved in double precision below |V-V_SK| = "
+        f"{delta:.2g} (d ln|V-V_SK| / d mass: secant {secant:.3g}, tangent {tangent:.3g})"
+    )
 
 
 # =============================================================================== error bar

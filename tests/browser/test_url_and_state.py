@@ -1,5 +1,5 @@
-"""The URL and the state: bad values named and the rest kept, the 300-step state walk, typed values
-and typed laws.
+"""The URL and the state: bad values named and the rest kept, the seeded 40-step state walk,
+typed values and typed laws.
 """
 
 from __future__ import annotations
@@ -33,6 +33,7 @@ from browser_harness import (
 )
 
 pytestmark = pytest.mark.browser
+WALK_STEPS = 40  # of seed 13 (about 20 s on an idle machine, 10-15 min at load 20)
 
 
 def test_bad_url_values_are_named_and_the_rest_is_kept(page):
@@ -64,10 +65,12 @@ def test_state_walk(page):
     base = "a=-1&b=10&w_plus=1&V=5&N=80&tol=1e-08&mode=solitary"
     page.goto(f"{page.server}/main?{base}&tab=force")
     settled(page, 120)
-    t_end = time.monotonic() + 150  # bounded: the step count adapts to the machine
+    # A fixed number of steps: the same seeded walk on every machine.  (It was bounded by 150 s
+    # with at least 20 steps: at load 20 on the 2 cores only 7 steps fitted, and which states
+    # were visited depended on the machine's speed.)  Each step waits (bounded) for its state.
     steps, kinds = 0, {}
     history: list[str] = []
-    while steps < 300 and time.monotonic() < t_end:
+    while steps < WALK_STEPS:
         r = rng.random()
         if r < 0.45:
             kind = "slider"
@@ -126,8 +129,7 @@ def test_state_walk(page):
         steps += 1
         kinds[kind] = kinds.get(kind, 0) + 1
     print(f"[browser] state walk: {steps} steps {kinds}")
-    # bounded by time: on 2 cores shared with other jobs ~40 steps fit, on an idle machine 300
-    assert steps >= 20 and len(kinds) >= 4
+    assert len(kinds) >= 4
 
 
 def test_a_value_typed_again_after_the_state_moved_is_kept(page):

@@ -243,17 +243,27 @@ def settled(page, timeout: float = 90.0) -> tuple[str, str, dict]:
     raise AssertionError(f"scene dead or stale after {timeout} s: url {q}, status {text!r}")
 
 
-def check_consistent(page, text: str, msg: str, q: dict, wait_s: float = 5.0) -> None:
+def check_consistent(page, text: str, msg: str, q: dict, wait_s: float = 30.0) -> None:
     """What the plot's data sources hold matches the status text — within ``wait_s``: status
-    and data reach the browser in separate messages, so the data may trail by a few ms."""
-    t_end = time.monotonic() + wait_s
+    and data reach the browser in separate messages (the data patch of a render is queued on
+    the server's event loop before its status text, and the browser applies patches in order),
+    so the data may trail by a few ms on an idle machine — and by seconds when both the server
+    and Chromium share 2 busy cores (load 15–20 while the suite runs beside other jobs).  The
+    bound is a patience like `settled`'s for the status, not a fixed 5 s: a point that stays
+    behind its URL still fails, one that is merely late does not (the delay is printed)."""
+    t0 = time.monotonic()
     while True:
         try:
-            return check_consistent_now(page, text, msg, q)
+            check_consistent_now(page, text, msg, q)
         except AssertionError:
-            if time.monotonic() > t_end:
+            if time.monotonic() > t0 + wait_s:
                 raise
             page.wait_for_timeout(100)
+            continue
+        late = time.monotonic() - t0
+        if late > 1.0:
+            print(f"[browser] {q.get('tab')}: plot data trailed the status text by {late:.1f} s")
+        return
 
 
 def check_consistent_now(page, text: str, msg: str, q: dict) -> None:

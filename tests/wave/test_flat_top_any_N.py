@@ -34,6 +34,19 @@ CASES = [5.21749194749, V_SK6 + 1e-11, 5.2174919476]
 N_REF = 128
 
 
+# Equally accurate re-solves (tighter tol: the mass continuation stops at another point of the
+# round-off floor) — independent realisations of the plateau's round-off error.  That error is
+# one signed number times the plateau mode (test_error_bounds.test_bounds_slow_cases); a single
+# realisation can be arbitrarily small, so sharpness is judged against the largest.  Measured on
+# the 2-core AMD EPYC: with OpenBLAS's Haswell kernels (its default here; bitwise the same with
+# 1 or 2 threads and under load) the solve at the user's N alone gave bound/error 880
+# (paper-below) and 106 (V_SK + 1e-11); OPENBLAS_CORETYPE=SandyBridge, Prescott or Nehalem move
+# the wave by up to 3.1e-3 (the plateau mode) and give 14 and 35 — which machine passed depended
+# on its BLAS kernel.  Over the three solves the ratio stays within 12 … 80 on every kernel.
+RESOLVE_TOLS = (5e-13, 2e-13)
+SHARP = 100.0
+
+
 @pytest.fixture(scope="module", params=CASES, ids=["paper-below", "V_SK+1e-11", "paper-above"])
 def flat_top(request):
     V = request.param
@@ -41,10 +54,21 @@ def flat_top(request):
     r64 = wave.solve_solitary(LAW, 6.0, V, N=64)
     assert r64.converged, r64.message
     xl, off, acc = reference(LAW, spec, r64, N_REF, 4 * r64.m)
-    return V, spec, np.asarray(xl[0::2], float), acc, r64
+    w_ref = np.asarray(xl[0::2], float)
+    resolves = [wave.solve_solitary(LAW, 6.0, V, N=64, tol=t) for t in RESOLVE_TOLS]
+    errors = []
+    for r in resolves:  # each covered by its own bound
+        assert r.converged, r.message
+        true = float(np.max(np.abs(r.w - _reference_on(r.N, w_ref, spec.w_left))))
+        assert r.profile_error >= true + acc, (r.profile_error, true, acc)
+        errors.append(true)
+    return V, spec, w_ref, acc, r64, errors
 
 
 def _reference_on(N, w_ref, w_B):
+    """The reference on the N sites of a chain centred like it (padded with w_B, or cut)."""
+    if N <= N_REF:
+        return w_ref[N_REF // 2 - N // 2 : N_REF // 2 + N // 2]
     out = np.full(N, w_B)
     c = N // 2
     out[c - N_REF // 2 : c + N_REF // 2] = w_ref
@@ -53,14 +77,15 @@ def _reference_on(N, w_ref, w_B):
 
 @pytest.mark.parametrize("N", [200, 500])
 def test_flat_tops_converge_at_the_users_N_with_covering_bounds(flat_top, N):
-    V, spec, w_ref, acc, r64 = flat_top
+    V, spec, w_ref, acc, r64, errors = flat_top
     assert acc <= 2e-5, acc  # the reference resolves the errors measured (~1e-4 … 2e-3)
     r = wave.solve_solitary(LAW, 6.0, V, N=N)
     assert r.converged, r.message
     assert r.N == N and r.w.size == N
     true = float(np.max(np.abs(r.w - _reference_on(N, w_ref, spec.w_left))))
     assert r.profile_error >= true + acc, (r.profile_error, true, acc)
-    assert r.profile_error <= 100 * max(true, acc)  # not a vacuous bound
+    largest = max(true, *errors)  # over equally accurate solves (RESOLVE_TOLS)
+    assert r.profile_error <= SHARP * max(largest, acc), (r.profile_error, true, errors)
     amp_ref = abs(w_ref[N_REF // 2] - spec.w_left)
     assert r.amplitude_error >= abs(r.amplitude - amp_ref) - acc
     # the same wave as on the chain it needs (N = 64), and no worse a bound
