@@ -17,6 +17,7 @@ import panel as pn
 import fpucore
 from fpucore.errors import ParameterError
 
+from ..data_dir import hide_server_paths
 from ..state import URL_PARAMS
 from ..url_state import url_query
 from . import export
@@ -117,7 +118,7 @@ class SceneFiles:
             buf, name = io.StringIO(said), f"{self.key}-unavailable.txt"
         except Exception as exc:  # the server keeps serving; the log keeps the traceback
             log.exception("scene %s: export %s failed", self.key, kind)
-            text = f"export failed: {type(exc).__name__}: {exc}"
+            text = f"export failed: {type(exc).__name__}: {hide_server_paths(exc)}"
             buf = io.StringIO("".join(f"# {line}\n" for line in text.splitlines()))
             name = f"{self.key}-unavailable.txt"
         widget.filename = name
