@@ -16,6 +16,7 @@ shows no math anywhere, so every Markdown and Alert pane of app/ is one of these
 
 from __future__ import annotations
 
+import html
 import re
 
 import panel as pn
@@ -80,3 +81,24 @@ def md_literal(text) -> str:
 
     escaped = _MD_BLOCK.sub(r"\1\\\2", "".join(out))
     return _MD_NUMBERED.sub(r"\1\\\2", escaped)  # "1." → "1\." (no list item)
+
+
+_TAG = re.compile(r"<[^>]*>")
+_BACKTICKS = re.compile(r"`+")
+
+
+def md_plain(markdown: str) -> str:
+    """What a :class:`LiteralMarkdown` pane shows for ``markdown``, as plain text (the words on
+    screen: markup gone, md_literal's escapes undone) — for files that must not render it
+    again (a notebook's Markdown cell is typeset by Jupyter's MathJax)."""
+    rendered = html.unescape(LiteralMarkdown()._transform_object(markdown)["object"])
+    text = html.unescape(_TAG.sub("", rendered))  # md_literal wrote user "<" as an entity
+    return "\n".join(line.rstrip() for line in text.strip().splitlines())
+
+
+def md_code_block(text: str) -> str:
+    """``text`` as a fenced code block: shown verbatim by any Markdown renderer, never math
+    (Jupyter's and MathJax's math finders skip code), and no fence inside it closes it."""
+    longest = max((len(m) for m in _BACKTICKS.findall(text)), default=0)
+    fence = "`" * max(3, longest + 1)
+    return f"{fence}text\n{text}\n{fence}"
