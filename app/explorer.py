@@ -33,7 +33,7 @@ from .law_editor import LawEditor
 from .slider_marks import SliderMark
 from .state import N_RANGE, STATE_PARAMS, TABS, TOL_OPTIONS, ExplorerState
 from .views import SCENES
-from .views.untrusted import LITERAL_MD, md_literal
+from .views.untrusted import LITERAL_MD, LiteralAlert, LiteralMarkdown, md_literal
 from .widgets import FloatInput, FloatSlider, IntInput, IntSlider, put, widened
 
 CSS = """
@@ -66,7 +66,7 @@ class Explorer(pn.viewable.Viewer):
         self._page = None  # the template, built by __panel__
         self._build_widgets()
         self.url_errors = list(url_errors or [])
-        self.url_alert = pn.pane.Alert(
+        self.url_alert = LiteralAlert(
             "\n\n".join(md_literal(e) for e in self.url_errors),
             alert_type="warning",
             visible=bool(url_errors),
@@ -129,7 +129,7 @@ class Explorer(pn.viewable.Viewer):
         self.V_exact = FloatInput(
             label="V (exact)", value=st.V, css_classes=["in-V"], sizing_mode="stretch_width"
         )
-        self.ranges = pn.pane.Markdown(
+        self.ranges = LiteralMarkdown(
             "", css_classes=["ranges"], sizing_mode="stretch_width", **LITERAL_MD
         )
         self.N = IntSlider(
@@ -343,7 +343,7 @@ class Explorer(pn.viewable.Viewer):
         accuracy = pn.Card(
             pn.Row(self.N, self.N_exact, sizing_mode="stretch_width"),
             self.tol,
-            pn.pane.Markdown(
+            LiteralMarkdown(
                 "_Smaller N / looser tolerance: faster, less accurate — see the "
                 "error and time next to each plot._"
             ),
@@ -383,7 +383,7 @@ class Explorer(pn.viewable.Viewer):
 def placeholder(cls) -> pn.Column:
     """A deferred scene's tab until :meth:`Explorer.scene` builds it."""
     return pn.Column(
-        pn.pane.Markdown("_preparing this view …_"),
+        LiteralMarkdown("_preparing this view …_"),
         name=cls.title,
         css_classes=[f"scene-{cls.key}-pending"],
         sizing_mode="stretch_width",

@@ -30,6 +30,7 @@ from fpucore.law import PolynomialLaw, expression_of
 
 from . import compute
 from .state import A_RANGE, B_RANGE, ExplorerState
+from .views.untrusted import LiteralMarkdown
 from .widgets import FloatSlider, put, widened
 
 log = logging.getLogger("fpu-explorer")
@@ -95,7 +96,7 @@ class LawEditor(pn.viewable.Viewer):
         self.law_kind.param.watch(self._on_law_kind, "value")
         self.law_text.param.watch(lambda e: self.apply(e.new), "value")
         self._layout = pn.Column(
-            pn.pane.Markdown("**force law**", margin=(0, 10)),
+            LiteralMarkdown("**force law**", margin=(0, 10)),
             self.law_kind,
             self.a,
             self.b,
@@ -239,7 +240,7 @@ class LawEditor(pn.viewable.Viewer):
         if len(coeffs) > MAX_COEFF_SLIDERS:
             self.coeff_sliders = []
             self.coeff_box.objects = [
-                pn.pane.Markdown(f"_degree {len(coeffs)} > {MAX_COEFF_SLIDERS}: edit the text_")
+                LiteralMarkdown(f"_degree {len(coeffs)} > {MAX_COEFF_SLIDERS}: edit the text_")
             ]
             return
         sliders = []

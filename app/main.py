@@ -9,6 +9,7 @@ os.environ.setdefault("BOKEH_RESOURCES", "server")
 import panel as pn  # noqa: E402
 
 from app import compute  # noqa: E402
+from app.content_policy import install_content_security_policy  # noqa: E402
 from app.resources import serve_locally  # noqa: E402
 from app.server_guards import (  # noqa: E402
     schedule_callbacks_in_order,
@@ -19,6 +20,7 @@ from app.server_guards import (  # noqa: E402
 from app.url_sync import from_url  # noqa: E402
 
 serve_locally()
+install_content_security_policy()  # also without --setup app/warm.py (idempotent)
 serve_document_locally(pn.state.curdoc)
 tolerate_long_url_values()
 tolerate_detached_sessions()

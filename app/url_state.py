@@ -1,6 +1,7 @@
 """The explorer's state in a link: each URL value parsed and checked like any input (an invalid
 value is named with its valid range, the rest kept), held curves (``hold=``), paper figures
-(``fig=``), atlas stores (only below :func:`atlas_root`), and the URL query of a state.
+(``fig=``), atlas stores (only below :func:`app.data_dir.atlas_root`, the server's data
+directory), and the URL query of a state.
 
 Separate from :mod:`app.state` (the state owner itself), which it reads and never changes
 except through the state's own parameters.
@@ -9,7 +10,6 @@ except through the state's own parameters.
 from __future__ import annotations
 
 import math
-import os
 import re
 from pathlib import Path
 
@@ -17,6 +17,7 @@ from fpucore import qc
 from fpucore.errors import ParameterError
 
 from . import compute, paper_figures
+from .data_dir import DATA_DIR_NAME, atlas_root, hide_server_paths
 from .state import (
     A_RANGE,
     B_RANGE,
@@ -51,26 +52,20 @@ def _float(name: str, raw: str, valid: str, lo: float | None = None, hi: float |
     return x
 
 
-def atlas_root() -> Path:
-    """Where the Atlas scene may open stores: ``$FPU_ATLAS_ROOT``, else the directory the server
-    was started in.  A page (or a link) may open only stores below it, so no visitor can make
-    the server read, or probe, any other directory."""
-    return Path(os.environ.get("FPU_ATLAS_ROOT") or os.getcwd()).resolve()
-
-
 def resolve_atlas_store(name: str, raw: str) -> Path:
     """The store ``raw`` (relative to :func:`atlas_root`, or absolute below it) as an absolute
     path; ParameterError naming ``name`` for a path that leaves the root."""
     root = atlas_root()
     text = raw.strip()
-    valid = f"a path below {root}"
+    valid = f"a path below {DATA_DIR_NAME}"  # never the server's absolute path
     if len(text) > MAX_URL_LAW:  # also typed in the box (a URL value is cut before)
         raise ParameterError(name, text[:12] + "…", valid, f"longer than {MAX_URL_LAW} characters")
     try:  # a NUL byte, "~nosuchuser", a name past the file system's limit: refused, not raised
         path = (root / Path(text).expanduser()).resolve()
         path.is_dir()
     except (OSError, ValueError, RuntimeError) as exc:
-        raise ParameterError(name, raw, valid, f"{type(exc).__name__}: {exc}") from None
+        why = f"{type(exc).__name__}: {hide_server_paths(exc)}"  # OSError: it names the path
+        raise ParameterError(name, raw, valid, why) from None
     if not text or not path.is_relative_to(root):
         raise ParameterError(name, raw, valid, "stores are read only there")
     return path

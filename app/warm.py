@@ -25,6 +25,7 @@ log = logging.getLogger("fpu-explorer")
 os.environ.setdefault("BOKEH_RESOURCES", "server")  # see app/main.py; before panel is imported
 
 from app import compute  # noqa: E402
+from app.content_policy import install_content_security_policy  # noqa: E402
 from app.explorer import Explorer  # noqa: E402
 from app.resources import serve_locally  # noqa: E402
 from fpucore.parallel import apply_thread_policy  # noqa: E402
@@ -97,6 +98,7 @@ def warm(verbose: bool = True, scenes: str | None = None) -> dict[str, float]:
 
 if __name__ in ("__main__", "panel_setup_module"):
     serve_locally()
+    install_content_security_policy()  # before the server's first page
     # On exit (Bokeh stops its loop on SIGTERM and Ctrl-C) the worker pool stops first: a worker
     # start cut short by the exit would make the fork server print a traceback.
     atexit.register(compute.shutdown_executor)

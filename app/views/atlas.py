@@ -25,6 +25,7 @@ from fpucore.errors import ParameterError
 
 from .. import compute
 from ..compute import Computed
+from ..data_dir import hide_server_paths
 from ..state import N_RANGE
 from ..url_state import resolve_atlas_store
 from .bokeh_scene import BokehScene, Updates, new_figure
@@ -133,7 +134,8 @@ class AtlasScene(BokehScene):
         try:
             data = atlas.open_atlas(p)
         except ParameterError as exc:  # no store there, or unreadable: the reason names it
-            raise SceneMessage(exc.reason or str(exc)) from None
+            # relative to the server's data directory, never its absolute path
+            raise SceneMessage(hide_server_paths(exc.reason or str(exc))) from None
         if data.kind != "solitary":
             raise SceneMessage("this store is a superkink atlas (over V only): no (w₊, V) map")
         return data

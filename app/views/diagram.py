@@ -49,7 +49,7 @@ from .energy_marks import ExtremumMarks, criterion_words, fmt_extremum
 from .formatting import as_csv, fmt_num, provenance
 from .python_code import python_preamble
 from .report import Info, SceneMessage
-from .untrusted import md_literal
+from .untrusted import LiteralMarkdown, md_literal
 
 TSW, CSW = "#6a51a3", "#cbc9e2"
 CSW_LINE = "#9e9ac8"
@@ -75,11 +75,11 @@ class DiagramScene(BranchViews, BokehScene):
         self.discrete_btn = pn.widgets.Button(
             label="Add discrete points", color="primary", css_classes=["diagram-discrete"]
         )
-        hint = pn.pane.Markdown("_Click the existence diagram (c) to pick (w₊, V)._")
+        hint = LiteralMarkdown("_Click the existence diagram (c) to pick (w₊, V)._")
         self.classify_btn = pn.widgets.Button(
             label="Classify stability (Floquet)", css_classes=["diagram-classify"]
         )
-        branch = pn.pane.Markdown(
+        branch = LiteralMarkdown(
             "_Branch view: the Floquet sweep at the same velocities colours the discrete E_ren "
             "on (b) by stability (in superkink mode: the superkinks over their velocity "
             "interval, on (d)); click a point to open that wave._"

@@ -221,6 +221,12 @@ def _listed(palette):
     return ListedColormap(list(palette))
 
 
+def plain(text) -> str:
+    """``text`` for Matplotlib, drawn as typed: a ``$`` is escaped, so no ``$…$`` of a typed
+    law or a store's name is parsed as mathtext (it drew math, or failed the export)."""
+    return str(text).replace("$", r"\$")
+
+
 def _label_text(label) -> str:
     if isinstance(label, str):
         return label
@@ -252,7 +258,7 @@ def _draw_figure(ax, fig) -> None:
             ax.text(
                 obj.x,
                 obj.y,
-                obj.text,
+                plain(obj.text),
                 color=_color(obj.text_color, "black"),
                 fontsize=8,
                 ha={"center": "center", "right": "right"}.get(obj.text_align, "left"),
@@ -269,9 +275,9 @@ def _draw_figure(ax, fig) -> None:
         ax.set_yscale("log")
     if isinstance(fig.x_scale, LogScale):
         ax.set_xscale("log")
-    ax.set_title(fig.title.text if fig.title is not None else "", fontsize=9)
-    ax.set_xlabel(fig.xaxis[0].axis_label or "" if fig.xaxis else "")
-    ax.set_ylabel(fig.yaxis[0].axis_label or "" if fig.yaxis else "")
+    ax.set_title(plain(fig.title.text if fig.title is not None else ""), fontsize=9)
+    ax.set_xlabel(plain(fig.xaxis[0].axis_label or "" if fig.xaxis else ""))
+    ax.set_ylabel(plain(fig.yaxis[0].axis_label or "" if fig.yaxis else ""))
     handles, labels = [], []
     for legend in fig.legend:
         for item in legend.items:
@@ -279,7 +285,7 @@ def _draw_figure(ax, fig) -> None:
             art = next((arts[r.id] for r in item.renderers if r.id in arts), None)
             if item.visible and text and art is not None:
                 handles.append(art)
-                labels.append(text)
+                labels.append(plain(text))
     if handles:
         ax.legend(
             handles, labels, loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7, frameon=False
@@ -299,7 +305,7 @@ def figure_bytes(models, fmt: str, title: str = "") -> bytes:
     heights = [max(2.6, min(4.5, max((f.height or 300) for f in row) / 90.0)) for row in rows]
     mfig = Figure(figsize=(WIDTH_IN, sum(heights) + 0.4), dpi=DPI, layout="constrained")
     if title:
-        mfig.suptitle(title, fontsize=8)
+        mfig.suptitle(plain(title), fontsize=8)  # the stamp: it may repeat a typed law
     subs = mfig.subfigures(len(rows), 1, height_ratios=heights) if len(rows) > 1 else [mfig]
     for sub, row in zip(np.atleast_1d(subs), rows):
         axes = np.atleast_1d(sub.subplots(1, len(row)))

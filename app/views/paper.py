@@ -28,7 +28,7 @@ from ..paper_figures import FIGURE_STATE, W_PLUS_5_2
 from .formatting import fmt_num
 from .report import Info
 from .scene import Scene
-from .untrusted import md_literal
+from .untrusted import LiteralMarkdown, md_literal
 
 # the state each figure sets (FIGURE_STATE), its held curves and simulation: app.paper_figures
 __all__ = ["FIGURE_STATE", "W_PLUS_5_2", "PaperScene", "comparison_markdown"]
@@ -59,7 +59,7 @@ def thumbnail(label: str):
         return pn.pane.PNG(
             str(path), width=SHOWN_WIDTH, css_classes=["paper-thumb", f"paper-thumb-{label}"]
         )
-    return pn.pane.Markdown(
+    return LiteralMarkdown(
         "<small>_no thumbnail: `fpu paper --thumbnails docs/figures` draws it_</small>",
         width=SHOWN_WIDTH,
     )
@@ -92,7 +92,7 @@ class PaperScene(Scene):
     def make_plot(self):
         rows = []
         self.buttons: dict[str, pn.widgets.Button] = {}
-        self.cmp_panes: dict[str, pn.pane.Markdown] = {}
+        self.cmp_panes: dict[str, LiteralMarkdown] = {}
         self._cmp_version, self._cmp_results = None, {}
         for label, fig in FIGURES.items():
             btn = pn.widgets.Button(
@@ -107,12 +107,12 @@ class PaperScene(Scene):
             btn.js_on_click(code=SCROLL_TO_TOP_JS)
             self.buttons[label] = btn
             text = f"**Fig. {fig.number}** `{label}` ({fig.section}) — {md_literal(fig.caption)}"
-            cmp = pn.pane.Markdown(
+            cmp = LiteralMarkdown(
                 "", sizing_mode="stretch_width", css_classes=[f"paper-cmp-{label}"], margin=(0, 10)
             )
             self.cmp_panes[label] = cmp
             rows.append(pn.Row(pn.Column(btn, thumbnail(label)),
-                               pn.Column(pn.pane.Markdown(text), cmp,
+                               pn.Column(LiteralMarkdown(text), cmp,
                                          sizing_mode="stretch_width")))  # fmt: skip
         return pn.Column(*rows, sizing_mode="stretch_width", css_classes=["paper-list"])
 

@@ -23,6 +23,7 @@ from .held import Held, HeldCurves
 from .python_code import python_preamble
 from .report import Info, SceneMessage
 from .scene import Scene
+from .untrusted import LiteralMarkdown
 
 ORBIT_COLORS = {"kink": "#d62728", "antikink": "#2ca02c"}
 MAX_CLICKED = 8  # orbits drawn through clicked points at once (the oldest goes first)
@@ -95,8 +96,8 @@ class PhasePlaneScene(BokehScene):
         self.clear_btn = pn.widgets.Button(label="Clear orbits", css_classes=["phase-clear"])
         self.held = HeldCurves(self.state, self.request, "phase")
         self.held.set_source(self._orbit_shown)
-        return [pn.pane.Markdown("_Click in the plane: the orbit through that point._"),
-                self.clear_btn, pn.pane.Markdown("_Hold keeps the current orbit on the plot "
+        return [LiteralMarkdown("_Click in the plane: the orbit through that point._"),
+                self.clear_btn, LiteralMarkdown("_Hold keeps the current orbit on the plot "
                                                  "while V and w₊ move._"),
                 *self.held.widgets()]  # fmt: skip
 

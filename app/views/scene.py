@@ -34,13 +34,14 @@ from panel.io.state import set_curdoc
 from fpucore.errors import ParameterError
 
 from .. import compute
+from ..data_dir import hide_server_paths
 from ..state import ExplorerState
 from .formatting import state_stamp
 from .python_code import code_box, python_preamble
 from .report import Info, SceneMessage, status_markdown
 from .scene_files import SceneFiles
 from .scene_progress import SceneProgress
-from .untrusted import LITERAL_MD, md_literal
+from .untrusted import LITERAL_MD, LiteralAlert, LiteralMarkdown, md_literal
 
 log = logging.getLogger("fpu-explorer")
 
@@ -69,14 +70,14 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
         super().__init__(**params)
         self.state = state
         self.plot = self.make_plot()
-        self.alert = pn.pane.Alert(
+        self.alert = LiteralAlert(
             "",
             alert_type="warning",
             visible=False,
             css_classes=["scene-message"],
             **LITERAL_MD,
         )
-        self.status = pn.pane.Markdown(
+        self.status = LiteralMarkdown(
             "", css_classes=["scene-status"], sizing_mode="stretch_width", **LITERAL_MD
         )
         self._make_progress_widgets()
@@ -84,7 +85,7 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
         self.code, self.copy_btn, self.code_card = code_box()
         self._extra = self.extra_panes()
         side = pn.Column(
-            pn.pane.Markdown("#### Error and time", margin=(0, 5)),
+            LiteralMarkdown("#### Error and time", margin=(0, 5)),
             self.status,
             self.progress,
             self.progress_text,
@@ -99,7 +100,7 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
             self.alert,
             self.plot,
             *self._extra,
-            pn.pane.Markdown(self.caption, css_classes=["scene-caption"]),
+            LiteralMarkdown(self.caption, css_classes=["scene-caption"]),
             sizing_mode="stretch_width",
         )
         self.panel = pn.Row(
@@ -305,9 +306,8 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
             if self.session_closed:  # the models were emptied under the render: not a failure
                 return None
             log.exception("scene %s failed", self.key)
-            self._show_message(
-                f"computation failed: {type(exc).__name__}: {exc}".splitlines()[0], "danger"
-            )
+            said = f"computation failed: {type(exc).__name__}: {hide_server_paths(exc)}"
+            self._show_message(said.splitlines()[0], "danger")
             return None
         if self.session_closed:
             return None
@@ -328,7 +328,8 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
             if self.session_closed:
                 return None
             log.exception("scene %s: plot update failed", self.key)
-            self._show_message(f"plot update failed: {type(exc).__name__}: {exc}", "danger")
+            said = f"plot update failed: {type(exc).__name__}: {hide_server_paths(exc)}"
+            self._show_message(said, "danger")
             return None
         return info
 

@@ -11,16 +11,19 @@ from __future__ import annotations
 
 import io
 import logging
+import urllib.parse
 
 import panel as pn
 
 import fpucore
 from fpucore.errors import ParameterError
 
+from ..data_dir import hide_server_paths
 from ..state import URL_PARAMS
 from ..url_state import url_query
 from . import export
 from .report import SceneMessage
+from .untrusted import md_code_block, md_plain
 
 log = logging.getLogger("fpu-explorer")
 
@@ -77,7 +80,9 @@ class SceneFiles:
     def url_query(self) -> str:
         """The state as the URL's query string (what a link to this view carries)."""
         q = url_query(self.state) | {"tab": self.key}
-        return "&".join(f"{name}={q[name]}" for name in URL_PARAMS if name in q)
+        # percent-encoded as a link carries it (a notebook shows it: no "$", "\\" or "`" of a
+        # store's name or a law reaches Markdown)
+        return urllib.parse.urlencode([(name, q[name]) for name in URL_PARAMS if name in q])
 
     def export_figure(self, fmt: str) -> bytes:
         """The scene's figures as drawn (the models of the last render), SVG or PNG bytes."""
@@ -95,10 +100,13 @@ class SceneFiles:
         per computation) and a plot cell (JSON text)."""
         if self.last_info is None:
             raise SceneMessage("nothing shown yet")
-        shown = self.status.object.split("<small>")[0].strip()
+        # what the status showed, as plain text in a code block: it repeats user text (a store's
+        # name, a law), which Jupyter would otherwise render as Markdown and typeset as math
+        shown = md_plain(self.status.object.split("<small>")[0])
         intro = (
             f"{self.caption}\n\nThe fpu-explorer view **{self.title}** with `?{self.url_query()}`"
-            f" (fpucore {fpucore.__version__}). On screen when exported:\n\n{shown}\n\n"
+            f" (fpucore {fpucore.__version__}). On screen when exported:\n\n"
+            f"{md_code_block(shown)}\n\n"
             "Run all cells: they compute the same numbers with fpucore and draw them."
         )
         return export.notebook_json(
@@ -117,7 +125,7 @@ class SceneFiles:
             buf, name = io.StringIO(said), f"{self.key}-unavailable.txt"
         except Exception as exc:  # the server keeps serving; the log keeps the traceback
             log.exception("scene %s: export %s failed", self.key, kind)
-            text = f"export failed: {type(exc).__name__}: {exc}"
+            text = f"export failed: {type(exc).__name__}: {hide_server_paths(exc)}"
             buf = io.StringIO("".join(f"# {line}\n" for line in text.splitlines()))
             name = f"{self.key}-unavailable.txt"
         widget.filename = name

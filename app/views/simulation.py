@@ -32,7 +32,7 @@ from .bokeh_scene import BokehScene, Updates, add_legend, add_line, new_figure
 from .formatting import fmt_num, provenance
 from .python_code import python_preamble
 from .report import Info, SceneMessage
-from .untrusted import md_literal
+from .untrusted import LiteralMarkdown, md_literal
 
 MAX_PROBES = 3  # tracked-site panels drawn (the paper's (c), (d), (e))
 SHORT_NAMES = {"dsw_edge": "DSW edge", "solitary": "solitary wave"}  # panel titles
@@ -170,7 +170,7 @@ class SimulationScene(BokehScene):
         ]
 
     def extra_panes(self):
-        self.table = pn.pane.Markdown("", sizing_mode="stretch_width", css_classes=["sim-table"])
+        self.table = LiteralMarkdown("", sizing_mode="stretch_width", css_classes=["sim-table"])
         return [self.table]
 
     def _extra_watch(self):

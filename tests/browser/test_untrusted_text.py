@@ -9,6 +9,7 @@ import urllib.request
 import pytest
 from browser_harness import (
     FAST,
+    ROOT,
     app_tracebacks,
     open_law_box,
     open_tab,
@@ -180,3 +181,169 @@ def test_a_5000_character_value_is_cut_in_its_message_and_never_runs(page):
     assert not injected(page), injected(page)
     assert not dialogs, dialogs
     assert not app_tracebacks()
+
+
+# ----------------------------------------------------------------------------- math
+#: TeX that MathJax (BokehJS's Markup models) typesets: \href/\url make <a href="javascript:…">
+#: links, \htmlClass/\class/\style set attributes, \unicode raw code points; every delimiter
+#: pair.  Each ≤ 40 characters: a URL message repeats it whole.
+MATH_PAYLOADS = [
+    r"$$\href{javascript:alert(1)}{pwn}$$",
+    r"\(\href{javascript:alert(2)}{pwn}\)",
+    r"\[\url{javascript:alert(3)}\]",
+    r"$\href{javascript:alert(4)}{p}$",
+    r"$$\htmlClass{x}{\href{javascript:5}{}}$$",
+    r"\(\class{x}{y}\unicode{x3C}\)",
+    r"\[\style{color:red}{\url{javascript:}}\]",
+    r"\begin{x}\href{javascript:6}{e}\end{x}",
+]
+#: the reported link: the Atlas scene's message named the store, and MathJax made
+#: "Open the atlas store" a javascript: link (one click ran the alert)
+ISSUE_STORE = r"\(\href{javascript:alert(document.domain)}{\text{Open the atlas store}}\)"
+
+#: every <a> of the page (HTML or SVG, through Bokeh's shadow roots): its href and its box
+JS_LINKS = """() => { const out = []; const walk = (root) => {
+  for (const el of root.querySelectorAll('*')) {
+    if (el.localName === 'a') { const r = el.getBoundingClientRect();
+      out.push({href: el.getAttribute('href') || el.getAttribute('xlink:href') || '',
+                x: r.x + r.width / 2, y: r.y + r.height / 2, w: r.width, h: r.height}); }
+    if (el.shadowRoot) walk(el.shadowRoot);
+  } }; walk(document); return out; }"""
+#: typeset math anywhere in the page (MathJax's SVG output)
+JS_TYPESET = """() => { let n = 0; const walk = (root) => {
+  for (const el of root.querySelectorAll('*')) {
+    if (el.localName === 'mjx-container' || el.hasAttribute('data-mml-node')) n++;
+    if (el.shadowRoot) walk(el.shadowRoot);
+  } }; walk(document); return n; }"""
+
+
+#: a link to another page is clicked but not followed (the page and its state stay for the next
+#: click); any other link — a javascript: one — does what a click does
+JS_STAY = """() => { if (window.__stay) return; window.__stay = true;
+  window.addEventListener('click', (e) => {
+    const a = e.composedPath().find((n) => n.localName === 'a');
+    const href = a && (a.getAttribute('href') || a.getAttribute('xlink:href') || '');
+    if (a && !href.trim().toLowerCase().startsWith('javascript:')) e.preventDefault();
+  }, true); }"""
+
+
+def click_every_link(page) -> list[str]:
+    """Click, with the mouse where it is, every link of the page; the hrefs seen."""
+    page.evaluate(JS_STAY)
+    links = page.evaluate(JS_LINKS)
+    for link in links:
+        if link["w"] > 0 and link["h"] > 0:
+            page.mouse.click(link["x"], link["y"])
+    page.wait_for_timeout(300)
+    return [link["href"] for link in links]
+
+
+def test_math_in_user_text_is_never_typeset_and_no_link_runs(page):
+    """Every math payload in every URL parameter, as the store of an Atlas link (the reported
+    link among them) and typed as the law: the page shows it as typed, typesets no math, has
+    no javascript: link, and clicking every link of the page fires no dialog.  On 3d9d876 the
+    Atlas message typeset the store's name and the click ran alert(document.domain)."""
+    dialogs: list[str] = []
+    page.on("dialog", lambda d: (dialogs.append(d.message), d.dismiss()))
+    for payload in MATH_PAYLOADS:
+        q = urllib.parse.urlencode({n: payload for n in URL_NAMES})
+        page.goto(f"{page.server}/main?{q}")
+        page.locator(".url-message").get_by_text("tab=").wait_for()
+        settled(page)
+        note = " ".join(url_message(page).split())
+        for name in ("a", "tab", "mode", "fig", "hold"):
+            assert f"{name}={payload!r}" in note, (name, payload, note)
+        hrefs = click_every_link(page)
+        assert not dialogs, (payload, dialogs)  # a click ran script (3d9d876: alert(1))
+        assert not [h for h in hrefs if "javascript:" in h.lower()], (payload, hrefs)
+        assert not page.evaluate(JS_TYPESET), payload
+        assert not injected(page), (payload, injected(page))
+    for payload in [*MATH_PAYLOADS, ISSUE_STORE]:
+        q = urllib.parse.urlencode({"tab": "atlas", "atlas": payload, "N": "120"})
+        page.goto(f"{page.server}/main?{q}")
+        msg = page.locator(".scene-atlas .scene-message").get_by_text("no atlas store")
+        msg.wait_for(timeout=20_000)
+        page.wait_for_timeout(300)
+        # named relative to the server's data directory, as typed
+        assert f"no atlas store at {payload}" in msg.inner_text(), msg.inner_text()
+        hrefs = click_every_link(page)
+        assert not dialogs, (payload, dialogs)  # a click ran script (3d9d876: alert(1))
+        assert not [h for h in hrefs if "javascript:" in h.lower()], (payload, hrefs)
+        assert not page.evaluate(JS_TYPESET), payload
+        assert not injected(page), (payload, injected(page))
+    page.goto(f"{page.server}/main?{FAST}")
+    settled(page)
+    box = open_law_box(page)
+    for payload in MATH_PAYLOADS:
+        box.fill(payload)
+        box.press("Enter")
+        wait_url(page, lambda q, p=payload: q.get("law") == p)
+        text, msg, q = settled(page)
+        assert f"law={payload}" in " ".join(text.split()) and msg, (payload, text)
+        hrefs = click_every_link(page)
+        assert not dialogs, (payload, dialogs)  # a click ran script (3d9d876: alert(1))
+        assert not [h for h in hrefs if "javascript:" in h.lower()], (payload, hrefs)
+        assert not page.evaluate(JS_TYPESET), payload
+        assert not injected(page), (payload, injected(page))
+    assert not app_tracebacks()
+
+
+def test_an_atlas_message_names_no_path_of_the_server(page):
+    """The Atlas scene's message names a missing store relative to the server's data
+    directory (the browser tests' server: the checkout), never by the absolute path."""
+    page.goto(
+        f"{page.server}/main?" + urllib.parse.urlencode({"tab": "atlas", "atlas": "x/none.zarr"})
+    )
+    msg = page.locator(".scene-atlas .scene-message").get_by_text("no atlas store")
+    msg.wait_for(timeout=20_000)
+    assert "no atlas store at x/none.zarr" in msg.inner_text(), msg.inner_text()
+    assert str(ROOT) not in page.content()  # the page (its document) has no server path
+    assert str(ROOT) not in msg.inner_text()
+
+
+# ----------------------------------------------------------------------------- CSP
+def _directives(header: str) -> dict[str, list[str]]:
+    out = {}
+    for part in header.split(";"):
+        words = part.split()
+        if words:
+            out[words[0]] = words[1:]
+    return out
+
+
+def test_every_page_is_sent_with_a_content_security_policy(page):
+    """The page's Content-Security-Policy allows scripts from the server and the page's own
+    (nonce-marked) inline scripts only: no 'unsafe-inline', so neither an injected inline
+    handler nor a javascript: link runs, even when put into the page by script (the browser
+    refuses them and says so on the console)."""
+    response = page.goto(f"{page.server}/main?{FAST}")
+    header = response.headers.get("content-security-policy", "")
+    d = _directives(header)
+    script = d.get("script-src", [])
+    assert "'self'" in script and any(w.startswith("'nonce-") for w in script), header
+    assert "'unsafe-inline'" not in script and "'strict-dynamic'" not in script, header
+    assert d.get("object-src") == ["'none'"] and d.get("base-uri") == ["'self'"], header
+    assert d.get("frame-ancestors") == ["'self'"], header
+    nonce = next(w for w in script if w.startswith("'nonce-"))[7:-1]
+    with urllib.request.urlopen(f"{page.server}/main?{FAST}") as r:  # a fresh nonce each time
+        assert nonce not in r.headers["Content-Security-Policy"]
+    settled(page)
+    dialogs: list[str] = []
+    page.on("dialog", lambda d: (dialogs.append(d.message), d.dismiss()))
+    page.evaluate(
+        """() => { const a = document.createElement('a'); a.id = 'csp-probe';
+        a.href = 'javascript:alert("csp-link")'; a.textContent = 'probe';
+        a.style = 'position:fixed;left:5px;top:5px;z-index:99999;font-size:30px';
+        document.body.appendChild(a);
+        const img = document.createElement('img'); img.setAttribute('onerror', 'alert("csp-img")');
+        img.src = 'data:,'; document.body.appendChild(img);
+        const div = document.createElement('div');
+        div.innerHTML = '<svg onload="alert(1)"></svg>';
+        document.body.appendChild(div); }"""
+    )
+    page.locator("#csp-probe").click()
+    page.wait_for_timeout(500)
+    assert not dialogs, dialogs
+    refused = [e for e in page.js_errors if "Content Security Policy" in e]
+    assert refused, page.js_errors  # the browser refused them (and said so)
+    page.js_errors[:] = [e for e in page.js_errors if e not in refused]
