@@ -18,7 +18,7 @@ from __future__ import annotations
 import sys
 
 from fpucore.cli.choices import DEFAULT_FLOQUET_METHOD, FLOQUET_METHODS, METHOD_HELP
-from fpucore.cli.common import add_law_args, law_from_args, print_json
+from fpucore.cli.common import OutputError, add_law_args, law_from_args, print_json
 from fpucore.errors import ParameterError
 
 
@@ -118,6 +118,12 @@ def run(args) -> int:
         sys.stderr.write(f"fpu: interrupted; the store keeps what was done: resume with "
                          f"--resume --out {args.out}\n")  # fmt: skip
         return 130
+    except OSError as exc:  # disk full, quota, permission lost while the store is written
+        if bar is not None:
+            bar.close()
+        raise OutputError(f"could not write the store --out {args.out}: "
+                          f"{exc.strerror or exc}; it keeps every chunk written before: make room "
+                          f"and resume with --resume --out {args.out}") from None  # fmt: skip
     if bar is not None:
         bar.close()
     d = res.as_dict()
