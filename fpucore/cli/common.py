@@ -7,7 +7,9 @@ import contextlib
 import json
 import os
 import re
+import stat
 import sys
+import tempfile
 from typing import TYPE_CHECKING
 
 from fpucore.errors import ParameterError
@@ -60,8 +62,6 @@ PSEUDO_FS = ("/proc", "/sys")
 def _probe_dir(parent: str) -> str | None:
     """None if a file can be created (and removed) in ``parent``, else the reason: the one test
     that holds for root too (``os.access`` says yes on /proc and on a read-only mount)."""
-    import tempfile
-
     try:
         fd, probe = tempfile.mkstemp(prefix=".fpu-", suffix=".probe", dir=parent)
     except OSError as exc:
@@ -73,8 +73,6 @@ def _probe_dir(parent: str) -> str | None:
 
 def _special(target: str) -> str | None:
     """The reason a path is a special place for an output (or None)."""
-    import stat
-
     real = os.path.realpath(target)
     for d in PSEUDO_FS:
         if real == d or real.startswith(d + os.sep):
@@ -136,8 +134,6 @@ def output_file(path: str | os.PathLike, name: str = "--out", kept: str = ""):
     target = os.path.abspath(os.path.expanduser(os.fspath(path)))
     parent, base = os.path.split(target)
     stem, suffix = os.path.splitext(base)
-    import tempfile
-
     try:
         fd, tmp = tempfile.mkstemp(prefix=f".{stem}.", suffix=f".partial{suffix}", dir=parent)
         os.close(fd)
