@@ -23,6 +23,8 @@ import numpy as np
 
 from fpucore import qc
 from fpucore.errors import ParameterError, fmt_interval
+from fpucore.law import require_law
+from fpucore.law.scale import require_discrete
 from fpucore.wave import period_map as pm
 from fpucore.wave import tails as wt
 from fpucore.wave.system import WaveSystem
@@ -253,6 +255,7 @@ def spec_of(law, kind: str, row, V: float) -> Spec:
 def superkink_spec(law, V, branch) -> Spec:
     """The superkink of ``branch`` at V: w_left = w₋, w_right = w₊ (eq. wpm_cubic for the
     cubic), pinned at the QC profile's centre."""
+    require_discrete(require_law(law))  # a law whose f' has no digits left is refused first
     sk = qc.superkink_from_V(law, V, branch)  # validates V and branch
     return Spec(
         law,
@@ -272,6 +275,7 @@ def superkink_spec(law, V, branch) -> Spec:
 def solitary_spec(law, w_plus, V) -> Spec:
     """The solitary wave for w₊ at V: w_left = w_right = w_B (w₊ below V_SK, w_S(V) above:
     eq. wB), pinned by ẇ_1(T) = 0 (the extremum at n = 0)."""
+    require_discrete(require_law(law))
     sw = qc.solitary(law, w_plus, V)  # validates w_plus and V
     return Spec(law, sw.kind, sw.V, sw.w_B, sw.w_B, sw.w_plus, "wd", 0.0, sw, sw.amplitude, None)
 
