@@ -237,7 +237,7 @@ def run(
         base = {"law": law, "kind": grid.kind, "N": None if N is None else int(N),
                 "tol": float(tol), "floquet": bool(floquet), "finite_size": bool(finite_size),
                 "floquet_method": floquet_method, "m": m}  # fmt: skip
-        est = measure(grid, _stored_done(path, grid, resume), base, p.workers or 1)
+        est = measure(grid, _stored_done(path, grid, attrs, resume), base, p.workers or 1)
         notes.append(est.line())
         if note is not None:
             note(est.line())
@@ -287,15 +287,13 @@ def run(
     )  # fmt: skip
 
 
-def _stored_done(path, grid: Grid, resume: bool) -> np.ndarray:
-    """The points a resumed store holds already (none for a new store or an unreadable one:
-    the run itself says what is wrong with it)."""
+def _stored_done(path, grid: Grid, attrs: dict, resume: bool) -> np.ndarray:
+    """The points a resumed store holds already (none for a new store); a damaged or different
+    store is refused here, with its reason, before anything is timed."""
     if path is None or not resume or not path.exists():
         return np.zeros(grid.shape, bool)
-    try:
-        return read_done(path, grid)
-    except Exception:  # noqa: BLE001  (open_existing refuses a damaged store with its reason)
-        return np.zeros(grid.shape, bool)
+    open_existing(path, grid, attrs)
+    return read_done(path, grid)
 
 
 def _execute(grid, table, law, N, tol, floquet, m, continuation, writer, executor, backend,
