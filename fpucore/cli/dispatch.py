@@ -67,8 +67,9 @@ def main(argv: list[str] | None = None) -> int:
         threads = getattr(args, "threads", None)
         apply_thread_policy(default_threads() if threads is None else threads)
         require_env_budget()  # an invalid FPU_MEMORY_BUDGET is refused by every command
-        if getattr(args, "out", None) is not None:  # an unwritable output fails before the work
-            check_out_path(args.out, store=getattr(args, "out_is_store", False))
+        out = getattr(args, "out", None)
+        if out is not None and not getattr(args, "out_is_store", False):
+            check_out_path(out)  # an unwritable output fails before the work (a store: its own)
         return int(args.func(args) or 0)
     except ParameterError as exc:
         sys.stderr.write(f"fpu: error: {exc}\n")
