@@ -22,7 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from fpucore import qc
-from fpucore.errors import ParameterError, fmt_interval
+from fpucore.errors import ParameterError, fmt_interval, require_finite
 from fpucore.law import require_law
 from fpucore.law.scale import require_discrete
 from fpucore.wave import period_map as pm
@@ -37,7 +37,7 @@ FLOOR_FACTOR = 4.0  # accept residuals / step-doubling errors up to this × the 
 def strain_scale(w_left: float, w_right: float) -> float:
     """s = max(1, |w_left|, |w_right|): the round-off of eq. nonlin_system grows with |w|, so
     every tolerance of a solve is relative to s (:class:`Tolerances`)."""
-    return max(1.0, abs(w_left), abs(w_right))
+    return max(1.0, abs(require_finite("w_left", w_left)), abs(require_finite("w_right", w_right)))
 
 
 @dataclass(frozen=True)
