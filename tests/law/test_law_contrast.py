@@ -75,7 +75,7 @@ def test_coefficient_magnitudes_give_a_finite_result_or_a_refusal(p, q):
     try:
         law = F.PolynomialLaw((1.0, 10.0**p, -(10.0**q)))
         lo, hi = qc.superkink_velocity_bounds(law)
-        r = wave.solve_superkink(law, lo + 0.3 * (hi - lo), N=32, time_budget_s=30)
+        r = wave.solve_superkink(law, lo + 0.3 * (hi - lo), N=64, time_budget_s=30)
     except F.ParameterError as exc:
         assert "\n" not in str(exc)
         return
