@@ -24,7 +24,7 @@ class ParameterError(ValueError):
 
     def __init__(self, name: str, value: object, valid: str, reason: str = ""):
         self.name, self.value, self.valid, self.reason = name, value, valid, reason
-        v = f"{value:.10g}" if isinstance(value, float) else repr(value)
+        v = f"{value:.10g}" if isinstance(value, float) else _short_repr(value)
         if _is_ordered_number(value):  # a number outside the range where the object exists
             msg = f"{name}={v} is out of range: valid {valid}"
         else:  # not a matter of range: a path, an expression, a name, NaN, a missing value
@@ -49,7 +49,28 @@ def _is_ordered_number(value) -> bool:
     """A real number that lies somewhere on the line (not NaN, not a bool, not a string)."""
     if isinstance(value, bool) or _is_numpy_bool(value) or not isinstance(value, numbers.Real):
         return False
-    return not math.isnan(value)
+    if isinstance(value, numbers.Integral):  # math.isnan(10**400) raises OverflowError
+        return True
+    try:
+        return not math.isnan(value)
+    except (TypeError, ValueError, OverflowError):
+        return False
+
+
+REPR_MAX = 80  # characters of a value shown in a message
+
+
+def _short_repr(value) -> str:
+    """repr(value), cut to :data:`REPR_MAX` characters (a 400-digit int, a long list); an int
+    too long for ``repr`` (Python's 4300-digit limit) by its size."""
+    if isinstance(value, int) and not isinstance(value, bool) and value.bit_length() > 256:
+        digits = int(value.bit_length() * 0.30103) + 1
+        return f"{'-' if value < 0 else ''}<an integer of about {digits} digits>"
+    try:
+        text = repr(value)
+    except Exception:  # noqa: BLE001  (a repr that fails: the type is enough)
+        return f"<{type(value).__name__}>"
+    return text if len(text) <= REPR_MAX else text[: REPR_MAX - 20] + f"... ({len(text)} chars)"
 
 
 def _is_numpy_bool(value) -> bool:
@@ -67,6 +88,10 @@ def require_finite(name: str, value: float) -> float:
         raise ParameterError(name, value, "a finite real number", "not a number")
     try:
         x = float(value)
+    except OverflowError:  # a Python int beyond double precision (10**400)
+        raise ParameterError(
+            name, value, "a finite real number", "beyond double precision"
+        ) from None
     except (TypeError, ValueError):
         raise ParameterError(name, value, "a finite real number") from None
     if not math.isfinite(x):
@@ -86,6 +111,15 @@ def require_int(name: str, value, lo: int, hi: int) -> int:
     if not lo <= int(value) <= hi:
         raise ParameterError(name, int(value), f"an integer in [{lo}, {hi}]")
     return int(value)
+
+
+def require_in(name: str, value, lo: float, hi: float, reason: str = "") -> float:
+    """Return ``float(value)`` for a finite real number in [lo, hi], else raise (the one rule
+    for bounded reals: :func:`require_finite` first, then the range)."""
+    x = require_finite(name, value)
+    if not lo <= x <= hi:
+        raise ParameterError(name, x, f"[{lo:g}, {hi:g}]", reason)
+    return x
 
 
 TOL_RANGE = (1e-15, 1e-3)

@@ -24,6 +24,7 @@ from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
 
+from fpucore.atlas.estimate import measure, require_within
 from fpucore.atlas.grid import Grid, make_grid
 from fpucore.atlas.plan import plan
 from fpucore.atlas.point import FIELDS, empty_record, failure_text, solve_chunk
@@ -35,6 +36,7 @@ from fpucore.atlas.store import (
     identity_attrs,
     load_records,
     open_existing,
+    read_done,
     skeleton,
 )
 from fpucore.budget import require_time_budget
@@ -163,6 +165,7 @@ def run(
     force_workers: bool = False,
     memory_budget: str | float | None = None,
     note: Callable[[str], None] | None = None,
+    estimate: bool = False,
 ) -> AtlasResult:
     """Compute (or resume) an atlas over the grid (rows × V) — see :mod:`fpucore.atlas`.
 
@@ -190,7 +193,9 @@ def run(
     (:func:`fpucore.parallel.scheduler.check_scheduler`).  memory_budget : the memory the
     table and the workers may take (default ``FPU_MEMORY_BUDGET`` or 25 % of RAM), estimated
     before anything starts.  note(text) : each decision of the plan (e.g. workers capped),
-    before the run starts; also in ``AtlasResult.notes``.
+    before the run starts; also in ``AtlasResult.notes``.  estimate : time two points here first
+    and note the estimated wall time; a ``time_budget_s`` below it is refused then
+    (:mod:`fpucore.atlas.estimate`; the ``fpu atlas`` command does this).
 
     Everything is checked before the store is created or anything computed: a refused run
     leaves no store behind, so its corrected retry is not refused as "the store exists".
@@ -228,6 +233,15 @@ def run(
     for text in notes:
         if note is not None:
             note(text)
+    if estimate:  # measured before the store exists: a refused run leaves nothing behind
+        base = {"law": law, "kind": grid.kind, "N": None if N is None else int(N),
+                "tol": float(tol), "floquet": bool(floquet), "finite_size": bool(finite_size),
+                "floquet_method": floquet_method, "m": m}  # fmt: skip
+        est = measure(grid, _stored_done(path, grid, attrs, resume), base, p.workers or 1)
+        notes.append(est.line())
+        if note is not None:
+            note(est.line())
+        require_within(est, time_budget_s)
     table = Table(grid, attrs)
     lock = writer = None
     if path is not None:
@@ -271,6 +285,15 @@ def run(
         message=msg or f"{grid.size} points: {summary} ({n_loaded} from the store)",
         elapsed_s=elapsed, notes=tuple(notes), memory_estimate_bytes=p.memory_bytes,
     )  # fmt: skip
+
+
+def _stored_done(path, grid: Grid, attrs: dict, resume: bool) -> np.ndarray:
+    """The points a resumed store holds already (none for a new store); a damaged or different
+    store is refused here, with its reason, before anything is timed."""
+    if path is None or not resume or not path.exists():
+        return np.zeros(grid.shape, bool)
+    open_existing(path, grid, attrs)
+    return read_done(path, grid)
 
 
 def _execute(grid, table, law, N, tol, floquet, m, continuation, writer, executor, backend,

@@ -18,7 +18,8 @@ repaired from the chunks: resuming it is refused with one line saying what to do
 
 Exclusive writer.  :class:`StoreLock` takes an ``fcntl`` lock on ``<store>.lock`` (pid and host
 written inside): a second sweep on the same store is refused; the kernel releases the lock when
-the holder dies (a killed client leaves no stale lock).  Local file systems only.
+the holder dies (a killed client leaves a lock file that no longer locks anything; a finished
+run removes it).  Local file systems only.
 """
 
 from __future__ import annotations
@@ -98,29 +99,53 @@ def check_out(path: str | os.PathLike) -> Path:
 
 
 class StoreLock:
-    """Exclusive lock of one store for the lifetime of this object (see module doc)."""
+    """Exclusive lock of one store for the lifetime of this object (see module doc).  The lock
+    file is removed on release (no ``<store>.lock`` is left beside a finished store); a process
+    that opened it just before is told by the inode check below and takes a fresh one."""
 
     def __init__(self, path: Path):
         self.path = path.with_name(path.name + ".lock")  # beside the store: not a Zarr node
+        self._fd = -1
+        for _ in range(100):  # each retry follows a release that removed the file under us
+            if self._acquire(path):
+                break
+        else:  # pragma: no cover (100 releases in a row between our open and our lock)
+            raise ParameterError("out", str(path), "a store no other sweep is writing",
+                                 "its lock file keeps being replaced")  # fmt: skip
+        os.ftruncate(self._fd, 0)
+        os.pwrite(self._fd, f"pid {os.getpid()} on {socket.gethostname()}".encode(), 0)
+
+    def _acquire(self, path: Path) -> bool:
+        """Lock the file at self.path; False if it was removed (released) in between."""
         try:
-            self._fd = os.open(self.path, os.O_RDWR | os.O_CREAT, 0o644)
+            fd = os.open(self.path, os.O_RDWR | os.O_CREAT, 0o644)
         except OSError as exc:
             raise ParameterError("out", str(path), "a writable location",
                                  f"cannot create {self.path.name}: {exc.strerror or exc}"
                                  ) from None  # fmt: skip
         try:
-            fcntl.flock(self._fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except BlockingIOError:
-            holder = os.pread(self._fd, 200, 0).decode(errors="replace").strip()
-            os.close(self._fd)
-            self._fd = -1
+            holder = os.pread(fd, 200, 0).decode(errors="replace").strip()
+            os.close(fd)
             raise ParameterError("out", str(path), "a store no other sweep is writing",
                                  f"locked by {holder or 'another process'}") from None  # fmt: skip
-        os.ftruncate(self._fd, 0)
-        os.pwrite(self._fd, f"pid {os.getpid()} on {socket.gethostname()}".encode(), 0)
+        try:
+            same = os.stat(self.path).st_ino == os.fstat(fd).st_ino
+        except FileNotFoundError:
+            same = False
+        if not same:  # the holder released (and removed) it between our open and our lock
+            os.close(fd)
+            return False
+        self._fd = fd
+        return True
 
     def release(self) -> None:
         if self._fd >= 0:
+            try:  # removed while still locked: whoever opens it next sees a new inode
+                os.unlink(self.path)
+            except OSError:
+                pass
             fcntl.flock(self._fd, fcntl.LOCK_UN)
             os.close(self._fd)
             self._fd = -1

@@ -6,8 +6,11 @@ fpu atlas superkink --V 4.8:5.85:22 --N 500 --floquet [--method dense] --out sk.
     [--memory-budget 4GiB] [--json]
 
 ``--V K``: K velocities spanning the union of the existence intervals over the rows;
-``--V LO:HI:K``: an explicit range.  Progress: a tqdm bar on stderr (points, failed, ETA).
-Ctrl-C stops cleanly (exit 130); every chunk written so far is kept and ``--resume`` goes on.
+``--V LO:HI:K``: an explicit range.  Before the work, stderr says the point count and an
+estimate (two points timed here × the points to do / the workers, :mod:`fpucore.atlas.estimate`);
+a ``--time-budget`` below the estimate is refused (exit 2).  Progress: a tqdm bar on stderr
+(points, failed, ETA).  Each chunk is saved when it finishes: Ctrl-C stops cleanly (exit 130),
+every chunk written so far is kept and ``--resume`` goes on.
 Everything is checked before the store is created (exit 2, one line): the options, the grid's
 memory against the budget, ``--out``, and ``--scheduler`` (a bounded connect and handshake);
 ``--workers`` above the cores is capped (a note on stderr) unless ``--force-workers``.
@@ -18,7 +21,7 @@ from __future__ import annotations
 import sys
 
 from fpucore.cli.choices import DEFAULT_FLOQUET_METHOD, FLOQUET_METHODS, METHOD_HELP
-from fpucore.cli.common import add_law_args, law_from_args, print_json
+from fpucore.cli.common import OutputError, add_law_args, law_from_args, print_json
 from fpucore.errors import ParameterError
 
 
@@ -65,7 +68,9 @@ def register(sub) -> None:
         q.add_argument("--memory-budget", default=None,
                        help="memory the table and workers may take (e.g. 4GiB, 50%%; default "
                        "FPU_MEMORY_BUDGET or 25%% of RAM)")  # fmt: skip
-        q.add_argument("--time-budget", type=float, default=None, help="stop after this many s")
+        q.add_argument("--time-budget", type=float, default=None, metavar="S",
+                       help="refuse a grid estimated above S seconds (two points are timed "
+                       "first); stop after S seconds")  # fmt: skip
         q.add_argument("--no-progress", action="store_true", help="no progress bar")
         q.add_argument("--json", action="store_true", help="print the summary as JSON")
         q.set_defaults(func=run, kind=kind, threads=1)  # the parent only orchestrates
@@ -88,6 +93,10 @@ def run(args) -> int:
     apply_thread_policy(1)
     bar = None
 
+    def say(text: str) -> None:  # the plan and the estimate, on stderr before the work
+        sys.stderr.write(f"fpu: {text}\n")
+        sys.stderr.flush()
+
     def progress(done: int, total: int, failed: int) -> None:
         nonlocal bar
         if args.no_progress or args.json:
@@ -106,7 +115,7 @@ def run(args) -> int:
             continuation=not args.no_continuation, out=args.out,
             resume=args.resume, backend=backend, workers=args.workers, address=args.scheduler,
             progress=progress, time_budget_s=args.time_budget, force_workers=args.force_workers,
-            memory_budget=args.memory_budget, note=lambda text: sys.stderr.write(f"fpu: {text}\n"),
+            memory_budget=args.memory_budget, note=say, estimate=True,
         )  # fmt: skip
     except ParameterError as exc:
         if exc.name == "address":  # the API's name of what this command calls --scheduler
@@ -118,6 +127,12 @@ def run(args) -> int:
         sys.stderr.write(f"fpu: interrupted; the store keeps what was done: resume with "
                          f"--resume --out {args.out}\n")  # fmt: skip
         return 130
+    except OSError as exc:  # disk full, quota, permission lost while the store is written
+        if bar is not None:
+            bar.close()
+        raise OutputError(f"could not write the store --out {args.out}: "
+                          f"{exc.strerror or exc}; it keeps every chunk written before: make room "
+                          f"and resume with --resume --out {args.out}") from None  # fmt: skip
     if bar is not None:
         bar.close()
     d = res.as_dict()

@@ -3,10 +3,13 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import os
 import re
+import stat
 import sys
+import tempfile
 from typing import TYPE_CHECKING
 
 from fpucore.errors import ParameterError
@@ -44,24 +47,131 @@ class Parser(argparse.ArgumentParser):
         self.exit(2, f"fpu: error: {message}\n")
 
 
+class OutputError(Exception):
+    """An output that could not be written after the work was done (disk full, permission
+    revoked, ...): the CLI prints its one-line message and exits 1.  The message says what was
+    written and what was kept (a partial file is never left under the target's name)."""
+
+
+# Special places no output belongs to: kernel interfaces take a write of "x.csv" as a command or
+# refuse it only when the data arrive (``/proc``, ``/sys``), device files swallow it (/dev/null)
+# or fail at the end (/dev/full: ENOSPC).
+PSEUDO_FS = ("/proc", "/sys")
+
+
+def _probe_dir(parent: str) -> str | None:
+    """None if a file can be created (and removed) in ``parent``, else the reason: the one test
+    that holds for root too (``os.access`` says yes on /proc and on a read-only mount)."""
+    try:
+        fd, probe = tempfile.mkstemp(prefix=".fpu-", suffix=".probe", dir=parent)
+    except OSError as exc:
+        return f"cannot create a file in {parent}: {exc.strerror or exc}"
+    os.close(fd)
+    os.unlink(probe)
+    return None
+
+
+def _special(target: str) -> str | None:
+    """The reason a path is a special place for an output (or None)."""
+    real = os.path.realpath(target)
+    for d in PSEUDO_FS:
+        if real == d or real.startswith(d + os.sep):
+            return f"{d} is a kernel file system, not a place for files"
+    try:
+        mode = os.stat(real).st_mode
+    except OSError:
+        return None
+    if not (stat.S_ISREG(mode) or stat.S_ISDIR(mode)):
+        return "it is a special file (a device, a pipe or a socket), not a regular file"
+    return None
+
+
 def check_out_path(path: str, name: str = "--out", store: bool = False) -> None:
     """Refuse an output file that cannot be written, before any computation: its directory must
-    exist and be writable, and the path must not be a directory (both once failed only after
-    the whole sweep, with a traceback).  ``store``: the output is a directory store (the atlas's
-    Zarr), which may exist already (resume)."""
-    if not path:
+    exist and take a new file (probed), the path must not be a directory, a device file
+    (``/dev/full``) or inside ``/proc`` / ``/sys``.  ``store``: the output is a directory store
+    (the atlas's Zarr), which may exist already (resume)."""
+    if not path or not isinstance(path, str):
         raise ParameterError(name, path, "a file name")
     target = os.path.abspath(os.path.expanduser(path))
     parent = os.path.dirname(target)
+    why = _special(target)
+    if why:
+        raise ParameterError(name, path, "a regular file in a writable directory", why)
     if os.path.isdir(target) and not store:
         raise ParameterError(name, path, "a file path", "it is a directory")
     if not os.path.isdir(parent):
         raise ParameterError(name, path, "a file in an existing directory",
                              f"directory {parent} does not exist")  # fmt: skip
-    if not os.access(parent, os.W_OK) or (
-        os.path.exists(target) and not os.access(target, os.W_OK)
-    ):
+    if os.path.exists(target) and not os.access(target, os.W_OK):
         raise ParameterError(name, path, "a writable file", "permission denied")
+    why = _probe_dir(parent)
+    if why:
+        raise ParameterError(name, path, "a file in a writable directory", why)
+
+
+def check_out_dir(path: str, name: str) -> None:
+    """Refuse an output directory (``--thumbnails DIR``) that does not exist or cannot take new
+    files, before any computation (``/proc`` is a directory, and every write into it fails)."""
+    if not path or not isinstance(path, str):
+        raise ParameterError(name, path, "an existing writable directory")
+    target = os.path.abspath(os.path.expanduser(path))
+    if not os.path.isdir(target):
+        raise ParameterError(name, path, "an existing directory")
+    why = _special(target) or _probe_dir(target)
+    if why:
+        raise ParameterError(name, path, "an existing writable directory", why)
+
+
+@contextlib.contextmanager
+def output_file(path: str | os.PathLike, name: str = "--out", kept: str = ""):
+    """Write an output atomically: yields a temporary path beside ``path`` (same suffix, so
+    writers that choose the format by the suffix still work); once the block finishes it
+    replaces ``path`` (``os.replace``).  On any failure the temporary file is removed — no
+    partial file is left, under either name — and an OSError (disk full, permission, quota)
+    becomes one :class:`OutputError` saying what was kept (``kept``: e.g. "the table was
+    printed above")."""
+    target = os.path.abspath(os.path.expanduser(os.fspath(path)))
+    parent, base = os.path.split(target)
+    stem, suffix = os.path.splitext(base)
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=f".{stem}.", suffix=f".partial{suffix}", dir=parent)
+        os.close(fd)
+        os.chmod(tmp, _file_mode(target))  # mkstemp's 0600 would outlive the rename
+    except OSError as exc:
+        raise _output_error(name, path, exc, kept) from None
+    try:
+        yield tmp
+        os.replace(tmp, target)
+    except OSError as exc:
+        _remove(tmp)
+        raise _output_error(name, path, exc, kept) from None
+    except BaseException:
+        _remove(tmp)
+        raise
+
+
+def _file_mode(target: str) -> int:
+    """The mode a plain ``open(target, "w")`` would give: the existing file's, else 0666 less
+    the umask."""
+    try:
+        return os.stat(target).st_mode & 0o7777
+    except OSError:
+        umask = os.umask(0)
+        os.umask(umask)
+        return 0o666 & ~umask
+
+
+def _remove(path: str) -> None:
+    with contextlib.suppress(OSError):
+        os.unlink(path)
+
+
+def _output_error(name: str, path, exc: OSError, kept: str) -> OutputError:
+    what = exc.strerror or str(exc)
+    tail = f"; {kept}" if kept else ""
+    return OutputError(f"could not write {name} {os.fspath(path)}: {what} (nothing written there, "
+                       f"no partial file left){tail}")  # fmt: skip
 
 
 LAW_HELP = (

@@ -2,7 +2,8 @@
 
 Each command lives in its own module here (a ``register(subparsers)`` function that sets ``func``
 on its parser).  This module builds the parser and turns ParameterError into exit code 2 with a
-one-line message on stderr.
+one-line message on stderr, and an output that could not be written after the work
+(:class:`~fpucore.cli.common.OutputError`) into exit code 1 with one line.
 """
 
 from __future__ import annotations
@@ -15,7 +16,7 @@ import threading
 
 from fpucore.budget import require_env_budget
 from fpucore.cli import atlas, floquet, paper, qc, simulate, warm, wave
-from fpucore.cli.common import Parser, check_out_path
+from fpucore.cli.common import OutputError, Parser, check_out_path
 from fpucore.errors import ParameterError
 
 COMMANDS = (qc, warm, wave, floquet, simulate, atlas, paper)
@@ -74,12 +75,16 @@ def main(argv: list[str] | None = None) -> int:
         threads = getattr(args, "threads", None)
         apply_thread_policy(default_threads() if threads is None else threads)
         require_env_budget()  # an invalid FPU_MEMORY_BUDGET is refused by every command
-        if getattr(args, "out", None) is not None:  # an unwritable output fails before the work
-            check_out_path(args.out, store=getattr(args, "out_is_store", False))
+        out = getattr(args, "out", None)
+        if out is not None and not getattr(args, "out_is_store", False):
+            check_out_path(out)  # an unwritable output fails before the work (a store: its own)
         return int(args.func(args) or 0)
     except ParameterError as exc:
         sys.stderr.write(f"fpu: error: {exc}\n")
         return 2
+    except OutputError as exc:  # the work was done; its output could not be written
+        sys.stderr.write(f"fpu: error: {exc}\n")
+        return 1
     except KeyboardInterrupt:
         sys.stderr.write("fpu: interrupted\n")
         return 130

@@ -13,7 +13,14 @@ import json
 import sys
 
 from fpucore.cli.choices import DEFAULT_FLOQUET_METHOD, FLOQUET_METHODS, METHOD_HELP
-from fpucore.cli.common import add_law_args, jsonable, law_fields, law_from_args, print_json
+from fpucore.cli.common import (
+    add_law_args,
+    jsonable,
+    law_fields,
+    law_from_args,
+    output_file,
+    print_json,
+)
 from fpucore.errors import ParameterError
 
 
@@ -155,12 +162,13 @@ def run_sweep(args) -> int:
     obj = {"kind": args.kind, **law_fields(law), "w_plus": args.w_plus,
            "sweeps": [t.as_dict(arrays=False) for t in tables],
            "elapsed_s": sum(t.elapsed_s for t in tables)}  # fmt: skip
-    if args.out:
-        if args.out.endswith(".json"):
-            with open(args.out, "w") as fh:
+    if args.out:  # atomically: a full disk leaves no partial table (fpucore/cli/common.py)
+        kept = "the sweep's points are in the cache: rerun to write the table" if (
+            not args.no_cache) else "the sweep was not cached (--no-cache)"  # fmt: skip
+        with output_file(args.out, "--out", kept) as tmp, open(tmp, "w") as fh:
+            if args.out.endswith(".json"):
                 json.dump(jsonable(obj), fh)
-        else:
-            with open(args.out, "w") as fh:
+            else:
                 for i, t in enumerate(tables):
                     buf = _Buf()
                     t.to_csv(buf)

@@ -18,7 +18,7 @@ import sys
 from pathlib import Path
 
 import fpucore
-from fpucore.cli.common import check_out_path, print_json
+from fpucore.cli.common import check_out_dir, check_out_path, output_file, print_json
 from fpucore.errors import ParameterError
 
 
@@ -58,8 +58,8 @@ def _check(args) -> list[str]:
         check_out_path(args.table, "--table")
         if not args.table.lower().endswith(".md"):
             raise ParameterError("--table", args.table, "a Markdown file (.md)")
-    if args.thumbnails is not None and not Path(args.thumbnails).is_dir():
-        raise ParameterError("--thumbnails", args.thumbnails, "an existing directory")
+    if args.thumbnails is not None:
+        check_out_dir(args.thumbnails, "--thumbnails")
     if args.workers is not None and not 1 <= args.workers <= 4096:
         raise ParameterError("--workers", args.workers, "[1, 4096]")
     return labels
@@ -79,7 +79,8 @@ def run(args) -> int:
         return 0
     labels = _check(args)
     if args.out is not None and args.out.lower().endswith(".ipynb"):
-        notebook.write(labels[0], args.out, reduced=args.reduced)  # computed when it runs
+        with output_file(args.out) as tmp:
+            notebook.write(labels[0], tmp, reduced=args.reduced)  # computed when it runs
         print(f"wrote {args.out}")
         return 0
     if args.out is None and args.table is None and args.thumbnails is None and not args.json:
@@ -101,23 +102,31 @@ def run(args) -> int:
     ok = sum(r.n_agree for r in results)
     summary = (f"{len(results)}/{len(labels)} figures, {ok} of {n} printed numbers agree, "
                f"{wall:.1f} s")  # fmt: skip
+    # every file atomically (fpucore/cli/common.py: output_file): a full disk leaves no partial
+    # file; the computed figures stay in the cache, so a rerun only writes
+    kept = "the computed figures are cached: rerun to write" if not args.no_cache else ""
     if args.out is not None:
-        if len(labels) == 1 and results:
-            plot.save(results[0], args.out)
-        else:
-            plot.report_html(results, FIGURES, args.out,
-                             "The paper, figure by figure — fpu-explorer", summary)  # fmt: skip
+        with output_file(args.out, "--out", kept) as tmp:
+            if len(labels) == 1 and results:
+                plot.save(results[0], tmp)
+            else:
+                plot.report_html(results, FIGURES, tmp,
+                                 "The paper, figure by figure — fpu-explorer", summary)  # fmt: skip
         print(f"wrote {args.out}")
     if args.table is not None:
-        Path(args.table).write_text(
-            _table_doc(results, missing, args.reduced, args.thumbnails), encoding="utf-8"
-        )
         json_path = Path(args.table).with_suffix(".json")
-        json_path.write_text(table_json(results, missing, args.reduced), encoding="utf-8")
+        doc = _table_doc(results, missing, args.reduced, args.thumbnails)
+        with output_file(args.table, "--table", kept) as tmp:
+            Path(tmp).write_text(doc, encoding="utf-8")
+        with output_file(json_path, "--table", kept + f" ({args.table} was written)") as tmp:
+            Path(tmp).write_text(table_json(results, missing, args.reduced), encoding="utf-8")
         print(f"wrote {args.table} and {json_path}")
     if args.thumbnails is not None:
-        for r in results:
-            plot.thumbnail(r, Path(args.thumbnails) / f"{r.label}.png")
+        for k, r in enumerate(results):
+            target = Path(args.thumbnails) / f"{r.label}.png"
+            with output_file(target, "--thumbnails", f"{k} of {len(results)} thumbnails were "
+                             "written before this one") as tmp:  # fmt: skip
+                plot.thumbnail(r, tmp)
         print(f"wrote {len(results)} thumbnails in {args.thumbnails}")
     if args.json:
         print_json({"figures": [r.as_dict() for r in results], "missing": missing,

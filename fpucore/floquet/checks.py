@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial import cKDTree
 
-from fpucore.errors import ParameterError
+from fpucore.errors import ParameterError, require_finite, require_in, require_int
 from fpucore.law import require_law
 
 
@@ -41,12 +41,23 @@ def quartet_symmetry_error(mu: np.ndarray) -> tuple[float, float]:
     return float(rec.max(initial=0.0)), float(conj.max(initial=0.0))
 
 
+RING_MAX = 10**6  # sites of a homogeneous ring (its multipliers are closed forms, O(N))
+V_RANGE = (1e-150, 1e150)  # wave velocities whose period 1/V and phases stay finite
+
+
+def require_velocity(V) -> float:
+    """A wave velocity for a period T = 1/V: finite, in :data:`V_RANGE`."""
+    return require_in("V", V, *V_RANGE, "a velocity V > 0 whose period 1/V is a finite double")
+
+
 def phonon_gap(law, w_bg: float, V: float, N: int) -> float:
     """Smallest |μ − 1| of the continuous-spectrum multipliers of a background state w_bg.
 
     Homogeneous state, periodic ring of N sites: μ = exp(i(k ± ω(k)T)), k = 2πj/N, j ≠ 0,
     ω = 2√f′(w_bg)|sin(k/2)|, T = 1/V.  The trivial cluster at 1 must be well inside this.
     """
+    law, w_bg = require_law(law), require_finite("w_bg", w_bg)
+    V, N = require_velocity(V), require_int("N", N, 2, RING_MAX)
     c = math.sqrt(max(float(law.df(w_bg)), 0.0))
     k = 2.0 * np.pi * np.arange(1, N) / N
     om = 2.0 * c * np.abs(np.sin(0.5 * k)) / V
@@ -67,6 +78,8 @@ def homogeneous_multipliers(law, w0: float, V: float, N: int) -> np.ndarray:
     μ = e^{ik} e^{±σT}: a genuine instability, largest at k = π, |μ| = e^{2√(−f′)/V} for every
     even N (growth rate 2√(−f′(w0)) per unit time, independent of the chain length).
     """
+    law, w0 = require_law(law), require_finite("w0", w0)
+    V, N = require_velocity(V), require_int("N", N, 2, RING_MAX)
     c2 = float(law.df(w0))
     if c2 == 0.0:
         raise ParameterError("w0", w0, "f'(w0) != 0", "degenerate constant state")

@@ -35,6 +35,7 @@ from fpucore.errors import ParameterError, require_finite
 from fpucore.floquet.finite_size import CLASSES
 from fpucore.result import Result
 from fpucore.wave import Family, solitary_family
+from fpucore.wave.family import require_V_values
 
 QC_SAMPLES = 400  # QC grid points per velocity interval (cubic: one vectorised closed form)
 _END_MARGIN = 1e-4  # relative distance from the interval ends (sonic / V_SK) on the QC grid
@@ -193,7 +194,7 @@ def energy_criterion(
     w_plus = require_finite("w_plus", w_plus)
     _check_qc_samples(qc_samples)  # before any wave is solved
     if family is None and V_values is not None:
-        Vs = np.sort(np.atleast_1d(np.asarray(V_values, dtype=float)))
+        Vs = np.sort(require_V_values(V_values))
         family = solitary_family(law, w_plus, Vs, N=N, tol=tol)
     if family is not None:
         res = family.results
@@ -214,7 +215,7 @@ def _samples(**arrays) -> list[np.ndarray]:
     for name, x in arrays.items():
         try:
             arr = np.atleast_1d(np.asarray(x, dtype=bool if name == "converged" else float))
-        except (TypeError, ValueError):
+        except (TypeError, ValueError, OverflowError):
             arr = None
         n = out[0].size if out else None
         if arr is None or arr.ndim != 1 or (n is not None and arr.size != n):

@@ -86,7 +86,7 @@ import math
 
 import numpy as np
 
-from fpucore.errors import ParameterError
+from fpucore.errors import ParameterError, require_int
 from fpucore.floquet.checks import HomogeneousState
 from fpucore.wave import resize, solve_solitary, solve_superkink
 from fpucore.wave.tails import N_MIN as WAVE_N_MIN
@@ -106,6 +106,7 @@ def chain_lengths(N: int, n_min: int = N_MIN) -> list[int]:
     """The shorter even chain lengths of the window: WINDOW − 1 lengths evenly spaced in
     [max(N/2, n_min), N), ascending; [] when the window would be narrower than [3N/4, N] or hold
     fewer than MIN_POINTS − 1 distinct lengths (N too short for the test)."""
+    N, n_min = require_int("N", N, 2, 10**7), require_int("n_min", n_min, 2, 10**7)
     lo = max(0.5 * N, float(n_min + (n_min % 2)))
     if lo > 0.75 * N:
         return []

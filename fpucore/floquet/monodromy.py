@@ -42,7 +42,8 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg
 
-from fpucore.errors import ParameterError
+from fpucore.errors import ParameterError, require_int
+from fpucore.floquet.checks import require_velocity
 from fpucore.floquet.kernels import deflate_sums, extract_deflated, scatter_shifted
 from fpucore.law import require_law, require_smooth_dynamics
 from fpucore.parallel.threads import on_budget
@@ -51,6 +52,7 @@ from fpucore.wave import period_map as pm
 _HW_DEFAULT = 0.12  # h·ω_max of the tangent integration (DOP853): quartets to ~1e-13, see bench
 _SPREAD_LEVEL = 1e-18  # window half-width: neglected part of every column below this
 MAX_N = 2500  # 5000² dense eig: minutes, 400 MB
+MAX_STEPS = 20_000  # RK steps per period (m) of any monodromy
 V_SPAN = 1e3  # base states with c_max / V_SPAN <= V <= V_SPAN c_max
 GROWTH_MAX = 200.0  # largest log|μ| bound 2√(−f′)/V of a base state (|μ| <= e^200 ~ 1e87)
 
@@ -154,6 +156,7 @@ def base_state(r):
 
 def default_steps(law, V: float) -> int:
     """RK steps per period with h·ω_max ≤ 0.12 for ω_max = 2 c_max (the top linear frequency)."""
+    law, V = require_law(law), require_velocity(V)
     return pm.rk_steps_for(V, law.c_max, hw=_HW_DEFAULT)
 
 
@@ -170,6 +173,7 @@ def monodromy(r, m: int | None = None) -> Monodromy:
     law, w, wd, V, N, wl, wr = base_state(r)
     if m is None:
         m = default_steps(law, V)
+    m = require_int("m", m, 2, MAX_STEPS)  # the one rule for counts: an integer, not 2.0
     res = pm.integrate(law, w, wd, 1.0 / V, int(m), wl, wr, periodic=False, store_df=True)
     K = pm.spread_radius(res, level=_SPREAD_LEVEL) + 1
     K = min(K, N // 2)
@@ -200,6 +204,14 @@ def multipliers_of(mat: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray, flo
     call on the (2N−2)-block.  conservation_defect is the largest coupling of the sum rows to the
     rest (exactly 0 for an exact ring integration; round-off level here).
     """
+    mat = np.asarray(mat)
+    if mat.ndim != 2 or mat.shape[0] != mat.shape[1] or mat.shape[0] % 2:
+        raise ParameterError("mat", f"shape {mat.shape}", "a square (2N, 2N) matrix")
+    n = require_int("n", n, 2, mat.shape[0] // 2)
+    if mat.shape[0] != 2 * n:
+        raise ParameterError("n", n, f"N = {mat.shape[0] // 2}, half the matrix order")
+    if not np.isfinite(mat).all():
+        raise ParameterError("mat", "non-finite entries", "a finite matrix")
     a, b, defect = deflate(mat, n)
     mu_rest = scipy.linalg.eigvals(b, overwrite_a=True, check_finite=False)
     mu_sums = np.array([a[n - 1, n - 1], a[2 * n - 1, 2 * n - 1]], dtype=complex)

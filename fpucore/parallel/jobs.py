@@ -31,7 +31,7 @@ def accepts_progress(fn: Callable) -> bool:
     """True if ``fn`` has a parameter named ``progress`` (the layer then passes a callable)."""
     try:
         return "progress" in inspect.signature(fn).parameters
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):
         return False
 
 

@@ -28,6 +28,7 @@ from fpucore.qc.cubic_speeds import (  # re-exported: the speeds are part of the
     EPS,
     c_max_squared,
     cubic_law,
+    finite_array,
     rayleigh_roots,
     require_V,
     require_w_plus,
@@ -315,19 +316,6 @@ def first_integral(law: HardeningSofteningLaw, w, wp, w_ref: float, V: float):
         - law.f(w_ref) * d
         - 0.5 * V * V * d * d
     )
-
-
-def finite_array(name: str, x) -> np.ndarray:
-    """x as a float array of finite numbers, or ParameterError naming the argument."""
-    if isinstance(x, (str, bytes)):
-        raise ParameterError(name, x, "finite real numbers")
-    try:
-        a = np.asarray(x, dtype=float)
-    except (TypeError, ValueError):
-        raise ParameterError(name, type(x).__name__, "finite real numbers") from None
-    if not np.all(np.isfinite(a)):
-        raise ParameterError(name, "non-finite entries", "finite real numbers")
-    return a
 
 
 _XI_CHECK = np.linspace(0.0, 12.0, 32)

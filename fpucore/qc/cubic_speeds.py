@@ -73,6 +73,19 @@ def sound_speeds(law: HardeningSofteningLaw, w_plus: float) -> tuple[float, floa
     return sound_speed_plus(law, w_plus), math.sqrt(c2 - A * e), math.sqrt(c2 - 0.75 * A * e)
 
 
+def finite_array(name: str, x) -> np.ndarray:
+    """x as a float array of finite numbers, or ParameterError naming the argument."""
+    if isinstance(x, (str, bytes)):
+        raise ParameterError(name, x, "finite real numbers")
+    try:
+        a = np.asarray(x, dtype=float)
+    except (TypeError, ValueError, OverflowError):
+        raise ParameterError(name, type(x).__name__, "finite real numbers") from None
+    if not np.all(np.isfinite(a)):
+        raise ParameterError(name, "non-finite entries", "finite real numbers")
+    return a
+
+
 def sound_speed_plus(law: CubicLaw, w_plus):
     """c₊ = √f′(w₊) (eq. cplus; w₊ may be an array), written without cancellation.
 
@@ -83,14 +96,18 @@ def sound_speed_plus(law: CubicLaw, w_plus):
     precision), an array the factored 3|a| (w − α)(β − w) (error ~ε|α|/(w − α), for plots).
     Elsewhere the e-form keeps c₊ ≤ V_SK ≤ c₋ exact (and equal at w*); V_SK² = c_max² − |a|e and
     c₋² = c_max² − ¾|a|e never cancel, since |a|e ≤ c_max²/3 on (α, β)."""
-    w = np.asarray(w_plus, dtype=float)
+    w = finite_array("w_plus", w_plus)
     c2, A = c_max_squared(law), law.abs_a
     d = 3.0 * A * (w - law.w_star) ** 2
     if w.ndim == 0:
         if d <= 0.5 * c2:
             return math.sqrt(c2 - float(d))
         x, a, b = Fraction(float(w)), Fraction(law.a), Fraction(law.b)
-        return math.sqrt(max(float(1 + x * (2 * b + 3 * a * x)), 0.0))
+        try:
+            return math.sqrt(max(float(1 + x * (2 * b + 3 * a * x)), 0.0))
+        except OverflowError:  # |w₊| far outside the convex interval: f′ is no double
+            law.require_convex("w_plus", float(w))
+            raise
     factored = 3.0 * A * np.maximum(w - law.alpha, 0.0) * np.maximum(law.beta - w, 0.0)
     return np.sqrt(np.where(d > 0.5 * c2, factored, np.maximum(c2 - d, 0.0)))
 
@@ -119,7 +136,7 @@ def require_V_upto(law: CubicLaw, w_plus: float, V, lo: float, lo_name: str):
     else:
         try:
             Va = np.asarray(V, dtype=float)
-        except (TypeError, ValueError):
+        except (TypeError, ValueError, OverflowError):
             raise ParameterError("V", V, valid, "not an array of numbers") from None
         if Va.size == 0:
             raise ParameterError("V", V, valid, "empty")

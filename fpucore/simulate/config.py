@@ -14,7 +14,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from fpucore.budget import fmt_bytes, require_memory, require_time_budget
-from fpucore.errors import ParameterError, require_finite, require_int
+from fpucore.errors import ParameterError, require_finite, require_in, require_int
 from fpucore.law import HardeningSofteningLaw, require_law, require_smooth_dynamics
 from fpucore.simulate.steppers import H_OMEGA_AT_1E10, METHODS, STEPPERS
 
@@ -196,10 +196,17 @@ def work_estimate(
     step-doubling companion); adaptive: t_end·ω_max/(h·ω) with the measured h·ω of
     :data:`H_OMEGA_AT_1E10` scaled as rtol^(1/(q+1)) (a factor ~3 either way: the data, not only
     the law, set the step)."""
+    law = require_law(law)
+    if method not in STEPPERS:
+        raise ParameterError("method", method, " | ".join(METHODS))
+    L = require_int("L", L, 1, 10**12)
+    t_end = require_positive("t_end", t_end, 1e7)
     st = STEPPERS[method]
     if not st.adaptive:
+        dt = require_positive("dt", dt, 1e3)
         steps = (t_end / dt + n_stops) * (1.5 if estimate_error else 1.0)
     else:
+        rtol = require_in("rtol", rtol, 1e-16, 1.0)
         omega = 2.0 * law.c_max
         h_omega = H_OMEGA_AT_1E10[method] * (rtol / 1e-10) ** (1.0 / (st.order + 1))
         steps = t_end * omega / h_omega

@@ -61,7 +61,8 @@ from collections.abc import Sequence
 import numpy as np
 
 from fpucore.errors import ParameterError, require_finite
-from fpucore.law import HardeningSofteningLaw
+from fpucore.law import HardeningSofteningLaw, require_law
+from fpucore.law.scale import require_discrete
 from fpucore.parallel.threads import on_budget
 from fpucore.simulate.config import (
     configure,
@@ -102,6 +103,7 @@ def riemann(
     stop_reason "time_budget" and the times it reached), ``memory_budget`` (bytes or "2GiB";
     default FPU_MEMORY_BUDGET or 25 % of RAM, see :mod:`fpucore.budget`) and ``progress``
     (a callable receiving the fraction of t_end done)."""
+    law = require_discrete(require_law(law))  # before any option is looked at
     opts, run = split_options(kw)
     L = require_L(L)
     if L % 2:
@@ -153,6 +155,7 @@ def gaussian(
     ``guard="bounded"`` (the paper's w_B = 1, A = 6 starts at w = 7 > β, and w_B = 6, A = −6
     reaches w ≈ 6.94 > β: both need guard="bounded", see docs/simulation.md).  ``threshold``
     (tracker detection threshold) default 2 % of |A|.  Further keywords as for :func:`riemann`."""
+    law = require_discrete(require_law(law))  # before any option is looked at
     opts, run = split_options(kw)
     L = require_L(L)
     wB = law.require_convex("w_B", w_B)

@@ -53,6 +53,8 @@ def whole_periods(t_end: float, T: float) -> tuple[int, float]:
         raise ParameterError("T", T, "a period T > 0", "there are no whole periods of length 0")
     if not t_end >= 0.0:
         raise ParameterError("t_end", t_end, "t_end >= 0")
+    if not t_end / T <= 1e15:  # K must be a count, not an overflow
+        raise ParameterError("t_end", t_end, f"at most 1e15 periods T = {T:.10g}")
     K = int(math.floor(t_end / T + 1e-9))
     if K >= 1 and K * T > t_end * (1.0 + 1e-12):
         K -= 1  # t_end more than rounding short of K periods: the last whole one is K − 1

@@ -55,10 +55,12 @@ class Family(Result):
                 f"{bad[0].message})")  # fmt: skip
 
 
-def _check_V_values(V_values) -> np.ndarray:
+def require_V_values(V_values) -> np.ndarray:
+    """V_values as a non-empty 1-D array of finite velocities, else ParameterError (the one
+    check of a list of velocities: families, the energy criterion)."""
     try:
         V = np.atleast_1d(np.asarray(V_values, dtype=float))
-    except (TypeError, ValueError):  # ['a'], [None], ragged lists: numpy's own error otherwise
+    except (TypeError, ValueError, OverflowError):  # ['a'], [None], ragged, 10**400: numpy's own
         V = None
     if V is None or V.ndim != 1 or V.size == 0 or not np.all(np.isfinite(V)):
         raise ParameterError("V_values", V_values, "a non-empty 1-D array of finite velocities")
@@ -71,7 +73,7 @@ def superkink_family(
     """Discrete superkinks at each V (continuation with the QC-shift predictor).  Sort V_values
     so neighbours are close; each point is solved independently if its predictor fails."""
 
-    V = _check_V_values(V_values)
+    V = require_V_values(V_values)
     specs = [superkink_spec(law, float(v), branch) for v in V]  # validates every V first
 
     def solve(sp, pred):
@@ -85,7 +87,7 @@ def solitary_family(
 ) -> Family:
     """Discrete solitary waves for state w₊ at each V in (c₊, V_SK) ∪ (V_SK, c₋)."""
 
-    V = _check_V_values(V_values)
+    V = require_V_values(V_values)
     specs = [solitary_spec(law, w_plus, float(v)) for v in V]
 
     def solve(sp, pred):

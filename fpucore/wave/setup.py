@@ -22,8 +22,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from fpucore import qc
-from fpucore.errors import ParameterError, fmt_interval
-from fpucore.law import require_smooth_dynamics
+from fpucore.errors import ParameterError, fmt_interval, require_finite
+from fpucore.law import require_law, require_smooth_dynamics
+from fpucore.law.scale import require_discrete
 from fpucore.wave import period_map as pm
 from fpucore.wave import tails as wt
 from fpucore.wave.system import WaveSystem
@@ -36,7 +37,7 @@ FLOOR_FACTOR = 4.0  # accept residuals / step-doubling errors up to this × the 
 def strain_scale(w_left: float, w_right: float) -> float:
     """s = max(1, |w_left|, |w_right|): the round-off of eq. nonlin_system grows with |w|, so
     every tolerance of a solve is relative to s (:class:`Tolerances`)."""
-    return max(1.0, abs(w_left), abs(w_right))
+    return max(1.0, abs(require_finite("w_left", w_left)), abs(require_finite("w_right", w_right)))
 
 
 @dataclass(frozen=True)
@@ -255,6 +256,7 @@ def superkink_spec(law, V, branch) -> Spec:
     """The superkink of ``branch`` at V: w_left = w₋, w_right = w₊ (eq. wpm_cubic for the
     cubic), pinned at the QC profile's centre."""
     require_smooth_dynamics(law, "discrete waves")
+    require_discrete(require_law(law))  # a law whose f' has no digits left is refused first
     sk = qc.superkink_from_V(law, V, branch)  # validates V and branch
     return Spec(
         law,
@@ -275,6 +277,7 @@ def solitary_spec(law, w_plus, V) -> Spec:
     """The solitary wave for w₊ at V: w_left = w_right = w_B (w₊ below V_SK, w_S(V) above:
     eq. wB), pinned by ẇ_1(T) = 0 (the extremum at n = 0)."""
     require_smooth_dynamics(law, "discrete waves")
+    require_discrete(require_law(law))
     sw = qc.solitary(law, w_plus, V)  # validates w_plus and V
     return Spec(law, sw.kind, sw.V, sw.w_B, sw.w_B, sw.w_plus, "wd", 0.0, sw, sw.amplitude, None)
 
