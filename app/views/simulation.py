@@ -24,7 +24,7 @@ from bokeh.layouts import column, row
 from bokeh.models import ColorBar, ColumnDataSource, LinearColorMapper
 from bokeh.palettes import Viridis256
 
-from fpucore import qc
+from fpucore import qc, simulate
 from fpucore.paper.figures_dynamics import WINDOW_SITES, passage_time, site_overlay
 
 from .. import compute
@@ -34,6 +34,8 @@ from .python_code import python_preamble
 from .report import Info, SceneMessage
 from .untrusted import md_literal
 
+#: the space–time image's most columns (about the plot's width in pixels)
+MAX_COLUMNS = 1000
 MAX_PROBES = 3  # tracked-site panels drawn (the paper's (c), (d), (e))
 SHORT_NAMES = {"dsw_edge": "DSW edge", "solitary": "solitary wave"}  # panel titles
 
@@ -326,6 +328,30 @@ class SimulationScene(BokehScene):
             up.range(fig.x_range, float(t[keep][0]), float(t[keep][-1]))
             up.range(fig.y_range, float(ys.min()), float(ys.max()), pad=0.08)
 
+    def _image(self, info: Info, up: Updates, sim, snaps, t, n) -> None:
+        """The space–time image: at most MAX_COLUMNS columns, each a block of sites showing its
+        extreme strain (fpucore.simulate.extreme_blocks), the colour bar over the whole field;
+        the title says how many sites a column holds."""
+        b = simulate.extreme_blocks(snaps, n, MAX_COLUMNS)
+        dn = (n[-1] - n[0]) / max(len(n) - 1, 1) if len(n) > 1 else 1.0
+        dt = (t[-1] - t[0]) / max(len(t) - 1, 1)
+        width = b.image.shape[1] * b.width
+        up.set(
+            self.img_src,
+            data={"image": [b.image], "x": [b.x0], "y": [t[0] - 0.5 * dt], "dw": [width],
+                  "dh": [t[-1] - t[0] + dt]},
+        )  # fmt: skip
+        up.set(self.mapper, low=float(snaps.min()), high=float(snaps.max()))
+        up.range(self.fig_img.x_range, n[0] - 0.5 * dn, n[-1] + 0.5 * dn)
+        up.range(self.fig_img.y_range, t[0] - 0.5 * dt, t[-1] + 0.5 * dt)
+        title = f"Strain w_n(t) in space and time ({len(t)} snapshots"
+        if len(n) < sim.L:
+            title += f", {len(n)} of {sim.L} sites: every {sim.L / len(n):.3g}th"
+        if b.block > 1:
+            title += f"; each block of {b.block} sites drawn as its min and max"
+            info.notes.append(f"space–time image: {b.note}; colour bar over the whole field")
+        up.set(self.fig_img.title, text=title + ")")
+
     def _wave_at(self, wv, info: Info):
         """The discrete traveling wave at a tracked wave's measured V (and w_B): a superkink of
         that velocity, or the solitary wave on the measured background.  (WaveResult, the
@@ -384,26 +410,17 @@ class SimulationScene(BokehScene):
             raise SceneMessage(f"the simulation returned no finite snapshots: {sim.message}")
         t, n = np.asarray(sim.t, float), np.asarray(sim.sites, float)
         up = Updates()
-        dn = (n[-1] - n[0]) / max(len(n) - 1, 1)
-        dt = (t[-1] - t[0]) / max(len(t) - 1, 1)
-        up.set(
-            self.img_src,
-            data={
-                "image": [snaps],
-                "x": [n[0] - 0.5 * dn],
-                "y": [t[0] - 0.5 * dt],
-                "dw": [n[-1] - n[0] + dn],
-                "dh": [t[-1] - t[0] + dt],
-            },
-        )
-        up.set(self.mapper, low=float(snaps.min()), high=float(snaps.max()))
-        up.range(self.fig_img.x_range, n[0] - 0.5 * dn, n[-1] + 0.5 * dn)
-        up.range(self.fig_img.y_range, t[0] - 0.5 * dt, t[-1] + 0.5 * dt)
+        self._image(info, up, sim, snaps, t, n)
         up.data(self.r_first[1], x=n, y=snaps[0])
         up.data(self.r_last[1], x=n, y=snaps[-1])
         up.set(self.prof_legend[1], label={"value": f"t = {t[-1]:.4g}"})
         up.range(self.fig_prof.x_range, n[0], n[-1])
         up.range(self.fig_prof.y_range, float(snaps.min()), float(snaps.max()), pad=0.05)
+        if len(n) < sim.L:  # a stored field of fewer sites (fpucore's max_sites_out)
+            up.set(self.fig_prof.title, text=f"Initial and final strain profiles ({len(n)} of "
+                   f"{sim.L} sites: every {sim.L / len(n):.3g}th)")  # fmt: skip
+        else:
+            up.set(self.fig_prof.title, text="Initial and final strain profiles (every site)")
         self.table.object = wave_table(sim.waves)
         self._tracked_sites(info, up, sim)
         self._sim = (req, sim)
@@ -442,9 +459,15 @@ class SimulationScene(BokehScene):
             return ""
         return (
             "import numpy as np\nimport matplotlib.pyplot as plt\n\n"
+            "from fpucore.simulate import extreme_blocks\n\n"
             "z, t, n = np.asarray(sim.snapshots), np.asarray(sim.t), np.asarray(sim.sites)\n"
+            "# the explorer's image: blocks of sites, each drawn as its minimum and maximum\n"
+            f"b = extreme_blocks(z, n, {MAX_COLUMNS})\n"
             "fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(9, 7))\n"
-            "im = ax1.imshow(z, origin='lower', aspect='auto', extent=(n[0], n[-1], t[0], t[-1]))\n"
+            "im = ax1.imshow(b.image, origin='lower', aspect='auto', interpolation='nearest',\n"
+            "                vmin=z.min(), vmax=z.max(),\n"
+            "                extent=(b.x0, b.x0 + b.image.shape[1] * b.width,\n"
+            "                        t[0], t[-1]))\n"
             "fig.colorbar(im, ax=ax1, label='w')\n"
             "ax1.set(xlabel='site n', ylabel='time t')\n"
             "ax2.plot(n, z[0], '--', color='gray', label='t = 0')\n"
