@@ -358,7 +358,11 @@ class ExplorerState(param.Parameterized):
         try:
             self.tab = tab
             self.param.update(a=-1.0, b=10.0, expression="", mode=mode)
-            new = {"w_plus": w_plus, "N": N}
+            new = {
+                "w_plus": w_plus,
+                "N": N,
+                "tol": paper_figures.FIGURE_TOL.get(label, self.param.tol.default),
+            }
             if V is not None:
                 new["V"] = V
             self.param.update(**new)

@@ -25,11 +25,18 @@ from bokeh.models import ColorBar, ColumnDataSource, LinearColorMapper
 from bokeh.palettes import Viridis256
 
 from fpucore import qc, simulate
-from fpucore.paper.figures_dynamics import WINDOW_SITES, passage_time, site_overlay
+from fpucore.paper.figures_dynamics import (
+    WINDOW_SITES,
+    passage_time,
+    seeded_comparison,
+    seeded_title,
+    site_overlay,
+)
 
 from .. import compute
 from .bokeh_scene import BokehScene, Updates, add_legend, add_line, new_figure
 from .formatting import fmt_num, provenance
+from .paper import comparison_parts
 from .python_code import python_preamble
 from .report import Info, SceneMessage
 from .untrusted import md_literal
@@ -328,6 +335,23 @@ class SimulationScene(BokehScene):
             up.range(fig.x_range, float(t[keep][0]), float(t[keep][-1]))
             up.range(fig.y_range, float(ys.min()), float(ys.max()), pad=0.08)
 
+    def _measured_velocity(self, sim, tracked: str) -> str:
+        """A seeded run's velocity: the fit of the wave's passage times at the sites it crossed
+        (fpucore.simulate.seeded, details V_measured), checked as the Paper tab checks it
+        (fpucore.paper.figures_dynamics.seeded_comparison: the same row for the same run), then
+        the tracker's estimate, labelled; the tracker's alone if no velocity was measured."""
+        d = sim.details
+        title = seeded_title(d.get("kind", ""), d.get("V_prescribed", np.nan))
+        fig = self.state.figure if self.state.figure in ("stabSK", "stabSW") else "simulation"
+        c = seeded_comparison(fig, sim, title, sim.elapsed_s)
+        if c is None:
+            return f"no velocity measured from passage times (the run stopped early); {tracked}"
+        return (
+            f"measured velocity V = {d['V_measured']!r} (fit of the passage times at "
+            f"{d.get('n_sites_timed', '?')} sites); {comparison_parts([c])[0]}; "
+            f"the tracker's estimate: {tracked.removeprefix('tracked velocities: ')}"
+        )
+
     def _image(self, info: Info, up: Updates, sim, snaps, t, n) -> None:
         """The space–time image: at most MAX_COLUMNS columns, each a block of sites showing its
         extreme strain (fpucore.simulate.extreme_blocks), the colour bar over the whole field;
@@ -424,12 +448,11 @@ class SimulationScene(BokehScene):
         self.table.object = wave_table(sim.waves)
         self._tracked_sites(info, up, sim)
         self._sim = (req, sim)
-        info.shown = (
-            f"simulation of {KIND_WORDS[req.kind]} to t = {t[-1]:.4g}; "
-            f"{tracked_velocities(sim.waves)}"
-        )
+        velocities = tracked_velocities(sim.waves)
         if isinstance(req, compute.SeededRequest):
             info.notes.append(f"seeding wave V = {fmt_num(req.wave.V)}, N = {req.wave.N}")
+            velocities = self._measured_velocity(sim, velocities)
+        info.shown = f"simulation of {KIND_WORDS[req.kind]} to t = {t[-1]:.4g}; {velocities}"
         return up
 
     def hide_plot(self) -> None:

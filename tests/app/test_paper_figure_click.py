@@ -177,8 +177,8 @@ def test_a_simulation_figure_fills_the_simulation_scene(label, kind, widgets, pr
     for name, value in widgets.items():
         assert getattr(sc, name).value == pytest.approx(value, rel=1e-15), name
     assert sc._want_run and sc.requested >= 1  # the click starts the run (measured ≤ 3 s)
-    if kind == "seeded":  # the chain holds the N = 500 wave, its path and two margins of 100
-        assert sc.L.value >= 500 + math.ceil(st.V * sc.t_end.value) + 200
+    if kind == "seeded":  # the chain holds the wave, its path and two margins of 100
+        assert sc.L.value >= st.N + math.ceil(st.V * sc.t_end.value) + 200
     # built later (a link with fig=, another tab first): the scene starts with the figure's
     st2, _ = state_from_url({"fig": label, "tab": "paper"})
     later = Recorder(st2)
