@@ -86,6 +86,7 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
         side = pn.Column(
             pn.pane.Markdown("#### Error and time", margin=(0, 5)),
             self.status,
+            self.computing_text,
             self.progress,
             self.progress_text,
             self.cancel_btn,
@@ -123,6 +124,7 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
         self._running = False
         self._cancel = False
         self._stamp = state_stamp(state)
+        self._render_stamp = self._stamp
         self._extra_watch()
         if hasattr(self, "show_scenario"):  # a paper figure's initial data (state.scenario)
             if state.scenario:
@@ -177,6 +179,7 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
 
     def show_intermediate(self, obj, info: Info) -> None:
         """Publish a first (cheap) result while a costlier part is still computing."""
+        self._stamp = info.stamp or self._render_stamp
         self.publish(obj)
         self._write_status(info, time.perf_counter(), partial=True)
 
@@ -271,7 +274,10 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
         t0 = time.perf_counter()
         info = Info()
         self.stale = False
-        self._stamp = state_stamp(self.state)
+        # the stamp on screen changes only with the result it describes (published below);
+        # the request in flight names its own parameters beside the spinner
+        self._render_stamp = state_stamp(self.state)
+        self._computing = self._render_stamp
         try:
             stop_busy = (lambda: None) if building else self._busy()
             try:
@@ -280,21 +286,25 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
                 stop_busy()
         except compute.Superseded:
             if self._cancel:
+                self._stamp = info.stamp or self._render_stamp
                 self._show_message(
                     "Cancelled. Change a parameter or press the button again to recompute.",
                     "info",
                 )
             return None  # else a newer request is pending: the loop renders it next
         except SceneMessage as exc:
+            self._stamp = info.stamp or self._render_stamp
             self._show_message(str(exc), exc.kind)
             return None
         except ParameterError as exc:
+            self._stamp = info.stamp or self._render_stamp
             self._show_message(str(exc), "warning")
             return None
         except compute.CancelledError:
             # the worker pool was shut down under the job (the server is stopping; run_job
             # cancels nothing a caller still waits for): not a failure of the app
             if not self.session_closed:
+                self._stamp = info.stamp or self._render_stamp
                 self._show_message(
                     "Stopped: the server's worker processes were shut down. Press the button or "
                     "change a parameter to compute again.",
@@ -305,6 +315,7 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
             if self.session_closed:  # the models were emptied under the render: not a failure
                 return None
             log.exception("scene %s failed", self.key)
+            self._stamp = info.stamp or self._render_stamp
             self._show_message(
                 f"computation failed: {type(exc).__name__}: {exc}".splitlines()[0], "danger"
             )
@@ -312,6 +323,7 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
         if self.session_closed:
             return None
         try:
+            self._stamp = info.stamp or self._render_stamp
             self.publish(obj)
             if info.warning:
                 self.alert.param.update(alert_type="warning", object=md_literal(info.warning))

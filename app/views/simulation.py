@@ -35,7 +35,7 @@ from fpucore.paper.figures_dynamics import (
 
 from .. import compute
 from .bokeh_scene import BokehScene, Updates, add_legend, add_line, new_figure
-from .formatting import fmt_num, provenance
+from .formatting import fmt_num, provenance, state_stamp
 from .paper import comparison_parts
 from .python_code import python_preamble
 from .report import Info, SceneMessage
@@ -79,6 +79,13 @@ def last_to_pass(waves, site: int, t_end: float):
         if 0.0 <= t <= t_end and t > t_best:
             best, t_best = w, t
     return best
+
+
+def run_stamp(state_line: str, req) -> str:
+    """The parameter line of a simulation: the state's (state_stamp), then the run's inputs
+    exactly ("; run: riemann L=3600 t_end=300.0 … w_left=4.6 w_right=0.0")."""
+    run = " ".join(f"{k}={v!r}" for k, v in req.params().items())
+    return f"{state_line}; run: {req.kind} {run}"
 
 
 def fmt_pm(x: float, err: float) -> str:
@@ -404,6 +411,10 @@ class SimulationScene(BokehScene):
             raise SceneMessage("Choose the initial data and press 'Run simulation'.", "info")
         req = self._request
         s = self.state
+        # the run's own inputs on the parameter line (a Riemann run does not use the state's
+        # wave; a seeded one uses the wave of the moment Run was pressed)
+        info.stamp = run_stamp(state_stamp(s), req)
+        self.computing_for(info.stamp)
         c = compute.simulation(
             s.law(), req, stop=self.superseded, progress=self.stage_progress("simulation")
         )
