@@ -33,7 +33,7 @@ from fpucore.paper.figures_dynamics import (
     site_overlay,
 )
 
-from .. import compute
+from .. import compute, sim_url
 from .bokeh_scene import BokehScene, Updates, add_legend, add_line, new_figure
 from .formatting import fmt_num, provenance, state_stamp
 from .paper import comparison_parts
@@ -196,9 +196,42 @@ class SimulationScene(BokehScene):
 
         def go(_):
             self._want_run = True
+            self._inputs_to_url()  # a run with the widgets' defaults is a link's too
             self.request()
 
         self.run_btn.on_click(go)
+        self._applying = False
+        inputs = [self.kind, self.L, self.t_end, self.w_l, self.w_r, self.w_B, self.A,
+                  self.guard, self.probes]  # fmt: skip
+        for w in inputs:
+            w.param.watch(lambda _: self._inputs_to_url(), "value")
+
+    def _inputs(self) -> dict | None:
+        """The widgets' run inputs (app.sim_url's keywords); None while the sites are not a
+        list of numbers (the run names the problem)."""
+        try:
+            probes = self._probe_sites()
+        except SceneMessage:
+            return None
+        data = {"w_left": self.w_l.value, "w_right": self.w_r.value, "w_B": self.w_B.value,
+                "A": self.A.value}  # fmt: skip
+        return dict(kind=self.kind.value, L=self.L.value, t_end=self.t_end.value,
+                    guard=self.guard.value, probes=probes, **data)  # fmt: skip
+
+    def _inputs_to_url(self) -> None:
+        """The widgets into the state's ``simulation`` (the URL's sim=): a change the figure
+        did not make leaves it (ExplorerState._leave_figure); its run is not on screen."""
+        if self._applying:
+            return
+        inputs = self._inputs()
+        if inputs is None or None in inputs.values():
+            return
+        try:
+            text = sim_url.format_sim(**inputs)
+        except (TypeError, ValueError):
+            return
+        if text != self.state.simulation:
+            self.state.param.update(simulation=text, sim_shown=False)
 
     def show_scenario(self, kind: str, run: bool = False, probes=(), **params) -> None:
         """Set the initial-data widgets (a paper figure's run, app.paper_figures): ``kind``
@@ -207,10 +240,15 @@ class SimulationScene(BokehScene):
         caller renders (the scene's base class: at once if the scene is shown)."""
         widgets = {"L": self.L, "t_end": self.t_end, "guard": self.guard, "w_left": self.w_l,
                    "w_right": self.w_r, "w_B": self.w_B, "A": self.A}  # fmt: skip
-        self.kind.value = kind
-        for name, value in params.items():
-            widgets[name].value = value
-        self.probes.value = ", ".join(str(int(k)) for k in probes)
+        self._applying = True
+        try:
+            self.kind.value = kind
+            for name, value in params.items():
+                widgets[name].value = value
+            self.probes.value = ", ".join(str(int(k)) for k in probes)
+        finally:
+            self._applying = False
+        self._inputs_to_url()  # the figure's (or the link's) own: no change of the state
         self._want_run = bool(run)
         if not run:  # not the previous run's result under the new widgets: "press Run"
             self._params = None
@@ -464,6 +502,8 @@ class SimulationScene(BokehScene):
             info.notes.append(f"seeding wave V = {fmt_num(req.wave.V)}, N = {req.wave.N}")
             velocities = self._measured_velocity(sim, velocities)
         info.shown = f"simulation of {KIND_WORDS[req.kind]} to t = {t[-1]:.4g}; {velocities}"
+        if sim_url.format_sim(req.kind, **req.params()) == s.simulation:  # the link's run is on screen
+            s.sim_shown = True
         return up
 
     def hide_plot(self) -> None:
