@@ -502,8 +502,8 @@ class SimulationScene(BokehScene):
             info.notes.append(f"seeding wave V = {fmt_num(req.wave.V)}, N = {req.wave.N}")
             velocities = self._measured_velocity(sim, velocities)
         info.shown = f"simulation of {KIND_WORDS[req.kind]} to t = {t[-1]:.4g}; {velocities}"
-        if sim_url.format_sim(req.kind, **req.params()) == s.simulation:  # the link's run is on screen
-            s.sim_shown = True
+        if sim_url.format_sim(req.kind, **req.params()) == s.simulation:
+            s.sim_shown = True  # the link's run is on screen (run=1)
         return up
 
     def hide_plot(self) -> None:
