@@ -296,6 +296,9 @@ class SimulationScene(BokehScene):
         self.fig_img, self.fig_prof = fi, fp
         self.r_first = add_line(fp, "gray", 1.5, "dashed")
         self.r_last = add_line(fp, "black", 1.5)
+        # read by the tests (the drawn data against the run's)
+        self.r_first[1].name, self.r_last[1].name = "sim-profile-initial", "sim-profile-final"
+        self.img_src.name, self.mapper.name = "sim-image", "sim-colour"
         self.prof_legend = add_legend(
             fp, "right", [("t = 0", [self.r_first[0]]), ("final", [self.r_last[0]])]
         )
