@@ -334,6 +334,7 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
             self._write_status(info, t0)
             self.code.value = self.python_code()
             self.download.disabled = False
+            self.copy_btn.disabled = False
             for w in self.exporters:
                 w.disabled = False
         except Exception as exc:
@@ -358,6 +359,7 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
             said = "".join(f"# {line}\n" for line in f"nothing shown: {text}".splitlines())
             self.code.value = python_preamble(self.state) + said
             self.download.disabled = True  # nothing to download until a plot is shown
+            self.copy_btn.disabled = True  # nor code that reproduces nothing (a refused law)
             for w in self.exporters:
                 w.disabled = True
         except Exception:  # noqa: BLE001
