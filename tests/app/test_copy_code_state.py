@@ -1,4 +1,4 @@
-""""Copy as Python" copies the code of what is shown: disabled while a scene shows a message
+""" "Copy as Python" copies the code of what is shown: disabled while a scene shows a message
 instead of a plot (a refused law: its code would only raise), enabled again with the plot."""
 
 from __future__ import annotations
