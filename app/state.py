@@ -101,16 +101,11 @@ class ExplorerState(param.Parameterized):
     tol = param.Number(1e-10, doc="Newton tolerance of the discrete solve")
     atlas = param.String("", doc="the Atlas scene's store, relative to ATLAS_ROOT; empty: none")
     held = param.List([], item_type=HeldWave, doc="held curves (oldest first), at most MAX_HELD")
-    figure = param.String(
-        "", doc="the paper figure (label) the view was opened from, while the state is its"
-    )
-    #: the Simulation scene's initial data set by a paper figure (app.paper_figures
-    #: FIGURE_SCENARIO and "run"); not in the URL (its ``fig`` sets it)
+    figure = param.String("", doc="the paper figure the view was opened from, while it is its")
+    #: what the Simulation scene is told to show (a figure's FIGURE_SCENARIO, a link's sim=)
     scenario = param.Dict(None, allow_None=True)
-    #: the Simulation scene's inputs (app.sim_url's form; "" untouched) and whether their run
-    #: is on screen: the link's ``sim`` and ``run`` (a fresh page runs it again)
-    simulation = param.String("")
-    sim_shown = param.Boolean(False)
+    simulation = param.String("", doc="the Simulation scene's inputs, app.sim_url (URL sim=)")
+    sim_shown = param.Boolean(False, doc="their run is on screen (URL run=1: a link reruns it)")
     #: what the state changed by itself (e.g. V moved with w_plus), shown in the sidebar
     note = param.String("")
 
@@ -366,11 +361,8 @@ class ExplorerState(param.Parameterized):
         try:
             self.tab = tab
             self.param.update(a=-1.0, b=10.0, expression="", mode=mode)
-            new = {
-                "w_plus": w_plus,
-                "N": N,
-                "tol": paper_figures.FIGURE_TOL.get(label, self.param.tol.default),
-            }
+            tol = paper_figures.FIGURE_TOL.get(label, self.param.tol.default)
+            new = {"w_plus": w_plus, "N": N, "tol": tol}
             if V is not None:
                 new["V"] = V
             self.param.update(**new)
