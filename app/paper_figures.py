@@ -41,12 +41,18 @@ FIGURE_STATE: dict[str, tuple[str, str, float, float | None, int]] = {
     "SWenergy_cubic_DvsQC": ("diagram", "solitary", 6.0, 5.0, 500),
     "floquet_SK": ("floquet", "superkink", W_PLUS_5_2, None, 500),
     "Floquet_example": ("floquet", "superkink", W_PLUS_5_2, None, 500),
-    "stabSK": ("simulation", "superkink", W_PLUS_5_2, None, 500),
+    # the seeded runs: the paper's wave (fpucore.paper: N = 64, tol = 1e-12, FIGURE_TOL), so
+    # that the Simulation scene's measured velocity is the Paper tab's, digit for digit
+    "stabSK": ("simulation", "superkink", W_PLUS_5_2, None, 64),
     "Riemann1": ("simulation", "superkink", 20.0 / 3.0 - 4.6, None, 500),  # V = 5.7209
     "floquet_cubicSW": ("floquet", "solitary", 1.0, 5.38, 500),
-    "stabSW": ("simulation", "solitary", 6.0, 5.2174919476, 500),
+    "stabSW": ("simulation", "solitary", 6.0, 5.2174919476, 64),
     "SWdyn": ("simulation", "solitary", 1.0, 5.2494, 500),
 }
+
+#: the Newton tolerance of a figure's wave where it is not the explorer's default (1e-10):
+#: fpucore.paper's seeded runs solve their waves at fpucore.wave's default 1e-12
+FIGURE_TOL: dict[str, float] = {"stabSK": 1e-12, "stabSW": 1e-12}
 
 #: the held curves of the figures that draw families of profiles, besides the current wave:
 #: ("solitary", w₊, V) or ("superkink", w₊, None) — the rest of the family the figure draws
@@ -65,8 +71,8 @@ FIGURE_HELD: dict[str, tuple[tuple[str, float, float | None], ...]] = {
 
 #: a run that takes longer than this (measured, see FIGURE_SCENARIO) waits for "Run simulation"
 RUN_ON_CLICK_S = 3.0
-_T50_SK = 50.0 / 5.2  # 50 periods T = 1/V: fpucore.simulate.seeded's default t_end
-_T50_SW = 50.0 / 5.2174919476
+_T50_SK = 50.0 * (1.0 / 5.2)  # 50 periods T = 1/V: fpucore.simulate.seeded's default t_end
+_T50_SW = 50.0 * (1.0 / 5.2174919476)  # (computed as it computes it, to the last bit)
 #: the Simulation scene's initial data of the simulation figures (fpucore.paper
 #: figures_dynamics), with ``run_s``: the longest click-to-drawn time measured for it in the
 #: app (Explorer, paper click, the run in a warm worker process, with the tracked sites' waves;
@@ -74,14 +80,14 @@ _T50_SW = 50.0 / 5.2174919476
 #: load) — the click starts the run when run_s <= RUN_ON_CLICK_S.
 FIGURE_SCENARIO: dict[str, dict] = {
     # seeded with the current superkink V = 5.2 (panel (b)) for 50 periods; L = fpucore's
-    # default chain for N = 500 (N + ⌈V t_end⌉ + 2·100 sites) and 2 sites of slack
-    "stabSK": {"kind": "seeded", "L": 752, "t_end": _T50_SK, "guard": "convex", "probes": (),
+    # default chain for N = 64 (N + ⌈V t_end⌉ + 2·100 sites): fpucore.paper's run exactly
+    "stabSK": {"kind": "seeded", "L": 314, "t_end": _T50_SK, "guard": "convex", "probes": (),
                "run_s": 0.4},
     # Riemann data w^l = 4.6, w^r = 0, L = 3600 to t = 300, tracked sites 100, 200, 3000
     "Riemann1": {"kind": "riemann", "w_left": 4.6, "w_right": 0.0, "L": 3600, "t_end": 300.0,
                  "guard": "convex", "probes": (100, 200, 3000), "run_s": 2.7},
     # seeded with the tensile wave V = 5.2174919476 at w₊ = 6 (panel (b)) for 50 periods
-    "stabSW": {"kind": "seeded", "L": 752, "t_end": _T50_SW, "guard": "convex", "probes": (),
+    "stabSW": {"kind": "seeded", "L": 314, "t_end": _T50_SW, "guard": "convex", "probes": (),
                "run_s": 2.2},
     # Gaussian data (a): w_B = 1, A = 6, L = 2400, t = 200 (leaves (α, β): guard "bounded")
     "SWdyn": {"kind": "gaussian", "w_B": 1.0, "A": 6.0, "L": 2400, "t_end": 200.0,

@@ -27,6 +27,7 @@ from fpucore import qc
 from fpucore.errors import ParameterError
 
 from . import compute, paper_figures
+from .sim_url import format_sim, sc_inputs
 
 TABS = ("force", "phase", "profiles", "diagram", "floquet", "simulation", "atlas", "paper")
 MODES = ("solitary", "superkink")
@@ -41,9 +42,12 @@ MAX_URL_VALUE = 40
 MAX_URL_LAW = 200
 #: longest wait of a page build for the URL's law (the server's event loop waits meanwhile)
 URL_LAW_WAIT_S = 0.1
-URL_PARAMS = ("a", "b", "law", "w_plus", "V", "mode", "tab", "N", "tol", "atlas", "hold", "fig")
+URL_PARAMS = (
+    "a", "b", "law", "w_plus", "V", "mode", "tab", "N", "tol", "atlas", "hold", "fig", "sim", "run"
+)  # fmt: skip
 #: URL name → state parameter where they differ (``law()`` is the state's law object)
-URL_ATTRS = {"law": "expression", "hold": "held", "fig": "figure"}
+URL_ATTRS = {"law": "expression", "hold": "held", "fig": "figure", "sim": "simulation",
+             "run": "sim_shown"}  # fmt: skip
 #: curves held at once (Hold on Wave profiles and Phase plane; the oldest goes first)
 MAX_HELD = 6
 #: longest ``hold`` value read: MAX_HELD entries of two exact floats each, with room to spare
@@ -97,12 +101,11 @@ class ExplorerState(param.Parameterized):
     tol = param.Number(1e-10, doc="Newton tolerance of the discrete solve")
     atlas = param.String("", doc="the Atlas scene's store, relative to ATLAS_ROOT; empty: none")
     held = param.List([], item_type=HeldWave, doc="held curves (oldest first), at most MAX_HELD")
-    figure = param.String(
-        "", doc="the paper figure (label) the view was opened from, while the state is its"
-    )
-    #: the Simulation scene's initial data set by a paper figure (app.paper_figures
-    #: FIGURE_SCENARIO and "run"); not in the URL (its ``fig`` sets it)
+    figure = param.String("", doc="the paper figure the view was opened from, while it is its")
+    #: what the Simulation scene is told to show (a figure's FIGURE_SCENARIO, a link's sim=)
     scenario = param.Dict(None, allow_None=True)
+    simulation = param.String("", doc="the Simulation scene's inputs, app.sim_url (URL sim=)")
+    sim_shown = param.Boolean(False, doc="their run is on screen (URL run=1: a link reruns it)")
     #: what the state changed by itself (e.g. V moved with w_plus), shown in the sidebar
     note = param.String("")
 
@@ -112,7 +115,7 @@ class ExplorerState(param.Parameterized):
         self._showing_figure = False
         self._solitary_V = self.V if self.mode == "solitary" else None
         self.param.watch(self._tie, ["w_plus", "V", "mode", "a", "b", "expression"])
-        self.param.watch(self._leave_figure, list(FIGURE_PARAMS))
+        self.param.watch(self._leave_figure, [*FIGURE_PARAMS, "simulation"])
         if self.mode == "superkink":
             self._tie_superkink(from_V=False)
 
@@ -358,7 +361,8 @@ class ExplorerState(param.Parameterized):
         try:
             self.tab = tab
             self.param.update(a=-1.0, b=10.0, expression="", mode=mode)
-            new = {"w_plus": w_plus, "N": N}
+            tol = paper_figures.FIGURE_TOL.get(label, self.param.tol.default)
+            new = {"w_plus": w_plus, "N": N, "tol": tol}
             if V is not None:
                 new["V"] = V
             self.param.update(**new)
@@ -368,6 +372,8 @@ class ExplorerState(param.Parameterized):
             if sc is not None:  # the widgets' values, and whether the click starts the run
                 sc = {k: v for k, v in sc.items() if k != "run_s"}
                 sc["run"] = paper_figures.scenario_runs(label)
+            if sc is not None:  # the scene's inputs in the URL (run: once it is on screen)
+                self.param.update(simulation=format_sim(**sc_inputs(sc)), sim_shown=False)
             if sc is not None and sc == self.scenario:
                 self.param.trigger("scenario")  # the same figure again: its widgets again
             else:

@@ -18,6 +18,7 @@ from fpucore.errors import ParameterError
 
 from . import compute, paper_figures
 from .data_dir import DATA_DIR_NAME, atlas_root, hide_server_paths
+from .sim_url import MAX_URL_SIM, format_sim, parse_sim, sc_inputs
 from .state import (
     A_RANGE,
     B_RANGE,
@@ -74,7 +75,7 @@ def resolve_atlas_store(name: str, raw: str) -> Path:
 def parse_url_value(name: str, raw: str):
     """One URL query value → the state's value (raises ParameterError naming the value and
     the valid range; the same ranges the sliders have)."""
-    limits = {"law": MAX_URL_LAW, "atlas": MAX_URL_LAW, "hold": MAX_URL_HOLD}
+    limits = {"law": MAX_URL_LAW, "atlas": MAX_URL_LAW, "hold": MAX_URL_HOLD, "sim": MAX_URL_SIM}
     limit = limits.get(name, MAX_URL_VALUE)
     if len(raw) > limit:
         raise ParameterError(name, raw[:12] + "…", f"at most {limit} characters")
@@ -125,6 +126,12 @@ def parse_url_value(name: str, raw: str):
         if raw not in paper_figures.FIGURE_STATE:
             raise ParameterError(name, raw, "one of " + ", ".join(paper_figures.FIGURE_STATE))
         return raw
+    if name == "sim":  # the canonical form of the Simulation scene's inputs
+        return format_sim(**parse_sim(raw))
+    if name == "run":
+        if raw.strip() not in ("0", "1"):
+            raise ParameterError(name, raw, "1 (the simulation was on screen) or 0")
+        return raw.strip() == "1"
     if name == "tol":
         x = _float(name, raw, "one of " + ", ".join(f"{t:g}" for t in TOL_OPTIONS))
         for t in TOL_OPTIONS:
@@ -223,10 +230,11 @@ def state_from_url(query: dict[str, str]) -> tuple[ExplorerState, list[str]]:
     values, errors = parse_url(query)
     hold = values.pop("held", None)
     fig = values.pop("figure", "")
+    sim, run = values.pop("simulation", ""), values.pop("sim_shown", False)
     figure = figure_state(fig) if fig else None
     if figure is not None:  # the figure's state first; the link's own values (checked) win
         base = {"a": -1.0, "b": 10.0, "expression": ""}
-        base.update({n: getattr(figure, n) for n in ("mode", "tab", "N", "w_plus")})
+        base.update({n: getattr(figure, n) for n in ("mode", "tab", "N", "tol", "w_plus")})
         if figure.mode == "solitary":
             base["V"] = figure.V
         values = base | values
@@ -267,8 +275,18 @@ def state_from_url(query: dict[str, str]) -> tuple[ExplorerState, list[str]]:
     if figure is not None:
         # the figure's simulation; the figure itself only while the state is the figure's
         st.scenario = figure.scenario
+        st.simulation = figure.simulation
         same = [getattr(st, n) == getattr(figure, n) for n in FIGURE_PARAMS]
         st.figure = fig if all(same) else ""
+    if sim:  # the link's simulation (run again if it was on screen); not the figure's: no fig
+        inputs = parse_sim(sim)
+        keep = figure is not None and inputs == sc_inputs(figure.scenario or {})
+        st.simulation, st.sim_shown = sim, run
+        if keep:
+            st.scenario = inputs | {"run": run or figure.scenario["run"]}
+        else:
+            st.figure = ""
+            st.scenario = inputs | {"run": run}
     return st, errors
 
 
@@ -290,7 +308,11 @@ def url_query(state: ExplorerState) -> dict[str, str]:
     out = {}
     for name, attr in zip(URL_PARAMS, STATE_PARAMS):
         value = getattr(state, attr)
-        if name in ("law", "atlas", "hold", "fig") and not value:
+        if name in ("law", "atlas", "hold", "fig", "sim", "run") and not value:
+            continue
+        if name == "run":
+            if state.simulation:  # the simulation's run was on screen
+                out[name] = "1"
             continue
         out[name] = format_hold(state) if name == "hold" else url_value(value)
     return out

@@ -147,7 +147,10 @@ class SimulationRequest(Request):
     def options(self) -> tuple:
         """The run's keyword arguments, in the order the code shows them."""
         kw = (("L", self.L), ("t_end", self.t_end), ("guard", self.guard))
-        return kw + ((("probes", self.probes),) if self.probes else ())
+        kw += (("probes", self.probes),) if self.probes else ()
+        # every site kept (fpucore's default keeps every k-th of 1000): the plots reduce the
+        # field themselves, keeping its extremes (fpucore.simulate.extreme_blocks)
+        return kw + (("max_sites_out", self.L),)
 
     def params(self) -> dict:
         """Every parameter by name, the run's options first (for a download's header)."""

@@ -43,6 +43,8 @@ QUANTITIES = {
 #: the AtlasData field each quantity is computed from (what "Copy as Python" prints)
 FIELDS = {"max |μ| − 1": "max_modulus", "amplitude": "amplitude", "E_ren": "energy"}
 FLOQUET_QUANTITY = "max |μ| − 1"
+#: the excess drawn on the log scale is floored here (a stable wave's is ~0 or below)
+EXCESS_FLOOR = 1e-16
 RUN = "background run"  # the source of the atlas on screen when it is the button's run
 
 
@@ -71,7 +73,8 @@ class AtlasScene(BokehScene):
         )
         fig.image("image", x="x", y="y", dw="dw", dh="dh", source=self.src,
                   color_mapper=self.mapper)  # fmt: skip
-        fig.add_layout(ColorBar(color_mapper=self.mapper, width=12), "right")
+        self.colorbar = ColorBar(color_mapper=self.mapper, width=12)
+        fig.add_layout(self.colorbar, "right")
         # the picked cell's outline (empty until a click)
         self.pick_src = ColumnDataSource({"l": [], "r": [], "b": [], "t": []}, name="atlas-pick")
         fig.quad(left="l", right="r", bottom="b", top="t", source=self.pick_src,
@@ -98,6 +101,7 @@ class AtlasScene(BokehScene):
 
     def _extra_watch(self) -> None:
         self._want_run = False
+        self._refused = ""  # a click on a blank cell, named above the plot
         self._data: AtlasData | None = None
         self._source = ""
         # the run on screen: its request, timing label and cost
@@ -195,12 +199,19 @@ class AtlasScene(BokehScene):
         dw = (w[-1] - w[0]) / max(len(w) - 1, 1) if len(w) > 1 else 1.0
         dv = (V[-1] - V[0]) / max(len(V) - 1, 1) if len(V) > 1 else 1.0
         up = Updates()
+        drawn, bar = z, name
+        if name == FLOQUET_QUANTITY:  # the excess spans decades: drawn on a log scale
+            drawn = np.log10(np.maximum(z, EXCESS_FLOOR))
+            bar = f"log₁₀(max |μ| − 1), ≤ {EXCESS_FLOOR:.0e} drawn at {np.log10(EXCESS_FLOOR):.0f}"
+        up.set(self.colorbar, title=bar)
+        if self._refused:
+            info.warning = self._refused
         # set, not Updates.data: the image column is a *list* of 2-D arrays (np.asarray would
         # stack it into one 3-D array, which BokehJS's image glyph rejects)
-        up.set(self.src, data={"image": [np.ascontiguousarray(z.T)], "x": [w[0] - dw / 2],
+        up.set(self.src, data={"image": [np.ascontiguousarray(drawn.T)], "x": [w[0] - dw / 2],
                                "y": [V[0] - dv / 2], "dw": [dw * len(w)],
                                "dh": [dv * len(V)]})  # fmt: skip
-        finite = z[np.isfinite(z)]
+        finite = drawn[np.isfinite(drawn)]
         up.set(self.mapper, low=float(finite.min()), high=float(finite.max()))
         up.set(self.fig.title, text=f"{name} over (w₊, V) (click a cell: that wave)")
         up.range(self.fig.x_range, w[0] - dw / 2, w[-1] + dw / 2)
@@ -236,6 +247,14 @@ class AtlasScene(BokehScene):
             return False
         w, V = self._data.w_plus, self._data.V
         i, j = int(np.argmin(np.abs(w - x))), int(np.argmin(np.abs(V - y)))
+        if not self._data.ok[i, j]:  # a blank cell: no wave there, the state stays valid
+            self._refused = (
+                f"No wave at the cell w₊ = {w[i]:.6g}, V = {V[j]:.6g} (blank: outside the "
+                "existence region or not converged); the parameters are unchanged."
+            )
+            self.request()
+            return False
+        self._refused = ""
         N = self.atlas_N
         try:
             # the atlas's N too: the Profiles / Floquet tabs then show this cell's very wave

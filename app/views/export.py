@@ -271,6 +271,9 @@ def _draw_figure(ax, fig) -> None:
         start, end = getattr(rng, "start", None), getattr(rng, "end", None)
         if isinstance(start, (int, float)) and isinstance(end, (int, float)) and end > start:
             setter(start, end)
+    fw, fh = getattr(fig, "frame_width", None), getattr(fig, "frame_height", None)
+    if fw and fh:  # a fixed frame (the complex plane's square): the same box, so the same
+        ax.set_box_aspect(fh / fw)  # ranges draw the unit circle round, as on screen
     if isinstance(fig.y_scale, LogScale):
         ax.set_yscale("log")
     if isinstance(fig.x_scale, LogScale):

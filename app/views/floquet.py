@@ -339,7 +339,7 @@ class FloquetScene(BokehScene):
         info.shown = (
             f"{r.kind} wave V = {fmt_num(r.V)}, N = {r.N}: {len(mu)} multipliers, "
             f"max |μ| = {fr.max_modulus:.10f}, away from 1: {fr.max_modulus_away_from_1:.10f} — "
-            f"**{fr.decision.headline}**: {fr.decision.sentence}"
+            f"**{fr.decision.headline}**: {fr.decision.evidence}"
         )
         self._finite_size(fr, up)
         shown = self._sweep(info, up)
@@ -365,7 +365,9 @@ class FloquetScene(BokehScene):
         up.range(self.fig_d.y_range, *finite_extent(ex - er, ex + er, [0.0]), pad=0.1)
         d = fr.decision
         title = f"(d) finite-size window: max |μ| − 1 on rings N = {int(Ns[0])} … {int(Ns[-1])}"
-        fit = d.fit_words("±")  # "" for a fit without an error bar smaller than its value
+        # the envelope's exponent only beside the verdict it supports (a decay): beside "not
+        # determined" it read as a result; "" for a fit without an error bar below its value
+        fit = d.fit_words("±") if d.reason == "decays" else ""
         if fit:
             title += f"; upper envelope ∝ N^−p, {fit}"
         up.set(self.fig_d.title, text=title)

@@ -174,7 +174,7 @@ class PaperScene(Scene):
                 self.cmp_panes[label].object = text
 
 
-def _parts(comparisons) -> list[str]:
+def comparison_parts(comparisons) -> list[str]:
     """Each printed number beside ours ± error, with its verdict mark (Comparison objects or the
     docs JSON's dicts)."""
     parts = []
@@ -206,10 +206,10 @@ def comparison_markdown(label: str, r, docs: dict | None = None) -> str:
             f"**{ok}/{len(comps)} agree** (from docs/, fpucore {docs.get('fpucore_version', '?')}"
             f"{size}; {cmd} computes it here)"
         )
-        return "<small>" + " · ".join([head, *_parts(comps)]) + "</small>"
+        return "<small>" + " · ".join([head, *comparison_parts(comps)]) + "</small>"
     size = " (reduced)" if r.reduced else ""
     head = (
         f"**{r.n_agree}/{len(r.comparisons)} agree**{size}, computed here (fpu paper's cache) in "
         f"{r.elapsed_s:.1f} s"
     )
-    return "<small>" + " · ".join([head, *_parts(r.comparisons)]) + "</small>"
+    return "<small>" + " · ".join([head, *comparison_parts(r.comparisons)]) + "</small>"

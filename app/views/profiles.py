@@ -252,7 +252,8 @@ class ProfilesScene(BokehScene):
         info.error("tail", r.tail_error)
         info.difference("max |discrete − QC|", r.qc_max_deviation)
         info.error("profile error bound", r.profile_error)
-        info.error("amplitude error bound", r.amplitude_error)
+        if s.mode != "superkink":  # a superkink's amplitude is exact (said beside it)
+            info.error("amplitude error bound", r.amplitude_error)
         if not r.converged:
             # an unconverged profile is never drawn as if it were a wave
             need = compute.n_needed(lw, s.mode, s.w_plus, s.V, s.tol)

@@ -36,6 +36,9 @@ class Info:
     timings: list[tuple[str, Computed | float]] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
     warning: str | None = None  # shown above the plot (e.g. "current V out of range")
+    #: the parameters the render used, when they are not the state's (state_stamp): a scene
+    #: whose result depends on its own inputs (the Simulation scene's run) names them
+    stamp: str = ""
 
     def time(self, label: str, c: Computed | float) -> None:
         self.timings.append((label, c))

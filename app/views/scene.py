@@ -87,6 +87,7 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
         side = pn.Column(
             LiteralMarkdown("#### Error and time", margin=(0, 5)),
             self.status,
+            self.computing_text,
             self.progress,
             self.progress_text,
             self.cancel_btn,
@@ -124,6 +125,7 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
         self._running = False
         self._cancel = False
         self._stamp = state_stamp(state)
+        self._render_stamp = self._stamp
         self._extra_watch()
         if hasattr(self, "show_scenario"):  # a paper figure's initial data (state.scenario)
             if state.scenario:
@@ -178,6 +180,7 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
 
     def show_intermediate(self, obj, info: Info) -> None:
         """Publish a first (cheap) result while a costlier part is still computing."""
+        self._stamp = info.stamp or self._render_stamp
         self.publish(obj)
         self._write_status(info, time.perf_counter(), partial=True)
 
@@ -272,7 +275,10 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
         t0 = time.perf_counter()
         info = Info()
         self.stale = False
-        self._stamp = state_stamp(self.state)
+        # the stamp on screen changes only with the result it describes (published below);
+        # the request in flight names its own parameters beside the spinner
+        self._render_stamp = state_stamp(self.state)
+        self._computing = self._render_stamp
         try:
             stop_busy = (lambda: None) if building else self._busy()
             try:
@@ -281,21 +287,25 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
                 stop_busy()
         except compute.Superseded:
             if self._cancel:
+                self._stamp = info.stamp or self._render_stamp
                 self._show_message(
                     "Cancelled. Change a parameter or press the button again to recompute.",
                     "info",
                 )
             return None  # else a newer request is pending: the loop renders it next
         except SceneMessage as exc:
+            self._stamp = info.stamp or self._render_stamp
             self._show_message(str(exc), exc.kind)
             return None
         except ParameterError as exc:
+            self._stamp = info.stamp or self._render_stamp
             self._show_message(str(exc), "warning")
             return None
         except compute.CancelledError:
             # the worker pool was shut down under the job (the server is stopping; run_job
             # cancels nothing a caller still waits for): not a failure of the app
             if not self.session_closed:
+                self._stamp = info.stamp or self._render_stamp
                 self._show_message(
                     "Stopped: the server's worker processes were shut down. Press the button or "
                     "change a parameter to compute again.",
@@ -306,12 +316,14 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
             if self.session_closed:  # the models were emptied under the render: not a failure
                 return None
             log.exception("scene %s failed", self.key)
+            self._stamp = info.stamp or self._render_stamp
             said = f"computation failed: {type(exc).__name__}: {hide_server_paths(exc)}"
             self._show_message(said.splitlines()[0], "danger")
             return None
         if self.session_closed:
             return None
         try:
+            self._stamp = info.stamp or self._render_stamp
             self.publish(obj)
             if info.warning:
                 self.alert.param.update(alert_type="warning", object=md_literal(info.warning))
@@ -322,6 +334,7 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
             self._write_status(info, t0)
             self.code.value = self.python_code()
             self.download.disabled = False
+            self.copy_btn.disabled = False
             for w in self.exporters:
                 w.disabled = False
         except Exception as exc:
@@ -347,6 +360,7 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
             said = "".join(f"# {line}\n" for line in f"nothing shown: {text}".splitlines())
             self.code.value = python_preamble(self.state) + said
             self.download.disabled = True  # nothing to download until a plot is shown
+            self.copy_btn.disabled = True  # nor code that reproduces nothing (a refused law)
             for w in self.exporters:
                 w.disabled = True
         except Exception:  # noqa: BLE001

@@ -37,6 +37,12 @@ class SceneProgress:
             "", visible=False, css_classes=["scene-progress"], margin=(0, 10)
         )
         self._stage = ("", 0.0, 0.0)  # (name, start of the stage, last text update)
+        # the request in flight, by its own parameters: the status above keeps the last result
+        # and the parameters it was computed with until the new result replaces both
+        self.computing_text = pn.pane.Str(
+            "", visible=False, css_classes=["scene-computing"], margin=(0, 10)
+        )
+        self._computing = ""
         self.cancel_btn = pn.widgets.Button(
             label="Cancel", color="warning", visible=False, css_classes=["scene-cancel"]
         )
@@ -67,6 +73,13 @@ class SceneProgress:
         """The progress callback (a fraction in [0, 1]) of one named stage."""
         return lambda x: self.set_progress(x, stage=stage)
 
+    def computing_for(self, stamp: str) -> None:
+        """The parameters of the request in flight (shown with the spinner): a render that
+        learns them late (the Simulation scene's run) names them here."""
+        self._computing = stamp
+        if self.computing_text.visible:
+            self.computing_text.object = f"computing … for {stamp}"
+
     def set_stage(self, stage: str) -> None:
         """A new stage of the running job, before it reports a fraction."""
         self._stage = (stage, time.perf_counter(), time.perf_counter())
@@ -87,6 +100,9 @@ class SceneProgress:
                     flags["on"] = True
                     try:
                         self.plot.loading = True
+                        self.computing_text.param.update(
+                            object=f"computing … for {self._computing}", visible=True
+                        )
                         self.progress.param.update(value=-1, visible=True)
                         self.progress_text.visible = True
                         self.cancel_btn.visible = True
@@ -103,6 +119,7 @@ class SceneProgress:
                 flags["done"] = True
                 if flags["on"]:
                     self.plot.loading = False
+                    self.computing_text.visible = False
                     self.progress.visible = False
                     self.progress_text.visible = False
                     self.cancel_btn.visible = False

@@ -24,16 +24,25 @@ from bokeh.layouts import column, row
 from bokeh.models import ColorBar, ColumnDataSource, LinearColorMapper
 from bokeh.palettes import Viridis256
 
-from fpucore import qc
-from fpucore.paper.figures_dynamics import WINDOW_SITES, passage_time, site_overlay
+from fpucore import qc, simulate
+from fpucore.paper.figures_dynamics import (
+    WINDOW_SITES,
+    passage_time,
+    seeded_comparison,
+    seeded_title,
+    site_overlay,
+)
 
-from .. import compute
+from .. import compute, sim_url
 from .bokeh_scene import BokehScene, Updates, add_legend, add_line, new_figure
-from .formatting import fmt_num, provenance
+from .formatting import fmt_num, provenance, state_stamp
+from .paper import comparison_parts
 from .python_code import python_preamble
 from .report import Info, SceneMessage
 from .untrusted import LiteralMarkdown, md_literal
 
+#: the space–time image's most columns (about the plot's width in pixels)
+MAX_COLUMNS = 1000
 MAX_PROBES = 3  # tracked-site panels drawn (the paper's (c), (d), (e))
 SHORT_NAMES = {"dsw_edge": "DSW edge", "solitary": "solitary wave"}  # panel titles
 
@@ -70,6 +79,13 @@ def last_to_pass(waves, site: int, t_end: float):
         if 0.0 <= t <= t_end and t > t_best:
             best, t_best = w, t
     return best
+
+
+def run_stamp(state_line: str, req) -> str:
+    """The parameter line of a simulation: the state's (state_stamp), then the run's inputs
+    exactly ("; run: riemann L=3600 t_end=300.0 … w_left=4.6 w_right=0.0")."""
+    run = " ".join(f"{k}={v!r}" for k, v in req.params().items())
+    return f"{state_line}; run: {req.kind} {run}"
 
 
 def fmt_pm(x: float, err: float) -> str:
@@ -180,9 +196,42 @@ class SimulationScene(BokehScene):
 
         def go(_):
             self._want_run = True
+            self._inputs_to_url()  # a run with the widgets' defaults is a link's too
             self.request()
 
         self.run_btn.on_click(go)
+        self._applying = False
+        inputs = [self.kind, self.L, self.t_end, self.w_l, self.w_r, self.w_B, self.A,
+                  self.guard, self.probes]  # fmt: skip
+        for w in inputs:
+            w.param.watch(lambda _: self._inputs_to_url(), "value")
+
+    def _inputs(self) -> dict | None:
+        """The widgets' run inputs (app.sim_url's keywords); None while the sites are not a
+        list of numbers (the run names the problem)."""
+        try:
+            probes = self._probe_sites()
+        except SceneMessage:
+            return None
+        data = {"w_left": self.w_l.value, "w_right": self.w_r.value, "w_B": self.w_B.value,
+                "A": self.A.value}  # fmt: skip
+        return dict(kind=self.kind.value, L=self.L.value, t_end=self.t_end.value,
+                    guard=self.guard.value, probes=probes, **data)  # fmt: skip
+
+    def _inputs_to_url(self) -> None:
+        """The widgets into the state's ``simulation`` (the URL's sim=): a change the figure
+        did not make leaves it (ExplorerState._leave_figure); its run is not on screen."""
+        if self._applying:
+            return
+        inputs = self._inputs()
+        if inputs is None or None in inputs.values():
+            return
+        try:
+            text = sim_url.format_sim(**inputs)
+        except (TypeError, ValueError):
+            return
+        if text != self.state.simulation:
+            self.state.param.update(simulation=text, sim_shown=False)
 
     def show_scenario(self, kind: str, run: bool = False, probes=(), **params) -> None:
         """Set the initial-data widgets (a paper figure's run, app.paper_figures): ``kind``
@@ -191,10 +240,15 @@ class SimulationScene(BokehScene):
         caller renders (the scene's base class: at once if the scene is shown)."""
         widgets = {"L": self.L, "t_end": self.t_end, "guard": self.guard, "w_left": self.w_l,
                    "w_right": self.w_r, "w_B": self.w_B, "A": self.A}  # fmt: skip
-        self.kind.value = kind
-        for name, value in params.items():
-            widgets[name].value = value
-        self.probes.value = ", ".join(str(int(k)) for k in probes)
+        self._applying = True
+        try:
+            self.kind.value = kind
+            for name, value in params.items():
+                widgets[name].value = value
+            self.probes.value = ", ".join(str(int(k)) for k in probes)
+        finally:
+            self._applying = False
+        self._inputs_to_url()  # the figure's (or the link's) own: no change of the state
         self._want_run = bool(run)
         if not run:  # not the previous run's result under the new widgets: "press Run"
             self._params = None
@@ -242,6 +296,9 @@ class SimulationScene(BokehScene):
         self.fig_img, self.fig_prof = fi, fp
         self.r_first = add_line(fp, "gray", 1.5, "dashed")
         self.r_last = add_line(fp, "black", 1.5)
+        # read by the tests (the drawn data against the run's)
+        self.r_first[1].name, self.r_last[1].name = "sim-profile-initial", "sim-profile-final"
+        self.img_src.name, self.mapper.name = "sim-image", "sim-colour"
         self.prof_legend = add_legend(
             fp, "right", [("t = 0", [self.r_first[0]]), ("final", [self.r_last[0]])]
         )
@@ -326,6 +383,47 @@ class SimulationScene(BokehScene):
             up.range(fig.x_range, float(t[keep][0]), float(t[keep][-1]))
             up.range(fig.y_range, float(ys.min()), float(ys.max()), pad=0.08)
 
+    def _measured_velocity(self, sim, tracked: str) -> str:
+        """A seeded run's velocity: the fit of the wave's passage times at the sites it crossed
+        (fpucore.simulate.seeded, details V_measured), checked as the Paper tab checks it
+        (fpucore.paper.figures_dynamics.seeded_comparison: the same row for the same run), then
+        the tracker's estimate, labelled; the tracker's alone if no velocity was measured."""
+        d = sim.details
+        title = seeded_title(d.get("kind", ""), d.get("V_prescribed", np.nan))
+        fig = self.state.figure if self.state.figure in ("stabSK", "stabSW") else "simulation"
+        c = seeded_comparison(fig, sim, title, sim.elapsed_s)
+        if c is None:
+            return f"no velocity measured from passage times (the run stopped early); {tracked}"
+        return (
+            f"measured velocity V = {d['V_measured']!r} (fit of the passage times at "
+            f"{d.get('n_sites_timed', '?')} sites); {comparison_parts([c])[0]}; "
+            f"the tracker's estimate: {tracked.removeprefix('tracked velocities: ')}"
+        )
+
+    def _image(self, info: Info, up: Updates, sim, snaps, t, n) -> None:
+        """The space–time image: at most MAX_COLUMNS columns, each a block of sites showing its
+        extreme strain (fpucore.simulate.extreme_blocks), the colour bar over the whole field;
+        the title says how many sites a column holds."""
+        b = simulate.extreme_blocks(snaps, n, MAX_COLUMNS)
+        dn = (n[-1] - n[0]) / max(len(n) - 1, 1) if len(n) > 1 else 1.0
+        dt = (t[-1] - t[0]) / max(len(t) - 1, 1)
+        width = b.image.shape[1] * b.width
+        up.set(
+            self.img_src,
+            data={"image": [b.image], "x": [b.x0], "y": [t[0] - 0.5 * dt], "dw": [width],
+                  "dh": [t[-1] - t[0] + dt]},
+        )  # fmt: skip
+        up.set(self.mapper, low=float(snaps.min()), high=float(snaps.max()))
+        up.range(self.fig_img.x_range, n[0] - 0.5 * dn, n[-1] + 0.5 * dn)
+        up.range(self.fig_img.y_range, t[0] - 0.5 * dt, t[-1] + 0.5 * dt)
+        title = f"Strain w_n(t) in space and time ({len(t)} snapshots"
+        if len(n) < sim.L:
+            title += f", {len(n)} of {sim.L} sites: every {sim.L / len(n):.3g}th"
+        if b.block > 1:
+            title += f"; each block of {b.block} sites drawn as its min and max"
+            info.notes.append(f"space–time image: {b.note}; colour bar over the whole field")
+        up.set(self.fig_img.title, text=title + ")")
+
     def _wave_at(self, wv, info: Info):
         """The discrete traveling wave at a tracked wave's measured V (and w_B): a superkink of
         that velocity, or the solitary wave on the measured background.  (WaveResult, the
@@ -354,6 +452,10 @@ class SimulationScene(BokehScene):
             raise SceneMessage("Choose the initial data and press 'Run simulation'.", "info")
         req = self._request
         s = self.state
+        # the run's own inputs on the parameter line (a Riemann run does not use the state's
+        # wave; a seeded one uses the wave of the moment Run was pressed)
+        info.stamp = run_stamp(state_stamp(s), req)
+        self.computing_for(info.stamp)
         c = compute.simulation(
             s.law(), req, stop=self.superseded, progress=self.stage_progress("simulation")
         )
@@ -384,35 +486,27 @@ class SimulationScene(BokehScene):
             raise SceneMessage(f"the simulation returned no finite snapshots: {sim.message}")
         t, n = np.asarray(sim.t, float), np.asarray(sim.sites, float)
         up = Updates()
-        dn = (n[-1] - n[0]) / max(len(n) - 1, 1)
-        dt = (t[-1] - t[0]) / max(len(t) - 1, 1)
-        up.set(
-            self.img_src,
-            data={
-                "image": [snaps],
-                "x": [n[0] - 0.5 * dn],
-                "y": [t[0] - 0.5 * dt],
-                "dw": [n[-1] - n[0] + dn],
-                "dh": [t[-1] - t[0] + dt],
-            },
-        )
-        up.set(self.mapper, low=float(snaps.min()), high=float(snaps.max()))
-        up.range(self.fig_img.x_range, n[0] - 0.5 * dn, n[-1] + 0.5 * dn)
-        up.range(self.fig_img.y_range, t[0] - 0.5 * dt, t[-1] + 0.5 * dt)
+        self._image(info, up, sim, snaps, t, n)
         up.data(self.r_first[1], x=n, y=snaps[0])
         up.data(self.r_last[1], x=n, y=snaps[-1])
         up.set(self.prof_legend[1], label={"value": f"t = {t[-1]:.4g}"})
         up.range(self.fig_prof.x_range, n[0], n[-1])
         up.range(self.fig_prof.y_range, float(snaps.min()), float(snaps.max()), pad=0.05)
+        if len(n) < sim.L:  # a stored field of fewer sites (fpucore's max_sites_out)
+            up.set(self.fig_prof.title, text=f"Initial and final strain profiles ({len(n)} of "
+                   f"{sim.L} sites: every {sim.L / len(n):.3g}th)")  # fmt: skip
+        else:
+            up.set(self.fig_prof.title, text="Initial and final strain profiles (every site)")
         self.table.object = wave_table(sim.waves)
         self._tracked_sites(info, up, sim)
         self._sim = (req, sim)
-        info.shown = (
-            f"simulation of {KIND_WORDS[req.kind]} to t = {t[-1]:.4g}; "
-            f"{tracked_velocities(sim.waves)}"
-        )
+        velocities = tracked_velocities(sim.waves)
         if isinstance(req, compute.SeededRequest):
             info.notes.append(f"seeding wave V = {fmt_num(req.wave.V)}, N = {req.wave.N}")
+            velocities = self._measured_velocity(sim, velocities)
+        info.shown = f"simulation of {KIND_WORDS[req.kind]} to t = {t[-1]:.4g}; {velocities}"
+        if sim_url.format_sim(req.kind, **req.params()) == s.simulation:
+            s.sim_shown = True  # the link's run is on screen (run=1)
         return up
 
     def hide_plot(self) -> None:
@@ -442,9 +536,15 @@ class SimulationScene(BokehScene):
             return ""
         return (
             "import numpy as np\nimport matplotlib.pyplot as plt\n\n"
+            "from fpucore.simulate import extreme_blocks\n\n"
             "z, t, n = np.asarray(sim.snapshots), np.asarray(sim.t), np.asarray(sim.sites)\n"
+            "# the explorer's image: blocks of sites, each drawn as its minimum and maximum\n"
+            f"b = extreme_blocks(z, n, {MAX_COLUMNS})\n"
             "fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(9, 7))\n"
-            "im = ax1.imshow(z, origin='lower', aspect='auto', extent=(n[0], n[-1], t[0], t[-1]))\n"
+            "im = ax1.imshow(b.image, origin='lower', aspect='auto', interpolation='nearest',\n"
+            "                vmin=z.min(), vmax=z.max(),\n"
+            "                extent=(b.x0, b.x0 + b.image.shape[1] * b.width,\n"
+            "                        t[0], t[-1]))\n"
             "fig.colorbar(im, ax=ax1, label='w')\n"
             "ax1.set(xlabel='site n', ylabel='time t')\n"
             "ax2.plot(n, z[0], '--', color='gray', label='t = 0')\n"

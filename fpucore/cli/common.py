@@ -38,12 +38,24 @@ NEGATIVE_NUMBER = re.compile(
 )
 
 
+#: argparse's message for a value its type could not convert ("argument --V: invalid float
+#: value: 'abc'")
+BAD_VALUE = re.compile(r"^argument (--?[\w-]+)(?:/--?[\w-]+)*: invalid (float|int) value: '(.*)'$")
+
+
 class Parser(argparse.ArgumentParser):
     def __init__(self, *args, **kwargs):
         super().__init__(*args, **kwargs)
         self._negative_number_matcher = NEGATIVE_NUMBER  # argparse's hook for this decision
 
     def error(self, message):  # one line on stderr, exit 2 (argparse default prints usage too)
+        # a value argparse could not convert: in the form of every other refusal (ParameterError:
+        # the argument, its value and what it must be), not argparse's words
+        m = BAD_VALUE.match(message)
+        if m:
+            name, kind, raw = m.group(1).lstrip("-"), m.group(2), m.group(3)
+            valid = "a real number" if kind == "float" else "an integer"
+            message = str(ParameterError(name, raw, valid, "not a number"))
         self.exit(2, f"fpu: error: {message}\n")
 
 

@@ -29,6 +29,8 @@ from fpucore.cli.choices import BOUNDARIES, GUARDS, SIMULATE_METHODS
 from fpucore.cli.common import add_law_args, law_from_args, print_json
 from fpucore.errors import ParameterError, require_finite
 
+#: the tracker's kinds in the printed table (the JSON keeps fpucore's names)
+KIND_WORDS = {"dsw_edge": "DSW edge", "solitary": "solitary"}
 TIME_BUDGET_S = 60.0  # default --time-budget: the CLI never runs unbounded
 
 
@@ -174,14 +176,19 @@ def _emit(args, s, extra: dict | None = None) -> int:
             )
             for w in s.waves:
                 print(
-                    f"{w.kind:10s} {w.velocity:14.8f} {w.velocity_error:9.1e} {w.amplitude:11.5f} "
+                    f"{KIND_WORDS.get(w.kind, w.kind):10s} {w.velocity:14.8f} "
+                    f"{w.velocity_error:9.1e} {w.amplitude:11.5f} "
                     f"{w.left_state:10.5f} {w.right_state:10.5f}"
                 )
             print("(+- error: fit error + spread over fit windows and tracking thresholds)")
         for k, v in (extra or {}).items():
             print(f"{k}: {v}")
         for k, v in s.details.items():
-            print(f"{k}: {v}")
+            if k == "left_convex_interval":  # a sentence, not a flag (--json keeps the flag)
+                where = "went outside (strain_range)" if v else "stayed inside"
+                print(f"convex interval (α, β): the strains {where}")
+            else:
+                print(f"{k}: {v}")
     return 0 if s.success else 1
 
 

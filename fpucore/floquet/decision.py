@@ -35,6 +35,16 @@ def _pct(x: float) -> str:
     return f"{x:.0f} %" if abs(x) >= 10 else f"{x:.2g} %"
 
 
+def _pct_apart(x: float, y: float) -> tuple[str, str]:
+    """Two percentages compared in one sentence, with the digits that tell them apart ("29.0 %"
+    against "29.3 %", not "29 %" against "29 %"; at most 3 decimals)."""
+    for d in range(4):
+        a, b = f"{100.0 * x:.{d}f} %", f"{100.0 * y:.{d}f} %"
+        if a != b:
+            break
+    return a, b
+
+
 def _cut(text: str, n: int = 160) -> str:
     """A quoted reason within n characters (the sentence must fit the atlas's verdict field)."""
     return text if len(text) <= n else text[: n - 3] + "..."
@@ -114,10 +124,11 @@ class Decision:
         """Why an excess that is not converged is not called a decaying resonance either."""
         if self.peak_N == self.N:
             return "nor decays (it is largest on the longest ring)"
-        fall = f"it falls {_pct(self.drop)} from its largest value at N = {self.peak_N}"
         if not self.drop >= self.drop_needed:
-            return (f"nor decays like a resonance of the ring ({fall}, short of the "
-                    f"{_pct(self.drop_needed)} required)")  # fmt: skip
+            got, needed = _pct_apart(self.drop, self.drop_needed)
+            return (f"nor decays like a resonance of the ring (it falls {got} from its largest "
+                    f"value at N = {self.peak_N}, short of the {needed} required)")  # fmt: skip
+        fall = f"it falls {_pct(self.drop)} from its largest value at N = {self.peak_N}"
         fit = self.fit_words()
         env0 = self.envelope_N[0] if self.envelope_N else self.N
         if env0 > math.sqrt(self.points_N[0] * self.N):
@@ -132,6 +143,14 @@ class Decision:
         return (f"nor decays like a resonance of the ring ({fall}, but its upper envelope "
                 + (f"falls as N^-p with {fit} < {DECAY_P}" if fit else "has no steady slope")
                 + ")")  # fmt: skip
+
+    @property
+    def evidence(self) -> str:
+        """The sentence without its first words where they repeat the headline's ("not
+        determined at N = 64: " after the headline "not determined at N = 64"): what a text
+        that shows the headline first appends to it."""
+        head, sep, rest = self.sentence.partition(": ")
+        return rest if sep and self.headline.startswith(head) else self.sentence
 
     @property
     def sentence(self) -> str:

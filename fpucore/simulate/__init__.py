@@ -6,7 +6,8 @@ layout (state vector, end conditions, status codes)  →  observer (events, prob
 allocating, output schedule)  →  messages (status text)  →  tracking (fronts and pulses in
 space–time)  →  engine (run_chain: the loop)  →  result (SimulationResult)
 →  scenarios (riemann, gaussian; the end conditions, methods, guards and budgets of every run)
-and seeded (a run seeded with a computed traveling wave, checked against it)
+and seeded (a run seeded with a computed traveling wave, checked against it);
+field (extreme_blocks: a field reduced for drawing with its extremes kept)
 """
 
 from fpucore.simulate.config import (
@@ -17,6 +18,7 @@ from fpucore.simulate.config import (
     restoring_interval,
     work_estimate,
 )
+from fpucore.simulate.field import Blocks, extreme_blocks
 from fpucore.simulate.result import SimulationResult, TrackedWave
 from fpucore.simulate.scenarios import gaussian, riemann
 from fpucore.simulate.seeded import seeded, whole_periods
@@ -28,6 +30,8 @@ __all__ = [
     "riemann",
     "gaussian",
     "seeded",
+    "extreme_blocks",
+    "Blocks",
     "restoring_interval",
     "whole_periods",
     "work_estimate",

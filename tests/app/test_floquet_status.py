@@ -64,9 +64,12 @@ def test_status_words_agree_with_the_numbers(cls, real, monkeypatch):
     assert sc.last_message is None, sc.last_message
     status = sc.status.object
     bold = [b for b in re.findall(r"\*\*(.+?)\*\*", status) if b != "Shown:"]
-    assert bold[0] == d.headline and f"**{d.headline}**: {d.sentence}" in status
+    # the headline, then the sentence's evidence (its first words are the headline's: not twice)
+    assert bold[0] == d.headline and f"**{d.headline}**: {d.evidence}" in status
+    head = d.sentence[: len(d.sentence) - len(d.evidence)]
+    assert head == "" or f"**{d.headline}**: {head}" not in status
     # every word of the rendered headline and sentence agrees with the numbers printed in it
-    shown = status.split(f"**{bold[0]}**: ", 1)[1].split("\n")[0]
+    shown = head + status.split(f"**{bold[0]}**: ", 1)[1].split("\n")[0]
     assert audit_sentence(shown, bold[0], cls) == [], shown
     # the headline's first word is the sentence's
     assert d.sentence.split(":")[0].split()[0] == d.headline.split()[0]
@@ -164,7 +167,8 @@ def test_measured_windows_render_words_that_agree(key, real, monkeypatch):
     sc.panel.get_root(Document())
     sc.refresh()
     status = sc.status.object
-    shown = status.split(f"**{d.headline}**: ", 1)[1].split("\n")[0]
+    head = d.sentence[: len(d.sentence) - len(d.evidence)]  # the words the headline says
+    shown = head + status.split(f"**{d.headline}**: ", 1)[1].split("\n")[0]
     assert audit_sentence(shown, d.headline, d.classification) == [], shown
     title = sc.fig_d.title.text
     assert not re.search(r"± 0\.0*(?![\d.])", title)  # no zero error bar (two-point line)

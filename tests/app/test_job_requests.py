@@ -97,18 +97,22 @@ def test_a_simulation_job_is_the_fpucore_call_its_code_shows():
     req = compute.RiemannRequest(w_left=4.6, w_right=0.0, L=200, t_end=2.0, probes=(50,))
     code = req.call().code()
     assert code == (
-        "simulate.riemann(law, 4.6, 0.0, L=200, t_end=2.0, guard='bounded', probes=(50,))"
+        "simulate.riemann(law, 4.6, 0.0, L=200, t_end=2.0, guard='bounded', probes=(50,), "
+        "max_sites_out=200)"
     )
     assert req.params() == {"L": 200, "t_end": 2.0, "guard": "bounded", "probes": (50,),
-                            "w_left": 4.6, "w_right": 0.0}  # fmt: skip
+                            "max_sites_out": 200, "w_left": 4.6, "w_right": 0.0}  # fmt: skip
     job = simulation_job(LAW, req)
     direct = eval(code, {"simulate": simulate, "law": LAW})  # noqa: S307
     assert np.array_equal(job.snapshots, direct.snapshots) and len(job.waves) == len(direct.waves)
     seeded = compute.SeededRequest(
         wave=compute.WaveRequest("solitary", 1.0, 5.0, 200, 1e-10), L=1000, t_end=40.0
     )
-    assert seeded.call().code("r") == "simulate.seeded(r, L=1000, t_end=40.0, guard='bounded')"
-    assert seeded.params() == {"L": 1000, "t_end": 40.0, "guard": "bounded", "mode": "solitary",
+    assert seeded.call().code("r") == (
+        "simulate.seeded(r, L=1000, t_end=40.0, guard='bounded', max_sites_out=1000)"
+    )
+    assert seeded.params() == {"L": 1000, "t_end": 40.0, "guard": "bounded",
+                               "max_sites_out": 1000, "mode": "solitary",
                                "w_plus": 1.0, "V": 5.0, "N": 200, "tol": 1e-10}  # fmt: skip
 
 

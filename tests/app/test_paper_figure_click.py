@@ -85,7 +85,10 @@ def test_a_click_sets_the_papers_state_held_family_and_url(label):
     ex.state.held = []
     ex.by_key["paper"].buttons[label].clicks += 1  # the user clicks
     st = ex.state
-    assert (st.a, st.b, st.expression, st.tab, st.mode, st.N) == (-1.0, 10.0, "", tab, mode, 500)
+    # N = 500, except the seeded runs: fpucore.paper's wave (N = 64, tol = 1e-12)
+    N, tol_ = (64, 1e-12) if label in ("stabSK", "stabSW") else (500, 1e-10)
+    assert (st.a, st.b, st.expression, st.tab, st.mode, st.N) == (-1.0, 10.0, "", tab, mode, N)
+    assert st.tol == tol_
     assert st.problem() is None and st.figure == label
     tol = 5e-5 if label == "Riemann1" else 1e-9  # the caption prints V = 5.7209
     assert st.V == pytest.approx(V, abs=tol)
@@ -177,8 +180,8 @@ def test_a_simulation_figure_fills_the_simulation_scene(label, kind, widgets, pr
     for name, value in widgets.items():
         assert getattr(sc, name).value == pytest.approx(value, rel=1e-15), name
     assert sc._want_run and sc.requested >= 1  # the click starts the run (measured ≤ 3 s)
-    if kind == "seeded":  # the chain holds the N = 500 wave, its path and two margins of 100
-        assert sc.L.value >= 500 + math.ceil(st.V * sc.t_end.value) + 200
+    if kind == "seeded":  # the chain holds the wave, its path and two margins of 100
+        assert sc.L.value >= st.N + math.ceil(st.V * sc.t_end.value) + 200
     # built later (a link with fig=, another tab first): the scene starts with the figure's
     st2, _ = state_from_url({"fig": label, "tab": "paper"})
     later = Recorder(st2)

@@ -345,6 +345,8 @@ def test_floquet_shows_the_decision_with_its_evidence():
     sc.refresh()
     fr = sc._fr
     assert fr.classification in ("stable", "finite_size", "unstable", "undetermined")
-    assert f"**{fr.decision.headline}**: {fr.verdict}" in sc.status.object
+    # the headline, then the verdict's evidence (its first words are the headline's)
+    assert fr.verdict.endswith(fr.decision.evidence)
+    assert f"**{fr.decision.headline}**: {fr.decision.evidence}" in sc.status.object
     if fr.classification != "stable":
         assert sc.fig_d.visible and len(sc.r_fs[1].data["x"]) >= 2

@@ -81,3 +81,23 @@ def test_parameter_error_wording():
         "out='/x/y' is not valid: expected a writable file (permission denied)"
     )
     assert "is not valid" in str(ParameterError("flag", True, "a number"))
+
+
+def test_a_value_that_is_not_a_number_is_refused_in_the_readmes_form(capsys):
+    """`fpu qc --V abc` answered in argparse's words ("argument --V: invalid float value")."""
+    with pytest.raises(SystemExit) as exc:
+        main(["qc", "--V", "abc"])
+    err = capsys.readouterr().err
+    assert exc.value.code == 2
+    assert "V='abc' is not valid: expected a real number" in err, err
+    assert "invalid float value" not in err and "argument --V" not in err
+
+
+def test_the_simulation_printout_names_waves_and_the_interval_in_words(capsys):
+    code, out, _ = run_cli(capsys, ["simulate", "riemann", "--w-left", "4.6", "--w-right", "0",
+                                    "--L", "400", "--t-end", "20",
+                                    "--time-budget", "1200"])  # fmt: skip
+    assert code == 0, out
+    assert "DSW edge" in out and "dsw_edge" not in out, out
+    assert "left_convex_interval" not in out
+    assert "convex interval (α, β): the strains stayed inside" in out

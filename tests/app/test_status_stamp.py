@@ -1,0 +1,70 @@
+"""State first, stamp after: the parameter line under a scene's status changes only together
+with the result it describes, and a request in flight names its own parameters on a
+"computing …" line beside the spinner (the issue: after Paper → Riemann1, then Paper → stabSW,
+the Riemann run's velocities stood for seconds under stabSW's parameter line)."""
+
+from __future__ import annotations
+
+import html
+import time
+
+import pytest
+
+pytest.importorskip("panel")
+
+from app.explorer import Explorer  # noqa: E402
+
+
+def sample(sc, timeout: float = 300.0) -> list[tuple[str, bool, str]]:
+    """(status, computing line visible, computing text) every few ms until the scene is idle."""
+    seen = []
+    t_end = time.monotonic() + timeout
+    while time.monotonic() < t_end:
+        seen.append((sc.status.object, sc.computing_text.visible, sc.computing_text.object))
+        with sc._lock:
+            if not sc._running and not sc._pending:
+                break
+        time.sleep(0.005)
+    seen.append((sc.status.object, sc.computing_text.visible, sc.computing_text.object))
+    return seen
+
+
+def stamp_of(status: str) -> str:
+    """The parameter line as the reader sees it (Markdown escapes undone)."""
+    return html.unescape(status.rsplit("Parameters:", 1)[-1].replace("\\", ""))
+
+
+def test_a_figure_after_a_figure_never_shows_a_result_under_the_others_stamp():
+    ex = Explorer(lazy=True)
+    ex.scene("paper").open("Riemann1")
+    sc = ex.scene("simulation")
+    assert sc.wait_idle(300.0) and sc.last_message is None, sc.last_message
+    assert "run: riemann" in stamp_of(sc.status.object)
+    ex.scene("paper").open("stabSW")
+    seen = sample(sc)
+    assert "TW-seeded" in seen[-1][0] and "run: seeded" in stamp_of(seen[-1][0])
+    for status, _, _ in seen:
+        if "Riemann data" in status:  # the previous result: its own parameters, all of them
+            stamp = stamp_of(status)
+            assert "run: riemann" in stamp and "w_left=4.6" in stamp and "L=3600" in stamp
+        if "TW-seeded" in status:
+            assert "run: seeded" in stamp_of(status) and "V=5.2174919476" in stamp_of(status)
+
+
+def test_a_run_in_flight_names_its_parameters_while_the_last_result_keeps_its_own():
+    ex = Explorer(lazy=True)
+    ex.scene("paper").open("SWdyn")  # Gaussian, t_end = 200
+    sc = ex.scene("simulation")
+    assert sc.wait_idle(300.0) and sc.last_message is None, sc.last_message
+    before = sc.status.object
+    assert "t_end=200.0" in stamp_of(before)
+    sc.t_end.value = 150.0  # a new run (not cached): ~1 s or more
+    sc._want_run = True  # the "Run simulation" button
+    sc.request()
+    seen = sample(sc)
+    in_flight = [s for s in seen if s[1]]
+    assert in_flight, "no computing line was shown while the run was in flight"
+    for status, _, computing in in_flight:
+        assert status == before  # the last result and its stamp, unchanged
+        assert computing.startswith("computing … for ") and "t_end=150.0" in computing
+    assert "t_end=150.0" in stamp_of(seen[-1][0]) and not seen[-1][1]
