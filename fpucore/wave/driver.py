@@ -141,8 +141,10 @@ def _solve(spec: Spec, N, tol, jacobian, max_iter, time_budget_s, predictor=None
 def particle_velocities(w: np.ndarray, wdot: np.ndarray, V: float, w_left: float) -> np.ndarray:
     """Particle velocities v_n(0) for n = −N/2−1 … N/2−1 (N+1 values) of a traveling wave.
 
-    Derivation: eq. FPUsystem gives ẇ_n = v_n − v_{n−1} at every t, so at t = 0
+    Derivation: eq. FPUsystem gives ẇ_n = v_n − v_{n−1} at every t, so at t = 0::
+
         v_n = v_{−N/2−1} + Σ_{k=−N/2}^{n} ẇ_k(0).
+
     The boundary strain w_{−N/2−1} is held fixed, so particle −N/2−1 moves with the constant
     far-field velocity v_−.  The traveling-wave ansatz u_n(t) = U(n − Vt) gives v = −V U′ and
     w(ξ) = U(ξ) − U(ξ−1), which fixes v only up to a Galilean constant; the Rankine–Hugoniot

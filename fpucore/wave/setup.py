@@ -297,16 +297,18 @@ def fmt_N(N: int) -> str:
 class Tolerances:
     """Every tolerance of one solve (absolute unless said), from the user's relative ``tol``.
 
-    scale     strain scale s = max(1, |w_left|, |w_right|) (:func:`strain_scale`): round-off of
-              eq. nonlin_system grows with |w| (b = 100 or a = −0.01 stagnate at ~3e-14·s).
-    res_tol   Newton accepts max-norm residual ≤ res_tol = tol·s (raised to the round-off
-              level of the system where that is larger: see :class:`.attempt.WaveSolve`).
-    step_tol  Newton keeps stepping until its next correction (strain units, max(|δw|, T|δẇ|))
-              is ≤ step_tol = tol·s, or the corrections stop shrinking (round-off).
-    int_tol   step count m: step-doubling error of the period map ≤ int_tol = tol·s.
-    tail_tol  automatic N: the tails decay to tail_tol = 0.1·tol·s at the chain's ends.
-    tail_ok   a converged wave whose tails miss the boundary states by more than
-              1e-5·A_QC + 1e3·tol·s is another wave (rejected).
+    Its fields::
+
+        scale     strain scale s = max(1, |w_left|, |w_right|) (:func:`strain_scale`): round-off of
+                  eq. nonlin_system grows with |w| (b = 100 or a = −0.01 stagnate at ~3e-14·s).
+        res_tol   Newton accepts max-norm residual ≤ res_tol = tol·s (raised to the round-off
+                  level of the system where that is larger: see :class:`.attempt.WaveSolve`).
+        step_tol  Newton keeps stepping until its next correction (strain units, max(|δw|, T|δẇ|))
+                  is ≤ step_tol = tol·s, or the corrections stop shrinking (round-off).
+        int_tol   step count m: step-doubling error of the period map ≤ int_tol = tol·s.
+        tail_tol  automatic N: the tails decay to tail_tol = 0.1·tol·s at the chain's ends.
+        tail_ok   a converged wave whose tails miss the boundary states by more than
+                  1e-5·A_QC + 1e3·tol·s is another wave (rejected).
     """
 
     tol: float
