@@ -8,7 +8,7 @@ STAMP   := $(VENV)/.installed-stamp
 PORT    ?= 5006
 export NUMBA_CACHE_DIR ?= $(CURDIR)/.numba_cache
 
-.PHONY: setup browser serve test lint docs bench workprecision clean
+.PHONY: setup browser serve test lint typecheck docs bench workprecision clean
 
 $(STAMP): pyproject.toml
 	$(PY) -m venv $(VENV)
@@ -36,10 +36,15 @@ serve: setup
 
 test: setup browser
 	$(BIN)/ruff check fpucore app tests benchmarks
+	$(BIN)/mypy
 	$(BIN)/python -m pytest -q
 
 lint: setup
 	$(BIN)/ruff check fpucore app tests benchmarks && $(BIN)/ruff format --check fpucore app tests benchmarks
+
+# The type checker alone (config: [tool.mypy] in pyproject.toml; cache in .mypy_cache).
+typecheck: setup
+	$(BIN)/mypy
 
 # The documentation site (Sphinx + MyST, offline): build/docs/html/index.html.  Warnings are errors
 # (-W, nitpicky -n): a broken cross-reference, a docstring that does not parse or a gallery figure
@@ -57,4 +62,4 @@ workprecision: setup
 	$(BIN)/python -m benchmarks.work_precision
 
 clean:
-	rm -rf $(VENV) .numba_cache .pytest_cache
+	rm -rf $(VENV) .numba_cache .pytest_cache .mypy_cache build/docs build/docs-test docs/gallery

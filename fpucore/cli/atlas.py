@@ -106,7 +106,7 @@ def run(args) -> int:
             continuation=not args.no_continuation, out=args.out,
             resume=args.resume, backend=backend, workers=args.workers, address=args.scheduler,
             progress=progress, time_budget_s=args.time_budget, force_workers=args.force_workers,
-            memory_budget=args.memory_budget, note=lambda text: sys.stderr.write(f"fpu: {text}\n"),
+            memory_budget=args.memory_budget, note=lambda text: sys.stderr.write(f"fpu: {text}\n"),  # type: ignore[arg-type]
         )  # fmt: skip
     except ParameterError as exc:
         if exc.name == "address":  # the API's name of what this command calls --scheduler

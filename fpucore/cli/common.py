@@ -102,4 +102,4 @@ def law_fields(law: HardeningSofteningLaw) -> dict:
 
     if isinstance(law, CubicLaw):
         return {"a": law.a, "b": law.b, "law": law.describe()}
-    return {"law": law.expression, "coeffs": list(law.coeffs)}
+    return {"law": law.expression, "coeffs": list(law.coeffs)}  # type: ignore[attr-defined]

@@ -178,12 +178,12 @@ def memory_estimate(
 
 
 def work_estimate(
-    law,
+    law: HardeningSofteningLaw,
     L: int,
     t_end: float,
     method: str,
     rtol: float,
-    dt,
+    dt: float | None,
     estimate_error: bool = True,
     n_stops: int = 240,
 ) -> dict:
@@ -194,7 +194,7 @@ def work_estimate(
     the law, set the step)."""
     st = STEPPERS[method]
     if not st.adaptive:
-        steps = (t_end / dt + n_stops) * (1.5 if estimate_error else 1.0)
+        steps = (t_end / dt + n_stops) * (1.5 if estimate_error else 1.0)  # type: ignore[operator]  # a fixed-step method has its dt
     else:
         omega = 2.0 * law.c_max
         h_omega = H_OMEGA_AT_1E10[method] * (rtol / 1e-10) ** (1.0 / (st.order + 1))
