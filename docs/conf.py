@@ -51,6 +51,7 @@ nitpick_ignore_regex = [
     (r"py:.*", r"(holoviews|hv|bokeh|pandas|queue)(\..*)?"),
     (r"py:.*", r"(collections\.abc|typing|concurrent\.futures|pathlib|os|multiprocessing)\..*"),
     (r"py:class", r"(NDArray|ArrayLike|Path|Callable|Sequence|Iterable|Iterator|Mapping|Any)"),
+    (r"py:class", r"(TypeGuard|Self|IO|Protocol|ClassVar|Literal|NoReturn)"),
     (r"py:class", r"(optional|array|array_like|ndarray|float|int|str|bool|tuple|list|dict)"),
 ]
 

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import importlib
 import re
+import sys
 
 _LITERAL = re.compile(r"(``.+?``|:[a-z:]+:`[^`]*`|`[^`]*`)")
 
@@ -88,10 +89,19 @@ def candidates(target: str, module: str | None, cls: str | None, source: str) ->
 def resolve_fpucore(app, env, node, contnode):
     if node.get("refdomain") != "py":
         return None
+    target = node["reftarget"]
     found = any(
         exists(c)
-        for c in candidates(
-            node["reftarget"], node.get("py:module"), node.get("py:class"), node.source
+        for c in candidates(target, node.get("py:module"), node.get("py:class"), node.source)
+    )
+    # a bare name in a signature (no module context: "<unknown>" source), e.g. a Protocol or an
+    # alias a module defines for its annotations: found when an fpucore module defines it
+    found = found or (
+        "." not in target
+        and any(
+            name.startswith("fpucore") and target in vars(mod)
+            for name, mod in list(sys.modules.items())
+            if mod is not None
         )
     )
     return contnode if found else None
