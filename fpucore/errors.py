@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 import numbers
+from typing import Any
 
 
 class ParameterError(ValueError):
@@ -79,7 +80,7 @@ def _is_numpy_bool(value) -> bool:
     return t.__module__ == "numpy" and t.__name__ in ("bool_", "bool")
 
 
-def require_finite(name: str, value: float) -> float:
+def require_finite(name: str, value: Any) -> float:
     """Return ``float(value)`` or raise ParameterError if it is not a finite real number.
 
     Strings and bools are refused even though ``float()`` would take them: ``CubicLaw(a="-1")`` or
@@ -99,7 +100,7 @@ def require_finite(name: str, value: float) -> float:
     return x
 
 
-def require_int(name: str, value, lo: int, hi: int) -> int:
+def require_int(name: str, value: Any, lo: int, hi: int) -> int:
     """Return ``int(value)`` for an integer (Python or NumPy, not bool) in [lo, hi], else raise.
 
     The one rule for counts (N, m, L, n_snapshots, max_steps, ...): a float is refused even when
@@ -126,7 +127,7 @@ TOL_RANGE = (1e-15, 1e-3)
 """Relative residual tolerances of wave solves (and so of sweeps and atlases) accepted."""
 
 
-def require_tol(tol, name: str = "tol") -> float:
+def require_tol(tol: Any, name: str = "tol") -> float:
     """A wave solve's relative tolerance: a finite float in :data:`TOL_RANGE`."""
     x = require_finite(name, tol)
     if not (TOL_RANGE[0] <= x <= TOL_RANGE[1]):

@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from typing import Any, ClassVar
+from typing import Any, ClassVar, Self
 
 import numpy as np
 
@@ -40,7 +40,7 @@ def status_of(converged: bool, stopped: bool = False) -> str:
     return "stopped" if stopped else "not_converged"
 
 
-def jsonable(obj):
+def jsonable(obj: Any) -> Any:
     """Recursively convert NumPy scalars and arrays to Python values, tuples to lists and
     non-finite floats to None, for ``json.dumps`` (and for comparing stored with fresh values)."""
     if isinstance(obj, dict):
@@ -110,11 +110,11 @@ class Result:
             out[name] = getattr(self, name)
         return out
 
-    def require_converged(self):
+    def require_converged(self) -> Self:
         """Return self if converged, else raise ConvergenceError (status and message)."""
         if not getattr(self, "converged", True):
             name = type(self).__name__
-            raise ConvergenceError(f"{name} {self.status}: {getattr(self, 'message', '')}")
+            raise ConvergenceError(f"{name} {self.status}: {getattr(self, 'message', '')}")  # type: ignore[attr-defined]  # every result defines it
         return self
 
     def errors(self) -> dict[str, float]:
@@ -125,6 +125,6 @@ class Result:
             v = np.asarray(getattr(self, k), dtype=float)
             if v.ndim:
                 v = v[np.isfinite(v)]
-                v = v.max() if v.size else np.nan
+                v = v.max() if v.size else np.nan  # type: ignore[assignment]  # a scalar now
             out[k] = float(v)
         return out

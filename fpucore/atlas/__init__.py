@@ -6,7 +6,7 @@ grid (rows × V, chunks = runs of V along a row)  →  point (one chunk on a wor
 in grid order, wave + spectrum → records named as the CLI's JSON fields)  →  store (Zarr,
 written chunk by chunk, locked, resumable)  →  run (submit through fpucore.parallel, gather,
 AtlasResult)  →  reader (a store or a run's table as AtlasData: typed arrays, no layout
-names)  →  sweeps (max|μ| along V: one row, cached by its inputs and the code)
+names)  →  sweeps (max|μ| along V: one row, cached by its inputs and the code).  In use::
 
     res = atlas.run(CubicLaw(-1, 10), "solitary", rows="0.2:6.5:40", V=40, N=500,
                     floquet=True, out="atlas.zarr")

@@ -11,11 +11,17 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from fpucore import qc
 from fpucore.errors import ParameterError
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+
+    from fpucore.law.base import HardeningSofteningLaw
 
 KINDS = ("solitary", "superkink")
 BRANCHES = ("lower", "upper")
@@ -48,7 +54,9 @@ class Grid:
                 for j in range(0, n, self.chunk)]  # fmt: skip
 
 
-def parse_values(name: str, spec, allow_count: bool = False) -> np.ndarray | int:
+def parse_values(
+    name: str, spec: str | Sequence[float] | np.ndarray | int, allow_count: bool = False
+) -> np.ndarray | int:
     """``"LO:HI:K"`` → K values, ``"x"`` or a list → those values, ``"K"`` (allow_count) → K."""
     if isinstance(spec, (list, tuple, np.ndarray)):
         vals = np.asarray(spec, dtype=float).ravel()
@@ -78,7 +86,7 @@ def parse_values(name: str, spec, allow_count: bool = False) -> np.ndarray | int
     return vals
 
 
-def velocity_span(law, kind: str, rows) -> tuple[float, float]:
+def velocity_span(law: HardeningSofteningLaw, kind: str, rows: Any) -> tuple[float, float]:
     """Union of the existence intervals of V over the rows (see module doc)."""
     lo, hi = math.inf, -math.inf
     if kind == "superkink":  # the branches share eq. V_bounds_cubic; a general law's may differ
@@ -98,7 +106,13 @@ def velocity_span(law, kind: str, rows) -> tuple[float, float]:
     return lo, hi
 
 
-def make_grid(law, kind: str, rows, V, chunk: int | None = None) -> Grid:
+def make_grid(
+    law: HardeningSofteningLaw,
+    kind: str,
+    rows: Any,
+    V: str | Sequence[float] | np.ndarray | int,
+    chunk: int | None = None,
+) -> Grid:
     """rows : w₊ values (``"LO:HI:K"``, a number or a list; solitary) or branch names
     (superkink).  V : ``"LO:HI:K"``, a list, or a count K (see module doc).  chunk : points per
     chunk (default: a whole grid line for solitary grids, 4 for superkinks, whose only line
@@ -106,12 +120,12 @@ def make_grid(law, kind: str, rows, V, chunk: int | None = None) -> Grid:
     if kind not in KINDS:
         raise ParameterError("kind", kind, " | ".join(KINDS))
     if kind == "solitary":
-        row_dim, row_vals = "w_plus", tuple(float(x) for x in parse_values("w_plus", rows))
+        row_dim, row_vals = "w_plus", tuple(float(x) for x in parse_values("w_plus", rows))  # type: ignore[union-attr]
     else:
         names = [rows] if isinstance(rows, str) else list(rows or ["lower"])
         if not names or any(b not in BRANCHES for b in names) or len(set(names)) != len(names):
             raise ParameterError("branch", rows, "lower | upper | both")
-        row_dim, row_vals = "branch", tuple(names)
+        row_dim, row_vals = "branch", tuple(names)  # type: ignore[arg-type]
     v = parse_values("V", V, allow_count=True)
     if isinstance(v, int):
         lo, hi = velocity_span(law, kind, row_vals)

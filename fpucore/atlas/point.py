@@ -23,6 +23,7 @@ from __future__ import annotations
 import math
 import time
 import traceback
+from typing import TYPE_CHECKING
 
 from fpucore.errors import ParameterError
 from fpucore.floquet.finite_size import SENTENCE_CHARS
@@ -30,6 +31,9 @@ from fpucore.floquet.multipliers import spectrum
 from fpucore.wave import solve_solitary, solve_superkink
 from fpucore.wave.continuation import solve_from_neighbour
 from fpucore.wave.setup import spec_of
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
 
 # name → (numpy dtype, fill value of a point not computed)
 FIELDS: dict[str, tuple[str, object]] = {
@@ -125,7 +129,7 @@ def solve_point(sp, N: int, tol: float, prev):
     return solve_from_neighbour(sp, prev, solve)
 
 
-def solve_chunk(task: dict, progress=None) -> list[dict]:
+def solve_chunk(task: dict, progress: Callable[[float], None] | None = None) -> list[dict]:
     """Records of the points ``task["V"]`` along one row, in order.  task: law (a force-law
     object), kind, row, V (list), N (int or None: automatic), tol, floquet (bool), m (RK steps or
     None), finite_size (bool: the spectrum's finite-size test, which gives the classification),

@@ -20,7 +20,7 @@ import time
 from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 
@@ -46,6 +46,9 @@ from fpucore.floquet.multipliers import DEFAULT_METHOD, METHODS
 from fpucore.law import HardeningSofteningLaw
 
 if TYPE_CHECKING:
+    import os
+    from collections.abc import Sequence
+
     import xarray as xr
 from fpucore.parallel import BACKENDS, Cancelled, Executor, WorkerDied
 from fpucore.parallel.scheduler import check_scheduler, parse_scheduler_address
@@ -140,10 +143,10 @@ class Table:
 
 
 def run(
-    law,
+    law: HardeningSofteningLaw,
     kind: str,
-    rows=None,
-    V="40",
+    rows: Any = None,
+    V: str | Sequence[float] | np.ndarray | int = "40",
     N: int | None = None,
     tol: float = 1e-12,
     floquet: bool = False,
@@ -152,7 +155,7 @@ def run(
     m: int | None = None,
     chunk: int | None = None,
     continuation: bool = True,
-    out=None,
+    out: str | os.PathLike | None = None,
     resume: bool = False,
     executor: Executor | None = None,
     backend: str = "process",

@@ -38,7 +38,7 @@ import shutil
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import ClassVar
+from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
 from tqdm import tqdm
@@ -56,6 +56,11 @@ from fpucore.parallel import Executor
 from fpucore.parallel.threads import on_budget
 from fpucore.result import Result, jsonable, status_of
 from fpucore.wave.setup import spec_of
+
+if TYPE_CHECKING:
+    from typing import IO
+
+    from fpucore.law.base import HardeningSofteningLaw
 
 SWEEP_MAX_V = 10_000  # velocities per sweep
 CHUNK = 1  # velocities per task (fixed: results must not depend on the number of workers)
@@ -138,7 +143,7 @@ class SweepResult(Result):
     def status(self) -> str:
         return status_of(self.converged, self.stopped)
 
-    def to_csv(self, path_or_file) -> None:
+    def to_csv(self, path_or_file: str | os.PathLike | IO[str]) -> None:
         """One line per row: the columns :data:`COLUMNS` (the atlas's names) and ``cached``."""
         cols = [*COLUMNS, "cached"]
         lines = [",".join(cols)]
@@ -219,7 +224,7 @@ def check_sweep_args(law, kind, V_values, w_plus, N, branch, m, tol, time_budget
 
 @on_budget
 def sweep(
-    law,
+    law: HardeningSofteningLaw,
     kind: str,
     V_values: Sequence[float],
     w_plus: float | None = None,
@@ -302,7 +307,7 @@ def sweep(
                 "", res.message or "not computed")  # fmt: skip
             rows[j] = _row(Vs[j], N, rec)
     if bar is not None and hasattr(bar, "close"):
-        bar.close()
+        bar.close()  # type: ignore[union-attr]
 
     def arr(k: str, where=None) -> np.ndarray:  # a column, NaN where not computed (or not where)
         x = np.array([np.nan if r[k] is None else r[k] for r in rows], float)

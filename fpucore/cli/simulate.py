@@ -23,6 +23,7 @@ above it before anything is allocated (exit 2).
 from __future__ import annotations
 
 import sys
+from typing import Any
 
 from fpucore.budget import parse_size, require_time_budget
 from fpucore.cli.choices import BOUNDARIES, GUARDS, SIMULATE_METHODS
@@ -40,7 +41,7 @@ class _Bar:
 
     def __init__(self, label: str):
         self.label = label
-        self.bar = None
+        self.bar: Any = None  # a tqdm bar once the run reports progress
 
     def __call__(self, frac: float) -> None:
         if self.bar is None:

@@ -74,6 +74,6 @@ def __getattr__(name: str):
         raise AttributeError(f"module 'fpucore.floquet' has no attribute {name!r}")
     value = importlib.import_module("fpucore.atlas.sweeps")
     if _FROM_ATLAS[name] is not None:
-        value = getattr(value, _FROM_ATLAS[name])
+        value = getattr(value, _FROM_ATLAS[name])  # type: ignore[arg-type]
     globals()[name] = value
     return value

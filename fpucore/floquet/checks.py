@@ -12,12 +12,16 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 from scipy.spatial import cKDTree
 
 from fpucore.errors import ParameterError, require_finite, require_in, require_int
 from fpucore.law import require_law
+
+if TYPE_CHECKING:
+    from fpucore.law.base import HardeningSofteningLaw
 
 
 def quartet_symmetry_error(mu: np.ndarray) -> tuple[float, float]:
@@ -50,7 +54,7 @@ def require_velocity(V) -> float:
     return require_in("V", V, *V_RANGE, "a velocity V > 0 whose period 1/V is a finite double")
 
 
-def phonon_gap(law, w_bg: float, V: float, N: int) -> float:
+def phonon_gap(law: HardeningSofteningLaw, w_bg: float, V: float, N: int) -> float:
     """Smallest |μ − 1| of the continuous-spectrum multipliers of a background state w_bg.
 
     Homogeneous state, periodic ring of N sites: μ = exp(i(k ± ω(k)T)), k = 2πj/N, j ≠ 0,
@@ -65,7 +69,7 @@ def phonon_gap(law, w_bg: float, V: float, N: int) -> float:
     return float(d.min())
 
 
-def homogeneous_multipliers(law, w0: float, V: float, N: int) -> np.ndarray:
+def homogeneous_multipliers(law: HardeningSofteningLaw, w0: float, V: float, N: int) -> np.ndarray:
     """Exact multipliers of the shifted monodromy for the constant state w_n ≡ w0 (test case).
 
     With F = f′(w0) = c² the linear chain on the ring is ÿ = c²Δy; Fourier mode y_n = e^{ikn},

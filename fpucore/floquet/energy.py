@@ -25,7 +25,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, field
-from typing import ClassVar
+from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
 from scipy.optimize import minimize_scalar
@@ -36,6 +36,11 @@ from fpucore.floquet.finite_size import CLASSES
 from fpucore.result import Result
 from fpucore.wave import Family, solitary_family
 from fpucore.wave.family import require_V_values
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+
+    from fpucore.law.base import HardeningSofteningLaw
 
 QC_SAMPLES = 400  # QC grid points per velocity interval (cubic: one vectorised closed form)
 _END_MARGIN = 1e-4  # relative distance from the interval ends (sonic / V_SK) on the QC grid
@@ -173,9 +178,9 @@ def _check_qc_samples(qc_samples) -> None:
 
 
 def energy_criterion(
-    law,
+    law: HardeningSofteningLaw,
     w_plus: float,
-    V_values=None,
+    V_values: Sequence[float] | np.ndarray | None = None,
     N: int | None = None,
     tol: float = 1e-12,
     family: Family | None = None,
@@ -211,7 +216,7 @@ def energy_criterion(
 def _samples(**arrays) -> list[np.ndarray]:
     """The sample arrays as 1-D arrays of one length n (``converged`` as bool), else
     ParameterError naming the first that differs (never cut to the shorter one)."""
-    out = []
+    out: list = []
     for name, x in arrays.items():
         try:
             arr = np.atleast_1d(np.asarray(x, dtype=bool if name == "converged" else float))
@@ -228,12 +233,12 @@ def _samples(**arrays) -> list[np.ndarray]:
 
 
 def criterion_from_samples(
-    law,
+    law: HardeningSofteningLaw,
     w_plus: float,
-    V,
-    energy,
-    energy_error,
-    converged,
+    V: Sequence[float] | np.ndarray,
+    energy: Sequence[float] | np.ndarray,
+    energy_error: Sequence[float] | np.ndarray,
+    converged: Sequence[bool] | np.ndarray,
     qc_samples: int = QC_SAMPLES,
     family: Family | None = None,
     t0: float | None = None,
@@ -314,7 +319,13 @@ class StabilityChange:
     extremum_V: float
 
 
-def stability_changes(law, w_plus: float, V, classification, criterion: EnergyCriterion):
+def stability_changes(
+    law: HardeningSofteningLaw,
+    w_plus: float,
+    V: Sequence[float] | np.ndarray,
+    classification: Sequence[str],
+    criterion: EnergyCriterion,
+) -> list[StabilityChange]:
     """Cross-check of a sweep's classifications (fpucore.atlas.sweep rows, any order) against
     the energy criterion: every change across the stable/unstable line between neighbouring
     classified velocities of one interval, and whether an extremum of E_ren explains it.  A

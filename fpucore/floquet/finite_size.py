@@ -274,10 +274,10 @@ def classify(N: np.ndarray, e: np.ndarray, err: np.ndarray) -> dict:
     out["peak_N"] = int(N[k_max])
     out["drop"] = float(1.0 - e[-1] / e[k_max])
     out["drop_needed"] = float(1.0 - (N[0] / N[-1]) ** DECAY_P)
-    env0 = out["envelope_N"][0] if out["envelope_N"] else N[-1]
+    env0 = out["envelope_N"][0] if out["envelope_N"] else N[-1]  # type: ignore[index]
     out["envelope_early"] = bool(env0 <= math.sqrt(N[0] * N[-1]) * (1.0 + 1e-12))
-    drop = out["drop"] >= out["drop_needed"] * (1.0 - 1e-12)
-    out["shrinks"] = bool(out["p"] >= DECAY_P and drop and out["envelope_early"])
+    drop = out["drop"] >= out["drop_needed"] * (1.0 - 1e-12)  # type: ignore[operator]
+    out["shrinks"] = bool(out["p"] >= DECAY_P and drop and out["envelope_early"])  # type: ignore[operator]
     if not out["checked"]:
         cls, why = "undetermined", "few_lengths"
     elif out["absent_N"]:
@@ -286,7 +286,7 @@ def classify(N: np.ndarray, e: np.ndarray, err: np.ndarray) -> dict:
         cls, why = "finite_size", "dips"
     elif out["shrinks"]:
         cls, why = "finite_size", "decays"
-    elif out["spread"] <= CONVERGED_SPREAD:
+    elif out["spread"] <= CONVERGED_SPREAD:  # type: ignore[operator]
         cls, why = "unstable", "persists"
     else:
         cls, why = "undetermined", "unresolved"

@@ -38,6 +38,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 import scipy.linalg
@@ -48,6 +49,10 @@ from fpucore.floquet.kernels import deflate_sums, extract_deflated, scatter_shif
 from fpucore.law import require_law, require_smooth_dynamics
 from fpucore.parallel.threads import on_budget
 from fpucore.wave import period_map as pm
+
+if TYPE_CHECKING:
+    from fpucore.law.base import HardeningSofteningLaw
+    from fpucore.wave.driver import WaveResult
 
 _HW_DEFAULT = 0.12  # h·ω_max of the tangent integration (DOP853): quartets to ~1e-13, see bench
 _SPREAD_LEVEL = 1e-18  # window half-width: neglected part of every column below this
@@ -154,14 +159,14 @@ def base_state(r):
     return law, w, wd, V, N, wl, wr
 
 
-def default_steps(law, V: float) -> int:
+def default_steps(law: HardeningSofteningLaw, V: float) -> int:
     """RK steps per period with h·ω_max ≤ 0.12 for ω_max = 2 c_max (the top linear frequency)."""
     law, V = require_law(law), require_velocity(V)
     return pm.rk_steps_for(V, law.c_max, hw=_HW_DEFAULT)
 
 
 @on_budget
-def monodromy(r, m: int | None = None) -> Monodromy:
+def monodromy(r: WaveResult, m: int | None = None) -> Monodromy:
     """𝓜 of eq. linear_map for the base state r (wave result or :class:`HomogeneousState`).
 
     The base trajectory is re-integrated from (r.w, r.wdot) with the fixed boundary strains of

@@ -9,7 +9,7 @@ import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import ClassVar
+from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
 
@@ -22,6 +22,9 @@ from fpucore.floquet.reversible import reversor_of
 from fpucore.floquet.structured import structured_multipliers
 from fpucore.parallel.threads import on_budget
 from fpucore.result import Result, status_of
+
+if TYPE_CHECKING:
+    from fpucore.wave.driver import WaveResult
 
 METHODS = ("dense", "structured")
 # every entry point's default (spectrum, atlas.run, atlas.sweep, fpu floquet, fpu atlas): the
@@ -159,7 +162,7 @@ def _background_states(r, law) -> list[float]:
 
 @on_budget
 def spectrum(
-    r,
+    r: WaveResult,
     m: int | None = None,
     trivial_radius: float | None = None,
     check: bool = True,
@@ -293,7 +296,7 @@ def spectrum(
             # the paper's reversible waves; agreement with dense within the error bar tested)
             f_k = spectrum(r_k, m=mono.m, check=False, finite_size=False, method="structured")
             pts.append((n_k, f_k.excess, max(f_k.error, integ if math.isfinite(integ) else 0.0)))
-            if settled(*zip(*sorted(pts))):  # absent or a dip: the rest cannot change it
+            if settled(*zip(*sorted(pts))):  # type: ignore[arg-type]  # absent or a dip: the rest cannot change it
                 break
     elif finite_size:
         why = ""

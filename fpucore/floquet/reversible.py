@@ -32,17 +32,21 @@ from __future__ import annotations
 
 import math
 import time
+from typing import TYPE_CHECKING
 
 import numpy as np
 import scipy.linalg
 
 from fpucore.floquet.reversible_kernels import m_times_rq, qt_times, rpinv_rows
 
+if TYPE_CHECKING:
+    from fpucore.law.base import HardeningSofteningLaw
+
 _REVERSIBLE_TOL = 1e-8  # (‖G‖_F + ‖F‖_F) / ‖A‖_F above this: not reversible about c
 _PROFILE_TOL = 1e-7  # relative asymmetry of the base profile accepted as a candidate centre
 
 
-def reversor_of(law, w: np.ndarray, wd: np.ndarray) -> int | None:
+def reversor_of(law: HardeningSofteningLaw, w: np.ndarray, wd: np.ndarray) -> int | None:
     """The centre c of a reflection i → c − i (mod N) that, with time reversed, carries the
     linearized chain into itself; None if there is none.  The linearization sees the base state
     only through g = f′(w) and its rate h = f″(w) ẇ, so the test is g_i = g_{c−i} and

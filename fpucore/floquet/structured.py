@@ -215,7 +215,7 @@ def structured_multipliers(
     rev = reversible_lambdas(mat, N, reversor) if reversor is not None else None
     if rev is not None:
         lam, lam_err_k, rinfo = rev
-        info.update(rinfo, route="reversible", reversor=int(reversor))
+        info.update(rinfo, route="reversible", reversor=int(reversor))  # type: ignore[arg-type]
     else:
         t1 = time.perf_counter()
         d0, bands = band_of(mat, N, K)

@@ -4,10 +4,15 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from ..errors import ParameterError, require_finite
+
+#: a strain or an array of strains.  The laws' functions are vectorised: a float in gives a float
+#: out, an array an array of its shape (no overloads spell that out: the result is typed Any).
+Strain = Any
 
 
 @dataclass(frozen=True)
@@ -20,20 +25,31 @@ class HardeningSofteningLaw:
 
     law_id: int = field(init=False, repr=False, default=-1)
 
+    if TYPE_CHECKING:  # provided by every subclass (properties or computed fields)
+
+        @property
+        def w_star(self) -> float: ...
+
+        @property
+        def alpha(self) -> float: ...
+
+        @property
+        def beta(self) -> float: ...
+
     @property
     def params(self) -> np.ndarray:  # pragma: no cover - abstract
         raise NotImplementedError
 
-    def f(self, w):  # pragma: no cover - abstract
+    def f(self, w: Strain) -> Strain:  # pragma: no cover - abstract
         raise NotImplementedError
 
-    def df(self, w):  # pragma: no cover - abstract
+    def df(self, w: Strain) -> Strain:  # pragma: no cover - abstract
         raise NotImplementedError
 
-    def ddf(self, w):  # pragma: no cover - abstract
+    def ddf(self, w: Strain) -> Strain:  # pragma: no cover - abstract
         raise NotImplementedError
 
-    def phi(self, w):  # pragma: no cover - abstract
+    def phi(self, w: Strain) -> Strain:  # pragma: no cover - abstract
         raise NotImplementedError
 
     @property
@@ -56,7 +72,7 @@ class HardeningSofteningLaw:
         return w
 
 
-def interval_note(law) -> str:
+def interval_note(law: object) -> str:
     """For a law represented on an interval (:class:`~fpucore.law.SmoothLaw`): the clause that
     names it, for messages about non-finite values (its kernels return NaN outside); else ""."""
     iv = getattr(law, "interval", None)
@@ -66,7 +82,7 @@ def interval_note(law) -> str:
             "the smooth law (its kernels return NaN outside)")  # fmt: skip
 
 
-def require_law(law, name: str = "law") -> HardeningSofteningLaw:
+def require_law(law: object, name: str = "law") -> HardeningSofteningLaw:
     """The law itself, or ParameterError if it is not a force-law object (None, a string ...)."""
     if not isinstance(law, HardeningSofteningLaw):
         raise ParameterError(

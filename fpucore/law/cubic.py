@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -12,6 +13,9 @@ from .base import HardeningSofteningLaw
 from .kernels import LAW_CUBIC
 from .polynomial import PolynomialLaw
 from .scale import require_computable
+
+if TYPE_CHECKING:
+    from fpucore.law.base import Strain
 
 
 def _require_computable(a: float, b: float) -> None:
@@ -55,19 +59,19 @@ class CubicLaw(HardeningSofteningLaw):
         return np.array([self.a, self.b], dtype=np.float64)
 
     # ----- vectorised evaluation
-    def f(self, w):
+    def f(self, w: Strain) -> Strain:
         w = np.asarray(w, dtype=float)
         return ((self.a * w + self.b) * w + 1.0) * w
 
-    def df(self, w):
+    def df(self, w: Strain) -> Strain:
         w = np.asarray(w, dtype=float)
         return (3.0 * self.a * w + 2.0 * self.b) * w + 1.0
 
-    def ddf(self, w):
+    def ddf(self, w: Strain) -> Strain:
         w = np.asarray(w, dtype=float)
         return 6.0 * self.a * w + 2.0 * self.b
 
-    def phi(self, w):
+    def phi(self, w: Strain) -> Strain:
         """Potential Φ(w) = ∫₀ʷ f = a w⁴/4 + b w³/3 + w²/2."""
         w = np.asarray(w, dtype=float)
         return ((0.25 * self.a * w + self.b / 3.0) * w + 0.5) * w * w
@@ -93,7 +97,7 @@ class CubicLaw(HardeningSofteningLaw):
         """Upper end of the convex interval, (b + √(b²+3|a|))/(3|a|)."""
         return (self.b + math.sqrt(self.b**2 + 3.0 * self.abs_a)) / (3.0 * self.abs_a)
 
-    def mirror(self, w):
+    def mirror(self, w: Strain) -> np.ndarray:
         """The symmetry w ↦ 2w* − w, under which f(w) = 4b/3 w*² + 2w* − f(2w* − w)."""
         return 2.0 * self.w_star - np.asarray(w, dtype=float)
 

@@ -10,23 +10,27 @@ only when a law text is parsed.
 from __future__ import annotations
 
 import operator
+from collections.abc import Callable
 from fractions import Fraction
+from typing import NoReturn
 
 import mpmath
 
 from fpucore.law.expression_bounds import abbreviate
 
+Refuse = Callable[[str], NoReturn]  # raises ParameterError naming the reason
+
 PREC = 128  # bits of an inexact coefficient (SymPy's 30-digit constants carry 100)
 
 
-def expand(expr, w, refuse) -> dict:
+def expand(expr, w, refuse: Refuse) -> dict:
     """{power of w: coefficient} of the parsed text ``expr`` (see :func:`laurent`); ``refuse``
     raises the ParameterError with a reason."""
     with mpmath.workprec(PREC):
         return laurent(expr, w, refuse)
 
 
-def laurent(expr, w, refuse) -> dict:
+def laurent(expr, w, refuse: Refuse) -> dict:
     """The coefficients {power of w: c} of the parsed, unevaluated text: sums, products and
     powers of w and numbers (the screen has bounded them).  A coefficient is exact (Fraction)
     while every number it comes from is rational, else an mpmath number of :data:`PREC` bits:
@@ -93,7 +97,7 @@ def _mul(p: dict, q: dict) -> dict:
     return out
 
 
-def _power(base: dict, n: int, expr, refuse) -> dict:
+def _power(base: dict, n: int, expr, refuse: Refuse) -> dict:
     if n < 0:
         nonzero = [(k, c) for k, c in base.items() if c]
         if not nonzero:

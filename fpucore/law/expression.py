@@ -14,6 +14,7 @@ from __future__ import annotations
 import io
 import math
 import tokenize
+from typing import NoReturn
 
 from fpucore.errors import ParameterError
 from fpucore.law.expression_bounds import MAX_LENGTH, abbreviate, screen
@@ -195,7 +196,7 @@ def polynomial_law_from_expression(expression: str) -> PolynomialLaw:
             "expression", expression, _VALID, f"could not parse: {type(exc).__name__}: {exc}"
         ) from None
 
-    def refuse(reason: str):
+    def refuse(reason: str) -> NoReturn:
         raise ParameterError("expression", abbreviate(expression), _VALID, reason)
 
     # expanded here, exactly while the numbers are rational (module docstring of _laurent)
@@ -205,7 +206,7 @@ def polynomial_law_from_expression(expression: str) -> PolynomialLaw:
             f"not a polynomial in w: {abbreviate(str(expr), 60)} (functions of w, negative or "
             "fractional powers are not allowed)"
         )
-    coeffs = []
+    coeffs: list[float] = []
     for k, ck in sorted(terms.items()):
         if k < 0:  # a zero coefficient of a negative power (0/w)
             continue

@@ -35,7 +35,9 @@ from __future__ import annotations
 
 import math
 import tokenize
+from collections.abc import Callable
 from dataclasses import dataclass
+from typing import NoReturn
 
 from fpucore.errors import ParameterError
 from fpucore.law.polynomial import MAX_DEGREE
@@ -81,7 +83,7 @@ class _Screen:
         self.depth = 0
 
     # ----- helpers
-    def refuse(self, reason: str):
+    def refuse(self, reason: str) -> NoReturn:
         raise ParameterError("expression", abbreviate(self.expression), self.valid, reason)
 
     def peek(self) -> str:
@@ -281,7 +283,7 @@ _SKIP = (tokenize.NEWLINE, tokenize.NL, tokenize.ENDMARKER, tokenize.INDENT, tok
 _ATOMS = (tokenize.NUMBER, tokenize.NAME)
 
 
-def _number(text: str, refuse) -> Node:
+def _number(text: str, refuse: Callable[[str], NoReturn]) -> Node:
     """A literal's float value, refused beyond the float range before any int() conversion; an
     integer's exact size is the decimal digits of its value, whatever its base."""
     chars = sum(ch.isalnum() for ch in text)  # digits of any base (and the 0x/0o/0b prefix)
@@ -297,7 +299,7 @@ def _number(text: str, refuse) -> Node:
     except ValueError:
         refuse(f"could not parse the number {abbreviate(text, 24)}")
     try:
-        val = float(n) if exact else float(clean)
+        val = float(n) if exact else float(clean)  # type: ignore[arg-type]
     except OverflowError:
         val = math.inf
     except ValueError:
@@ -306,7 +308,7 @@ def _number(text: str, refuse) -> Node:
         refuse(f"the literal {abbreviate(text, 24)} exceeds the float range (|x| <= 1.8e308): "
                "non-finite in double precision")  # fmt: skip
     # decimal digits of the value: 0x + 255 f's is 1 token but 308 digits of SymPy's exact work
-    digits = math.floor(n.bit_length() * math.log10(2)) + 1 if exact else 0.0
+    digits = math.floor(n.bit_length() * math.log10(2)) + 1 if exact else 0.0  # type: ignore[union-attr]
     return Node(0.0, val, float(digits), text)
 
 
@@ -318,7 +320,7 @@ def _function(name: str, x: float | None) -> float | None:
           "cosh": math.cosh, "tanh": math.tanh, "abs": abs, "Abs": abs,
           "log": math.log, "sqrt": math.sqrt}[name]  # fmt: skip
     try:
-        return float(fn(x))
+        return float(fn(x))  # type: ignore[operator]
     except OverflowError:
         return math.inf
     except ValueError:  # log/sqrt of a negative number or 0: complex or infinite, SymPy decides

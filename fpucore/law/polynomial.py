@@ -28,6 +28,7 @@ import functools
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
 
@@ -36,7 +37,20 @@ from fpucore.law.base import HardeningSofteningLaw
 from fpucore.law.kernels import LAW_POLY, POLY_IDS
 from fpucore.law.scale import require_coefficient, require_computable
 
+if TYPE_CHECKING:
+    from fpucore.law.base import Strain
+
 EPS = float(np.finfo(float).eps)
+
+
+class CubicCoefficients(Protocol):
+    """What :meth:`PolynomialLaw.from_cubic` reads of a cubic law (a CubicLaw; not imported
+    here: cubic.py imports this module)."""
+
+    a: float
+    b: float
+
+
 # The largest degree of a law (text or coefficients).  benchmarks/law_degree.py (families with a
 # known convex interval, references by mpmath): beta, w*, the QC w- and the discrete wave and its
 # Floquet spectrum stay accurate and converged at every degree tried up to 41 — accuracy follows
@@ -58,18 +72,20 @@ def _polyval_asc(c: np.ndarray, x: float) -> tuple[float, float, float]:
     return p, dp, s
 
 
-def real_roots(c: Sequence[float], lo: float = -math.inf, hi: float = math.inf):
+def real_roots(
+    c: Sequence[float] | np.ndarray, lo: float = -math.inf, hi: float = math.inf
+) -> list[tuple[float, float]]:
     """Real roots of Σ c[j] x^j in the open interval (lo, hi), sorted, as [(root, error), ...].
 
     Candidates are the eigenvalue roots with a small imaginary part; each is polished by Newton
     and kept only if |p(x)| is at round-off level there (a complex pair very close to the axis is
     then reported as a (near-)double real root, which is what f′/f″ sign checks need).
     """
-    c = np.trim_zeros(np.asarray(c, dtype=float), "b")
-    if c.size <= 1:
+    arr: np.ndarray = np.trim_zeros(np.asarray(c, dtype=float), "b")
+    if arr.size <= 1:
         return []
     with np.errstate(all="ignore"):  # far roots may overflow p(x): kept unverified, see below
-        return _real_roots(c, lo, hi)
+        return _real_roots(arr, lo, hi)
 
 
 def _real_roots(c: np.ndarray, lo: float, hi: float) -> list[tuple[float, float]]:
@@ -111,7 +127,7 @@ def _real_roots(c: np.ndarray, lo: float, hi: float) -> list[tuple[float, float]
     return merged
 
 
-def expression_of(coeffs) -> str:
+def expression_of(coeffs: Sequence[float]) -> str:
     """Text of f(w) = Σ c_k w^k (coeffs = (c_1, c_2, …)) that
     :func:`fpucore.law.law_from_expression` parses back to the same doubles (coefficients by
     ``repr``) — also for coefficients outside the law class (e.g. a dashboard slider's state),
@@ -145,7 +161,7 @@ class PolynomialLaw(HardeningSofteningLaw):
     alpha_error: float = field(init=False, default=math.nan)
     beta_error: float = field(init=False, default=math.nan)
     w_star_error: float = field(init=False, default=math.nan)
-    _c: np.ndarray = field(init=False, repr=False, compare=False, default=None)
+    _c: np.ndarray = field(init=False, repr=False, compare=False, default=None)  # type: ignore[arg-type]  # set in __post_init__
 
     def __post_init__(self):
         try:
@@ -253,7 +269,7 @@ class PolynomialLaw(HardeningSofteningLaw):
         return self._c.size
 
     @classmethod
-    def from_cubic(cls, law) -> PolynomialLaw:
+    def from_cubic(cls, law: CubicCoefficients) -> PolynomialLaw:
         """The cubic a w³ + b w² + w (eq. cubic) as coeffs (1, b, a)."""
         return cls((1.0, law.b, law.a))
 
@@ -291,20 +307,20 @@ class PolynomialLaw(HardeningSofteningLaw):
             acc = acc * w + c
         return acc
 
-    def f(self, w):
+    def f(self, w: Strain) -> Strain:
         """f(w) = w Σ c_k w^(k−1)."""
         w = np.asarray(w, dtype=float)
         return self._horner(self._c, w) * w
 
-    def df(self, w):
+    def df(self, w: Strain) -> Strain:
         """f′(w) = Σ k c_k w^(k−1)."""
         return self._horner(self._tables[0], np.asarray(w, dtype=float))
 
-    def ddf(self, w):
+    def ddf(self, w: Strain) -> Strain:
         """f″(w) = Σ k (k−1) c_k w^(k−2)."""
         return self._horner(self._tables[1], np.asarray(w, dtype=float))
 
-    def phi(self, w):
+    def phi(self, w: Strain) -> Strain:
         """Potential Φ(w) = ∫₀ʷ f = Σ c_k w^(k+1)/(k+1)."""
         w = np.asarray(w, dtype=float)
         return self._horner(self._tables[2], w) * w * w

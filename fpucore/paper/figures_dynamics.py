@@ -151,7 +151,7 @@ def fig_Riemann1(reduced: bool):
     left DSW edge's V and w_B; (e) w_3000(t) with the one at the right edge."""
     s = simulate.riemann(LAW, RIEMANN["w_left"], RIEMANN["w_right"], RIEMANN["L"],
                          RIEMANN["t_end"], probes=RIEMANN["probes"])  # fmt: skip
-    by = {}
+    by: dict = {}
     for w in s.waves:
         by.setdefault((w.kind, int(np.sign(w.velocity))), w)
     sk, left, right = by.get(("superkink", -1)), by.get(("dsw_edge", -1)), by.get(("dsw_edge", 1))
@@ -195,15 +195,15 @@ def fig_Riemann1(reduced: bool):
     # the plateau between the superkink and the left DSW: measured (the DSW edge's background),
     # its error bar the distance from the exact state behind a superkink with 4.6 ahead (eqs.
     # Rline, zero_G: mirror image, 2w* − 4.6)
-    exact = qc.superkink_from_w_plus(LAW, RIEMANN["w_left"]).w_minus
+    exact = qc.superkink_from_w_plus(LAW, RIEMANN["w_left"]).w_minus  # type: ignore[arg-type]
     w_B = np.nan if left is None else left.background
     comps.append(compare("Riemann1", "background w_B of the left DSW edge (state behind the "
                          "superkink)", "2.0667", 2.0667, w_B, abs(w_B - exact),
                          source=src + "[dsw_edge].background", elapsed_s=s.elapsed_s))  # fmt: skip
     # panels (c)-(e): tracked site against the computed wave at the measured V and w_B, in a
     # window of ±WINDOW_SITES / |V| around the wave's passage (as the paper's insets)
-    for tag, k, w in zip("cde", RIEMANN["probes"], (sk, left, right)):
-        t, w_k = s.probe_t, s.probe_series[RIEMANN["probes"].index(k)]
+    for tag, k, w in zip("cde", RIEMANN["probes"], (sk, left, right)):  # type: ignore[call-overload]
+        t, w_k = s.probe_t, s.probe_series[RIEMANN["probes"].index(k)]  # type: ignore[attr-defined]
         ser = []
         keep = np.ones(t.size, bool)
         if w is not None:
@@ -259,7 +259,7 @@ def fig_SWdyn(reduced: bool):
             )
         )
         speeds = [w for w in s.waves if w.kind == "solitary"]
-        for printed, value in case["printed"]:
+        for printed, value in case["printed"]:  # type: ignore[attr-defined]
             for sign in (-1, 1):
                 cand = [w for w in speeds if np.sign(w.velocity) == sign]
                 best = min(cand, key=lambda w: abs(abs(w.velocity) - value), default=None)

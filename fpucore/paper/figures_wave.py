@@ -87,7 +87,7 @@ def fig_SWs_cubic_DvsQC(reduced: bool):
     for w_plus in (1.0, 6.0):
         for side, Vs in zip(("below", "above"), PROFILE_V[w_plus]):
             if reduced:
-                Vs = Vs[-1:]
+                Vs = Vs[-1:]  # type: ignore[assignment]
             fam = wave.solitary_family(LAW, w_plus, list(Vs))
             elapsed += fam.elapsed_s
             ser = []

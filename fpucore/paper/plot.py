@@ -140,9 +140,9 @@ def thumbnail(result: FigureResult, path: str | Path, width: int = THUMB_WIDTH) 
     hv.save(plot(result, "matplotlib"), buf, backend="matplotlib", fmt="png", dpi=100)
     buf.seek(0)
     with Image.open(buf) as im:
-        im = im.convert("RGB")
+        im = im.convert("RGB")  # type: ignore[assignment]
         height = max(1, round(im.height * width / im.width))
-        small = im.resize((width, height), Image.LANCZOS).quantize(colors=256)
+        small = im.resize((width, height), Image.LANCZOS).quantize(colors=256)  # type: ignore[attr-defined]
     path = Path(path)
     small.save(path, format="PNG", optimize=True)
     return path

@@ -118,7 +118,7 @@ def compute_many(
     if todo and workers == 1:  # this process, one figure after the other
         for item in items:
             try:
-                val = compute_job(item)
+                val: FigureResult | Exception = compute_job(item)
             except Exception as exc:  # noqa: BLE001  (reported in `missing`, the others go on)
                 val = exc
             if not take(item[0], val):

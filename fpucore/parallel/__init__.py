@@ -2,7 +2,8 @@
 
 threads (the thread budget: 1 BLAS/OpenMP/Numba thread per worker, Numba's "omp" layer, never
 fork after a kernel)  →  jobs (Job, Cancelled, WorkerDied)  →  worker (the child's loop)
-→  pool (local processes, forkserver) | dask_backend (dask.distributed)  →  executor (Executor)
+→  pool (local processes, forkserver) | dask_backend (dask.distributed)  →  executor
+(Executor).  In use::
 
     ex = Executor(backend="process", workers=None, address=None)   # or "dask", "inline"
     job = ex.submit(fn, *args, **kwargs); job.result(); job.cancel(); job.progress

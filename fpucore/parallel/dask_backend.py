@@ -89,7 +89,7 @@ class DaskBackend:
         fut = self.client.submit(run_task, fn, args, kwargs, accepts_progress(fn), self.topic,
                                  pure=False)  # fmt: skip
         with self._lock:
-            self._jobs[fut.key] = job
+            self._jobs[fut.key] = job  # type: ignore[index]
             self._futures[job] = fut
         job.cancel_hook = self._on_cancel
         fut.add_done_callback(lambda f: self._finish(job, f))

@@ -93,7 +93,7 @@ class Executor:
         self.caller_runs = caller_runs and backend == "process"
         n = cores() if workers is None else workers
         if self.caller_runs:  # this process is one of the n; its workers start in the background
-            self._impl = ProcessPool(max(1, n - 1), background_start=True, lookahead=True)
+            self._impl: Any = ProcessPool(max(1, n - 1), background_start=True, lookahead=True)
         elif backend == "process":
             self._impl = ProcessPool(n)
         elif backend == "dask":
@@ -109,11 +109,11 @@ class Executor:
         return self._impl.n_workers + (1 if self.caller_runs else 0)
 
     @property
-    def impl(self):
+    def impl(self) -> Any:
         """The backend object (ProcessPool, DaskBackend or InlineBackend)."""
         return self._impl
 
-    def submit(self, fn: Callable, *args, **kwargs) -> Job:
+    def submit(self, fn: Callable, *args: Any, **kwargs: Any) -> Job:
         """Run ``fn(*args, **kwargs)`` on a worker; returns its :class:`Job` at once."""
         self._count += 1
         return self._impl.submit(fn, args, kwargs, self._count - 1)

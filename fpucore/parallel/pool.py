@@ -182,7 +182,7 @@ class ProcessPool:
         self._wake()
         self._thread.join(30)
         for w in self._workers:
-            for job in (w.job, w.next[1] if w.next is not None else None):
+            for job in (w.job, w.next[1] if w.next is not None else None):  # type: ignore[assignment]
                 if job is not None:
                     job.set_exception(Cancelled("the executor was shut down"))
             try:
@@ -231,8 +231,8 @@ class ProcessPool:
                 watch += [w.conn, w.process.sentinel]
             for obj in wait(watch, timeout=1.0):
                 if obj is self._wake_r:
-                    while self._wake_r.poll():
-                        self._wake_r.recv_bytes()
+                    while self._wake_r.poll():  # type: ignore[union-attr]
+                        self._wake_r.recv_bytes()  # type: ignore[union-attr]
                     continue
                 for w in list(self._workers):
                     if obj is w.conn:

@@ -74,7 +74,7 @@ def configure_threading_layer(layer: str = THREADING_LAYER) -> str:
     try:
         return numba.threading_layer()  # raises ValueError until a parallel kernel has run
     except ValueError:
-        numba.config.THREADING_LAYER = layer
+        numba.config.THREADING_LAYER = layer  # type: ignore[attr-defined]
         return layer
 
 
@@ -119,7 +119,7 @@ def thread_budget() -> int:
 
 
 def _numba_threads(n: int) -> int:
-    return min(n, numba.config.NUMBA_NUM_THREADS)
+    return min(n, numba.config.NUMBA_NUM_THREADS)  # type: ignore[attr-defined]
 
 
 def apply_thread_policy(n_threads: int | None = 1) -> dict:
@@ -145,7 +145,7 @@ def apply_thread_policy(n_threads: int | None = 1) -> dict:
         "blas": [(d["internal_api"], d["num_threads"]) for d in info if d["user_api"] == "blas"],
         "openmp": [(d["prefix"], d["num_threads"]) for d in info if d["user_api"] == "openmp"],
         "numba": numba.get_num_threads(),
-        "layer": numba.config.THREADING_LAYER,
+        "layer": numba.config.THREADING_LAYER,  # type: ignore[attr-defined]
         "pid": os.getpid(),
     }
 
@@ -201,7 +201,7 @@ def budgeted() -> Iterator[int]:
             with _scope_lock:
                 _scope_depth -= 1
                 if _scope_depth == 0:
-                    _scope_limiter.restore_original_limits()
+                    _scope_limiter.restore_original_limits()  # type: ignore[union-attr]
                     _scope_limiter = None
         if old != numba.get_num_threads():
             numba.set_num_threads(old)

@@ -1,6 +1,6 @@
 """Quasicontinuum (QC) theory (paper §3–4): closed forms for the cubic law, the same theory
 numerically for any hardening–softening law, the phase plane and the existence /
-velocity–amplitude diagrams.
+velocity–amplitude diagrams.  The modules, in import order::
 
     cubic_speeds (eqs. cplus, cubic_cond2, cminus_cubic, V_bounds_cubic, Rline, wS)
     → closed_forms (eqs. zero_G, cubic_cond1/2, SKsoln_cubic, SWsoln_cubic, E_ren)

@@ -18,7 +18,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, replace
-from typing import ClassVar
+from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
 
@@ -40,6 +40,9 @@ from fpucore.qc.cubic_speeds import (  # re-exported: the speeds are part of the
     w_S,
 )
 from fpucore.result import Result, status_of
+
+if TYPE_CHECKING:
+    from fpucore.law.base import Strain
 
 __all__ = [
     "EPS", "QC_CHECK", "V_SPAN", "W_SPAN", "WP_MAX", "c_max_squared", "cubic_law", "require_V",
@@ -93,20 +96,20 @@ class QCSuperkink(Result):
         """Width 1/p of the transition layer (lattice units)."""
         return 1.0 / self.p
 
-    def profile(self, xi):
+    def profile(self, xi: Strain) -> Strain:
         xi = np.asarray(xi, dtype=float)
         return 0.5 * (self.w_plus + self.w_minus) - 0.5 * (self.w_minus - self.w_plus) * np.tanh(
             self.p * xi
         )
 
-    def dprofile(self, xi):
+    def dprofile(self, xi: Strain) -> Strain:
         xi = np.asarray(xi, dtype=float)
         E = np.exp(-2.0 * self.p * np.abs(xi))  # sech² = 4E/(1+E)², no overflow at large |ξ|
         return -2.0 * (self.w_minus - self.w_plus) * self.p * E / (1.0 + E) ** 2
 
-    ERROR_FIELDS: ClassVar = ("rayleigh_residual", "driving_force")
-    DERIVED: ClassVar = ("amplitude", "width", "converged", "status", "message")
-    EXCLUDE: ClassVar = ("law",)
+    ERROR_FIELDS: ClassVar[tuple[str, ...]] = ("rayleigh_residual", "driving_force")
+    DERIVED: ClassVar[tuple[str, ...]] = ("amplitude", "width", "converged", "status", "message")
+    EXCLUDE: ClassVar[tuple[str, ...]] = ("law",)
 
     @property
     def converged(self) -> bool:
@@ -177,7 +180,7 @@ def _theta_ratios(theta):
     return th / sh, np.where(th < 0.5, num, th * ch - sh) / sh**3
 
 
-def solitary_closed_form(law: CubicLaw, w_B, V):
+def solitary_closed_form(law: CubicLaw, w_B: Strain, V: Strain) -> tuple[Strain, ...]:
     """The closed form of a QC solitary wave from its background w_B and velocity V (arrays or
     scalars): returns (dM, dT, gamma, energy, energy_error, ok) with w_M = w_B + dM,
     w_T = w_B + dT (eq. w_T_M), gamma of eq. SWsoln_cubic and E_ren^QC (eq. Eren_QC).
@@ -259,17 +262,17 @@ class QCSolitary(Result):
         den = 2.0 * (dM + dT) * E + (dT - dM) * (1.0 + E * E)
         return xi, dM, dT, E, den
 
-    def profile(self, xi):
+    def profile(self, xi: Strain) -> Strain:
         xi, dM, dT, E, den = self._parts(xi)
         return self.w_B + 4.0 * dM * dT * E / den
 
-    def dprofile(self, xi):
+    def dprofile(self, xi: Strain) -> Strain:
         xi, dM, dT, E, den = self._parts(xi)
         return -4.0 * dM * dT * (dT - dM) * self.gamma * np.sign(xi) * (1.0 - E * E) * E / den**2
 
-    ERROR_FIELDS: ClassVar = ("energy_error", "first_integral_residual")
-    DERIVED: ClassVar = ("amplitude", "converged", "status", "message")
-    EXCLUDE: ClassVar = ("law", "w_plus", "V_SK", "c_plus", "c_minus")
+    ERROR_FIELDS: ClassVar[tuple[str, ...]] = ("energy_error", "first_integral_residual")
+    DERIVED: ClassVar[tuple[str, ...]] = ("amplitude", "converged", "status", "message")
+    EXCLUDE: ClassVar[tuple[str, ...]] = ("law", "w_plus", "V_SK", "c_plus", "c_minus")
 
     @property
     def converged(self) -> bool:
@@ -285,7 +288,9 @@ class QCSolitary(Result):
         return "" if self.converged else "first-integral residual above round-off"
 
 
-def first_integral(law: HardeningSofteningLaw, w, wp, w_ref: float, V: float):
+def first_integral(
+    law: HardeningSofteningLaw, w: Strain, wp: Strain, w_ref: float, V: float
+) -> Strain:
     """H(w, w′) = V²/24 w′² + Φ(w) − Φ(w_ref) − f(w_ref)(w − w_ref) − V²/2 (w − w_ref)².
 
     Zero on every orbit through the saddle (w_ref, 0) (eq. TW_QC_gen3); its level sets are the

@@ -14,11 +14,15 @@ from __future__ import annotations
 
 import math
 from fractions import Fraction
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from fpucore.errors import ParameterError, fmt_interval, require_finite
 from fpucore.law import CubicLaw, HardeningSofteningLaw, require_law
+
+if TYPE_CHECKING:
+    from fpucore.law.base import Strain
 
 EPS = np.finfo(float).eps
 
@@ -36,7 +40,7 @@ def c_max_squared(law: CubicLaw) -> float:
     return 1.0 + law.b**2 / (3.0 * law.abs_a)
 
 
-def require_w_plus(law: CubicLaw, w_plus: float) -> float:
+def require_w_plus(law: HardeningSofteningLaw, w_plus: float) -> float:
     """w₊ must lie in the convex interval and away from w*, where the family degenerates."""
     w_plus = law.require_convex("w_plus", w_plus)
     if abs(w_plus - law.w_star) <= 1e-12 * max(1.0, law.w_star):
@@ -86,7 +90,7 @@ def finite_array(name: str, x) -> np.ndarray:
     return a
 
 
-def sound_speed_plus(law: CubicLaw, w_plus):
+def sound_speed_plus(law: CubicLaw, w_plus: Strain) -> Strain:
     """c₊ = √f′(w₊) (eq. cplus; w₊ may be an array), written without cancellation.
 
     c₊² = c_max² − 3|a|e, e = (w₊ − w*)², cancels near α and β (a relative 7.5e-5 lost near α)

@@ -7,12 +7,17 @@ on the law.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING, TypeGuard
+
 import numpy as np
 
 from fpucore.errors import ParameterError
 from fpucore.law import CubicLaw, HardeningSofteningLaw, require_law
 from fpucore.qc import closed_forms as cf
 from fpucore.qc import general as gen
+
+if TYPE_CHECKING:
+    from fpucore.law.base import Strain
 
 BRANCHES = ("lower", "upper")
 
@@ -34,7 +39,7 @@ def _pl_refuse(law, what: str):
     )  # fmt: skip
 
 
-def is_closed_form(law: HardeningSofteningLaw) -> bool:
+def is_closed_form(law: HardeningSofteningLaw) -> TypeGuard[CubicLaw]:
     """True when the closed forms of paper §4 apply (the cubic law object); ParameterError
     naming ``law`` when it is no law at all (None, a string ...)."""
     return isinstance(require_law(law), CubicLaw)
@@ -50,7 +55,9 @@ def sound_speeds(law: HardeningSofteningLaw, w_plus: float) -> tuple[float, floa
     return gen.sound_speeds(law, w_plus)
 
 
-def solitary_intervals(law: HardeningSofteningLaw, w_plus: float):
+def solitary_intervals(
+    law: HardeningSofteningLaw, w_plus: float
+) -> tuple[tuple[float, float], tuple[float, float]]:
     """((c₊, V_SK), (V_SK, c₋)): the two velocity intervals of solitary waves for w₊."""
     if pl := _pl(law):
         return pl[0].solitary_intervals(law, w_plus)
@@ -68,7 +75,7 @@ def w_minus_sonic(law: HardeningSofteningLaw, w_plus: float) -> float:
     return gen.w_minus_sonic(law, w_plus)
 
 
-def rayleigh_roots(law: HardeningSofteningLaw, w_plus: float, V):
+def rayleigh_roots(law: HardeningSofteningLaw, w_plus: float, V: Strain) -> tuple[Strain, Strain]:
     """(w_near, w_far): the other intersections of f with the Rayleigh line (V may be an array,
     each V in (0, c₋]; ParameterError naming V otherwise, where NaN was once returned)."""
     if pl := _pl(law):
@@ -98,7 +105,7 @@ def rayleigh_roots(law: HardeningSofteningLaw, w_plus: float, V):
     return roots
 
 
-def w_S(law: HardeningSofteningLaw, w_plus: float, V):
+def w_S(law: HardeningSofteningLaw, w_plus: float, V: Strain) -> Strain:
     """Saddle w_S(V) ≠ w₊ of eq. wS, the far Rayleigh root (V in (0, c₋], may be an array)."""
     if pl := _pl(law):
         if np.ndim(V):
@@ -121,7 +128,9 @@ def superkink_velocity_bounds(
     return gen.superkink_velocity_bounds(law, branch)
 
 
-def superkink_w_plus_range(law: HardeningSofteningLaw, branch: str = "lower"):
+def superkink_w_plus_range(
+    law: HardeningSofteningLaw, branch: str = "lower"
+) -> tuple[float, float]:
     """Open w₊-interval of superkinks on a branch ((α, w*) or (w*, β) for the cubic, whose
     convex interval is symmetric about w*)."""
     if pl := _pl(law):
@@ -133,7 +142,7 @@ def superkink_w_plus_range(law: HardeningSofteningLaw, branch: str = "lower"):
     return gen.superkink_w_plus_range(law, branch)
 
 
-def superkink_from_V(law: HardeningSofteningLaw, V: float, branch: str = "lower"):
+def superkink_from_V(law: HardeningSofteningLaw, V: float, branch: str = "lower") -> cf.QCSuperkink:
     """Superkink with velocity V on a branch (eq. wpm_cubic for the cubic)."""
     if _pl(law):
         _pl_refuse(law, "superkink_from_V")
@@ -142,7 +151,7 @@ def superkink_from_V(law: HardeningSofteningLaw, V: float, branch: str = "lower"
     return gen.superkink_from_V(law, V, branch)
 
 
-def superkink_from_w_plus(law: HardeningSofteningLaw, w_plus: float):
+def superkink_from_w_plus(law: HardeningSofteningLaw, w_plus: float) -> cf.QCSuperkink:
     """Superkink with state w₊ ahead (eqs. Rline, zero_G)."""
     if pl := _pl(law):
         return pl[1].superkink(law, w_plus)
@@ -151,7 +160,7 @@ def superkink_from_w_plus(law: HardeningSofteningLaw, w_plus: float):
     return gen.superkink_from_w_plus(law, w_plus)
 
 
-def solitary(law: HardeningSofteningLaw, w_plus: float, V: float):
+def solitary(law: HardeningSofteningLaw, w_plus: float, V: float) -> cf.QCSolitary:
     """QC solitary wave for the state w₊ ahead of the associated superkink, velocity V."""
     if pl := _pl(law):
         return pl[1].solitary(law, w_plus, V)

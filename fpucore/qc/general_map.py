@@ -141,7 +141,7 @@ class ProfileMap:
 
     def _interp(self, j: np.ndarray, x: np.ndarray) -> np.ndarray:
         """Barycentric interpolation of s(ξ) on panel j (second form; exact at the nodes)."""
-        sn, xn, bw = self._inv[0][j], self._inv[1][j], self._inv[2][j]
+        sn, xn, bw = self._inv[0][j], self._inv[1][j], self._inv[2][j]  # type: ignore[index]
         span = xn[:, -1] - xn[:, 0]
         d = ((x - xn[:, 0]) / span)[:, None] - (xn - xn[:, :1]) / span[:, None]
         hit = d == 0.0

@@ -51,10 +51,10 @@ class QCSolitaryGeneral(QCSolitary):
     xi_error: float = math.nan
     table: object = field(default=None, repr=False, compare=False)  # ξ(u) table
 
-    ERROR_FIELDS: ClassVar = QCSolitary.ERROR_FIELDS + (
+    ERROR_FIELDS: ClassVar[tuple[str, ...]] = QCSolitary.ERROR_FIELDS + (
         "w_B_error", "w_M_error", "V_SK_error", "xi_error",
     )  # fmt: skip
-    EXCLUDE: ClassVar = QCSolitary.EXCLUDE + ("table",)
+    EXCLUDE: ClassVar[tuple[str, ...]] = QCSolitary.EXCLUDE + ("table",)
 
     @property
     def amplitude_error(self) -> float:
@@ -176,7 +176,7 @@ def solitary(
 
     kind = "tensile" if dM > 0 else "compressive"
     sw = QCSolitaryGeneral(
-        law, V, w_plus, wB, wT, wM, gamma, kind, interval, vsk, cp, cm, energy, energy_err,
+        law, V, w_plus, wB, wT, wM, gamma, kind, interval, vsk, cp, cm, energy, energy_err,  # type: ignore[arg-type]
         math.nan, 0.0, wB_err, wM_err, sp.V_SK_error, m.err, m,
     )  # fmt: skip
     xi = np.linspace(0.0, 12.0, 32) / gamma

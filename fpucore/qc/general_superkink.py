@@ -49,11 +49,11 @@ class QCSuperkinkGeneral(QCSuperkink):
     xi_error: float = math.nan
     tables: tuple = field(default=(), repr=False, compare=False)  # (ξ ≥ 0, ξ < 0) ξ(s) tables
 
-    ERROR_FIELDS: ClassVar = QCSuperkink.ERROR_FIELDS + (
+    ERROR_FIELDS: ClassVar[tuple[str, ...]] = QCSuperkink.ERROR_FIELDS + (
         "V_error", "w_plus_error", "w_minus_error", "xi_error",
     )  # fmt: skip
-    DERIVED: ClassVar = QCSuperkink.DERIVED + ("symmetry_defect", "w_center")
-    EXCLUDE: ClassVar = ("law", "tables")
+    DERIVED: ClassVar[tuple[str, ...]] = QCSuperkink.DERIVED + ("symmetry_defect", "w_center")
+    EXCLUDE: ClassVar[tuple[str, ...]] = ("law", "tables")
 
     @property
     def w_center(self) -> float:

@@ -268,8 +268,8 @@ def orbit_through(
         WP = np.concatenate([wp, [np.nan], -wp])
     ok = np.isfinite(W)
     res = _level_residual(law, W[ok], WP[ok], w_plus, V, level)
-    turning = tuple(x for x, t in ((wl, tl), (wr, tr)) if t)
-    return LevelOrbit(w0, wp0, level, W, WP, bool(closed), turning, res, time.perf_counter() - t0)
+    turning = tuple(x for x, t in ((wl, tl), (wr, tr)) if t)  # type: ignore[assignment]
+    return LevelOrbit(w0, wp0, level, W, WP, bool(closed), turning, res, time.perf_counter() - t0)  # type: ignore[arg-type]
 
 
 def _level_residual(law, w, wp, w_ref, V, level) -> float:

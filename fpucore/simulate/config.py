@@ -182,12 +182,12 @@ def memory_estimate(
 
 
 def work_estimate(
-    law,
+    law: HardeningSofteningLaw,
     L: int,
     t_end: float,
     method: str,
     rtol: float,
-    dt,
+    dt: float | None,
     estimate_error: bool = True,
     n_stops: int = 240,
 ) -> dict:

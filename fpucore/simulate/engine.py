@@ -368,7 +368,7 @@ def _step_doubling(law, w0, v0, t_out, chain: Chain, cfg: RunConfig, snaps, site
     worst = 0.0
     t = 0.0
     for k in range(1, t_out.size):
-        t, _, status = _advance(stepper, None, y, t, float(t_out[k]), 2.0 * cfg.dt, ctl, chain,
+        t, _, status = _advance(stepper, None, y, t, float(t_out[k]), 2.0 * cfg.dt, ctl, chain,  # type: ignore[operator]
                                 work, obs, cfg.max_steps, slice_steps, deadline,
                                 lambda _t: None)  # fmt: skip
         if status != ck.ST_OK:

@@ -57,6 +57,7 @@ the times it reached; ``max_steps`` bounds the steps (stop_reason ``"budget"``).
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import Any
 
 import numpy as np
 
@@ -92,7 +93,7 @@ def riemann(
     probes: Sequence[int] = (),
     n_probe_t: int = 4001,
     threshold: float | None = None,
-    **kw,
+    **kw: Any,
 ) -> SimulationResult:
     """Riemann initial data (eq. Riemann_data): w_n(0) = w_left for n ≤ L/2, w_right for
     n > L/2, ẇ_n(0) = 0 (all particles at rest).  L even.  ``threshold`` (strain units) is the
@@ -148,7 +149,7 @@ def gaussian(
     probes: Sequence[int] = (),
     n_probe_t: int = 4001,
     threshold: float | None = None,
-    **kw,
+    **kw: Any,
 ) -> SimulationResult:
     """Gaussian initial data (eq. GaussIC): w_n(0) = w_B + A exp(−(n − L/2)²/2), ẇ_n(0) = 0,
     n = 1…L.  w_B must lie in the convex interval (α, β); w_B + A in it too unless

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -22,6 +23,9 @@ from fpucore.simulate.config import (
 )
 from fpucore.simulate.engine import run_chain
 from fpucore.simulate.result import SimulationResult
+
+if TYPE_CHECKING:
+    from fpucore.wave.driver import WaveResult
 
 WAVE_ATTRIBUTES = ("V", "law", "N", "w", "wdot", "w_left", "w_right", "kind")
 
@@ -63,7 +67,7 @@ def whole_periods(t_end: float, T: float) -> tuple[int, float]:
 
 @on_budget
 def seeded(
-    r,
+    r: WaveResult,
     L: int | None = None,
     t_end: float | None = None,
     method: str = "rkn12",
@@ -75,7 +79,7 @@ def seeded(
     n_probe_t: int = 4001,
     threshold: float | None = None,
     margin: int = 100,
-    **kw,
+    **kw: Any,
 ) -> SimulationResult:
     """Run seeded with a computed discrete traveling wave ``r`` (from fpucore.wave.solve_superkink
     / solve_solitary): w_n(0) = r.w, ẇ_n(0) = r.wdot on the N computed sites, placed ``margin``

@@ -125,7 +125,7 @@ class YoshidaStepper:
         return ck.yoshida_chunk(y, t, stop, h, limit, ctl, chain, work, obs)
 
 
-STEPPERS = {
+STEPPERS: dict[str, ErkStepper | RknStepper | YoshidaStepper] = {
     "rkn12": RknStepper("rkn12"),
     "dop853": ErkStepper("dop853"),
     "dopri5": ErkStepper("dopri5"),

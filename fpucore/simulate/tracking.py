@@ -49,25 +49,27 @@ SAME_WAVE_SITES = 3.0
 class TrackedWave:
     """A tracked wave at the end of a run.
 
-    kind : "superkink" | "front" | "solitary" | "dsw_edge".
-    velocity : sites per unit time (signed, > 0 moving to larger n).
-    velocity_error : error of the velocity: the fit's standard error plus the measured spreads
-        over fit windows and detection thresholds (the three parts below).
-    velocity_fit_error : standard error of the velocity fit alone.
-    velocity_window_spread : max |V(window) − V| over :data:`WINDOWS`.
-    velocity_threshold_spread : max |V(threshold) − V| over :data:`THRESHOLDS` (NaN if the wave
-        was found at neither).
-    amplitude : pulses — crest strain minus the state ahead (signed: > 0 tensile, < 0
-        compressive; the crest is the median of the time extrema of w_n(t) at the sites passed,
-        which for a traveling wave all equal its true extremum); fronts — state behind minus
-        state ahead.
-    left_state / right_state : strain on the lower-n / higher-n side (median over a short window;
-        behind a DSW edge, the local mean of the oscillations).
-    background : the state ahead (into which the wave moves).
-    peak : crest strain of a pulse (front: NaN).
-    position : site number n at the end of the window (crest or mid-level crossing).
-    n_fit : number of passage times (or snapshots) in the velocity fit.
-    method : "passage_times" or "snapshots".
+    Its fields::
+
+        kind : "superkink" | "front" | "solitary" | "dsw_edge".
+        velocity : sites per unit time (signed, > 0 moving to larger n).
+        velocity_error : error of the velocity: the fit's standard error plus the measured spreads
+            over fit windows and detection thresholds (the three parts below).
+        velocity_fit_error : standard error of the velocity fit alone.
+        velocity_window_spread : max |V(window) − V| over :data:`WINDOWS`.
+        velocity_threshold_spread : max |V(threshold) − V| over :data:`THRESHOLDS` (NaN if the wave
+            was found at neither).
+        amplitude : pulses — crest strain minus the state ahead (signed: > 0 tensile, < 0
+            compressive; the crest is the median of the time extrema of w_n(t) at the sites passed,
+            which for a traveling wave all equal its true extremum); fronts — state behind minus
+            state ahead.
+        left_state / right_state : strain on the lower-n / higher-n side (median over a short
+            window; behind a DSW edge, the local mean of the oscillations).
+        background : the state ahead (into which the wave moves).
+        peak : crest strain of a pulse (front: NaN).
+        position : site number n at the end of the window (crest or mid-level crossing).
+        n_fit : number of passage times (or snapshots) in the velocity fit.
+        method : "passage_times" or "snapshots".
     """
 
     kind: str

@@ -14,10 +14,10 @@ from fpucore.tableaux.embedded import DOP853E, DOPRI5, EMBEDDED, EmbeddedTableau
 from fpucore.tableaux.rk import DOP853, RK4, TABLEAUX, Tableau, check_consistency
 from fpucore.tableaux.rkn import DPRKN8, DPRKN12, RKN, RKNTableau
 
-REGISTRY = {"rk": TABLEAUX, "embedded": EMBEDDED, "rkn": RKN}
+REGISTRY: dict[str, dict] = {"rk": TABLEAUX, "embedded": EMBEDDED, "rkn": RKN}
 
 
-def get(family: str, name: str):
+def get(family: str, name: str) -> Tableau | EmbeddedTableau | RKNTableau:
     """The tableau ``name`` of ``family`` ("rk" | "embedded" | "rkn")."""
     if family not in REGISTRY:
         raise ParameterError("family", family, " | ".join(REGISTRY))

@@ -44,7 +44,9 @@ class Tableau:
         return int(self.B.size)
 
 
-def check_consistency(name: str, A: np.ndarray, B: np.ndarray, C: np.ndarray, tol=1e-15) -> None:
+def check_consistency(
+    name: str, A: np.ndarray, B: np.ndarray, C: np.ndarray, tol: float = 1e-15
+) -> None:
     """Raise ValueError unless ΣB = 1, Σ_j A_ij = C_i and A is strictly lower triangular (explicit).
 
     These are the order-1 conditions and the row-sum simplifying assumption that every explicit

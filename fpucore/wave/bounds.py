@@ -170,7 +170,7 @@ def _boundary_column(S: WaveSystem, x: np.ndarray, F: np.ndarray, side: str) -> 
     bound)."""
     w0 = S.w_left if side == "left" else S.w_right
     h = 1e-7 * max(1.0, abs(w0))
-    Sp = _replace(S, **{f"w_{side}": w0 + h})
+    Sp = _replace(S, **{f"w_{side}": w0 + h})  # type: ignore[arg-type]
     Fp, _ = Sp.residual(x)
     return (Fp - F) / h
 

@@ -21,7 +21,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass
-from typing import ClassVar
+from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
 
@@ -36,6 +36,11 @@ from fpucore.wave import period_map as pm
 from fpucore.wave import tails as wt
 from fpucore.wave.attempt import Solved, WaveSolve
 from fpucore.wave.setup import Spec, solitary_spec, superkink_spec
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
+
+    from fpucore.law.base import HardeningSofteningLaw
 
 
 @dataclass(frozen=True)
@@ -71,7 +76,7 @@ class WaveResult(Result):
     w_left: float
     w_right: float
     w_plus: float
-    law: object
+    law: HardeningSofteningLaw
     residual: float
     dropped_residual: float
     converged: bool
@@ -125,7 +130,7 @@ class WaveResult(Result):
             del out["energy_error"]
         return out
 
-    def as_dict(self, profile: bool = True, arrays: bool | None = None) -> dict:
+    def as_dict(self, profile: bool = True, arrays: bool | None = None) -> dict:  # type: ignore[override]
         """Every field (see :meth:`fpucore.result.Result.as_dict`); ``profile=False`` leaves out the
         arrays n, w, wdot, v."""
         return Result.as_dict(self, arrays=profile if arrays is None else arrays)
@@ -141,8 +146,10 @@ def _solve(spec: Spec, N, tol, jacobian, max_iter, time_budget_s, predictor=None
 def particle_velocities(w: np.ndarray, wdot: np.ndarray, V: float, w_left: float) -> np.ndarray:
     """Particle velocities v_n(0) for n = −N/2−1 … N/2−1 (N+1 values) of a traveling wave.
 
-    Derivation: eq. FPUsystem gives ẇ_n = v_n − v_{n−1} at every t, so at t = 0
+    Derivation: eq. FPUsystem gives ẇ_n = v_n − v_{n−1} at every t, so at t = 0::
+
         v_n = v_{−N/2−1} + Σ_{k=−N/2}^{n} ẇ_k(0).
+
     The boundary strain w_{−N/2−1} is held fixed, so particle −N/2−1 moves with the constant
     far-field velocity v_−.  The traveling-wave ansatz u_n(t) = U(n − Vt) gives v = −V U′ and
     w(ξ) = U(ξ) − U(ξ−1), which fixes v only up to a Galilean constant; the Rankine–Hugoniot
@@ -157,7 +164,15 @@ def particle_velocities(w: np.ndarray, wdot: np.ndarray, V: float, w_left: float
     return v
 
 
-def renormalized_energy(law, w, wdot, V, w_left, w_right, w_B) -> float:
+def renormalized_energy(
+    law: HardeningSofteningLaw,
+    w: np.ndarray,
+    wdot: np.ndarray,
+    V: float,
+    w_left: float,
+    w_right: float,
+    w_B: float,
+) -> float:
     """E_ren^D (eq. Eren_D): Σ_n {½v_n² + ½(Φ(w_n) + Φ(w_{n+1})) − Φ(w_B) − ½V²w_B²} over the
     particles n = −N/2−1 … N/2−1 (particle n sits between springs w_n and w_{n+1}), summed
     relative to the background with the far field beyond the chain added
@@ -269,7 +284,7 @@ def _check_common(law, tol, jacobian, max_iter, time_budget_s, predictor):
 # =============================================================================== public API
 @on_budget
 def solve_superkink(
-    law,
+    law: HardeningSofteningLaw,
     V: float,
     branch: str = "lower",
     N: int | None = None,
@@ -277,7 +292,7 @@ def solve_superkink(
     jacobian: str = "exact",
     max_iter: int = 40,
     time_budget_s: float = 300.0,
-    predictor=None,
+    predictor: Callable[[int], np.ndarray] | None = None,
 ) -> WaveResult:
     """Discrete superkink with velocity V (paper §5), pinned by w_1(T) = w* (eq. nonlin_system).
 
@@ -302,7 +317,7 @@ def solve_superkink(
 
 @on_budget
 def solve_solitary(
-    law,
+    law: HardeningSofteningLaw,
     w_plus: float,
     V: float,
     N: int | None = None,
@@ -310,7 +325,7 @@ def solve_solitary(
     jacobian: str = "exact",
     max_iter: int = 40,
     time_budget_s: float = 300.0,
-    predictor=None,
+    predictor: Callable[[int], np.ndarray] | None = None,
 ) -> WaveResult:
     """Discrete solitary wave for the state w₊ ahead of the associated superkink (paper §5).
 
@@ -323,7 +338,7 @@ def solve_solitary(
     return _solve(spec, N, tol, jacobian, max_iter, time_budget_s, predictor)
 
 
-def warm(law) -> None:
+def warm(law: HardeningSofteningLaw) -> None:
     """Compile/load every jitted route used here (for ``fpucore.warm``): one small superkink."""
     lo, hi = qc.superkink_velocity_bounds(law)
     solve_superkink(law, 0.5 * (lo + hi), N=64)

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass
-from typing import ClassVar
+from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
 
@@ -16,6 +16,12 @@ from fpucore.result import Result, status_of
 from fpucore.wave.continuation import solve_from_neighbour
 from fpucore.wave.driver import solve_solitary, solve_superkink
 from fpucore.wave.setup import solitary_spec, superkink_spec
+
+if TYPE_CHECKING:
+    from collections.abc import Callable, Sequence
+
+    from fpucore.law.base import HardeningSofteningLaw
+    from fpucore.wave.driver import WaveResult
 
 
 @dataclass(frozen=True)
@@ -68,7 +74,12 @@ def require_V_values(V_values) -> np.ndarray:
 
 
 def superkink_family(
-    law, V_values, branch: str = "lower", N: int | None = None, tol: float = 1e-12, progress=None
+    law: HardeningSofteningLaw,
+    V_values: Sequence[float] | np.ndarray,
+    branch: str = "lower",
+    N: int | None = None,
+    tol: float = 1e-12,
+    progress: Callable[[int, int, WaveResult], None] | None = None,
 ) -> Family:
     """Discrete superkinks at each V (continuation with the QC-shift predictor).  Sort V_values
     so neighbours are close; each point is solved independently if its predictor fails."""
@@ -83,7 +94,12 @@ def superkink_family(
 
 
 def solitary_family(
-    law, w_plus: float, V_values, N: int | None = None, tol: float = 1e-12, progress=None
+    law: HardeningSofteningLaw,
+    w_plus: float,
+    V_values: Sequence[float] | np.ndarray,
+    N: int | None = None,
+    tol: float = 1e-12,
+    progress: Callable[[int, int, WaveResult], None] | None = None,
 ) -> Family:
     """Discrete solitary waves for state w₊ at each V in (c₊, V_SK) ∪ (V_SK, c₋)."""
 

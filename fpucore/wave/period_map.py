@@ -348,8 +348,8 @@ def spread_radius(res: PeriodResult, level: float = 1e-17, K_probe: int = 40) ->
     Probes the columns (w and ẇ) at the site of largest f′ and at both ends; K from this is the
     window half-width for which the neglected part of each Jacobian column is below ``level``.
     """
-    m, s, N = res.dfs.shape
-    i_max = int(np.argmax(res.dfs[0, 0]))
+    m, s, N = res.dfs.shape  # type: ignore[union-attr]
+    i_max = int(np.argmax(res.dfs[0, 0]))  # type: ignore[index]
     sites = np.unique(np.array([i_max, N // 2, 0, N - 1]))
     cols = np.concatenate([sites, sites + N])
     K_probe = int(min(K_probe, max(1, N)))

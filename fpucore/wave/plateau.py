@@ -37,6 +37,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from dataclasses import replace as _replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 from scipy.linalg import lapack
@@ -48,6 +49,9 @@ from fpucore.wave import period_map as pm
 from fpucore.wave import tails as wt
 from fpucore.wave.setup import Spec
 from fpucore.wave.system import WaveSystem
+
+if TYPE_CHECKING:
+    from fpucore.law import HardeningSofteningLaw
 
 FRONT_MAX = 1.0  # sites: a larger round-off error bar on the fronts is reported as failure
 GX_DIRECT = 8.5  # QC γ·x_f from which solve_solitary goes straight to this route (δ ≲ 2e-7;
@@ -106,7 +110,7 @@ def front_position(w: np.ndarray, n: np.ndarray, w_B: float) -> float:
 class _Family:
     """V-dependent pieces of one side of V_SK: boundary strain w_B(V), its derivative, systems."""
 
-    law: object
+    law: HardeningSofteningLaw
     w_plus: float
     v_sk: float
     sgn: float  # +1 above V_SK (tensile, w_B = w_S(V)), −1 below (compressive, w_B = w₊)

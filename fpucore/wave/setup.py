@@ -18,6 +18,7 @@ families (:mod:`.family`) and the atlas; it imports none of them.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -28,6 +29,11 @@ from fpucore.law.scale import require_discrete
 from fpucore.wave import period_map as pm
 from fpucore.wave import tails as wt
 from fpucore.wave.system import WaveSystem
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
+
+    from fpucore.law import HardeningSofteningLaw
 
 M_STEPS = (6, 8, 10, 12, 14, 16, 20, 24, 32, 40, 48, 64, 80, 96, 128)
 """Candidate RK steps per period, tried in order by :meth:`Spec.choose_m`."""
@@ -52,7 +58,7 @@ class Spec:
     amplitude_qc : its amplitude.  branch : a superkink's "lower" | "upper" (None otherwise).
     """
 
-    law: object
+    law: HardeningSofteningLaw
     kind: str
     V: float
     w_left: float
@@ -60,12 +66,12 @@ class Spec:
     w_plus: float
     pin: str
     pin_value: float
-    qcw: object
+    qcw: Any
     amplitude_qc: float
     branch: str | None
 
     @property
-    def row(self):
+    def row(self) -> str | float | None:
         """What fixes the family besides V: the branch of a superkink, w₊ of a solitary wave
         (:func:`spec_of`'s ``row``, an atlas row)."""
         return self.branch if self.kind == "superkink" else self.w_plus
@@ -95,7 +101,7 @@ class Spec:
         (eq. V_bounds_cubic for the cubic; branches differ for a general law), or (c₊, V_SK)
         and (V_SK, c₋) for solitary waves (eqs. cplus, cminus)."""
         if self.kind == "superkink":
-            return (qc.superkink_velocity_bounds(self.law, self.branch),)
+            return (qc.superkink_velocity_bounds(self.law, self.branch),)  # type: ignore[arg-type]
         return qc.solitary_intervals(self.law, self.w_plus)
 
     def interval(self) -> tuple[float, float]:
@@ -127,7 +133,7 @@ class Spec:
             x[1::2] = -self.V * np.nan_to_num(self.qcw.dprofile(n))
         return x
 
-    def shifted(self, x_old: np.ndarray, N_old: int, old: Spec):
+    def shifted(self, x_old: np.ndarray, N_old: int, old: Spec) -> Callable[[int], np.ndarray]:
         """The QC-shift predictor: callable N ↦ the state x_old (N_old sites, converged at
         ``old``, the same family at another V) carried to this V as
         x_old + [x_QC(V) − x_QC(V_old)] on N sites.  The QC closed form carries the large,
@@ -141,7 +147,9 @@ class Spec:
 
         return predict
 
-    def neighbour_predictor(self, prev):
+    def neighbour_predictor(
+        self, prev: tuple[Any, Spec] | None
+    ) -> Callable[[int], np.ndarray] | None:
         """:meth:`shifted` from the converged neighbour prev = (wave, its spec), or None when
         there is none or it lies on another velocity interval of the family."""
         if prev is None:
@@ -171,7 +179,7 @@ class Spec:
         """The shortest chain accepted for the wave: its tails cut at 1e-6 of the amplitude."""
         return self.required_N(1e-6 * self.amplitude_qc)
 
-    def choose_N(self, N, tol: float) -> int:
+    def choose_N(self, N: int | None, tol: float) -> int:
         """Automatic N (``N=None``: :meth:`auto_N`), or the user's N validated against the
         wave's width (an even integer in [N_MIN, N_MAX], at least :meth:`smallest_N`)."""
         if N is None:
@@ -244,7 +252,7 @@ class Spec:
         )
 
 
-def spec_of(law, kind: str, row, V: float) -> Spec:
+def spec_of(law: HardeningSofteningLaw, kind: str, row: Any, V: float) -> Spec:
     """The wave of ``kind`` at velocity V on the family ``row`` (the branch of a superkink, w₊
     of a solitary wave).  Raises ParameterError outside the existence region."""
     if kind == "superkink":
@@ -252,7 +260,7 @@ def spec_of(law, kind: str, row, V: float) -> Spec:
     return solitary_spec(law, row, V)
 
 
-def superkink_spec(law, V, branch) -> Spec:
+def superkink_spec(law: HardeningSofteningLaw, V: float, branch: str) -> Spec:
     """The superkink of ``branch`` at V: w_left = w₋, w_right = w₊ (eq. wpm_cubic for the
     cubic), pinned at the QC profile's centre."""
     require_smooth_dynamics(law, "discrete waves")
@@ -273,7 +281,7 @@ def superkink_spec(law, V, branch) -> Spec:
     )
 
 
-def solitary_spec(law, w_plus, V) -> Spec:
+def solitary_spec(law: HardeningSofteningLaw, w_plus: float, V: float) -> Spec:
     """The solitary wave for w₊ at V: w_left = w_right = w_B (w₊ below V_SK, w_S(V) above:
     eq. wB), pinned by ẇ_1(T) = 0 (the extremum at n = 0)."""
     require_smooth_dynamics(law, "discrete waves")
@@ -303,16 +311,18 @@ def fmt_N(N: int) -> str:
 class Tolerances:
     """Every tolerance of one solve (absolute unless said), from the user's relative ``tol``.
 
-    scale     strain scale s = max(1, |w_left|, |w_right|) (:func:`strain_scale`): round-off of
-              eq. nonlin_system grows with |w| (b = 100 or a = −0.01 stagnate at ~3e-14·s).
-    res_tol   Newton accepts max-norm residual ≤ res_tol = tol·s (raised to the round-off
-              level of the system where that is larger: see :class:`.attempt.WaveSolve`).
-    step_tol  Newton keeps stepping until its next correction (strain units, max(|δw|, T|δẇ|))
-              is ≤ step_tol = tol·s, or the corrections stop shrinking (round-off).
-    int_tol   step count m: step-doubling error of the period map ≤ int_tol = tol·s.
-    tail_tol  automatic N: the tails decay to tail_tol = 0.1·tol·s at the chain's ends.
-    tail_ok   a converged wave whose tails miss the boundary states by more than
-              1e-5·A_QC + 1e3·tol·s is another wave (rejected).
+    Its fields::
+
+        scale     strain scale s = max(1, |w_left|, |w_right|) (:func:`strain_scale`): round-off of
+                  eq. nonlin_system grows with |w| (b = 100 or a = −0.01 stagnate at ~3e-14·s).
+        res_tol   Newton accepts max-norm residual ≤ res_tol = tol·s (raised to the round-off
+                  level of the system where that is larger: see :class:`.attempt.WaveSolve`).
+        step_tol  Newton keeps stepping until its next correction (strain units, max(|δw|, T|δẇ|))
+                  is ≤ step_tol = tol·s, or the corrections stop shrinking (round-off).
+        int_tol   step count m: step-doubling error of the period map ≤ int_tol = tol·s.
+        tail_tol  automatic N: the tails decay to tail_tol = 0.1·tol·s at the chain's ends.
+        tail_ok   a converged wave whose tails miss the boundary states by more than
+                  1e-5·A_QC + 1e3·tol·s is another wave (rejected).
     """
 
     tol: float

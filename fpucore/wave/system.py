@@ -27,6 +27,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 from scipy.linalg import lapack, lu_factor, lu_solve
@@ -35,6 +36,9 @@ from fpucore.budget import work_clock
 from fpucore.law import interval_note
 from fpucore.tableaux.rk import DOP853, Tableau
 from fpucore.wave import period_map as pm
+
+if TYPE_CHECKING:
+    from fpucore.law.base import HardeningSofteningLaw
 
 _PLANS: dict = {}  # assembly plans by (N, K, pin): pure index arrays, shared across solves
 
@@ -47,7 +51,7 @@ class WaveSystem:
     m : RK steps per period; K : tangent window half-width (sites).
     """
 
-    law: object
+    law: HardeningSofteningLaw
     V: float
     N: int
     w_left: float
@@ -319,7 +323,7 @@ def newton(
         if done:
             corr = sys.correction_norm(dx)
             stalled = corr > 0.5 * prev_corr  # round-off: corrections no longer shrink
-            if corr <= step_tol or stalled or it >= max_iter:
+            if corr <= step_tol or stalled or it >= max_iter:  # type: ignore[operator]
                 break
             prev_corr = corr
             xt = x + dx
