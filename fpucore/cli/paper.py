@@ -73,14 +73,22 @@ def run(args) -> int:
     from fpucore.paper.report import compute_many  # heavy: Numba
 
     if args.list:
+        if args.json:
+            figs = [FIGURES[lab] for lab in LABELS]
+            print_json({"figures": [{"label": lab, "number": f.number, "section": f.section,
+                                     "caption": f.caption} for lab, f in zip(LABELS, figs)]})  # fmt: skip
+            return 0
         for lab in LABELS:
             f = FIGURES[lab]
             print(f"{f.number:2d}  {lab:22s} {f.section:5s} {f.caption[:70]}…")
         return 0
     labels = _check(args)
+    # with --json, stdout carries the JSON alone (`fpu paper --json | jq`): lines for people go to
+    # stderr
+    people = sys.stderr if args.json else sys.stdout
     if args.out is not None and args.out.lower().endswith(".ipynb"):
         notebook.write(labels[0], args.out, reduced=args.reduced)  # computed when it runs
-        print(f"wrote {args.out}")
+        print(f"wrote {args.out}", file=people)
         return 0
     if args.out is None and args.table is None and args.thumbnails is None and not args.json:
         raise ParameterError(
@@ -107,22 +115,22 @@ def run(args) -> int:
         else:
             plot.report_html(results, FIGURES, args.out,
                              "The paper, figure by figure — fpu-explorer", summary)  # fmt: skip
-        print(f"wrote {args.out}")
+        print(f"wrote {args.out}", file=people)
     if args.table is not None:
         Path(args.table).write_text(
             _table_doc(results, missing, args.reduced, args.thumbnails), encoding="utf-8"
         )
         json_path = Path(args.table).with_suffix(".json")
         json_path.write_text(table_json(results, missing, args.reduced), encoding="utf-8")
-        print(f"wrote {args.table} and {json_path}")
+        print(f"wrote {args.table} and {json_path}", file=people)
     if args.thumbnails is not None:
         for r in results:
             plot.thumbnail(r, Path(args.thumbnails) / f"{r.label}.png")
-        print(f"wrote {len(results)} thumbnails in {args.thumbnails}")
+        print(f"wrote {len(results)} thumbnails in {args.thumbnails}", file=people)
     if args.json:
         print_json({"figures": [r.as_dict() for r in results], "missing": missing,
                     "elapsed_s": wall})  # fmt: skip
-    print(summary)
+    print(summary, file=people)
     for m in missing:
         print(f"not computed: {m}", file=sys.stderr)
     return 0
