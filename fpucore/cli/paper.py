@@ -74,9 +74,9 @@ def run(args) -> int:
 
     if args.list:
         if args.json:
-            figs = [FIGURES[lab] for lab in LABELS]
-            print_json({"figures": [{"label": lab, "number": f.number, "section": f.section,
-                                     "caption": f.caption} for lab, f in zip(LABELS, figs)]})  # fmt: skip
+            rows = [{"label": lab, "number": FIGURES[lab].number, "section": FIGURES[lab].section,
+                     "caption": FIGURES[lab].caption} for lab in LABELS]  # fmt: skip
+            print_json({"figures": rows})
             return 0
         for lab in LABELS:
             f = FIGURES[lab]
