@@ -1,19 +1,21 @@
 # The two commands of the README:  `make serve`  and  `make test`.
-# Both build the virtual environment from pyproject.toml first (idempotent), so they work on a
-# fresh machine with only Python 3.11, make and (for the browser tests) apt.
+# Both build the virtual environment first (idempotent): the project with its extras from
+# pyproject.toml (ranges), at the exact tested versions of requirements/lock.txt, so they work
+# and reproduce on a fresh machine with only Python 3.11, make and (for the browser tests) apt.
 PY      ?= python3
 VENV    := .venv
 BIN     := $(VENV)/bin
 STAMP   := $(VENV)/.installed-stamp
+LOCK    := requirements/lock.txt
 PORT    ?= 5006
 export NUMBA_CACHE_DIR ?= $(CURDIR)/.numba_cache
 
 .PHONY: setup browser serve test lint bench workprecision clean
 
-$(STAMP): pyproject.toml
+$(STAMP): pyproject.toml $(LOCK)
 	$(PY) -m venv $(VENV)
 	$(BIN)/pip install -q --upgrade pip
-	$(BIN)/pip install -q -e ".[app,test]"
+	$(BIN)/pip install -q -c $(LOCK) -e ".[app,test]"
 	touch $(STAMP)
 
 setup: $(STAMP)

@@ -16,7 +16,7 @@ import threading
 from fpucore.budget import require_env_budget
 from fpucore.cli import atlas, floquet, paper, qc, simulate, warm, wave
 from fpucore.cli.common import Parser, check_out_path
-from fpucore.errors import ParameterError
+from fpucore.errors import MissingExtra, ParameterError
 
 COMMANDS = (qc, warm, wave, floquet, simulate, atlas, paper)
 # what every computing command needs (the old eager ``import fpucore``): loaded after parsing
@@ -69,7 +69,7 @@ def main(argv: list[str] | None = None) -> int:
         if getattr(args, "out", None) is not None:  # an unwritable output fails before the work
             check_out_path(args.out, store=getattr(args, "out_is_store", False))
         return int(args.func(args) or 0)
-    except ParameterError as exc:
+    except (ParameterError, MissingExtra) as exc:
         sys.stderr.write(f"fpu: error: {exc}\n")
         return 2
     except KeyboardInterrupt:
