@@ -26,15 +26,15 @@ browser:
 	  echo "installing Debian chromium (apt)"; \
 	  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null; }
 
-# Same command as the Dockerfile (which also runs `fpu warm` at build time): panel serve with the
+# Same command as the Dockerfile (which also runs `fpu warm` at build time).  fpu serve is panel
+# serve of app/main.py (fpucore/cli/serve.py) with the
 # app's warm-up (--setup: the essential Numba kernels compiled or loaded in the server process,
 # filling NUMBA_CACHE_DIR; default scenes into the result cache; --warm: one page).  The
 # simulation's integrators compile in the background once the server is up.  No separate
 # `fpu warm` here: its process start and import cost 3.7 s of a first start, and its parallel
 # compile took 2.7x longer than one process (benchmarks/README.md "First start").
 serve: setup
-	$(BIN)/panel serve app/main.py --port $(PORT) --address 0.0.0.0 \
-	  --allow-websocket-origin='*' --liveness --num-threads 2 --setup app/warm.py --warm
+	$(BIN)/fpu serve --port $(PORT) --address 0.0.0.0
 
 test: setup browser
 	$(BIN)/ruff check fpucore app tests benchmarks

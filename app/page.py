@@ -1,36 +1,36 @@
-"""Entry point: ``panel serve app/main.py`` (see the README for the full serve command)."""
+"""One session's page: the explorer built from the page's URL, with the server's guards
+(called by main.py, which ``fpu serve`` / ``panel serve`` runs once per session)."""
 
-import os
+from __future__ import annotations
 
-# Components created later in worker threads must link Panel's CSS from this server, not from
-# cdn.holoviz.org (the page must work offline and without console errors).
-os.environ.setdefault("BOKEH_RESOURCES", "server")
+import panel as pn
 
-import panel as pn  # noqa: E402
-
-from app import compute  # noqa: E402
-from app.resources import serve_locally  # noqa: E402
-from app.server_guards import (  # noqa: E402
+from . import compute
+from .resources import serve_locally
+from .server_guards import (
     schedule_callbacks_in_order,
     serve_document_locally,
     tolerate_detached_sessions,
     tolerate_long_url_values,
 )
-from app.url_sync import from_url  # noqa: E402
+from .url_sync import from_url
 
-serve_locally()
-serve_document_locally(pn.state.curdoc)
-tolerate_long_url_values()
-tolerate_detached_sessions()
-schedule_callbacks_in_order()
 
-pn.extension(loading_indicator=True, notifications=False, throttled=True)
+def build_page() -> None:
+    """Build this session's page into ``pn.state.curdoc`` (servable)."""
+    serve_locally()
+    serve_document_locally(pn.state.curdoc)
+    tolerate_long_url_values()
+    tolerate_detached_sessions()
+    schedule_callbacks_in_order()
 
-with compute.building_page():  # on the event loop: a law being built is not waited for
-    explorer = from_url()  # the validated URL parameters, before the first render
-    explorer.first_render()
-pn.state.onload(explorer.start)
-# One recompute of the document's model graph instead of one per template root (~20, each
-# walking ~1400 models): the session's page was built in 2.7 s, now 0.7 s.
-with pn.state.curdoc.models.freeze():
-    explorer.servable()
+    pn.extension(loading_indicator=True, notifications=False, throttled=True)
+
+    with compute.building_page():  # on the event loop: a law being built is not waited for
+        explorer = from_url()  # the validated URL parameters, before the first render
+        explorer.first_render()
+    pn.state.onload(explorer.start)
+    # One recompute of the document's model graph instead of one per template root (~20, each
+    # walking ~1400 models): the session's page was built in 2.7 s, now 0.7 s.
+    with pn.state.curdoc.models.freeze():
+        explorer.servable()

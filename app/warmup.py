@@ -1,4 +1,5 @@
-"""Server warm-up (``panel serve --setup app/warm.py``): runs once before the server accepts
+"""Server warm-up (``fpu serve``, i.e. ``panel serve --setup app/warm.py``, which calls
+:func:`setup`): runs once before the server accepts
 connections, so no visitor waits for Numba compilation or for the default view.
 
 1. fpucore's JIT warm-up (loads or compiles every Numba kernel; with cache=True and a writable
@@ -24,11 +25,12 @@ log = logging.getLogger("fpu-explorer")
 
 os.environ.setdefault("BOKEH_RESOURCES", "server")  # see app/main.py; before panel is imported
 
-from app import compute  # noqa: E402
-from app.explorer import Explorer  # noqa: E402
-from app.resources import serve_locally  # noqa: E402
 from fpucore.parallel import apply_thread_policy  # noqa: E402
 from fpucore.warm import warm_all  # noqa: E402
+
+from . import compute  # noqa: E402
+from .explorer import Explorer  # noqa: E402
+from .resources import serve_locally  # noqa: E402
 
 # the thread budget (fpucore/parallel/threads.py): the server computes for several sessions at
 # once, so one BLAS/OpenMP thread per computation; parallelism comes from processes (Executor)
@@ -95,7 +97,8 @@ def warm(verbose: bool = True, scenes: str | None = None) -> dict[str, float]:
     return times
 
 
-if __name__ in ("__main__", "panel_setup_module"):
+def setup() -> None:
+    """The server's set-up (app/warm.py): local resources, shutdown order, :func:`warm`."""
     serve_locally()
     # On exit (Bokeh stops its loop on SIGTERM and Ctrl-C) the worker pool stops first: a worker
     # start cut short by the exit would make the fork server print a traceback.
