@@ -50,11 +50,13 @@ def explorer_dir() -> Path:
 
 
 def command(port: int, address: str, num_procs: int, explorer: Path) -> list[str]:
-    """The ``panel serve`` command line of ``fpu serve``."""
+    """The ``panel serve`` command line of ``fpu serve`` (``--num-procs`` only when above 1:
+    Panel's single-process path otherwise, as ``make serve`` always ran)."""
+    procs = ["--num-procs", str(num_procs)] if num_procs > 1 else []
     return [
         sys.executable, "-m", "panel", "serve", str(explorer / "main.py"),
-        "--port", str(port), "--address", address, *PANEL_FLAGS,
-        "--num-procs", str(num_procs), "--setup", str(explorer / "warm.py"), "--warm",
+        "--port", str(port), "--address", address, *PANEL_FLAGS, *procs,
+        "--setup", str(explorer / "warm.py"), "--warm",
     ]  # fmt: skip
 
 

@@ -32,7 +32,9 @@ def test_serve_command_is_the_containers():
     assert 'CMD ["fpu", "serve", "--port", "5006", "--address", "0.0.0.0"]' in docker
     cmd = " ".join(serve.command(5006, "0.0.0.0", 1, ROOT / "app"))
     assert f"-m panel serve {ROOT / 'app' / 'main.py'} --port 5006 --address 0.0.0.0" in cmd
-    for flag in ("--allow-websocket-origin=*", "--liveness", "--num-threads 2", "--num-procs 1",
+    for flag in ("--allow-websocket-origin=*", "--liveness", "--num-threads 2",
                  f"--setup {ROOT / 'app' / 'warm.py'}", "--warm"):  # fmt: skip
         assert flag in cmd, flag
+    assert "--num-procs" not in cmd  # Panel's single-process path, unless asked
+    assert "--num-procs 3" in " ".join(serve.command(5006, "0.0.0.0", 3, ROOT / "app"))
     assert serve.explorer_dir() == ROOT / "app"  # a checkout serves its own app/
