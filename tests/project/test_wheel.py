@@ -10,8 +10,10 @@ from __future__ import annotations
 
 import json
 import os
+import shutil
 import subprocess
 import sys
+import tempfile
 import time
 import urllib.request
 import zipfile
@@ -32,9 +34,18 @@ def _run(cmd, cwd, env=None, timeout=900):
 
 
 @pytest.fixture(scope="module")
-def installed(tmp_path_factory):
-    """(venv's bin directory, wheel path, timings): the wheel with [app] in a fresh venv."""
-    tmp = tmp_path_factory.mktemp("wheel")
+def installed():
+    """(venv's bin directory, wheel path, its directory): the wheel with [app] in a fresh venv.
+    Not under pytest's basetemp: other pytest sessions prune old basetemps, and the install
+    takes minutes."""
+    tmp = Path(tempfile.mkdtemp(prefix="fpu-wheel-"))
+    try:
+        yield _install(tmp)
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+
+
+def _install(tmp: Path):
     times = {}
     t = time.monotonic()
     _run([sys.executable, "-m", "build", "--outdir", str(tmp / "dist"), str(ROOT)], tmp)
