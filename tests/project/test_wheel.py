@@ -27,7 +27,14 @@ LOCK = ROOT / "requirements" / "lock.txt"
 pytestmark = pytest.mark.slow
 
 
+def _clean_env() -> dict:
+    """The environment without this checkout on the path: with PYTHONPATH at a checkout (whose
+    build left fpu_explorer.egg-info), pip took the project as installed and skipped the wheel."""
+    return {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "VIRTUAL_ENV")}
+
+
 def _run(cmd, cwd, env=None, timeout=900):
+    env = _clean_env() if env is None else env
     p = subprocess.run(cmd, cwd=cwd, env=env, capture_output=True, text=True, timeout=timeout)
     assert p.returncode == 0, f"{cmd}\n{p.stdout[-2000:]}\n{p.stderr[-3000:]}"
     return p
@@ -73,7 +80,7 @@ def test_wheel_holds_the_explorer_and_its_assets_and_no_top_level_app(installed)
 
 def test_cli_and_headless_import_outside_the_repository(installed):
     bin_, _, tmp = installed
-    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "VIRTUAL_ENV")}
+    env = _clean_env()
     env["NUMBA_CACHE_DIR"] = str(tmp / "numba_cache")
     assert "serve" in _run([str(bin_ / "fpu"), "--help"], tmp, env).stdout
     qc = json.loads(_run([str(bin_ / "fpu"), "qc", "--w-plus", "1", "--V", "5", "--json"],
@@ -100,7 +107,7 @@ def test_fpu_serve_answers_and_shows_the_papers_thumbnails(installed):
         pytest.skip(f"{CHROMIUM} missing (make browser installs it)")
     bin_, _, tmp = installed
     port = free_port()
-    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "VIRTUAL_ENV")}
+    env = _clean_env()
     env.update(NUMBA_CACHE_DIR=str(tmp / "numba_cache"), FPU_WARM_SCENES="force")
     log = open(tmp / "serve.log", "w+")
     cmd = [str(bin_ / "fpu"), "serve", "--port", str(port), "--address", "127.0.0.1"]
