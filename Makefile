@@ -1,19 +1,21 @@
 # The two commands of the README:  `make serve`  and  `make test`.
-# Both build the virtual environment from pyproject.toml first (idempotent), so they work on a
-# fresh machine with only Python 3.11, make and (for the browser tests) apt.
+# Both build the virtual environment first (idempotent): the project with its extras from
+# pyproject.toml (ranges), at the exact tested versions of requirements/lock.txt, so they work
+# and reproduce on a fresh machine with only Python 3.11, make and (for the browser tests) apt.
 PY      ?= python3
 VENV    := .venv
 BIN     := $(VENV)/bin
 STAMP   := $(VENV)/.installed-stamp
+LOCK    := requirements/lock.txt
 PORT    ?= 5006
 export NUMBA_CACHE_DIR ?= $(CURDIR)/.numba_cache
 
 .PHONY: setup browser serve test lint typecheck docs bench workprecision clean
 
-$(STAMP): pyproject.toml
+$(STAMP): pyproject.toml $(LOCK)
 	$(PY) -m venv $(VENV)
 	$(BIN)/pip install -q --upgrade pip
-	$(BIN)/pip install -q -e ".[app,test,docs]"
+	$(BIN)/pip install -q -c $(LOCK) -e ".[app,test,docs]"
 	touch $(STAMP)
 
 setup: $(STAMP)
@@ -24,15 +26,15 @@ browser:
 	  echo "installing Debian chromium (apt)"; \
 	  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null; }
 
-# Same command as the Dockerfile (which also runs `fpu warm` at build time): panel serve with the
+# Same command as the Dockerfile (which also runs `fpu warm` at build time).  fpu serve is panel
+# serve of app/main.py (fpucore/cli/serve.py) with the
 # app's warm-up (--setup: the essential Numba kernels compiled or loaded in the server process,
 # filling NUMBA_CACHE_DIR; default scenes into the result cache; --warm: one page).  The
 # simulation's integrators compile in the background once the server is up.  No separate
 # `fpu warm` here: its process start and import cost 3.7 s of a first start, and its parallel
 # compile took 2.7x longer than one process (benchmarks/README.md "First start").
 serve: setup
-	$(BIN)/panel serve app/main.py --port $(PORT) --address 0.0.0.0 \
-	  --allow-websocket-origin='*' --liveness --num-threads 2 --setup app/warm.py --warm
+	$(BIN)/fpu serve --port $(PORT) --address 0.0.0.0
 
 test: setup browser
 	$(BIN)/ruff check fpucore app tests benchmarks

@@ -183,10 +183,8 @@ def bench_browser(loads: int, concurrent: bool = False, n: int = 9) -> None:
         port = s.getsockname()[1]
     env = dict(os.environ, NUMBA_CACHE_DIR=os.environ.get("NUMBA_CACHE_DIR", ".numba_cache"))
     env.setdefault("FPU_WARM_SCENES", "force,phase")  # the page opens on the force law
-    panel = str(Path(sys.executable).with_name("panel"))
-    cmd = [panel, "serve", "app/main.py", "--port", str(port), "--address", "127.0.0.1"]
-    cmd += ["--allow-websocket-origin=*", "--liveness", "--num-threads", "2"]
-    cmd += ["--setup", "app/warm.py", "--warm"]
+    # fpu serve: panel serve app/main.py with the warm-up (app/warm.py) and the guards
+    cmd = [sys.executable, "-m", "fpucore", "serve", "--port", str(port), "--address", "127.0.0.1"]
     proc = subprocess.Popen(
         cmd, cwd=ROOT, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL
     )

@@ -8,6 +8,7 @@ name, NaN, a missing value) "is not valid: expected ...".
 
 from __future__ import annotations
 
+import importlib
 import math
 import numbers
 from typing import Any
@@ -138,3 +139,30 @@ def require_tol(tol: Any, name: str = "tol") -> float:
 def fmt_interval(lo: float, hi: float, open_: bool = True) -> str:
     l, r = ("(", ")") if open_ else ("[", "]")
     return f"{l}{lo:.10g}, {hi:.10g}{r}"
+
+
+class MissingExtra(ImportError):
+    """An optional dependency is not installed: the message names the extra that installs it
+    (``pip install 'fpu-explorer[atlas]'``).  The CLI prints it as one line (exit 2)."""
+
+    def __init__(self, module: str, extra: str, needed_for: str):
+        self.module, self.extra, self.needed_for = module, extra, needed_for
+        super().__init__(
+            f"{needed_for} needs {module}, which is not installed: "
+            f"pip install 'fpu-explorer[{extra}]'",
+            name=module,
+        )
+
+    def __reduce__(self):
+        return (type(self), (self.module, self.extra, self.needed_for))
+
+
+def import_extra(module: str, extra: str, needed_for: str):
+    """``importlib.import_module(module)``, or :class:`MissingExtra` naming ``extra`` when the
+    module (not one of its own imports) is missing."""
+    try:
+        return importlib.import_module(module)
+    except ModuleNotFoundError as exc:
+        if exc.name is None or exc.name.split(".")[0] != module.split(".")[0]:
+            raise
+        raise MissingExtra(module, extra, needed_for) from None

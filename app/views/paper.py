@@ -4,12 +4,13 @@ the Simulation scene's initial data) to the scene that shows it (app.paper_figur
 follows the state as for any other change, and its ``fig`` names the figure.
 
 The full reproduction of each figure with the comparison table is ``fpu paper --out report.html``
-(and docs/paper_comparison.md).  The thumbnails are the committed docs/figures/<label>.png
-(``fpu paper --table docs/paper_comparison.md --thumbnails docs/figures``), embedded in the page
+(and docs/paper_comparison.md).  The thumbnails are the committed assets/figures/<label>.png
+of this package (package data: the wheel serves them too, read through importlib.resources;
+written by ``fpu paper`` with the command in ASSETS_COMMAND), embedded in the page
 (no request to another host).  Under each figure, its comparison row — the paper's numbers beside
 ours with error bar and verdict — is read from fpucore.paper's result cache when a ``fpu paper``
 run has computed it for the current fpucore source (nothing is computed here); otherwise it is the
-committed row of docs/paper_comparison.json, labelled as such with the fpucore version that
+committed row of assets/paper_comparison.json, labelled as such with the fpucore version that
 wrote it.
 """
 
@@ -17,7 +18,7 @@ from __future__ import annotations
 
 import functools
 import json
-from pathlib import Path
+from importlib.resources import files
 
 import panel as pn
 
@@ -33,17 +34,23 @@ from .untrusted import LiteralMarkdown, md_literal
 # the state each figure sets (FIGURE_STATE), its held curves and simulation: app.paper_figures
 __all__ = ["FIGURE_STATE", "W_PLUS_5_2", "PaperScene", "comparison_markdown"]
 
-DOCS = Path(__file__).resolve().parents[2] / "docs"
-FIGURES_DIR = DOCS / "figures"
-DOCS_TABLE = DOCS / "paper_comparison.json"
+# the explorer's package (``app`` in a checkout, ``fpu_explorer_app`` installed) holds them
+ASSETS = files(__package__.rpartition(".")[0]) / "assets"
+FIGURES_DIR = ASSETS / "figures"
+DOCS_TABLE = ASSETS / "paper_comparison.json"
+#: the command that rewrites them (from a checkout's root)
+ASSETS_COMMAND = (
+    "fpu paper --table docs/paper_comparison.md --table-json app/assets/paper_comparison.json "
+    "--thumbnails app/assets/figures"
+)
 #: width at which a thumbnail is shown (px; the file is THUMB_WIDTH wide: sharp on HiDPI screens)
 SHOWN_WIDTH = THUMB_WIDTH // 2
 
 
 @functools.cache
 def docs_table() -> dict:
-    """docs/paper_comparison.json (written with the Markdown table by ``fpu paper --table``);
-    {} when absent or unreadable (a deployment without docs/: the rows name the command)."""
+    """assets/paper_comparison.json (written with the Markdown table by ``fpu paper --table``);
+    {} when absent or unreadable (the rows then name the command)."""
     try:
         doc = json.loads(DOCS_TABLE.read_text(encoding="utf-8"))
     except (OSError, ValueError):
@@ -57,10 +64,12 @@ def thumbnail(label: str):
     path = FIGURES_DIR / f"{label}.png"
     if path.is_file():
         return pn.pane.PNG(
-            str(path), width=SHOWN_WIDTH, css_classes=["paper-thumb", f"paper-thumb-{label}"]
+            path.read_bytes(),
+            width=SHOWN_WIDTH,
+            css_classes=["paper-thumb", f"paper-thumb-{label}"],
         )
     return LiteralMarkdown(
-        "<small>_no thumbnail: `fpu paper --thumbnails docs/figures` draws it_</small>",
+        "<small>_no thumbnail: `fpu paper --thumbnails app/assets/figures` draws it_</small>",
         width=SHOWN_WIDTH,
     )
 

@@ -39,7 +39,7 @@ import numpy as np
 
 from fpucore.atlas.grid import Grid
 from fpucore.atlas.point import FIELDS
-from fpucore.errors import ParameterError
+from fpucore.errors import ParameterError, import_extra
 from fpucore.floquet.multipliers import DEFAULT_METHOD
 from fpucore.jit_cache import source_hash
 from fpucore.law import CubicLaw
@@ -53,16 +53,12 @@ def xarray_module():
     """xarray, imported on first use: with zarr and pandas it is ~0.4 s that every
     ``import fpucore`` (each CLI call, the server, each worker pool) would pay for stores only
     atlases and sweeps write."""
-    import xarray
-
-    return xarray
+    return import_extra("xarray", "atlas", "an atlas store (Zarr)")
 
 
 def zarr_module():
     """zarr, imported on first use (see :func:`xarray_module`)."""
-    import zarr
-
-    return zarr
+    return import_extra("zarr", "atlas", "an atlas store (Zarr)")
 
 
 # attributes that must match for a store to be resumed

@@ -15,11 +15,11 @@ import sys
 import threading
 
 from fpucore.budget import require_env_budget
-from fpucore.cli import atlas, floquet, paper, qc, simulate, warm, wave
+from fpucore.cli import atlas, floquet, paper, qc, serve, simulate, warm, wave
 from fpucore.cli.common import OutputError, Parser, check_out_path
-from fpucore.errors import ParameterError
+from fpucore.errors import MissingExtra, ParameterError
 
-COMMANDS = (qc, warm, wave, floquet, simulate, atlas, paper)
+COMMANDS = (qc, warm, wave, floquet, simulate, atlas, paper, serve)
 # what every computing command needs (the old eager ``import fpucore``): loaded after parsing
 STACK = ("fpucore.parallel.threads", "fpucore.qc", "fpucore.wave", "fpucore.floquet",
          "fpucore.simulate")  # fmt: skip
@@ -67,6 +67,8 @@ def build_parser() -> Parser:
 def main(argv: list[str] | None = None) -> int:
     try:
         args = build_parser().parse_args(argv)  # --help exits here: no NumPy/Numba imported
+        if getattr(args, "light", False):  # fpu serve: the work is another process's
+            return int(args.func(args) or 0)
         load_stack()
         from fpucore.parallel.threads import apply_thread_policy, default_threads  # heavy: Numba
 
@@ -79,7 +81,7 @@ def main(argv: list[str] | None = None) -> int:
         if out is not None and not getattr(args, "out_is_store", False):
             check_out_path(out)  # an unwritable output fails before the work (a store: its own)
         return int(args.func(args) or 0)
-    except ParameterError as exc:
+    except (ParameterError, MissingExtra) as exc:
         sys.stderr.write(f"fpu: error: {exc}\n")
         return 2
     except OutputError as exc:  # the work was done; its output could not be written

@@ -5,7 +5,11 @@
     fpu paper --figure pplane --out pplane.ipynb       # its notebook (runs top to bottom)
     fpu paper --out report.html                        # all figures + comparison table, offline
     fpu paper --table docs/paper_comparison.md         # the comparison table (Markdown + .json)
-    fpu paper --thumbnails docs/figures                # <label>.png, 400 px wide, per figure
+    fpu paper --thumbnails app/assets/figures          # <label>.png, 400 px wide, per figure
+
+The explorer's committed copies (package data of the explorer, read by its Paper tab):
+    fpu paper --table docs/paper_comparison.md --table-json app/assets/paper_comparison.json \
+              --thumbnails app/assets/figures
 
 ``--reduced`` lowers grid sizes and the number of velocities (never the paper's N, L, t of a
 compared number); computed figures are cached (``$FPU_CACHE_DIR/paper``) and reused.
@@ -31,6 +35,8 @@ def register(sub) -> None:
                    help="one figure: .html/.svg/.png; several or all: the HTML report")  # fmt: skip
     p.add_argument("--table", default=None, metavar="FILE.md",
                    help="write the comparison table (Markdown, and .json beside it)")  # fmt: skip
+    p.add_argument("--table-json", default=None, metavar="FILE.json",
+                   help="where --table writes its JSON (default: beside the .md)")  # fmt: skip
     p.add_argument("--thumbnails", default=None, metavar="DIR",
                    help="write each figure's thumbnail DIR/<label>.png (400 px wide)")  # fmt: skip
     p.add_argument("--reduced", action="store_true", help="smaller grids / fewer velocities")
@@ -58,6 +64,12 @@ def _check(args) -> list[str]:
         check_out_path(args.table, "--table")
         if not args.table.lower().endswith(".md"):
             raise ParameterError("--table", args.table, "a Markdown file (.md)")
+    if args.table_json is not None:
+        if args.table is None:
+            raise ParameterError("--table-json", args.table_json, "a .json file with --table")
+        check_out_path(args.table_json, "--table-json")
+        if not args.table_json.lower().endswith(".json"):
+            raise ParameterError("--table-json", args.table_json, "a JSON file (.json)")
     if args.thumbnails is not None:
         check_out_dir(args.thumbnails, "--thumbnails")
     if args.workers is not None and not 1 <= args.workers <= 4096:
@@ -73,15 +85,23 @@ def run(args) -> int:
     from fpucore.paper.report import compute_many  # heavy: Numba
 
     if args.list:
+        if args.json:
+            rows = [{"label": lab, "number": FIGURES[lab].number, "section": FIGURES[lab].section,
+                     "caption": FIGURES[lab].caption} for lab in LABELS]  # fmt: skip
+            print_json({"figures": rows})
+            return 0
         for lab in LABELS:
             f = FIGURES[lab]
             print(f"{f.number:2d}  {lab:22s} {f.section:5s} {f.caption[:70]}…")
         return 0
     labels = _check(args)
+    # with --json, stdout carries the JSON alone (`fpu paper --json | jq`): lines for people go to
+    # stderr
+    people = sys.stderr if args.json else sys.stdout
     if args.out is not None and args.out.lower().endswith(".ipynb"):
         with output_file(args.out) as tmp:
             notebook.write(labels[0], tmp, reduced=args.reduced)  # computed when it runs
-        print(f"wrote {args.out}")
+        print(f"wrote {args.out}", file=people)
         return 0
     if args.out is None and args.table is None and args.thumbnails is None and not args.json:
         raise ParameterError(
@@ -112,40 +132,43 @@ def run(args) -> int:
             else:
                 plot.report_html(results, FIGURES, tmp,
                                  "The paper, figure by figure — fpu-explorer", summary)  # fmt: skip
-        print(f"wrote {args.out}")
+        print(f"wrote {args.out}", file=people)
     if args.table is not None:
-        json_path = Path(args.table).with_suffix(".json")
-        doc = _table_doc(results, missing, args.reduced, args.thumbnails)
+        json_path = Path(args.table_json or Path(args.table).with_suffix(".json"))
+        doc = _table_doc(results, missing, args.reduced, args.thumbnails, args.table_json)
         with output_file(args.table, "--table", kept) as tmp:
             Path(tmp).write_text(doc, encoding="utf-8")
         with output_file(json_path, "--table", kept + f" ({args.table} was written)") as tmp:
             Path(tmp).write_text(table_json(results, missing, args.reduced), encoding="utf-8")
-        print(f"wrote {args.table} and {json_path}")
+        print(f"wrote {args.table} and {json_path}", file=people)
     if args.thumbnails is not None:
         for k, r in enumerate(results):
             target = Path(args.thumbnails) / f"{r.label}.png"
             with output_file(target, "--thumbnails", f"{k} of {len(results)} thumbnails were "
                              "written before this one") as tmp:  # fmt: skip
                 plot.thumbnail(r, tmp)
-        print(f"wrote {len(results)} thumbnails in {args.thumbnails}")
+        print(f"wrote {len(results)} thumbnails in {args.thumbnails}", file=people)
     if args.json:
         print_json({"figures": [r.as_dict() for r in results], "missing": missing,
                     "elapsed_s": wall})  # fmt: skip
-    print(summary)
+    print(summary, file=people)
     for m in missing:
         print(f"not computed: {m}", file=sys.stderr)
     return 0
 
 
-def _table_doc(results, missing, reduced: bool, thumbnails: str | None = None) -> str:
+def _table_doc(results, missing, reduced: bool, thumbnails: str | None = None,
+               table_json: str | None = None) -> str:  # fmt: skip
     from fpucore.paper.report import markdown_table  # heavy: Numba
 
     head = (
         "# The paper vs fpu-explorer, number by number\n\n"
         "Generated by `fpu paper --table docs/paper_comparison.md"
         f"{' --reduced' if reduced else ''}"
+        f"{f' --table-json {Path(table_json).as_posix()}' if table_json else ''}"
         f"{f' --thumbnails {Path(thumbnails).as_posix()}' if thumbnails else ''}` (do not edit by"
-        " hand; the same numbers in paper_comparison.json).  Each row: a number the paper"
+        f" hand; the same numbers in {Path(table_json or 'paper_comparison.json').name})."
+        "  Each row: a number the paper"
         " (Vainchtein & Truskinovsky) prints, our value, our error bar, and the verdict — a value"
         " agrees when |ours − paper| ≤ error + half a unit of the paper's last printed digit; a"
         " bound holds when ours ± error is on its side (fpucore/paper/compare.py).  a = −1,"

@@ -11,6 +11,7 @@ from __future__ import annotations
 import inspect
 from pathlib import Path
 
+from fpucore.errors import import_extra
 from fpucore.paper.registry import figure
 
 PRINT_CELL = """\
@@ -22,7 +23,7 @@ print(f"computed in {r.elapsed_s:.2f} s; {r.notes}")"""
 
 def build(label: str, reduced: bool = False):
     """The notebook (an ``nbformat.NotebookNode``) of figure ``label``."""
-    import nbformat
+    nbformat = import_extra("nbformat", "paper", "a figure as a notebook")
 
     fig = figure(label)
     nb = nbformat.v4.new_notebook()
@@ -52,7 +53,7 @@ def build(label: str, reduced: bool = False):
 
 def write(label: str, path: str | Path, reduced: bool = False) -> Path:
     """Write the notebook of ``label`` to ``path`` (.ipynb)."""
-    import nbformat
+    nbformat = import_extra("nbformat", "paper", "a figure as a notebook")
 
     path = Path(path)
     nbformat.write(build(label, reduced), str(path))

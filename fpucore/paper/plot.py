@@ -18,7 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
-from fpucore.errors import ParameterError
+from fpucore.errors import ParameterError, import_extra
 from fpucore.paper.figure import FigureResult, Panel, Series
 
 BACKENDS = ("bokeh", "matplotlib")
@@ -28,7 +28,10 @@ PALETTE = ("#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#e
 
 
 def ui():
-    """(holoviews, bokeh.resources.INLINE, bokeh.embed.file_html, bokeh.models) — imported now."""
+    """(holoviews, bokeh.resources.INLINE, bokeh.embed.file_html, bokeh.models) — imported now
+    (MissingExtra naming the ``paper`` extra when they are not installed)."""
+    for module in ("holoviews", "bokeh", "matplotlib"):
+        import_extra(module, "paper", "a figure as a file")
     import holoviews as hv
     from bokeh import models
     from bokeh.embed import file_html

@@ -30,7 +30,7 @@ import queue
 from collections.abc import Callable, Iterable, Iterator
 from typing import Any
 
-from fpucore.errors import ParameterError
+from fpucore.errors import ParameterError, import_extra
 from fpucore.parallel.jobs import Cancelled, Job, accepts_progress
 from fpucore.parallel.pool import ProcessPool
 from fpucore.parallel.threads import cores, thread_policy
@@ -60,6 +60,7 @@ class InlineBackend:
 
 def make_dask_backend(address: str | None, workers: int):
     # distributed is imported only here: its ~1 s import stays out of every `import fpucore`
+    import_extra("distributed", "atlas", "the Dask backend")
     from fpucore.parallel.dask_backend import DaskBackend
 
     return DaskBackend(address, workers)

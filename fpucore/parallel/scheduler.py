@@ -27,7 +27,7 @@ import struct
 import threading
 import time
 
-from fpucore.errors import ParameterError
+from fpucore.errors import ParameterError, import_extra
 
 PROBE_TIMEOUT = 5.0  # s, the whole check; a healthy scheduler on a LAN answers in milliseconds
 MAX_HANDSHAKE = 1 << 20  # bytes; Dask's handshake is ~100 bytes of msgpack
@@ -84,7 +84,8 @@ def _raw_handshake(host: str, port: int, deadline: float) -> None:
 
 
 async def _identity(address: str, deadline: float) -> dict:
-    from distributed.comm import connect  # ~1 s import: only when a scheduler is used
+    # ~1 s import: only when a scheduler is used
+    connect = import_extra("distributed.comm", "atlas", "a Dask scheduler").connect
 
     comm = await connect(address, timeout=max(deadline - time.monotonic(), 0.1))
     try:

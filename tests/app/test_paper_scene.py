@@ -107,7 +107,7 @@ def test_the_list_shows_every_figures_committed_thumbnail_embedded():
     assert len(thumbs) == len(paper.LABELS) == 17
     for label, p in zip(paper.LABELS, thumbs, strict=True):
         assert f"paper-thumb-{label}" in p.css_classes and p.width == SHOWN_WIDTH
-        assert p.object == str(FIGURES_DIR / f"{label}.png")
+        assert p.object == (FIGURES_DIR / f"{label}.png").read_bytes()  # package data
         html = p._transform_object(p.object)["object"]
         assert "data:image/png;base64," in html and "http" not in html
 

@@ -7,7 +7,6 @@ from __future__ import annotations
 import os
 import shutil
 import subprocess
-import sys
 import tempfile
 import time
 import urllib.parse
@@ -19,7 +18,7 @@ from browser_harness import (
     CHROMIUM,
     CHROMIUM_ARGS,
     ROOT,
-    SERVE_FLAGS,
+    SERVE_COMMAND,
     SERVER_LOG,
     TIMEOUT_MS,
     client_disconnect,
@@ -39,18 +38,8 @@ def server():
         FPU_WARM_SCENES="force,phase",
         NUMBA_CACHE_DIR=os.environ.get("NUMBA_CACHE_DIR", str(ROOT / ".numba_cache")),
     )
-    panel = str(Path(sys.executable).with_name("panel"))
     log = tempfile.NamedTemporaryFile("w+", suffix=".log", delete=False)
-    cmd = [
-        panel,
-        "serve",
-        "app/main.py",
-        "--port",
-        str(port),
-        "--address",
-        "127.0.0.1",
-        *SERVE_FLAGS,
-    ]
+    cmd = [*SERVE_COMMAND, "--port", str(port), "--address", "127.0.0.1"]
     t0 = time.monotonic()
     proc = subprocess.Popen(cmd, cwd=ROOT, env=env, stdout=log, stderr=subprocess.STDOUT)
     url = f"http://127.0.0.1:{port}"
@@ -58,7 +47,7 @@ def server():
         while True:
             if proc.poll() is not None:
                 log.seek(0)
-                pytest.fail(f"panel serve exited ({proc.returncode}):\n{log.read()[-3000:]}")
+                pytest.fail(f"fpu serve exited ({proc.returncode}):\n{log.read()[-3000:]}")
             try:
                 with urllib.request.urlopen(url + "/liveness", timeout=2) as r:
                     if r.status == 200:
@@ -66,7 +55,7 @@ def server():
             except OSError:
                 pass
             if time.monotonic() - t0 > 240:
-                pytest.fail("panel serve did not answer /liveness within 240 s")
+                pytest.fail("fpu serve did not answer /liveness within 240 s")
             time.sleep(0.2)
         print(f"\n[browser] server up after {time.monotonic() - t0:.1f} s (incl. warm-up)")
         SERVER_LOG["path"] = log.name

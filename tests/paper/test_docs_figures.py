@@ -1,6 +1,7 @@
-"""The committed paper material the explorer shows without computing: docs/figures/<label>.png
-(one thumbnail per figure of the registry) and docs/paper_comparison.json, which must carry the
-same numbers as docs/paper_comparison.md (both written by one ``fpu paper --table`` run)."""
+"""The committed paper material the explorer shows without computing, package data of the
+explorer: app/assets/figures/<label>.png (one thumbnail per figure of the registry) and
+app/assets/paper_comparison.json, which must carry the same numbers as docs/paper_comparison.md
+(both written by one ``fpu paper --table … --table-json …`` run)."""
 
 from __future__ import annotations
 
@@ -16,7 +17,9 @@ from fpucore import paper
 from fpucore.cli.dispatch import main
 from fpucore.paper.plot import THUMB_WIDTH
 
-DOCS = Path(__file__).resolve().parents[2] / "docs"
+ROOT = Path(__file__).resolve().parents[2]
+DOCS = ROOT / "docs"
+ASSETS = ROOT / "app" / "assets"
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 
 
@@ -61,8 +64,8 @@ def assert_same_numbers(md_text: str, doc: dict) -> int:
 
 def test_every_figure_has_a_committed_thumbnail_of_the_stated_size():
     for label in paper.LABELS:
-        path = DOCS / "figures" / f"{label}.png"
-        assert path.is_file(), f"{path} missing: fpu paper --thumbnails docs/figures"
+        path = ASSETS / "figures" / f"{label}.png"
+        assert path.is_file(), f"{path} missing: fpu paper --thumbnails app/assets/figures"
         assert path.read_bytes()[:8] == PNG_MAGIC
         with Image.open(path) as im:
             im.verify()  # a complete, uncorrupted PNG
@@ -74,7 +77,7 @@ def test_every_figure_has_a_committed_thumbnail_of_the_stated_size():
 
 
 def test_the_docs_json_holds_the_markdown_tables_numbers_for_every_figure():
-    doc = json.loads((DOCS / "paper_comparison.json").read_text(encoding="utf-8"))
+    doc = json.loads((ASSETS / "paper_comparison.json").read_text(encoding="utf-8"))
     assert set(doc["figures"]) == set(paper.LABELS) and not doc["missing"]
     assert list(doc["figures"]) == list(paper.LABELS)  # paper order, as the Markdown
     assert isinstance(doc["fpucore_version"], str) and doc["fpucore_version"]

@@ -1,6 +1,6 @@
 """The browser-test harness (imported by tests/browser/conftest.py and the browser tests).
 
-The Chromium binary and flags, the serve command (the Makefile's, see SERVE_FLAGS), the server log's
+The Chromium binary and flags, the serve command (the Makefile's: fpu serve), the server log's
 traceback check, and the page helpers: open the app, wait (bounded, never sleeps) for a scene's
 render or a URL change, read a scene's status, message and data sources, type into widgets.
 Run the browser tests: `.venv/bin/python -m pytest tests/browser -q -s`.
@@ -9,6 +9,7 @@ Run the browser tests: `.venv/bin/python -m pytest tests/browser -q -s`.
 from __future__ import annotations
 
 import socket
+import sys
 import threading
 import time
 import urllib.parse
@@ -29,16 +30,9 @@ CHROMIUM_ARGS = [
     "--disable-component-update",
     "--disable-sync",
 ]
-# The flags of the Makefile's `serve` target and the Dockerfile's CMD (checked below).
-SERVE_FLAGS = [
-    "--allow-websocket-origin=*",
-    "--liveness",
-    "--num-threads",
-    "2",
-    "--setup",
-    "app/warm.py",
-    "--warm",
-]
+# The Makefile's `serve` target and the Dockerfile's CMD (checked in test_harness.py), run with
+# this interpreter: fpu serve = panel serve app/main.py … --setup app/warm.py --warm
+SERVE_COMMAND = [sys.executable, "-m", "fpucore", "serve"]
 TIMEOUT_MS = 60_000
 # a small chain keeps the discrete scenes quick in CI; everything else at the defaults
 FAST = "N=120&tol=1e-08"
