@@ -56,7 +56,7 @@ by exact polynomial routes, any other law through a piecewise Chebyshev represen
 represented interval (its error enters every error bar).
 
 The law must be in the paper's class (§2): f(0) = 0, f′(0) > 0, a convex interval (α, β) around
-0 with f′(α) = f′(β) = 0 (α may be −∞) and a single inflection w\* in it (f″ from + to −).
+0 with f′(α) = f′(β) = 0 (α may be −∞) and a single inflection w\\* in it (f″ from + to −).
 A law outside it is refused with the reason and where it fails; the previous law stays.
 """
 
