@@ -110,7 +110,7 @@ class LawEditor(pn.viewable.Viewer):
         )
         self.coeff_box = pn.Column(sizing_mode="stretch_width", css_classes=["law-coeffs"])
         self.preset = pn.widgets.Select(
-            name="preset", options=PRESET_OPTIONS, value="", css_classes=["w-law-preset"],
+            label="preset", options=PRESET_OPTIONS, value="", css_classes=["w-law-preset"],
             sizing_mode="stretch_width",
         )  # fmt: skip
         self.preset.param.watch(self._on_preset, "value")
