@@ -12,7 +12,6 @@ from browser_harness import (
     TIMEOUT_MS,
     app_tracebacks,
     open_app,
-    query,
     wait_rendered,
     wait_status_change,
     wait_url,
