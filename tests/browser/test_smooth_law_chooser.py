@@ -87,6 +87,8 @@ def test_tanh_preset_and_a_constant_slider_redraw_the_force_law(page):
     assert f"law={q['law']}" in after, (q, after)
     got = wait_marks(page, lw2)
     assert got["beta"] != lw.beta and got["rep"][:2] == list(lw2.interval), got
+    page.wait_for_timeout(2000)  # a follow-up render (V moved into the new law's range)
+    wait_rendered(page, "force", 120.0)
     shot = os.environ.get("FPU_SCREENSHOT", "/tmp/force_law_tanh.png")
     page.locator(".scene-force").first.screenshot(path=shot)
     assert not app_tracebacks(), app_tracebacks()[-1][-2000:]
