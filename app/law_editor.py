@@ -25,6 +25,7 @@ from __future__ import annotations
 import contextlib
 import logging
 import math
+import threading
 
 import panel as pn
 import param
@@ -75,6 +76,8 @@ class LawEditor(pn.viewable.Viewer):
         super().__init__(**params)
         self.state = st = state
         self._syncing = False
+        self._mutes = 0
+        self._mute_lock = threading.Lock()
         self.law_kind = pn.widgets.RadioButtonGroup(
             options={"cubic (a, b)": "cubic", "expression": "expression"},
             value="expression" if st.expression else "cubic",
@@ -268,12 +271,17 @@ class LawEditor(pn.viewable.Viewer):
         """The editor ignores widget events meanwhile: the page holds it muted for its whole
         sync, as one flag did before the split (a law typed while another handler thread syncs
         the sidebar is dropped, not applied under a sync that then writes the older state)."""
-        was = self._syncing
-        self._syncing = True
+        # counted, not saved and restored: two threads syncing at once (a law worker's answer
+        # and a session's handler) once left the editor muted for good
+        with self._mute_lock:
+            self._mutes += 1
+            self._syncing = True
         try:
             yield
         finally:
-            self._syncing = was
+            with self._mute_lock:
+                self._mutes -= 1
+                self._syncing = self._mutes > 0
 
     def sync(self) -> None:
         """State → law widgets: a, b (their ranges widened to the state's values), the kind,

@@ -136,7 +136,7 @@ def test_a_refused_law_is_named_and_the_previous_law_stays():
     assert scene.last_message is None and "'c': 0.1" in scene.code.value  # still tanh
     # a typed text outside the class: refused the same way
     law.law_text.value = "log(w)"
-    assert law.checking == "log(w)", (law.checking, law._law_wanted)
+    assert law.checking == "log(w)", (law.checking, law._syncing, ex._syncing)
     settle(ex, lambda: "log(w)" in law.refused and "checking" not in ex.ranges.object)
     assert ex.state.expression == before
     # a valid law clears the refusal
