@@ -188,6 +188,10 @@ def test_force_scene_marks_alpha_w_star_beta_and_the_represented_interval():
     assert (x[0], x[-1]) == (lo, hi)  # f drawn only where it is represented
     status = sc.status.object
     assert "represented |f − f_rep|" in status and "represented" in sc.last_info.shown
+    # the data file's header names the law with its constants and its represented interval
+    _, buf = sc.download_data()
+    head = [ln for ln in buf.getvalue().splitlines() if ln.startswith("#")]
+    assert any(f"law={TANH_TEXT!r}" in ln and "|f - f_rep| <=" in ln for ln in head), head
     # the cubic: no represented interval
     st.expression = ""
     sc.refresh()
