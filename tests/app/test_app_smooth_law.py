@@ -52,13 +52,13 @@ def tanh_marks(c=0.1, k=1.0, m=1.0, s=0.3) -> tuple[float, float, float]:
 
 def settle(ex: Explorer, done, timeout: float = 120.0) -> None:
     """Wait until ``done()`` (the law worker answers in its own thread), then until the
-    editor's sync has been quiet for 0.5 s."""
+    editor's sync has been quiet for 2 s (an event meanwhile is dropped)."""
     t_end = time.monotonic() + timeout
     while not done() and time.monotonic() < t_end:
         time.sleep(0.05)
     assert done(), ex.ranges.object
     quiet = time.monotonic()
-    while time.monotonic() - quiet < 0.5:
+    while time.monotonic() - quiet < 2.0:
         if ex.law_editor._syncing:
             quiet = time.monotonic()
         time.sleep(0.02)
@@ -93,6 +93,7 @@ def test_tanh_preset_builds_the_smooth_law_with_a_slider_per_constant():
     # the sidebar's ranges follow the tanh law, w₊ moved into them
     assert f"{lw.beta:.5g}" in ex.ranges.object and ex.state.problem() is None
     # back to the paper's cubic: closed forms, a and b sliders
+    settle(ex, lambda: True)
     law.preset.value = "cubic"
     assert ex.state.expression == "" and isinstance(ex.state.law(), CubicLaw)
     assert (ex.state.a, ex.state.b) == (-1.0, 10.0) and law.a.visible
