@@ -98,6 +98,7 @@ class Explorer(pn.viewable.Viewer):
         mk = dict(sizing_mode="stretch_width", show_value=True)
         self.law_editor = LawEditor(st)
         self.law_editor.param.watch(self._on_checking, "checking", onlychanged=False)
+        self.law_editor.param.watch(self._on_refused, "refused", onlychanged=False)
         self.w_plus = FloatSlider(
             label="w₊",
             start=0.0,
@@ -172,6 +173,13 @@ class Explorer(pn.viewable.Viewer):
     def _on_checking(self, event) -> None:
         """The law editor has a typed law built in the law worker: the sidebar says so."""
         self.ranges.object = f"_checking the law {md_literal(event.new[:60])} …_"
+
+    def _on_refused(self, event) -> None:
+        """A law refused by the law editor never entered the state: the sidebar shows the
+        state's law again (not "checking …"), and "Copy as Python" is off while it is shown."""
+        for s in self.scenes:
+            s.copy_btn.disabled = bool(event.new)
+        self._sync_widgets()
 
     def url_law_checked(self, text: str, outcome) -> None:
         """The URL's law, still being built when the page was (app.state.URL_LAW_WAIT_S), is

@@ -1,5 +1,10 @@
-"""The sidebar's law editor: the cubic with its a, b sliders, or an expression with one slider
-per coefficient.
+"""The sidebar's law editor: a preset (fpucore.law.presets), the cubic with its a, b sliders, or
+an expression — a polynomial with one slider per coefficient, or a smooth law (exp, log, sqrt,
+tanh, …) with named constants, ``w + b*w**2 - c*w**3*exp(w/d); b=10, c=1, d=50``, one slider
+per constant.
+
+* A law outside the class is refused with its reason (:attr:`LawEditor.refused`) and never
+  enters the state: the previous valid law stays on screen.
 
 * A typed law (box or a choice) is built in a worker process within a time and memory budget
   (:func:`app.compute.request_law`) and applied from its answer; never in a handler or the build.
@@ -20,6 +25,7 @@ from __future__ import annotations
 import contextlib
 import logging
 import math
+import threading
 
 import panel as pn
 import param
@@ -27,16 +33,33 @@ from panel.io.state import set_curdoc
 
 from fpucore.errors import ParameterError
 from fpucore.law import PolynomialLaw, expression_of
+from fpucore.law.presets import PRESETS
 
 from . import compute
 from .state import A_RANGE, B_RANGE, ExplorerState
-from .views.untrusted import LiteralMarkdown
+from .views.untrusted import LiteralAlert, LiteralMarkdown, md_literal
 from .widgets import FloatSlider, put, widened
 
 log = logging.getLogger("fpu-explorer")
 
 #: at most this many coefficient sliders (a law of higher degree is edited as text only)
 MAX_COEFF_SLIDERS = 8
+#: the chooser's presets: label → fpucore preset name ("" while the law is no preset)
+PRESET_OPTIONS = {"(choose a preset)": "", **{f"{n}: {p.description}": n
+                                              for n, p in PRESETS.items()}}  # fmt: skip
+
+HELP = """\
+**f(w) =** an expression in `w`: numbers, `+ - * / **`, parentheses and `exp`, `log`, `sqrt`,
+`tanh`, `sinh`, `cosh`, `atan`; powers with integer or rational exponents (of positive
+arguments). Named constants go after a `;` as `name=value` pairs, e.g.
+`w + b*w**2 - c*w**3*exp(w/d); b=10, c=1, d=50`: each gets a slider. A polynomial is solved
+by exact polynomial routes, any other law through a piecewise Chebyshev representation on its
+represented interval (its error enters every error bar).
+
+The law must be in the paper's class (§2): f(0) = 0, f′(0) > 0, a convex interval (α, β) around
+0 with f′(α) = f′(β) = 0 (α may be −∞) and a single inflection w\\* in it (f″ from + to −).
+A law outside it is refused with the reason and where it fails; the previous law stays.
+"""
 
 
 class LawEditor(pn.viewable.Viewer):
@@ -45,11 +68,16 @@ class LawEditor(pn.viewable.Viewer):
     checking = param.String(
         "", doc="a typed law being built in the law worker (set again for every new one)"
     )
+    refused = param.String(
+        "", doc="why the last law offered was refused (it never entered the state); empty: none"
+    )
 
     def __init__(self, state: ExplorerState, **params):
         super().__init__(**params)
         self.state = st = state
         self._syncing = False
+        self._mutes = 0
+        self._mute_lock = threading.Lock()
         self.law_kind = pn.widgets.RadioButtonGroup(
             options={"cubic (a, b)": "cubic", "expression": "expression"},
             value="expression" if st.expression else "cubic",
@@ -77,13 +105,29 @@ class LawEditor(pn.viewable.Viewer):
             **mk,
         )
         self.law_text = pn.widgets.TextInput(
-            label="f(w) = (polynomial in w, Enter to apply)",
+            label="f(w) = (expression in w; constants as name=value after ';', Enter)",
             value=st.expression,
             placeholder="w + 10*w**2 - w**3 - 0.01*w**4",
             css_classes=["in-law"],
             sizing_mode="stretch_width",
         )
         self.coeff_box = pn.Column(sizing_mode="stretch_width", css_classes=["law-coeffs"])
+        self.preset = pn.widgets.Select(
+            label="preset", options=PRESET_OPTIONS, value="", css_classes=["w-law-preset"],
+            sizing_mode="stretch_width",
+        )  # fmt: skip
+        self.preset.param.watch(self._on_preset, "value")
+        self.const_box = pn.Column(sizing_mode="stretch_width", css_classes=["law-constants"])
+        self.const_sliders: dict = {}
+        self._const_anchor: tuple | None = None  # (expression, names, values) the ranges follow
+        self.refusal = LiteralAlert(
+            "", alert_type="danger", visible=False, css_classes=["law-refusal"],
+            sizing_mode="stretch_width",
+        )  # fmt: skip
+        self.help = pn.Card(
+            LiteralMarkdown(HELP, css_classes=["law-help"]), title="which laws are accepted",
+            collapsed=True, sizing_mode="stretch_width",
+        )  # fmt: skip
         self.coeff_sliders: list = []
         self._coeff_anchor: tuple[float, ...] | None = None  # the coefficients the ranges follow
         self._last_expression = st.expression
@@ -97,11 +141,15 @@ class LawEditor(pn.viewable.Viewer):
         self.law_text.param.watch(lambda e: self.apply(e.new), "value")
         self._layout = pn.Column(
             LiteralMarkdown("**force law**", margin=(0, 10)),
+            self.preset,
             self.law_kind,
             self.a,
             self.b,
             self.law_text,
             self.coeff_box,
+            self.const_box,
+            self.refusal,
+            self.help,
             sizing_mode="stretch_width",
             margin=0,
         )
@@ -115,12 +163,49 @@ class LawEditor(pn.viewable.Viewer):
             return
         self.state.param.update(**kw)
 
+    def _offer(self, text: str, outcome=None) -> None:
+        """A law built (or refused) for ``text``: a refusal is shown and the state keeps its
+        law; a law enters the state."""
+        outcome = compute.lookup_law(text) if outcome is None and text else outcome
+        if isinstance(outcome, ParameterError):
+            self.refused = f"{outcome}"
+            self.refusal.param.update(
+                object=f"**law refused:** {md_literal(str(outcome))} — the previous law stays "
+                "on screen", visible=True)  # fmt: skip
+            return
+        self.refusal.visible = False
+        self.refused = ""
+        self._set(expression=text)
+
+    def _on_preset(self, event) -> None:
+        if self._syncing or not event.new:
+            return
+        p = PRESETS[event.new]
+        if event.new == "cubic":  # the paper's cubic: closed forms, a and b sliders
+            self.refusal.visible = False
+            self.refused = ""
+            self._law_wanted = ""
+            self._set(expression="", **p.constants_dict)
+            return
+        self.apply(compute.join_law(p.text, p.constants_dict))
+
+    def _on_const(self, name: str, value) -> None:
+        """Constant slider ``name`` moved: the law text is rewritten with the new value and
+        rebuilt in the law worker (as a typed law)."""
+        if self._syncing or value is None or self._const_anchor is None:
+            return
+        consts = {n: float(s.value) for n, s in self.const_sliders.items()}
+        consts[name] = float(f"{float(value):.6g}")
+        self.apply(compute.join_law(self._const_anchor[0], consts))
+
     def _on_law_kind(self, event) -> None:
         if self._syncing:
             return
         st = self.state
         if event.new == "cubic":
             self._last_expression = st.expression or self._last_expression
+            self.refusal.visible = False
+            self.refused = ""
             self._set(expression="")
         elif not st.expression:
             # start from the last expression, else from the current cubic as a polynomial
@@ -150,7 +235,7 @@ class LawEditor(pn.viewable.Viewer):
         self._law_wanted = text
         self._from_slider = True
         try:
-            self._set(expression=text)
+            self._offer(text)
         finally:
             self._from_slider = False
 
@@ -164,17 +249,17 @@ class LawEditor(pn.viewable.Viewer):
         text = text.strip()
         self._law_wanted = text
         if not text or compute.lookup_law(text) is not None:
-            self._set(expression=text)
+            self._offer(text)
             return
         self.checking = text
         doc = pn.state.curdoc
 
-        def built(_fut) -> None:  # in the law worker's watcher thread
+        def built(fut) -> None:  # in the law worker's watcher thread
             if self._law_wanted != text:
                 return  # another law was typed meanwhile
             try:
                 with set_curdoc(doc):
-                    self._set(expression=text)
+                    self._offer(text, fut.result())
             except Exception:  # noqa: BLE001 - a session closed meanwhile
                 log.exception("applying the law %r", text[:60])
 
@@ -186,12 +271,17 @@ class LawEditor(pn.viewable.Viewer):
         """The editor ignores widget events meanwhile: the page holds it muted for its whole
         sync, as one flag did before the split (a law typed while another handler thread syncs
         the sidebar is dropped, not applied under a sync that then writes the older state)."""
-        was = self._syncing
-        self._syncing = True
+        # counted, not saved and restored: two threads syncing at once (a law worker's answer
+        # and a session's handler) once left the editor muted for good
+        with self._mute_lock:
+            self._mutes += 1
+            self._syncing = True
         try:
             yield
         finally:
-            self._syncing = was
+            with self._mute_lock:
+                self._mutes -= 1
+                self._syncing = self._mutes > 0
 
     def sync(self) -> None:
         """State → law widgets: a, b (their ranges widened to the state's values), the kind,
@@ -205,7 +295,44 @@ class LawEditor(pn.viewable.Viewer):
             self.a.visible = self.b.visible = not poly
             self.law_text.visible = poly
             self.law_text.value = st.expression
-            self._sync_coefficients(poly)
+            self._sync_constants()
+            self._sync_coefficients(poly and not self.const_box.visible)
+            self.preset.value = self._preset_of(st.expression)
+
+    def _preset_of(self, text: str) -> str:
+        if not text:
+            return "cubic" if (self.state.a, self.state.b) == (-1.0, 10.0) else ""
+        expr, _ = compute.split_law(text) if ";" in text else (text, {})
+        return next((n for n, p in PRESETS.items() if p.text == expr and n != "cubic"), "")
+
+    def _sync_constants(self) -> None:
+        """One slider per named constant of the state's law (none for a law without)."""
+        try:
+            expr, consts = compute.split_law(self.state.expression)
+        except ParameterError:
+            expr, consts = "", {}
+        if not consts:
+            self.const_box.visible = False
+            self._const_anchor = None
+            return
+        anchor = self._const_anchor
+        if anchor is None or anchor[0] != expr or anchor[1] != tuple(consts):
+            self._const_anchor = (expr, tuple(consts), dict(consts))
+            self.const_sliders = {}
+            for name, v in consts.items():
+                lo, hi = coeff_range(v)
+                sl = FloatSlider(
+                    label=name, start=lo, end=hi, step=(hi - lo) / 1000, value=v,
+                    css_classes=[f"w-const-{name}"], format="0.0[000]",
+                    sizing_mode="stretch_width", show_value=True,
+                )  # fmt: skip
+                sl.param.watch(lambda e, n=name: self._on_const(n, e.new), "value_throttled")
+                self.const_sliders[name] = sl
+            self.const_box.objects = list(self.const_sliders.values())
+        for name, v in consts.items():
+            lo, hi = coeff_range(self._const_anchor[2][name])
+            put(self.const_sliders[name], v, **widened(v, lo, hi))
+        self.const_box.visible = True
 
     def _sync_coefficients(self, poly: bool) -> None:
         st = self.state
@@ -227,6 +354,8 @@ class LawEditor(pn.viewable.Viewer):
                 lo, hi = coeff_range(c0)
                 put(sl, c, step=(hi - lo) / 1000, **widened(c, lo, hi))
             self.coeff_box.visible = True
+        elif self.const_box.visible:
+            self.coeff_box.visible = False
         else:
             # an invalid law: the sliders stay only if they made it (so they can move back)
             made = bool(self.coeff_sliders) and st.expression == expression_of(

@@ -75,12 +75,15 @@ from .laws import (
     LAW_TIME_S,
     building_page,
     expression_law,
+    join_law,
     law,
+    law_from_text,
     law_key,
     lookup_law,
     make_law,
     request_law,
     shutdown_law_executor,
+    split_law,
     trusted_expression_law,
 )
 from .qc_calls import (
@@ -135,6 +138,9 @@ __all__ = [
     "LAW_TIME_S",
     "make_law",
     "law_key",
+    "split_law",
+    "join_law",
+    "law_from_text",
     # workers
     "CANCELLED",
     "Superseded",

@@ -1,5 +1,9 @@
-"""The dashboard's laws: the cubic (a, b) or a typed polynomial expression, and their exact
-cache-key form.
+"""The dashboard's laws: the cubic (a, b) or a typed expression (a polynomial, or a smooth law
+with named constants), and their exact cache-key form.
+
+A law with constants is one text, ``"<expression>; name=value, name=value"`` (the form
+fpucore's refusals show it in): the state, the URL's ``law=``, the worker's memo and the scenes'
+dependencies all carry that one string; :func:`split_law` / :func:`join_law` convert.
 
 fpucore builds the laws; this module adds what the app needs around them: coefficients too
 large for the closed forms are refused as a ParameterError (never an overflow on screen), a
@@ -21,6 +25,7 @@ import numpy as np
 
 from fpucore.errors import ParameterError
 from fpucore.law import CubicLaw, HardeningSofteningLaw, PolynomialLaw, law_from_expression
+from fpucore.law.smooth import SmoothLaw
 from fpucore.parallel import Executor
 
 from .cache import exact
@@ -36,7 +41,44 @@ __all__ = [
     "building_page",
     "make_law",
     "law_key",
+    "split_law",
+    "join_law",
+    "law_from_text",
 ]
+
+CONSTANTS_VALID = "name=value pairs separated by commas after ';', e.g. 'w + b*w**2; b=10'"
+
+
+def split_law(text: str) -> tuple[str, dict[str, float]]:
+    """``"<expression>; b=10, c=1"`` → (expression, {"b": 10.0, "c": 1.0}); no ``;``: no
+    constants.  Raises ParameterError (named ``constants``) for a malformed pair."""
+    expr, sep, rest = text.partition(";")
+    consts: dict[str, float] = {}
+    if not sep:
+        return text.strip(), consts
+    for pair in (p.strip() for p in rest.split(",")):
+        name, eq, value = (x.strip() for x in pair.partition("="))
+        try:
+            if not (eq and name.isidentifier()):
+                raise ValueError
+            consts[name] = float(value)
+        except ValueError:
+            raise ParameterError("constants", _short(pair), CONSTANTS_VALID,
+                                 "not a name=value pair") from None  # fmt: skip
+    return expr.strip(), consts
+
+
+def join_law(expression: str, constants: dict) -> str:
+    """The one text of an expression with its constants (exact reprs), inverse of split_law."""
+    if not constants:
+        return expression
+    return f"{expression}; " + ", ".join(f"{n}={float(v)!r}" for n, v in constants.items())
+
+
+def law_from_text(text: str):
+    """fpucore.law_from_expression of a law text with its constants (split_law)."""
+    expr, consts = split_law(text)
+    return law_from_expression(expr, consts or None)
 
 
 def law(a: float, b: float) -> CubicLaw:
@@ -113,7 +155,7 @@ def build_law_job(expression: str, progress=None) -> PolynomialLaw | ParameterEr
         limit = min(limit, hard)
     resource.setrlimit(resource.RLIMIT_AS, (limit, hard))
     try:
-        lw = law_from_expression(expression)
+        lw = law_from_text(expression)
         try:  # the law's characteristic strains, computed here rather than in the server
             lw.alpha, lw.beta, lw.w_star  # noqa: B018
         except ParameterError:
@@ -232,7 +274,7 @@ def trusted_expression_law(expression: str) -> PolynomialLaw:
     outcome = lookup_law(expression)
     if outcome is None:
         try:
-            outcome = law_from_expression(expression)
+            outcome = law_from_text(expression)
         except ParameterError as exc:
             outcome = exc
         _remember(expression, outcome)
@@ -256,4 +298,6 @@ def law_key(lw: HardeningSofteningLaw) -> tuple:
         return ("cubic", exact(lw.a), exact(lw.b))
     if isinstance(lw, PolynomialLaw):
         return ("poly", *(exact(c) for c in lw.coeffs))
-    raise ParameterError("law", lw, "a CubicLaw or PolynomialLaw")
+    if isinstance(lw, SmoothLaw):
+        return ("smooth", lw.text, *((n, exact(v)) for n, v in lw.constants))
+    raise ParameterError("law", lw, "a CubicLaw, PolynomialLaw or SmoothLaw")

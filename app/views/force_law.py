@@ -3,15 +3,18 @@
 f(w) (red), the superkink's Rayleigh line of slope V_SK² through (w₊, f(w₊)) and (w₋, f(w₋))
 with the two equal areas it cuts from f shaded (eq. zero_G), w* and the convex interval (α, β).
 In solitary mode also the current Rayleigh line of slope V², and the sonic lines of slopes c₊²
-(blue, tangent at w₊) and c₋² (green, tangent at w₋ˢ).  QC only: no discrete solve.
+(blue, tangent at w₊) and c₋² (green, tangent at w₋ˢ).  A smooth law (fpucore SmoothLaw) is
+drawn only on its represented interval, shaded, whose measured representation error of f, f′,
+f″ the status line gives.  QC only: no discrete solve.
 """
 
 from __future__ import annotations
 
 import numpy as np
-from bokeh.models import HoverTool, LabelSet
+from bokeh.models import BoxAnnotation, HoverTool, LabelSet
 
 from fpucore import qc
+from fpucore.law.smooth import SmoothLaw
 
 from .. import compute
 from ..compute import exact
@@ -73,6 +76,15 @@ class ForceLawScene(BokehScene):
             )
         )
         self.spans = [add_vline(fig, "gray", "dotted") for _ in range(3)]
+        for sp, name in zip(self.spans, ("w_star", "alpha", "beta")):
+            sp.name = f"force-{name}"  # read by the browser tests
+        # a smooth law's represented interval (f, f', f'' from its Chebyshev kernel there)
+        self.rep_box = BoxAnnotation(
+            left=0.0, right=0.0, fill_color="#2ca02c", fill_alpha=0.07, visible=False,
+            name="force-represented",
+        )  # fmt: skip
+        fig.add_layout(self.rep_box)
+        self.rep_label = add_label(fig, color="#2ca02c", align="left")
         self.labels = [add_label(fig) for _ in range(3)]
         self.legend = dict(
             zip(
@@ -112,7 +124,18 @@ class ForceLawScene(BokehScene):
         # alpha = −inf (a law hardening for every w < 0): the w₊ window's end instead
         left = alpha if np.isfinite(alpha) else s.w_plus_range()[0]
         span = beta - left
-        w = np.linspace(left - 0.06 * span, beta + 0.06 * span, 801)
+        xa, xb = left - 0.06 * span, beta + 0.06 * span
+        rep = lw.interval if isinstance(lw, SmoothLaw) else None
+        if rep is not None:  # f only where it is represented, the whole interval in view
+            err = lw.representation_error
+            info.error("represented |f − f_rep|", err.f)
+            info.error("represented |f′ − f′_rep|", err.df)
+            info.error("represented |f″ − f″_rep|", err.ddf)
+            xpad = 0.03 * (rep[1] - rep[0])
+            xa, xb = min(xa, rep[0] - xpad), max(xb, rep[1] + xpad)
+            w = np.linspace(rep[0], rep[1], 801)
+        else:
+            w = np.linspace(xa, xb, 801)
         fw = lw.f(w)
         up.data(self.r_f[1], law_key, x=w, y=fw)
         wp, wm = sk.w_plus, sk.w_minus
@@ -143,7 +166,7 @@ class ForceLawScene(BokehScene):
         if solitary:
             cp, vsk, cm = qc.sound_speeds(lw, wp)
             wms = qc.w_minus_sonic(lw, wp)
-            xl = np.array([w[0], w[-1]])
+            xl = np.array([xa, xb])
             up.data(self.r_cp[1], wp_key, x=xl, y=R(xl, cp))
             up.data(self.r_cm[1], wp_key, x=xl, y=R(xl, cm))
             pts["w"].append(wms)
@@ -188,7 +211,14 @@ class ForceLawScene(BokehScene):
             x0 = float(x0) if np.isfinite(x0) else float(w[0])  # alpha = −inf: at the edge
             up.set(sp, location=x0)
             up.set(lab, x=x0, y=ymax + 0.5 * pad, text=text if x0 != w[0] else "α = −∞ ←")
-        up.range(self.fig.x_range, w[0], w[-1])
+        up.set(self.rep_box, visible=rep is not None)
+        up.set(self.rep_label, visible=rep is not None)
+        if rep is not None:
+            up.set(self.rep_box, left=float(rep[0]), right=float(rep[1]))
+            text = f"represented [{fmt_num(rep[0])}, {fmt_num(rep[1])}]"
+            up.set(self.rep_label, x=float(rep[0]), y=ymin - 0.7 * pad, text=text)
+            shown += f"; f represented on [{fmt_num(rep[0])}, {fmt_num(rep[1])}]"
+        up.range(self.fig.x_range, xa, xb)
         up.range(self.fig.y_range, ymin - pad, ymax + pad)
         info.shown = shown
         self._data = {"w": w, "f": fw, "R_SK": R(w, sk.V)}

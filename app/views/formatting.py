@@ -63,7 +63,11 @@ def law_line(state: ExplorerState) -> str:
         return f"law: f(w) = a w^3 + b w^2 + w with a={state.a!r}, b={state.b!r}"
     line = f"law: f(w) = {state.expression} (law={state.expression!r}"
     try:
-        line += f", coefficients c_1...={state.law().coeffs!r}"
+        lw = state.law()
+        if hasattr(lw, "coeffs"):
+            line += f", coefficients c_1...={lw.coeffs!r}"
+        else:  # a smooth law: where its kernel represents f, and how well
+            line += f", {lw.representation_error}"
     except ParameterError as exc:
         line += f", invalid: {exc}"
     return line + ")"

@@ -11,6 +11,7 @@ import panel as pn
 
 import fpucore
 
+from ..compute import split_law
 from ..state import ExplorerState
 
 #: the code box: monospace, no soft wrap (a long call scrolls instead of breaking)
@@ -52,7 +53,10 @@ if (navigator.clipboard && window.isSecureContext) {
 def law_source(state: ExplorerState) -> str:
     """The fpucore call that makes the state's law (as in "Copy as Python")."""
     if state.expression:
-        return f"fpucore.law_from_expression({state.expression!r})"
+        expr, consts = split_law(state.expression)
+        if consts:
+            return f"fpucore.law_from_expression({expr!r}, constants={consts!r})"
+        return f"fpucore.law_from_expression({expr!r})"
     return f"CubicLaw(a={float(state.a)!r}, b={float(state.b)!r})"
 
 

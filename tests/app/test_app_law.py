@@ -103,7 +103,7 @@ def test_state_law_is_the_expressions_polynomial_and_the_url_round_trips():
     [
         ("w + w**2", "no softening"),  # f′ > 0 for every w > 0
         ("w + 10*w**2 - w**3 +", "could not parse"),
-        ("sin(w) + w**2", "not a polynomial"),
+        ("sin(w) + w**2", "'sin' is not allowed"),
         ("x*w + w**2", "unknown name 'x'"),
         ("-w + 10*w**2 - w**3", "f'(0) must be positive"),
         ("w" + " + 0*w**2" * 30, "at most 200 characters"),
@@ -222,24 +222,30 @@ def test_coefficient_slider_rewrites_the_expression_and_the_law():
     assert ex.state.law().coeffs == (1.0, 10.0, -1.0, -0.02)
     assert law.law_text.value == ex.state.expression
     assert (c4.start, c4.end) == (-0.03, 0.01)  # ranges stay anchored to the typed law
-    # a move out of the law class: explained, and the sliders stay to move back
-    move(law.coeff_sliders[2], 0.5)  # w + 10w² + 0.5w³ − 0.02w⁴ ... still a valid law?
+    # a move out of the law class: refused with its reason, the previous law stays on screen,
+    # and the sliders stay to move back
     move(law.coeff_sliders[0], 0.0)  # f′(0) = 0: refused by fpucore
-    assert ex.state.problem() is not None and "f'(0) must be positive" in ex.state.problem()
-    assert law.coeff_box.visible
+    assert "f'(0) must be positive" in law.refused and law.refusal.visible
+    assert ex.state.expression == "w + 10.0*w**2 - w**3 - 0.02*w**4"
+    assert ex.state.problem() is None and law.coeff_box.visible
     move(law.coeff_sliders[0], 1.0)
     move(law.coeff_sliders[2], -1.0)
     assert ex.state.law().coeffs == (1.0, 10.0, -1.0, -0.02) and ex.state.problem() is None
 
 
-def test_typed_invalid_expression_hides_the_sliders_and_names_the_problem():
+def test_typed_invalid_expression_is_refused_and_the_law_stays():
     ex = Explorer(ExplorerState(expression=Q))
     law = ex.law_editor
     law.law_text.value = "w + 10*w**2 - w**3 +"
-    assert ex.state.expression == "w + 10*w**2 - w**3 +"
-    assert "could not parse" in ex.ranges.object and not law.coeff_box.visible
-    law.law_text.value = Q
-    assert law.coeff_box.visible and ex.state.problem() is None
+    t_end = time.monotonic() + 60.0
+    while not law.refused and time.monotonic() < t_end:  # built in the law worker
+        time.sleep(0.05)
+    assert "could not parse" in law.refused and law.refusal.visible
+    assert ex.state.expression == Q and ex.state.problem() is None and law.coeff_box.visible
+    assert all(s.copy_btn.disabled for s in ex.scenes)
+    law.law_kind.value = "cubic"  # a valid law clears the refusal
+    assert not law.refusal.visible and ex.state.problem() is None
+    assert not any(s.copy_btn.disabled for s in ex.scenes)
 
 
 def test_a_typed_law_is_named_as_being_checked_until_the_law_worker_has_built_it():
