@@ -14,9 +14,11 @@ from __future__ import annotations
 import io
 import math
 import tokenize
+from collections.abc import Mapping
 from typing import NoReturn
 
 from fpucore.errors import ParameterError
+from fpucore.law.base import HardeningSofteningLaw
 from fpucore.law.expression_bounds import MAX_LENGTH, abbreviate, screen
 from fpucore.law.polynomial import MAX_DEGREE, PolynomialLaw
 
@@ -38,7 +40,9 @@ def _numeric(fn):
     return lambda *args, **_: fn(*args, evaluate=False).evalf(_DIGITS)
 
 
-def law_from_expression(expression: str, constants=None):
+def law_from_expression(
+    expression: str, constants: Mapping[str, float] | None = None
+) -> HardeningSofteningLaw:
     """A force law from text: a :class:`PolynomialLaw` when the text is a polynomial in w (the
     same law, bit for bit, as before smooth laws existed), else a
     :class:`~fpucore.law.SmoothLaw` (exp, log, sqrt, tanh, sinh, cosh, atan, rational and

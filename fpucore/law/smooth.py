@@ -35,7 +35,7 @@ import numpy as np
 
 from fpucore.errors import ParameterError
 from fpucore.law import chebyshev as cheb
-from fpucore.law.base import HardeningSofteningLaw
+from fpucore.law.base import HardeningSofteningLaw, Strain
 from fpucore.law.kernels import LAW_CHEB
 from fpucore.law.scale import require_computable
 from fpucore.law.smooth_class import ClassFailure, convex_end, inflection
@@ -101,7 +101,7 @@ class SmoothLaw(HardeningSofteningLaw):
     beta_error: float = field(init=False, default=math.nan)
     w_star_error: float = field(init=False, default=math.nan)
     interval: tuple = field(init=False, default=(math.nan, math.nan))
-    _rep: object = field(init=False, repr=False, compare=False, default=None)
+    _rep: cheb.Representation = field(init=False, repr=False, compare=False)
     _fns: tuple = field(init=False, repr=False, compare=False, default=())
     _trees: tuple = field(init=False, repr=False, compare=False, default=())
 
@@ -245,16 +245,16 @@ class SmoothLaw(HardeningSofteningLaw):
             out = np.asarray(self._fns[k](w), dtype=float)
         return np.broadcast_to(out, w.shape).copy() if out.shape != w.shape else out
 
-    def f(self, w):
+    def f(self, w: Strain) -> np.ndarray:
         return self._eval(0, w)
 
-    def df(self, w):
+    def df(self, w: Strain) -> np.ndarray:
         return self._eval(1, w)
 
-    def ddf(self, w):
+    def ddf(self, w: Strain) -> np.ndarray:
         return self._eval(2, w)
 
-    def represented(self, k: int, w):
+    def represented(self, k: int, w: Strain) -> np.ndarray:
         """f (k = 0), f′ (1), f″ (2) as the kernels compute them (NaN outside :attr:`interval`)."""
         return self._rep.value(k, w)
 
@@ -271,7 +271,7 @@ class SmoothLaw(HardeningSofteningLaw):
         start = np.concatenate([[0.0], np.cumsum(full)])
         return ci, start, h
 
-    def phi(self, w):
+    def phi(self, w: Strain) -> np.ndarray:
         """Φ(w) = ∫₀ʷ f, the represented f integrated exactly (NaN outside :attr:`interval`)."""
         ci, start, _h = self._phi_tables
         lo, hi = self.interval
@@ -318,7 +318,7 @@ class SmoothLaw(HardeningSofteningLaw):
         return self._quadrature[1]
 
     # ----- constants
-    def with_constants(self, **values) -> SmoothLaw | HardeningSofteningLaw:
+    def with_constants(self, **values: float) -> SmoothLaw | HardeningSofteningLaw:
         """The same text with some constants changed, e.g. ``law.with_constants(d=40)``."""
         from fpucore.law.expression import law_from_expression
 

@@ -118,6 +118,8 @@ def _source(text: str, names: frozenset) -> str:
 class _Walk:
     """The allowed AST → SymPy, with the bounds of the module docstring."""
 
+    source: str  # the parsed source text, set by the caller (optional: error context only)
+
     def __init__(self, text: str, sp, w, symbols: dict):
         self.text, self.sp, self.w, self.symbols = text, sp, w, symbols
         self.nodes = 0
