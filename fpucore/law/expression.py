@@ -59,7 +59,7 @@ def law_from_expression(
     :func:`fpucore.law.piecewise_text.law_from_piecewise_text`; no constants).
     """
     from fpucore.law.piecewise_text import is_piecewise_text, law_from_piecewise_text
-    from fpucore.law.smooth import SmoothLaw, _constants
+    from fpucore.law.smooth import SmoothLaw, checked_constants
 
     if is_piecewise_text(expression):
         if constants:
@@ -68,7 +68,7 @@ def law_from_expression(
             )
         return law_from_piecewise_text(expression)
 
-    consts = _constants(constants)
+    consts = checked_constants(constants)
     text = expression
     if consts and isinstance(expression, str) and len(expression) <= MAX_LENGTH:
         text = _substitute(expression, dict(consts))

@@ -53,7 +53,7 @@ MARGIN = 0.5  # represented interval: W/2 beyond each end of the convex interval
 
 
 @functools.lru_cache(maxsize=64)
-def _symbolic(text: str, names: frozenset):
+def symbolic(text: str, names: frozenset):
     """(w, symbols, (f, f′, f″)) — SymPy derivatives, cached per text."""
     import sympy as sp
 
@@ -69,7 +69,7 @@ def _symbolic(text: str, names: frozenset):
     return w, syms, (expr, d1 if d1 is not None else zero, d2 if d2 is not None else zero)
 
 
-def _constants(constants) -> tuple[tuple[str, float], ...]:
+def checked_constants(constants) -> tuple[tuple[str, float], ...]:
     if constants is None:
         return ()
     if not hasattr(constants, "items"):
@@ -107,13 +107,13 @@ class SmoothLaw(HardeningSofteningLaw):
 
     def __post_init__(self):
         set_ = object.__setattr__
-        consts = _constants(dict(self.constants) if isinstance(self.constants, tuple)
+        consts = checked_constants(dict(self.constants) if isinstance(self.constants, tuple)
                             else self.constants)  # fmt: skip
         set_(self, "constants", consts)
         set_(self, "law_id", LAW_CHEB)
         if not isinstance(self.text, str):
             raise ParameterError("expression", self.text, VALID, "the expression must be a string")
-        w, syms, exprs = _symbolic(self.text, frozenset(n for n, _ in consts))
+        w, syms, exprs = symbolic(self.text, frozenset(n for n, _ in consts))
         values = {syms[n]: v for n, v in consts}
         from fpucore.law.smooth_eval import UnsupportedNode, diagnose, to_node
         from fpucore.law.smooth_tree import compile_node

@@ -22,7 +22,13 @@ import re
 import tokenize
 
 from fpucore.errors import ParameterError
-from fpucore.law.expression_bounds import MAX_DEPTH, MAX_LENGTH, MAX_TOKENS, _number, abbreviate
+from fpucore.law.expression_bounds import (
+    MAX_DEPTH,
+    MAX_LENGTH,
+    MAX_TOKENS,
+    abbreviate,
+    parse_number,
+)
 
 FUNCS = ("exp", "log", "sqrt", "tanh", "sinh", "cosh", "atan")
 CONSTS = ("pi", "E")
@@ -191,7 +197,7 @@ class _Walk:
             refuse(self.text, f"could not parse the literal {v!r}")
         src = ast.get_source_segment(self.source, node) if hasattr(self, "source") else None
         if isinstance(v, int):
-            _number(str(v) if src is None else src, lambda r: refuse(self.text, r))
+            parse_number(str(v) if src is None else src, lambda r: refuse(self.text, r))
             return self.sp.Integer(v)
         if not math.isfinite(v):
             refuse(self.text, f"the literal {src or v} exceeds the float range")
