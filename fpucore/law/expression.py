@@ -20,7 +20,9 @@ from typing import NoReturn
 from fpucore.errors import ParameterError
 from fpucore.law.base import HardeningSofteningLaw
 from fpucore.law.expression_bounds import MAX_LENGTH, abbreviate, screen
+from fpucore.law.piecewise_text import is_piecewise_text, law_from_piecewise_text
 from fpucore.law.polynomial import MAX_DEGREE, PolynomialLaw
+from fpucore.law.smooth import SmoothLaw, checked_constants
 
 _FUNCS = ("sin", "cos", "tan", "exp", "log", "sqrt", "sinh", "cosh", "tanh", "Abs", "abs")
 _CONSTS = ("pi", "E")
@@ -58,9 +60,6 @@ def law_from_expression(
     ``piecewise(breakpoints=[..], slopes=[..])`` (parsed, never evaluated, by
     :func:`fpucore.law.piecewise_text.law_from_piecewise_text`; no constants).
     """
-    from fpucore.law.piecewise_text import is_piecewise_text, law_from_piecewise_text
-    from fpucore.law.smooth import SmoothLaw, checked_constants
-
     if is_piecewise_text(expression):
         if constants:
             raise ParameterError(

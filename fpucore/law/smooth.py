@@ -32,6 +32,7 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
+from numpy.polynomial import chebyshev as C
 
 from fpucore.errors import ParameterError
 from fpucore.law import chebyshev as cheb
@@ -46,6 +47,7 @@ from fpucore.law.smooth_parse import (
     check_constant_value,
     parse_smooth,
 )
+from fpucore.law.smooth_tree import compile_node
 
 EPS = float(np.finfo(float).eps)
 MAX_QUAD_PANELS = 64  # composite Gauss–Legendre panels of the QC integrals (2048 nodes)
@@ -116,7 +118,6 @@ class SmoothLaw(HardeningSofteningLaw):
         w, syms, exprs = symbolic(self.text, frozenset(n for n, _ in consts))
         values = {syms[n]: v for n, v in consts}
         from fpucore.law.smooth_eval import UnsupportedNode, diagnose, to_node
-        from fpucore.law.smooth_tree import compile_node
 
         try:
             trees = tuple(to_node(e, w) for e in exprs)
@@ -260,8 +261,6 @@ class SmoothLaw(HardeningSofteningLaw):
 
     @functools.cached_property
     def _phi_tables(self):
-        from numpy.polynomial import chebyshev as C
-
         coef = self._rep.coef[0]
         lo, hi = self.interval
         npan = coef.shape[0]
@@ -347,8 +346,6 @@ _STATE = ("text", "constants", "alpha", "beta", "w_star", "alpha_error", "beta_e
 
 
 def _restore(state: dict) -> SmoothLaw:
-    from fpucore.law.smooth_tree import compile_node
-
     law = object.__new__(SmoothLaw)
     for k, v in state.items():
         object.__setattr__(law, k, v)

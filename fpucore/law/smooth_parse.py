@@ -21,6 +21,8 @@ import math
 import re
 import tokenize
 
+import numpy as np
+
 from fpucore.errors import ParameterError
 from fpucore.law.expression_bounds import (
     MAX_DEPTH,
@@ -67,7 +69,6 @@ def check_constant_value(name: str, value) -> float:
     ok = isinstance(value, int | float) and not isinstance(value, bool)
     if not ok:
         try:
-            import numpy as np
 
             ok = isinstance(value, np.integer | np.floating)
         except ImportError:  # pragma: no cover
