@@ -36,7 +36,7 @@ def first_use(name: str) -> float:
     from fpucore.law import smooth, smooth_parse
 
     clear_cache()
-    smooth._symbolic.cache_clear()
+    smooth.symbolic.cache_clear()
     smooth_parse.parse_smooth.cache_clear()
     t0, c0 = time.perf_counter(), time.process_time()
     preset_law(name)

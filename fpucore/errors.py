@@ -115,7 +115,7 @@ def require_int(name: str, value: Any, lo: int, hi: int) -> int:
     return int(value)
 
 
-def require_in(name: str, value, lo: float, hi: float, reason: str = "") -> float:
+def require_in(name: str, value: Any, lo: float, hi: float, reason: str = "") -> float:
     """Return ``float(value)`` for a finite real number in [lo, hi], else raise (the one rule
     for bounded reals: :func:`require_finite` first, then the range)."""
     x = require_finite(name, value)

@@ -235,7 +235,7 @@ def _label_text(label) -> str:
     return str(getattr(label, "value", "") or "")
 
 
-def _draw_figure(ax, fig) -> None:
+def draw_figure(ax, fig) -> None:
     arts = {}
     for r in fig.renderers:
         if getattr(r, "visible", True) and hasattr(r, "glyph"):
@@ -313,7 +313,7 @@ def figure_bytes(models, fmt: str, title: str = "") -> bytes:
     for sub, row in zip(np.atleast_1d(subs), rows):
         axes = np.atleast_1d(sub.subplots(1, len(row)))
         for ax, f in zip(axes, row):
-            _draw_figure(ax, f)
+            draw_figure(ax, f)
     buf = io.BytesIO()
     # every sample drawn, as on screen (Matplotlib's path simplification would drop vertices)
     with rc_context({"path.simplify": False}):

@@ -10,12 +10,12 @@ import re
 import stat
 import sys
 import tempfile
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, cast
 
 from fpucore.errors import ParameterError
 
 if TYPE_CHECKING:
-    from fpucore.law import HardeningSofteningLaw
+    from fpucore.law import HardeningSofteningLaw, PiecewiseLinearLaw, PolynomialLaw, SmoothLaw
 
 
 def jsonable(obj):
@@ -255,11 +255,14 @@ def law_fields(law: HardeningSofteningLaw) -> dict:
     if isinstance(law, CubicLaw):
         return {"a": law.a, "b": law.b, "law": law.describe()}
     if hasattr(law, "breakpoints"):  # piecewise-linear
-        return {"law": law.expression, "breakpoints": list(law.breakpoints),
-                "slopes": list(law.slopes)}  # fmt: skip
+        pl = cast("PiecewiseLinearLaw", law)
+        return {"law": pl.expression, "breakpoints": list(pl.breakpoints),
+                "slopes": list(pl.slopes)}  # fmt: skip
     if hasattr(law, "coeffs"):
-        return {"law": law.expression, "coeffs": list(law.coeffs)}
-    err = law.representation_error
-    return {"law": law.expression, "constants": law.constants_dict,
-            "represented_interval": list(law.interval),
+        poly = cast("PolynomialLaw", law)
+        return {"law": poly.expression, "coeffs": list(poly.coeffs)}
+    sm = cast("SmoothLaw", law)
+    err = sm.representation_error
+    return {"law": sm.expression, "constants": sm.constants_dict,
+            "represented_interval": list(sm.interval),
             "representation_error": {"f": err.f, "df": err.df, "ddf": err.ddf}}  # fmt: skip

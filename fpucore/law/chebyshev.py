@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import functools
 from dataclasses import dataclass
+from typing import cast
 
 import numpy as np
 
@@ -61,7 +62,8 @@ class RepresentationError:
 
     @property
     def relative(self) -> tuple[float, float, float]:
-        return tuple(e / s if s > 0 else e for e, s in zip((self.f, self.df, self.ddf), self.scale))
+        rel = tuple(e / s if s > 0 else e for e, s in zip((self.f, self.df, self.ddf), self.scale))
+        return cast("tuple[float, float, float]", rel)
 
     def __str__(self) -> str:
         lo, hi = self.interval
@@ -194,5 +196,7 @@ def build(long_fns, mp_fns, lo: float, hi: float) -> Representation:
         + [c.ravel() for c in coef]
     )
     err = RepresentationError(errs[0], errs[1], errs[2], (float(lo), float(hi)),
-                              tuple(scales), npan, int(P.size), N_MP, MP_DIGITS)  # fmt: skip
-    return Representation(params, tuple(coef), err)
+                              cast("tuple[float, float, float]", tuple(scales)), npan, int(P.size),
+                              N_MP, MP_DIGITS)  # fmt: skip
+    return Representation(params, cast("tuple[np.ndarray, np.ndarray, np.ndarray]", tuple(coef)),
+                          err)  # fmt: skip

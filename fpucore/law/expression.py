@@ -14,11 +14,15 @@ from __future__ import annotations
 import io
 import math
 import tokenize
+from collections.abc import Mapping
 from typing import NoReturn
 
 from fpucore.errors import ParameterError
+from fpucore.law.base import HardeningSofteningLaw
 from fpucore.law.expression_bounds import MAX_LENGTH, abbreviate, screen
+from fpucore.law.piecewise_text import is_piecewise_text, law_from_piecewise_text
 from fpucore.law.polynomial import MAX_DEGREE, PolynomialLaw
+from fpucore.law.smooth import SmoothLaw, checked_constants
 
 _FUNCS = ("sin", "cos", "tan", "exp", "log", "sqrt", "sinh", "cosh", "tanh", "Abs", "abs")
 _CONSTS = ("pi", "E")
@@ -38,7 +42,9 @@ def _numeric(fn):
     return lambda *args, **_: fn(*args, evaluate=False).evalf(_DIGITS)
 
 
-def law_from_expression(expression: str, constants=None):
+def law_from_expression(
+    expression: str, constants: Mapping[str, float] | None = None
+) -> HardeningSofteningLaw:
     """A force law from text: a :class:`PolynomialLaw` when the text is a polynomial in w (the
     same law, bit for bit, as before smooth laws existed), else a
     :class:`~fpucore.law.SmoothLaw` (exp, log, sqrt, tanh, sinh, cosh, atan, rational and
@@ -54,9 +60,6 @@ def law_from_expression(expression: str, constants=None):
     ``piecewise(breakpoints=[..], slopes=[..])`` (parsed, never evaluated, by
     :func:`fpucore.law.piecewise_text.law_from_piecewise_text`; no constants).
     """
-    from fpucore.law.piecewise_text import is_piecewise_text, law_from_piecewise_text
-    from fpucore.law.smooth import SmoothLaw, _constants
-
     if is_piecewise_text(expression):
         if constants:
             raise ParameterError(
@@ -64,7 +67,7 @@ def law_from_expression(expression: str, constants=None):
             )
         return law_from_piecewise_text(expression)
 
-    consts = _constants(constants)
+    consts = checked_constants(constants)
     text = expression
     if consts and isinstance(expression, str) and len(expression) <= MAX_LENGTH:
         text = _substitute(expression, dict(consts))

@@ -243,7 +243,7 @@ class _Screen:
             self.refuse("could not parse: unexpected end of the expression")
         t = self.take()
         if t.type == tokenize.NUMBER:
-            return self.check(_number(t.string, self.refuse))
+            return self.check(parse_number(t.string, self.refuse))
         if t.type == tokenize.NAME:
             if t.string == "w":
                 return Node(1.0, None, 0.0, "w", 1.0, True, True)
@@ -283,7 +283,7 @@ _SKIP = (tokenize.NEWLINE, tokenize.NL, tokenize.ENDMARKER, tokenize.INDENT, tok
 _ATOMS = (tokenize.NUMBER, tokenize.NAME)
 
 
-def _number(text: str, refuse: Callable[[str], NoReturn]) -> Node:
+def parse_number(text: str, refuse: Callable[[str], NoReturn]) -> Node:
     """A literal's float value, refused beyond the float range before any int() conversion; an
     integer's exact size is the decimal digits of its value, whatever its base."""
     chars = sum(ch.isalnum() for ch in text)  # digits of any base (and the 0x/0o/0b prefix)

@@ -60,6 +60,17 @@ class _PiecewiseTables(HardeningSofteningLaw):
     """Evaluation shared by the PL laws from the tables ``_b`` (breakpoints), ``_s`` (slopes),
     ``_fb`` (f at breakpoints), ``_phib`` (Φ at breakpoints), set by ``_build``."""
 
+    # set by ``_build`` (declared as fields by the dataclass subclasses)
+    _b: np.ndarray
+    _s: np.ndarray
+    _fb: np.ndarray
+    _phib: np.ndarray
+    _h: int
+
+    @property
+    def expression(self) -> str:  # pragma: no cover - abstract
+        raise NotImplementedError
+
     def _build(self, b: np.ndarray, s: np.ndarray) -> None:
         set_ = object.__setattr__
         m = b.size
@@ -233,10 +244,10 @@ class PiecewiseLinearLaw(_PiecewiseTables):
 
     breakpoints: tuple = (0.5, 1.5)
     slopes: tuple = (1.0, 4.0, 0.2)
-    _b: np.ndarray = field(init=False, repr=False, compare=False, default=None)
-    _s: np.ndarray = field(init=False, repr=False, compare=False, default=None)
-    _fb: np.ndarray = field(init=False, repr=False, compare=False, default=None)
-    _phib: np.ndarray = field(init=False, repr=False, compare=False, default=None)
+    _b: np.ndarray = field(init=False, repr=False, compare=False)
+    _s: np.ndarray = field(init=False, repr=False, compare=False)
+    _fb: np.ndarray = field(init=False, repr=False, compare=False)
+    _phib: np.ndarray = field(init=False, repr=False, compare=False)
     _h: int = field(init=False, repr=False, compare=False, default=-1)
 
     def __post_init__(self):
@@ -280,10 +291,10 @@ class TrilinearLaw(_PiecewiseTables):
     E1: float = 1.0
     E2: float = 4.0
     E3: float = 0.2
-    _b: np.ndarray = field(init=False, repr=False, compare=False, default=None)
-    _s: np.ndarray = field(init=False, repr=False, compare=False, default=None)
-    _fb: np.ndarray = field(init=False, repr=False, compare=False, default=None)
-    _phib: np.ndarray = field(init=False, repr=False, compare=False, default=None)
+    _b: np.ndarray = field(init=False, repr=False, compare=False)
+    _s: np.ndarray = field(init=False, repr=False, compare=False)
+    _fb: np.ndarray = field(init=False, repr=False, compare=False)
+    _phib: np.ndarray = field(init=False, repr=False, compare=False)
     _h: int = field(init=False, repr=False, compare=False, default=-1)
 
     def __post_init__(self):

@@ -10,6 +10,7 @@ numbers is accepted; anything else is refused with :class:`ParameterError` namin
 from __future__ import annotations
 
 import ast
+from typing import cast
 
 from fpucore.errors import ParameterError
 from fpucore.law.piecewise import PiecewiseLinearLaw, TrilinearLaw
@@ -33,7 +34,11 @@ def _number(node, text: str) -> float:
     if isinstance(node, ast.UnaryOp) and isinstance(node.op, (ast.USub, ast.UAdd)):
         v = _number(node.operand, text)
         return -v if isinstance(node.op, ast.USub) else v
-    if isinstance(node, ast.Constant) and type(node.value) in (int, float):
+    if (
+        isinstance(node, ast.Constant)
+        and type(node.value) in (int, float)
+        and isinstance(node.value, (int, float))  # the same test, for the type checker
+    ):
         return float(node.value)
     raise ParameterError(
         "expression", text, _TEXT_VALID,
@@ -41,7 +46,7 @@ def _number(node, text: str) -> float:
     )  # fmt: skip
 
 
-def law_from_piecewise_text(text: str):
+def law_from_piecewise_text(text: str) -> TrilinearLaw | PiecewiseLinearLaw:
     """Parse (never evaluate) a PL law's text form (module docstring) into a
     :class:`TrilinearLaw` or :class:`PiecewiseLinearLaw`; ParameterError naming ``expression``
     for malformed text, then the law's own checks name the offending argument."""
@@ -63,7 +68,7 @@ def law_from_piecewise_text(text: str):
         raise ParameterError(
             "expression", text, _TEXT_VALID, "keyword arguments of trilinear(...) or piecewise(...)"
         )
-    kw = {}
+    kw: dict[str, float | tuple[float, ...]] = {}
     for k in call.keywords:
         if k.arg is None or k.arg in kw:
             raise ParameterError(
@@ -86,8 +91,9 @@ def law_from_piecewise_text(text: str):
         for n in want:
             if isinstance(kw[n], tuple):
                 raise ParameterError("expression", text, _TEXT_VALID, f"{n} must be one number")
-        return TrilinearLaw(**kw)
+        return TrilinearLaw(**cast(dict[str, float], kw))
     for n in want:
         if not isinstance(kw[n], tuple):
             raise ParameterError("expression", text, _TEXT_VALID, f"{n} must be a list [..]")
-    return PiecewiseLinearLaw(kw["breakpoints"], kw["slopes"])
+    tables = cast("dict[str, tuple[float, ...]]", kw)  # all lists, checked just above
+    return PiecewiseLinearLaw(tables["breakpoints"], tables["slopes"])

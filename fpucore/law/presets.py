@@ -15,6 +15,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from fpucore.errors import ParameterError
+from fpucore.law.cubic import CubicLaw
+from fpucore.law.expression import law_from_expression
+
 
 @dataclass(frozen=True)
 class Preset:
@@ -52,10 +56,6 @@ PRESETS = {
 def preset_law(name: str, **constants):
     """The preset's law (``CubicLaw`` for "cubic", closed forms), constants overridden by
     keyword, e.g. ``preset_law("exponential", d=40)``."""
-    from fpucore.errors import ParameterError
-    from fpucore.law.cubic import CubicLaw
-    from fpucore.law.expression import law_from_expression
-
     if name not in PRESETS:
         raise ParameterError("preset", name, " | ".join(PRESETS))
     p = PRESETS[name]

@@ -32,10 +32,11 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
+from numpy.polynomial import chebyshev as C
 
 from fpucore.errors import ParameterError
 from fpucore.law import chebyshev as cheb
-from fpucore.law.base import HardeningSofteningLaw
+from fpucore.law.base import HardeningSofteningLaw, Strain
 from fpucore.law.kernels import LAW_CHEB
 from fpucore.law.scale import require_computable
 from fpucore.law.smooth_class import ClassFailure, convex_end, inflection
@@ -46,6 +47,7 @@ from fpucore.law.smooth_parse import (
     check_constant_value,
     parse_smooth,
 )
+from fpucore.law.smooth_tree import compile_node
 
 EPS = float(np.finfo(float).eps)
 MAX_QUAD_PANELS = 64  # composite Gauss–Legendre panels of the QC integrals (2048 nodes)
@@ -53,7 +55,7 @@ MARGIN = 0.5  # represented interval: W/2 beyond each end of the convex interval
 
 
 @functools.lru_cache(maxsize=64)
-def _symbolic(text: str, names: frozenset):
+def symbolic(text: str, names: frozenset):
     """(w, symbols, (f, f′, f″)) — SymPy derivatives, cached per text."""
     import sympy as sp
 
@@ -69,7 +71,7 @@ def _symbolic(text: str, names: frozenset):
     return w, syms, (expr, d1 if d1 is not None else zero, d2 if d2 is not None else zero)
 
 
-def _constants(constants) -> tuple[tuple[str, float], ...]:
+def checked_constants(constants) -> tuple[tuple[str, float], ...]:
     if constants is None:
         return ()
     if not hasattr(constants, "items"):
@@ -101,22 +103,21 @@ class SmoothLaw(HardeningSofteningLaw):
     beta_error: float = field(init=False, default=math.nan)
     w_star_error: float = field(init=False, default=math.nan)
     interval: tuple = field(init=False, default=(math.nan, math.nan))
-    _rep: object = field(init=False, repr=False, compare=False, default=None)
+    _rep: cheb.Representation = field(init=False, repr=False, compare=False)
     _fns: tuple = field(init=False, repr=False, compare=False, default=())
     _trees: tuple = field(init=False, repr=False, compare=False, default=())
 
     def __post_init__(self):
         set_ = object.__setattr__
-        consts = _constants(dict(self.constants) if isinstance(self.constants, tuple)
+        consts = checked_constants(dict(self.constants) if isinstance(self.constants, tuple)
                             else self.constants)  # fmt: skip
         set_(self, "constants", consts)
         set_(self, "law_id", LAW_CHEB)
         if not isinstance(self.text, str):
             raise ParameterError("expression", self.text, VALID, "the expression must be a string")
-        w, syms, exprs = _symbolic(self.text, frozenset(n for n, _ in consts))
+        w, syms, exprs = symbolic(self.text, frozenset(n for n, _ in consts))
         values = {syms[n]: v for n, v in consts}
         from fpucore.law.smooth_eval import UnsupportedNode, diagnose, to_node
-        from fpucore.law.smooth_tree import compile_node
 
         try:
             trees = tuple(to_node(e, w) for e in exprs)
@@ -245,23 +246,21 @@ class SmoothLaw(HardeningSofteningLaw):
             out = np.asarray(self._fns[k](w), dtype=float)
         return np.broadcast_to(out, w.shape).copy() if out.shape != w.shape else out
 
-    def f(self, w):
+    def f(self, w: Strain) -> np.ndarray:
         return self._eval(0, w)
 
-    def df(self, w):
+    def df(self, w: Strain) -> np.ndarray:
         return self._eval(1, w)
 
-    def ddf(self, w):
+    def ddf(self, w: Strain) -> np.ndarray:
         return self._eval(2, w)
 
-    def represented(self, k: int, w):
+    def represented(self, k: int, w: Strain) -> np.ndarray:
         """f (k = 0), f′ (1), f″ (2) as the kernels compute them (NaN outside :attr:`interval`)."""
         return self._rep.value(k, w)
 
     @functools.cached_property
     def _phi_tables(self):
-        from numpy.polynomial import chebyshev as C
-
         coef = self._rep.coef[0]
         lo, hi = self.interval
         npan = coef.shape[0]
@@ -271,7 +270,7 @@ class SmoothLaw(HardeningSofteningLaw):
         start = np.concatenate([[0.0], np.cumsum(full)])
         return ci, start, h
 
-    def phi(self, w):
+    def phi(self, w: Strain) -> np.ndarray:
         """Φ(w) = ∫₀ʷ f, the represented f integrated exactly (NaN outside :attr:`interval`)."""
         ci, start, _h = self._phi_tables
         lo, hi = self.interval
@@ -318,7 +317,7 @@ class SmoothLaw(HardeningSofteningLaw):
         return self._quadrature[1]
 
     # ----- constants
-    def with_constants(self, **values) -> SmoothLaw | HardeningSofteningLaw:
+    def with_constants(self, **values: float) -> SmoothLaw | HardeningSofteningLaw:
         """The same text with some constants changed, e.g. ``law.with_constants(d=40)``."""
         from fpucore.law.expression import law_from_expression
 
@@ -347,8 +346,6 @@ _STATE = ("text", "constants", "alpha", "beta", "w_star", "alpha_error", "beta_e
 
 
 def _restore(state: dict) -> SmoothLaw:
-    from fpucore.law.smooth_tree import compile_node
-
     law = object.__new__(SmoothLaw)
     for k, v in state.items():
         object.__setattr__(law, k, v)

@@ -21,8 +21,16 @@ import math
 import re
 import tokenize
 
+import numpy as np
+
 from fpucore.errors import ParameterError
-from fpucore.law.expression_bounds import MAX_DEPTH, MAX_LENGTH, MAX_TOKENS, _number, abbreviate
+from fpucore.law.expression_bounds import (
+    MAX_DEPTH,
+    MAX_LENGTH,
+    MAX_TOKENS,
+    abbreviate,
+    parse_number,
+)
 
 FUNCS = ("exp", "log", "sqrt", "tanh", "sinh", "cosh", "atan")
 CONSTS = ("pi", "E")
@@ -61,7 +69,6 @@ def check_constant_value(name: str, value) -> float:
     ok = isinstance(value, int | float) and not isinstance(value, bool)
     if not ok:
         try:
-            import numpy as np
 
             ok = isinstance(value, np.integer | np.floating)
         except ImportError:  # pragma: no cover
@@ -117,6 +124,8 @@ def _source(text: str, names: frozenset) -> str:
 
 class _Walk:
     """The allowed AST → SymPy, with the bounds of the module docstring."""
+
+    source: str  # the parsed source text, set by the caller (optional: error context only)
 
     def __init__(self, text: str, sp, w, symbols: dict):
         self.text, self.sp, self.w, self.symbols = text, sp, w, symbols
@@ -189,7 +198,7 @@ class _Walk:
             refuse(self.text, f"could not parse the literal {v!r}")
         src = ast.get_source_segment(self.source, node) if hasattr(self, "source") else None
         if isinstance(v, int):
-            _number(str(v) if src is None else src, lambda r: refuse(self.text, r))
+            parse_number(str(v) if src is None else src, lambda r: refuse(self.text, r))
             return self.sp.Integer(v)
         if not math.isfinite(v):
             refuse(self.text, f"the literal {src or v} exceeds the float range")

@@ -15,6 +15,7 @@ from fpucore.errors import ParameterError
 from fpucore.law import CubicLaw, HardeningSofteningLaw, require_law
 from fpucore.qc import closed_forms as cf
 from fpucore.qc import general as gen
+from fpucore.qc import piecewise, piecewise_orbit
 
 if TYPE_CHECKING:
     from fpucore.law.base import Strain
@@ -26,8 +27,6 @@ def _pl(law):
     """The closed-form module for a piecewise-linear law (fpucore.qc.piecewise*), else None:
     the general route integrates f″, which is zero between breakpoints."""
     if hasattr(require_law(law), "hard_regime"):
-        from fpucore.qc import piecewise, piecewise_orbit
-
         return piecewise, piecewise_orbit
     return None
 

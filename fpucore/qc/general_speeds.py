@@ -79,7 +79,8 @@ def _partner(law, w_plus: float):
     br = bracket_to_end(F, law.w_star, end, s, max(abs(law.w_star - w_plus), 1e-3))
     if br is None or (math.isfinite(end) and s * (max(br, key=lambda x: s * x) - end) > 0):
         return None
-    return bracketed_root(F, *br, noisy=is_smooth(law))
+    a, b = br
+    return bracketed_root(F, a, b, noisy=is_smooth(law))
 
 
 def w_minus_from_w_plus(law: HardeningSofteningLaw, w_plus: float) -> tuple[float, float]:
@@ -104,7 +105,8 @@ def w_minus_sonic(law: HardeningSofteningLaw, w_plus: float, with_error: bool = 
     F = lambda w: tangency_defect(law, w_plus, w - w_plus)  # noqa: E731
     br = bracket_to_end(F, law.w_star, far_end(law, s), s, abs(law.w_star - w_plus))
     # always exists: f′(β) = 0 < chord slope (paper §3)
-    x, err = bracketed_root(F, *br, noisy=is_smooth(law))
+    a, b = br
+    x, err = bracketed_root(F, a, b, noisy=is_smooth(law))
     return (x, err) if with_error else x
 
 

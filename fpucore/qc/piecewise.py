@@ -223,7 +223,7 @@ def rayleigh_roots(law, w_B: float, V: float) -> list[float]:
     V2 = require_finite("V", V) ** 2
     b = law._b
     fB = float(law.f(w_B))
-    out = []
+    out: list[float] = []
     for j in range(b.size + 1):
         s = law._s[j]
         if s == V2:

@@ -16,6 +16,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from fpucore.errors import ParameterError
 
@@ -36,7 +37,7 @@ class Blocks:
     note: str
 
 
-def extreme_blocks(snapshots, sites, max_columns: int = 1000) -> Blocks:
+def extreme_blocks(snapshots: ArrayLike, sites: ArrayLike, max_columns: int = 1000) -> Blocks:
     """Reduce ``snapshots`` (n_t, n_sites) at the 1-based, equally spaced ``sites`` (n_sites,)
     to at most ``max_columns`` columns: if n_sites > max_columns, blocks of
     ⌈n_sites / (max_columns // 2)⌉ consecutive sites, each drawn as its minimum and its maximum

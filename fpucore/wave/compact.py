@@ -54,6 +54,7 @@ from typing import ClassVar
 import numpy as np
 
 from fpucore.errors import ParameterError, fmt_interval, require_finite
+from fpucore.law.base import HardeningSofteningLaw
 from fpucore.result import Result, status_of
 
 
@@ -85,7 +86,7 @@ class CompactWave(Result):
     eq. TW_discrete is rounding; ``residual`` is measured on a grid of ξ (scaled by |C| E), with
     the jumps of w and w′ at the junctions (scaled by |C|)."""
 
-    law: object
+    law: HardeningSofteningLaw
     V: float
     w_B: float
     b: float

@@ -34,7 +34,7 @@ from numba import njit
 from fpucore import law as _law
 from fpucore.errors import ParameterError, require_finite
 from fpucore.tableaux.rk import DOP853, Tableau
-from fpucore.wave.period_map import _check_m, _check_state
+from fpucore.wave.period_map import check_m, check_state
 
 
 @njit(cache=True, nogil=True)
@@ -263,11 +263,11 @@ def integrate_events(
     breakpoints (``locate=False``: plain fixed steps, for comparison)."""
     if not hasattr(law, "breakpoints"):
         raise ParameterError("law", type(law).__name__, "a piecewise-linear law")
-    w0, wd0 = _check_state(w0, wd0)
+    w0, wd0 = check_state(w0, wd0)
     T = require_finite("T", T)
     if T <= 0:
         raise ParameterError("T", T, "T > 0")
-    m = _check_m(m)
+    m = check_m(m)
     w_left, w_right = require_finite("w_left", w_left), require_finite("w_right", w_right)
     N = w0.size
     w, wd, counts = np.empty(N), np.empty(N), np.zeros(10)

@@ -176,7 +176,7 @@ class PeriodResult:
     tableau: Tableau
 
 
-def _check_state(w0, wd0) -> tuple[np.ndarray, np.ndarray]:
+def check_state(w0, wd0) -> tuple[np.ndarray, np.ndarray]:
     w0 = np.ascontiguousarray(w0, dtype=np.float64)
     wd0 = np.ascontiguousarray(wd0, dtype=np.float64)
     if w0.ndim != 1 or w0.shape != wd0.shape or w0.size < 2:
@@ -186,7 +186,7 @@ def _check_state(w0, wd0) -> tuple[np.ndarray, np.ndarray]:
     return w0, wd0
 
 
-def _check_m(m) -> int:
+def check_m(m) -> int:
     if not (isinstance(m, (int, np.integer)) and 1 <= m <= 100_000):
         raise ParameterError("m", m, "an integer in [1, 100000]", "number of RK steps per period")
     return int(m)
@@ -210,11 +210,11 @@ def integrate(
     t = 0 for sites −N/2 … N/2−1.  w_left, w_right : fixed boundary strains (eq. fixedBCs), ignored
     if ``periodic``.  store_df : keep f′ at every stage, (m, s, N), for :func:`tangent_columns`.
     """
-    w0, wd0 = _check_state(w0, wd0)
+    w0, wd0 = check_state(w0, wd0)
     T = require_finite("T", T)
     if T <= 0:
         raise ParameterError("T", T, "T > 0")
-    m = _check_m(m)
+    m = check_m(m)
     w_left, w_right = require_finite("w_left", w_left), require_finite("w_right", w_right)
     N, s = w0.size, tableau.stages
     w, wd = np.empty(N), np.empty(N)

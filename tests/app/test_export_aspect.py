@@ -26,7 +26,7 @@ def test_the_square_frame_stays_square_in_a_wide_export():
     fig.y_range.start, fig.y_range.end = -1.2, 1.2
     mfig = Figure(figsize=(10, 3), dpi=100)
     ax = mfig.add_subplot(1, 1, 1)
-    export._draw_figure(ax, fig)
+    export.draw_figure(ax, fig)
     mfig.savefig(io.BytesIO(), format="png")  # drawn as the export draws it
     # the circle itself: its drawn width and height in pixels agree
     pts = ax.transData.transform(np.c_[np.cos(th), np.sin(th)])

@@ -53,6 +53,21 @@ LATE_OK: set[tuple[str, str]] = {
     # its exact expansion (mpmath at module level) with SymPy, only when a law is typed
     ("fpucore/law/expression.py", "from fpucore.law.expansion import expand"),
     ("fpucore/atlas/store.py", "import xarray"),
+    # smooth laws (typed text): SymPy for the exact derivatives and the expression tree, mpmath
+    # for the 30-digit checks of the representation, SciPy's brentq for the convex ends: only
+    # when a smooth law is built, not by `import fpucore` nor by polynomial/PL laws
+    ("fpucore/law/smooth_parse.py", "import sympy as sp"),
+    ("fpucore/law/smooth.py", "import sympy as sp"),
+    ("fpucore/law/smooth.py", "from fpucore.law.smooth_eval import UnsupportedNode, derivative"),
+    (
+        "fpucore/law/smooth.py",
+        "from fpucore.law.smooth_eval import UnsupportedNode, diagnose, to_node",
+    ),
+    ("fpucore/law/smooth.py", "import mpmath"),
+    ("fpucore/law/chebyshev.py", "import mpmath"),
+    ("fpucore/law/smooth_class.py", "import mpmath"),
+    ("fpucore/law/smooth_class.py", "from scipy.optimize import brentq"),
+    ("fpucore/law/smooth_tree.py", "import mpmath"),
     ("fpucore/atlas/store.py", "import zarr"),
     # the one place fpucore draws (fpu paper, Jupyter): HoloViews / Bokeh only when a figure is
     # plotted, never by `import fpucore` (test_fpucore_is_headless allows exactly these)
