@@ -6,6 +6,7 @@ the Riemann run's velocities stood for seconds under stabSW's parameter line).""
 from __future__ import annotations
 
 import html
+import re
 import time
 
 import pytest
@@ -51,6 +52,10 @@ def test_a_figure_after_a_figure_never_shows_a_result_under_the_others_stamp():
             assert "run: seeded" in stamp_of(status) and "V=5.2174919476" in stamp_of(status)
 
 
+def untimed(status: str) -> str:
+    return re.sub(r"server [0-9.]+ (ms|s)", "server …", status)
+
+
 def test_a_run_in_flight_names_its_parameters_while_the_last_result_keeps_its_own():
     ex = Explorer(lazy=True)
     ex.scene("paper").open("SWdyn")  # Gaussian, t_end = 200
@@ -65,6 +70,8 @@ def test_a_run_in_flight_names_its_parameters_while_the_last_result_keeps_its_ow
     in_flight = [s for s in seen if s[1]]
     assert in_flight, "no computing line was shown while the run was in flight"
     for status, _, computing in in_flight:
-        assert status == before  # the last result and its stamp, unchanged
+        # the last result and its stamp, unchanged (a repaint of it from the cache may time
+        # its own drawing anew: the server time is not part of the result)
+        assert untimed(status) == untimed(before)
         assert computing.startswith("computing … for ") and "t_end=150.0" in computing
     assert "t_end=150.0" in stamp_of(seen[-1][0]) and not seen[-1][1]

@@ -58,7 +58,7 @@ PAYLOADS = [
 LONG_PAYLOAD = ("<img src=x onerror=alert(1)>" * 179)[:5000]
 # every URL parameter but the atlas store, whose value is a path (any text below the server's
 # directory is a valid one): it gets its own loop below
-URL_NAMES = ("a", "b", "law", "w_plus", "V", "mode", "tab", "N", "tol", "hold", "fig")
+URL_NAMES = ("a", "b", "law", "w_plus", "V", "mode", "tab", "N", "tol", "hold", "fig", "sim", "run")
 
 #: every element of the page, through Bokeh's shadow roots: injected markup (an element whose
 #: attribute is an event handler, a javascript: URL or a payload's link, or a script that
