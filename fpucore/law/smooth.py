@@ -317,15 +317,17 @@ class SmoothLaw(HardeningSofteningLaw):
         return self._quadrature[1]
 
     # ----- constants
-    def with_constants(self, **values: float) -> SmoothLaw | HardeningSofteningLaw:
-        """The same text with some constants changed, e.g. ``law.with_constants(d=40)``."""
-        from fpucore.law.expression import law_from_expression
-
+    def with_constants(self, **values: float) -> SmoothLaw:
+        """The same text with some constants changed, e.g. ``law.with_constants(d=40)``: again a
+        smooth law (built here, not through :func:`~fpucore.law.law_from_expression`, which
+        builds this class: no import cycle), even where the new values make the text a
+        polynomial (then ``law_from_expression`` of the substituted text gives its exact
+        polynomial kernel)."""
         names = dict(self.constants)
         for k in values:
             if k not in names:
                 raise ParameterError(k, values[k], f"one of the law's constants {sorted(names)}")
-        return law_from_expression(self.text, {**names, **values})
+        return SmoothLaw(self.text, checked_constants({**names, **values}))
 
     @property
     def constants_dict(self) -> dict:
