@@ -257,7 +257,11 @@ class Explorer(pn.viewable.Viewer):
         st = self.state
         if "alpha" not in s:
             return f"**invalid law:** {md_literal(st.problem() or '')}"
-        if (s["w_lo"], s["w_hi"]) == (s["alpha"], s["beta"]):
+        same = all(  # the superkink range of the cubic is (α, β); a root finder's last ulp
+            math.isclose(s[k], s[e], rel_tol=1e-9, abs_tol=1e-12)  # is not another range
+            for k, e in (("w_lo", "alpha"), ("w_hi", "beta"))
+        )
+        if same:
             where = f"w₊ ∈ (α, β) = ({s['alpha']:.5g}, {s['beta']:.5g})"
         else:  # another law: w₋ must stay inside (α, β) too
             where = (

@@ -11,6 +11,7 @@ from __future__ import annotations
 import importlib
 import math
 import numbers
+from types import ModuleType
 from typing import Any
 
 
@@ -157,7 +158,7 @@ class MissingExtra(ImportError):
         return (type(self), (self.module, self.extra, self.needed_for))
 
 
-def import_extra(module: str, extra: str, needed_for: str):
+def import_extra(module: str, extra: str, needed_for: str) -> ModuleType:
     """``importlib.import_module(module)``, or :class:`MissingExtra` naming ``extra`` when the
     module (not one of its own imports) is missing."""
     try:

@@ -63,8 +63,10 @@ def split_law(text: str) -> tuple[str, dict[str, float]]:
                 raise ValueError
             consts[name] = float(value)
         except ValueError:
-            raise ParameterError("constants", _short(pair), CONSTANTS_VALID,
-                                 "not a name=value pair") from None  # fmt: skip
+            # named as the law the user typed (a URL's law=, the law box), the pair in the reason
+            raise ParameterError("law", _short(text), CONSTANTS_VALID,
+                                 f"{_short(pair)!r} after ';' is not a name=value "
+                                 "pair") from None  # fmt: skip
     return expr.strip(), consts
 
 

@@ -375,3 +375,20 @@ def open_law_box(page):
         page.wait_for_timeout(50)
     assert box.input_value(), "the law box was never filled with the current law"
     return box
+
+
+def law_box_refusal(page, typed: str, timeout: float = 60.0) -> str:
+    """After a law typed into the law box: wait (bounded) for the editor's refusal, which names
+    the typed text (as typed, or its repr, or its first characters when long) while the previous
+    law stays in the state; the refusal's text ("" if none came)."""
+    alert = page.locator(".law-refusal")
+    heads = {typed.strip()[:12], repr(typed.strip())[1:13]}
+    t_end = time.monotonic() + timeout
+    text = ""
+    while time.monotonic() < t_end:
+        if alert.count() and alert.first.is_visible():
+            text = " ".join(alert.first.inner_text().split())
+            if any(" ".join(h.split()) in text for h in heads):
+                return text
+        page.wait_for_timeout(100)
+    return text
