@@ -49,7 +49,7 @@ nitpicky = True
 nitpick_ignore_regex = [
     (r"py:.*", r"(numpy|np|scipy|numba|xarray|xr|zarr|dask|distributed)(\..*)?"),
     (r"py:.*", r"(holoviews|hv|bokeh|pandas|queue)(\..*)?"),
-    (r"py:.*", r"(collections\.abc|typing|concurrent\.futures|pathlib|os|multiprocessing)\..*"),
+    (r"py:.*", r"(collections\.abc|typing|types|concurrent\.futures|pathlib|os|multiprocessing)\..*"),
     (r"py:class", r"(NDArray|ArrayLike|Path|Callable|Sequence|Iterable|Iterator|Mapping|Any)"),
     (r"py:class", r"(TypeGuard|Self|IO|Protocol|ClassVar|Literal|NoReturn)"),
     (r"py:class", r"(optional|array|array_like|ndarray|float|int|str|bool|tuple|list|dict)"),

@@ -183,8 +183,9 @@ def work_clock() -> float:
     their path by the time left.  On the wall clock that path depended on the machine's load:
     at load 20 on 2 cores the paper's flat top (V_SK − 9.5e-12, 15 s of work) took 301 s and
     ran out of its 300 s in the start wave of the plateau route (a different, unconverged
-    answer).  The work runs on this thread (one BLAS/Numba thread, :mod:`fpucore.parallel.
-    threads`); with more threads the budget counts this thread's share only."""
+    answer).  The work runs on this thread (one BLAS/Numba thread,
+    :mod:`fpucore.parallel.threads`); with more threads the budget counts this thread's share
+    only."""
     return time.thread_time()
 
 

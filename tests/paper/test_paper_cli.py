@@ -3,6 +3,7 @@ with the comparison table, the cache a re-run reuses, the time budget, bad input
 
 from __future__ import annotations
 
+import json
 import re
 import xml.etree.ElementTree as ET
 from html.parser import HTMLParser
@@ -132,7 +133,9 @@ def test_time_budget_stops_between_figures(tmp_path, capsys):
             "--figure", "superkink", "--figure", "cubic"]  # fmt: skip
     assert main(argv) == 0
     cap = capsys.readouterr()
-    assert "1/2 figures" in cap.out and "not computed within the time budget" in cap.err
+    # --json: stdout is the JSON alone, the summary is for people (stderr)
+    assert "1/2 figures" in cap.err and "not computed within the time budget" in cap.err
+    assert json.loads(cap.out)["missing"]
 
 
 @pytest.mark.slow
