@@ -377,18 +377,16 @@ def open_law_box(page):
     return box
 
 
-def law_box_refusal(page, typed: str, timeout: float = 60.0) -> str:
-    """After a law typed into the law box: wait (bounded) for the editor's refusal, which names
-    the typed text (as typed, or its repr, or its first characters when long) while the previous
-    law stays in the state; the refusal's text ("" if none came)."""
-    alert = page.locator(".law-refusal")
-    heads = {typed.strip()[:12], repr(typed.strip())[1:13]}
-    t_end = time.monotonic() + timeout
+def law_box_refusal(page, previous: str = "", timeout: float = 60.0) -> str:
+    """After a law typed into the law box: wait (bounded) for the editor's refusal (the previous
+    law stays in the state); its text, read inside the Alert's shadow root ("" if none came).
+    ``previous``: the refusal shown before the text was typed, waited out for up to 15 s (two
+    texts may be refused with the same words)."""
+    t0 = time.monotonic()
     text = ""
-    while time.monotonic() < t_end:
-        if alert.count() and alert.first.is_visible():
-            text = " ".join(alert.first.inner_text().split())
-            if any(" ".join(h.split()) in text for h in heads):
-                return text
+    while time.monotonic() < t0 + timeout:
+        text = " ".join(" ".join(page.locator(".law-refusal p").all_inner_texts()).split())
+        if "law refused" in text and (text != previous or time.monotonic() > t0 + 15):
+            return text
         page.wait_for_timeout(100)
     return text
