@@ -38,6 +38,8 @@ from fpucore.atlas.store import (
     open_existing,
     read_done,
     skeleton,
+    xarray_module,
+    zarr_module,
 )
 from fpucore.budget import require_time_budget
 from fpucore.errors import ParameterError, require_tol
@@ -236,6 +238,9 @@ def run(
     for text in notes:
         if note is not None:
             note(text)
+    if out is not None:  # a store needs the atlas extra: refused before any point is timed
+        xarray_module()
+        zarr_module()
     if estimate:  # measured before the store exists: a refused run leaves nothing behind
         base = {"law": law, "kind": grid.kind, "N": None if N is None else int(N),
                 "tol": float(tol), "floquet": bool(floquet), "finite_size": bool(finite_size),
