@@ -165,8 +165,27 @@ def c_minus_sonic(law, w_plus: float) -> tuple[float, float]:
     return math.sqrt(sl[k]), float(far[k])
 
 
+class EqualAreaChecked(Result):
+    """Status of a result whose check is the equal-area driving force (eq. zero_G), at
+    round-off when converged; subclasses carry ``driving_force``."""
+
+    driving_force: float  # a field of each (dataclass) subclass
+
+    @property
+    def converged(self) -> bool:
+        return bool(self.driving_force <= 1e-11)
+
+    @property
+    def status(self) -> str:
+        return status_of(self.converged)
+
+    @property
+    def message(self) -> str:
+        return "" if self.converged else "equal-area residual above round-off"
+
+
 @dataclass(frozen=True)
-class PLSpeeds(Result):
+class PLSpeeds(EqualAreaChecked):
     """c₊ (eq. cplus), V_SK and w₋ (eqs. Rline, zero_G), c₋ and w₋ˢ (eq. cminus) in closed
     form for a PL law.  ``driving_force``: |G(w₊, w₋)|/(f-scale · |Δ|) from the law's Φ, an a
     posteriori round-off check."""
@@ -184,17 +203,6 @@ class PLSpeeds(Result):
     ERROR_FIELDS: ClassVar = ("driving_force",)
     DERIVED: ClassVar = ("converged", "status", "message")
 
-    @property
-    def converged(self) -> bool:
-        return bool(self.driving_force <= 1e-11)
-
-    @property
-    def status(self) -> str:
-        return status_of(self.converged)
-
-    @property
-    def message(self) -> str:
-        return "" if self.converged else "equal-area residual above round-off"
 
 
 def speeds(law, w_plus: float) -> PLSpeeds:

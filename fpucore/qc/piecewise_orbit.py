@@ -40,6 +40,7 @@ import numpy as np
 from fpucore.errors import ParameterError, fmt_interval, require_finite
 from fpucore.qc.piecewise import (
     EPS,
+    EqualAreaChecked,
     require_state,
     speeds,
     w_S,
@@ -320,7 +321,7 @@ def solitary(law, w_plus: float, V: float) -> PLSolitary:
 
 
 @dataclass(frozen=True)
-class PLSuperkink(Result):
+class PLSuperkink(EqualAreaChecked):
     """QC superkink of a PL law: w₊ ahead, w₋ behind, V = V_SK, w(0) = (w₊ + w₋)/2; the arcs
     toward w₊ (ξ > 0) and toward w₋ (ξ < 0)."""
 
@@ -366,17 +367,6 @@ class PLSuperkink(Result):
         out[~pos] = -_evaluate(list(self.arcs_minus), -xi[~pos], derivative=True)
         return out
 
-    @property
-    def converged(self) -> bool:
-        return bool(self.driving_force <= 1e-11)
-
-    @property
-    def status(self) -> str:
-        return status_of(self.converged)
-
-    @property
-    def message(self) -> str:
-        return "" if self.converged else "equal-area residual above round-off"
 
 
 def superkink(law, w_plus: float) -> PLSuperkink:
