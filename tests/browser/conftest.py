@@ -82,19 +82,17 @@ def server():
 
 
 @pytest.fixture(scope="session")
-def browser():
-    sync_api = pytest.importorskip("playwright.sync_api")
+def browser(playwright):
     profile = tempfile.mkdtemp(prefix="fpu-chromium-")
-    with sync_api.sync_playwright() as p:
-        ctx = p.chromium.launch_persistent_context(
-            profile,
-            executable_path=CHROMIUM,
-            args=CHROMIUM_ARGS,
-            headless=True,
-            viewport={"width": 1500, "height": 1000},
-        )
-        yield ctx
-        ctx.close()
+    ctx = playwright.chromium.launch_persistent_context(
+        profile,
+        executable_path=CHROMIUM,
+        args=CHROMIUM_ARGS,
+        headless=True,
+        viewport={"width": 1500, "height": 1000},
+    )
+    yield ctx
+    ctx.close()
     shutil.rmtree(profile, ignore_errors=True)
 
 

@@ -93,27 +93,25 @@ def served(site):
 @pytest.mark.browser
 @pytest.mark.skipif(not Path(CHROMIUM).exists(), reason="make browser installs chromium")
 @pytest.mark.parametrize("page", ["index.html", "gallery/Riemann1.html"])
-def test_pages_load_nothing_from_another_host(served, page):
-    sync_api = pytest.importorskip("playwright.sync_api")
+def test_pages_load_nothing_from_another_host(served, page, playwright):
     host = urllib.parse.urlparse(served).netloc
     requests: list[str] = []
-    with sync_api.sync_playwright() as p:
-        browser = p.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_ARGS, headless=True)
-        try:
-            pg = browser.new_page()
-            pg.on("request", lambda r: requests.append(r.url))
-            # a request elsewhere is recorded, then refused (no waiting on a network that is
-            # not there)
-            pg.route("**/*", lambda route: route.continue_()
-                     if urllib.parse.urlparse(route.request.url).netloc == host
-                     else route.abort())  # fmt: skip
-            pg.goto(f"{served}/{page}", wait_until="networkidle")
-            broken = pg.evaluate(
-                "[...document.images].filter(i => !(i.complete && i.naturalWidth > 0))"
-                ".map(i => i.src)"
-            )
-        finally:
-            browser.close()
+    browser = playwright.chromium.launch(
+        executable_path=CHROMIUM, args=CHROMIUM_ARGS, headless=True
+    )
+    try:
+        pg = browser.new_page()
+        pg.on("request", lambda r: requests.append(r.url))
+        # a request elsewhere is recorded, then refused (no waiting on a network that is not there)
+        pg.route("**/*", lambda route: route.continue_()
+                 if urllib.parse.urlparse(route.request.url).netloc == host
+                 else route.abort())  # fmt: skip
+        pg.goto(f"{served}/{page}", wait_until="networkidle")
+        broken = pg.evaluate(
+            "[...document.images].filter(i => !(i.complete && i.naturalWidth > 0)).map(i => i.src)"
+        )
+    finally:
+        browser.close()
     foreign = [u for u in requests if urllib.parse.urlparse(u).netloc not in (host,)
                and not u.startswith(("data:", "blob:"))]  # fmt: skip
     assert not foreign, f"{page} requests other hosts: {foreign}"

@@ -101,8 +101,7 @@ def test_cli_and_headless_import_outside_the_repository(installed):
     print(f"\n[wheel] import fpucore {dt:.2f} s")
 
 
-def test_fpu_serve_answers_and_shows_the_papers_thumbnails(installed):
-    sync_api = pytest.importorskip("playwright.sync_api")
+def test_fpu_serve_answers_and_shows_the_papers_thumbnails(installed, playwright):
     if not Path(CHROMIUM).exists():
         pytest.skip(f"{CHROMIUM} missing (make browser installs it)")
     bin_, _, tmp = installed
@@ -125,8 +124,8 @@ def test_fpu_serve_answers_and_shows_the_papers_thumbnails(installed):
                 pass
             assert time.monotonic() < t_end, "fpu serve: no /liveness within 600 s"
             time.sleep(0.5)
-        with sync_api.sync_playwright() as p:
-            browser = p.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_ARGS)
+        browser = playwright.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_ARGS)
+        try:
             page = browser.new_page(viewport={"width": 1500, "height": 1000})
             page.goto(f"{url}/main?tab=paper", timeout=120_000)
             imgs = page.locator(".paper-thumb img")
@@ -134,6 +133,7 @@ def test_fpu_serve_answers_and_shows_the_papers_thumbnails(installed):
             assert imgs.count() == 17
             srcs = [imgs.nth(k).get_attribute("src") for k in range(17)]
             assert all(s.startswith("data:image/png;base64,") for s in srcs)
+        finally:
             browser.close()
     finally:
         proc.terminate()
