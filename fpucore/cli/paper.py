@@ -1,7 +1,8 @@
 """``fpu paper``: the paper's figures, computed and compared with the printed numbers.
 
     fpu paper --list                                   # the 17 figures by LaTeX label
-    fpu paper --figure pplane --out pplane.html        # one figure (.html, .svg or .png)
+    fpu paper --figure pplane --out pplane.html        # one figure with its comparison rows
+    fpu paper --figure pplane --out pplane.svg         # the figure alone (.svg or .png)
     fpu paper --figure pplane --out pplane.ipynb       # its notebook (runs top to bottom)
     fpu paper --out report.html                        # all figures + comparison table, offline
     fpu paper --table docs/paper_comparison.md         # the comparison table (Markdown + .json)
@@ -127,11 +128,12 @@ def run(args) -> int:
     kept = "the computed figures are cached: rerun to write" if not args.no_cache else ""
     if args.out is not None:
         with output_file(args.out, "--out", kept) as tmp:
-            if len(labels) == 1 and results:
-                plot.save(results[0], tmp)
-            else:
-                plot.report_html(results, FIGURES, tmp,
-                                 "The paper, figure by figure — fpu-explorer", summary)  # fmt: skip
+            if len(labels) == 1 and results and not args.out.lower().endswith(".html"):
+                plot.save(results[0], tmp)  # .svg / .png: the figure alone
+            else:  # HTML: the figure(s) with caption, notes and the comparison table
+                title = (f"Fig. {FIGURES[labels[0]].number} ({labels[0]}) — fpu-explorer"
+                         if len(labels) == 1 else "The paper, figure by figure — fpu-explorer")
+                plot.report_html(results, FIGURES, tmp, title, summary)
         print(f"wrote {args.out}", file=people)
     if args.table is not None:
         json_path = Path(args.table_json or Path(args.table).with_suffix(".json"))

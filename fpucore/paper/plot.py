@@ -35,9 +35,23 @@ def ui():
     import holoviews as hv
     from bokeh import models
     from bokeh.embed import file_html
-    from bokeh.resources import INLINE
+    from bokeh.resources import Resources
 
-    return hv, INLINE, file_html, models
+    class SelfContained(Resources):
+        """Bokeh's inline resources without the files that models *declare* (``__javascript__``,
+        ``__css__`` of every registered model class, used or not): importing HoloViews registers
+        Panel's ESM model, whose shim is a server path ("static/extensions/panel/...") — a page
+        opened from disk fails to fetch it (net::ERR_FILE_NOT_FOUND).  These plots use none."""
+
+        def _collect_external_resources(self, resource_attr):  # type: ignore[no-untyped-def]
+            return []
+
+        def clone(self, *, components=None):  # type: ignore[no-untyped-def]
+            copy = super().clone(components=components)  # Bokeh's bundle clones: keep the class
+            copy.__class__ = type(self)
+            return copy
+
+    return hv, SelfContained(mode="inline"), file_html, models
 
 
 def _load(hv, backend: str) -> None:
