@@ -3,7 +3,9 @@
 kernels (Numba: shifted rows, exact deflation)  →  monodromy (𝓜 from the tangent flow,
 its multipliers)  →  reversible_kernels → reversible (the quarter-size route of reversible
 waves)  →  structured_kernels → arnoldi_kernels → structured (the half-size symplectic route)
-→  multipliers (FloquetResult: spectrum, error bars, verdict)
+→  spectrum_steps (prepare, monodromy pair, eigen-solve, error bars, convergence: one typed
+function each)  →  multipliers (FloquetResult: spectrum = those steps, the finite-size window
+and the verdict)
 →  checks (quartet symmetry, homogeneous closed form, phonon gap)  →  finite_size (is an
 excess |μ| − 1 an artefact of the finite ring?)  →  decision (the one Decision record and its
 words)  →  energy (extrema of E_ren(V) along solitary families, where stability may change)
