@@ -206,31 +206,60 @@ def spectrum(
     method: str = DEFAULT_METHOD,
     progress: Callable[[str, float], None] | None = None,
 ) -> FloquetResult:
-    """Floquet multipliers of the traveling wave r (from ``wave.solve_superkink/solve_solitary``,
-    or a :class:`HomogeneousState`), with their error bars and the trivial cluster at 1.
+    """Floquet multipliers of the traveling wave r (paper §6, eq. linear_map), with their error
+    bars, the trivial cluster at 1 and the stability decision.
 
-    m : RK steps per period for the tangent integration (default: max(r.m, h·ω_max ≤ 0.12)).
-    trivial_radius : radius of the disc around μ = 1 counted as the trivial (symmetry) cluster;
-    default min(phonon_gap/10, max(1e-6, 100 √ε)), ε = max(error bar, wave residual) (a Jordan
-    block perturbed by ε splits by ~√ε; typically 1e-4), phonon_gap = distance from 1 of the
-    nearest continuous-spectrum multiplier of the end states (:func:`phonon_gap`).
-    check : also build 𝓜 with 2m steps and report ‖𝓜_m − 𝓜_2m‖ as integrator_error.
-    finite_size : when max|μ| − 1 exceeds the error bar, also compute the spectrum of the same
-    wave on the window of five shorter rings in [N/2, N] (structured route, shortest first,
-    stopping once an absent excess or a dip has decided it) and decide
-    (:mod:`fpucore.floquet.finite_size`).  False: no extra spectra; an excess beyond the error
-    bar is then "undetermined" and the verdict says which test was not run.
-    method : "structured" (:data:`DEFAULT_METHOD`: half-size structure-preserving route,
-    :mod:`fpucore.floquet.structured`:
-    elliptic multipliers exactly on the circle; its error bar comes from the measured
-    non-symplecticity and the dropped isotropy defect, ``structure_error``, instead of the
-    quartet symmetry; a base state with a centre of reflection, :func:`reversor_of`, takes
-    the quarter-size reversible route, :mod:`fpucore.floquet.reversible`) or "dense" (LAPACK
-    dgeev on the deflated (2N−2)² block, the reference).  The finite-size spectra on the shorter
-    rings always use "structured".
-    progress : ``progress(stage, fraction)`` at each step: ("Floquet spectrum", 0 → 1: the
-    monodromy, its check, the eigenvalues), then ("shorter rings", k / number of rings) while
-    the finite-size window is computed.
+    The steps (:mod:`fpucore.floquet.spectrum_steps`): prepare the base state → the monodromy 𝓜
+    (and 𝓜 with 2m steps) → its 2N eigenvalues → error bars and the trivial cluster →
+    convergence checks → the finite-size window (:func:`finite_size_window`) → the verdict
+    (:func:`fpucore.floquet.decision.decide`).
+
+    Parameters
+    ----------
+    r : WaveResult or HomogeneousState
+        The base state: a wave from ``wave.solve_superkink`` / ``wave.solve_solitary`` (N sites,
+        strains ``w`` (N,), rates ``wdot`` (N,), velocity V > 0) or a constant state.
+    m : int, optional
+        RK steps per period T = 1/V of the tangent integration, in [2, 20000]; default
+        max(r.m, h·ω_max ≤ 0.12).
+    trivial_radius : float, optional
+        Radius (dimensionless, in the μ plane) of the disc around μ = 1 counted as the trivial
+        (symmetry) cluster; default min(phonon_gap/10, max(1e-6, 100 √ε)),
+        ε = max(error bar, wave residual) (a Jordan block perturbed by ε splits by ~√ε;
+        typically 1e-4), phonon_gap = distance from 1 of the nearest continuous-spectrum
+        multiplier of the end states (:func:`phonon_gap`).
+    check : bool
+        Also build 𝓜 with 2m steps and report ‖𝓜_m − 𝓜_2m‖₂ as ``integrator_error``.
+    finite_size : bool
+        When max|μ| − 1 exceeds the error bar, also compute the spectrum of the same wave on the
+        window of five shorter rings in [N/2, N] (structured route, shortest first, stopping
+        once an absent excess or a dip has decided it) and decide
+        (:mod:`fpucore.floquet.finite_size`).  False: no extra spectra; an excess beyond the
+        error bar is then "undetermined" and the verdict says which test was not run.
+    method : {"structured", "dense"}
+        "structured" (:data:`DEFAULT_METHOD`: the half-size structure-preserving route,
+        :mod:`fpucore.floquet.structured`: elliptic multipliers exactly on the circle; its error
+        bar comes from the measured non-symplecticity and the dropped isotropy defect,
+        ``structure_error``, instead of the quartet symmetry; a base state with a centre of
+        reflection, :func:`reversor_of`, takes the quarter-size reversible route,
+        :mod:`fpucore.floquet.reversible`) or "dense" (LAPACK dgeev on the deflated (2N−2)²
+        block, the reference).  The spectra on the shorter rings always use "structured".
+    progress : callable, optional
+        ``progress(stage, fraction)`` at each step: ("Floquet spectrum", 0 → 1: the monodromy,
+        its check, the eigenvalues), then ("shorter rings", k / number of rings) while the
+        finite-size window is computed.
+
+    Returns
+    -------
+    FloquetResult
+        ``multipliers`` (2N,) complex, ``error`` (absolute bar of |μ|), ``decision`` /
+        ``classification`` / ``verdict``, wall times in s (see :class:`FloquetResult`).
+
+    Raises
+    ------
+    ParameterError
+        A bad ``method``, ``m`` or ``trivial_radius``, a base state that cannot be integrated
+        (see :func:`fpucore.floquet.monodromy.base_state`) or a non-finite monodromy.
     """
     t0 = time.perf_counter()
     report = progress if progress is not None else (lambda stage, x: None)
