@@ -30,7 +30,7 @@ import time
 import numpy as np
 
 from fpucore import atlas, floquet, wave
-from fpucore.atlas import solve_chunk
+from fpucore.atlas import ChunkTask, FloquetOptions, solve_chunk
 from fpucore.law import CubicLaw
 from fpucore.parallel import Executor, apply_thread_policy
 
@@ -39,9 +39,15 @@ LAW = CubicLaw(-1.0, 10.0)
 
 def warm(ex: Executor, N: int) -> None:
     """Load the JIT cache in every worker (one small point each), so timings are steady."""
-    task = {"law": LAW, "kind": "superkink", "row": "lower", "V": [5.5], "N": N,
-            "tol": 1e-12, "floquet": True, "m": None, "continuation": True,
-            "floquet_method": "structured"}  # fmt: skip
+    task = ChunkTask(
+        LAW,
+        "superkink",
+        N=N,
+        tol=1e-12,
+        floquet=FloquetOptions(True, method="structured"),
+        row="lower",
+        V=(5.5,),
+    )
     jobs = [ex.submit(solve_chunk, task) for _ in range(max(1, ex.workers))]
     for j in jobs:
         j.result(timeout=600)
@@ -136,9 +142,17 @@ def cold_sweep(N: int, nV: int, caller_runs: bool, method: str = "structured") -
     method: the spectra's eigenvalue route (the sweep's default "structured", or "dense")."""
     V = np.linspace(4.9, 5.8, nV)
     apply_thread_policy(1)
-    solve_chunk({"law": LAW, "kind": "superkink", "row": "lower", "V": [5.5], "N": 64,
-                 "tol": 1e-12, "floquet": True, "m": None, "continuation": True,
-                 "floquet_method": method})  # fmt: skip
+    solve_chunk(
+        ChunkTask(
+            LAW,
+            "superkink",
+            N=64,
+            tol=1e-12,
+            floquet=FloquetOptions(True, method=method),
+            row="lower",
+            V=(5.5,),
+        )
+    )
     d0, c0, t0 = descendants_cpu(), time.process_time(), time.perf_counter()
     kw = dict(N=N, use_cache=False, method=method)
     if caller_runs:

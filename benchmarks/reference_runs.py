@@ -209,15 +209,22 @@ def same(a, b) -> bool:
 
 def renamed(name: str, r: dict) -> dict:
     """The reference's values of run ``name`` under today's names (:data:`RENAMED`: every key
-    renamed at once, by its first matching rule; a reference saved after a rename has no old
-    key, so nothing changes)."""
+    renamed at once, by its first matching rule).  A reference saved after a rename has its
+    values under today's names already: a key whose new name it holds too is today's own key
+    (a family's ``converged`` beside its ``wave_converged``, a sweep row's ``converged`` beside
+    its ``floquet_converged``), not an old name, and keeps its name — unless that new name is
+    itself an old one renamed away (an old sweep row's ``wave_converged`` → ``converged`` →
+    ``floquet_converged``)."""
     rules = [(re.compile(old), new) for runs, old, new in RENAMED if re.search(runs, name)]
+
+    def new_name(k: str) -> str | None:
+        return next((old.sub(new, k) for old, new in rules if old.search(k)), None)
+
     out = {}
     for k, v in r.items():
-        for old, new in rules:
-            if old.search(k):
-                k = old.sub(new, k)
-                break
+        target = new_name(k)
+        if target is not None and not (target in r and new_name(target) is None):
+            k = target  # an old name (its new name is free, or itself renamed away)
         out[k] = v
     return out
 

@@ -2,10 +2,11 @@
 (w₊, V) or along the superkink velocities, on a local process pool or a Dask cluster; sweeps
 of the Floquet spectrum along a family are one-row atlases.
 
-grid (rows × V, chunks = runs of V along a row)  →  point (one chunk on a worker: continuation
-in grid order, wave + spectrum → records named as the CLI's JSON fields)  →  store (Zarr,
-written chunk by chunk, locked, resumable)  →  run (submit through fpucore.parallel, gather,
-AtlasResult)  →  reader (a store or a run's table as AtlasData: typed arrays, no layout
+grid (rows × V, chunks = runs of V along a row)  →  point (one ChunkTask on a worker:
+continuation in grid order, wave + spectrum → records read from the results' as_dict, named as
+the CLI's JSON fields)  →  store (Zarr, written chunk by chunk, locked, resumable)  →  execute
+(the chunks' tasks submitted through fpucore.parallel, gathered into the table)  →  run (checks,
+plan, AtlasResult)  →  reader (a store or a run's table as AtlasData: typed arrays, no layout
 names)  →  sweeps (max|μ| along V: one row, cached by its inputs and the code).  In use::
 
     res = atlas.run(CubicLaw(-1, 10), "solitary", rows="0.2:6.5:40", V=40, N=500,
@@ -15,7 +16,7 @@ names)  →  sweeps (max|μ| along V: one row, cached by its inputs and the code
 """
 
 from fpucore.atlas.grid import Grid, make_grid, parse_values, velocity_span
-from fpucore.atlas.point import FIELDS, solve_chunk
+from fpucore.atlas.point import FIELDS, ChunkTask, FloquetOptions, solve_chunk
 from fpucore.atlas.reader import AtlasData, atlas_data, open_atlas
 from fpucore.atlas.run import AtlasResult, run
 from fpucore.atlas.store import StoreLock
@@ -27,6 +28,8 @@ __all__ = [
     "parse_values",
     "velocity_span",
     "FIELDS",
+    "ChunkTask",
+    "FloquetOptions",
     "solve_chunk",
     "AtlasResult",
     "run",

@@ -12,12 +12,12 @@ an estimate, not a bound).
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from fpucore.atlas.grid import Grid
-from fpucore.atlas.point import solve_chunk
+from fpucore.atlas.point import ChunkTask, solve_chunk
 from fpucore.errors import ParameterError
 
 PROBE_POINTS = 2
@@ -54,10 +54,10 @@ def duration(s: float) -> str:
     return f"{s / 86400:.1f} days"
 
 
-def measure(grid: Grid, done: np.ndarray, task: dict, workers: int) -> Estimate:
-    """Time :data:`PROBE_POINTS` points of the first row with points to do (``task``: the
-    chunk task of that row, as :func:`fpucore.atlas.point.solve_chunk` takes it, without V) and
-    extrapolate to the points not ``done`` over ``workers`` processes."""
+def measure(grid: Grid, done: np.ndarray, task: ChunkTask, workers: int) -> Estimate:
+    """Time :data:`PROBE_POINTS` points of the first row with points to do (``task``: the run's
+    chunk task, placed on each probe point) and extrapolate to the points not ``done`` (bool,
+    ``grid.shape``) over ``workers`` processes."""
     t0 = time.perf_counter()
     n_todo = int(grid.size - done.sum())
     rows = [i for i in range(grid.shape[0]) if not done[i].all()]
@@ -67,8 +67,7 @@ def measure(grid: Grid, done: np.ndarray, task: dict, workers: int) -> Estimate:
         js = np.flatnonzero(~done[i])[:PROBE_POINTS]
         for j in js:  # one by one: the last one timed is warm (kernels loaded)
             t = time.perf_counter()
-            solve_chunk({**task, "row": grid.rows[i], "V": [float(grid.V[j])],
-                         "continuation": False})  # fmt: skip
+            solve_chunk(replace(task.at(grid, i, j, j + 1), continuation=False))
             per_point = time.perf_counter() - t
     w = max(1, int(workers))
     return Estimate(grid.size, n_todo, w, per_point, n_todo * per_point / w,

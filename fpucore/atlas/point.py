@@ -1,10 +1,13 @@
 """One chunk of the atlas, computed on a worker: the waves along a run of V (continuation from
 the converged neighbour, in grid order) and, on request, their Floquet spectra.
 
-Each point becomes a record whose keys are :data:`FIELDS` — the names of the CLI's JSON fields
-(``fpu wave … --json`` for the wave, ``fpu floquet … --json`` for the spectrum, where the
-spectrum's ``error`` is stored as ``max_modulus_error`` and its ``integrator_error`` as
-``floquet_integrator_error``, the wave having fields of those names).  ``status``:
+A worker gets one :class:`ChunkTask` (the run's settings, its :class:`FloquetOptions`, the row
+and the velocities) and returns one record per point.  A record's keys are :data:`FIELDS`, read
+from the results' ``as_dict()`` (the result protocol, :mod:`fpucore.result`) as :data:`COLUMNS`
+says — the names of the CLI's JSON fields (``fpu wave … --json`` for the wave, ``fpu floquet …
+--json`` for the spectrum, where the spectrum's ``error`` is stored as ``max_modulus_error``,
+its ``integrator_error`` as ``floquet_integrator_error``, its ``converged`` as
+``floquet_converged``, the wave having fields of those names).  ``status``:
 
 * ``"ok"``            — wave converged (and its spectrum, with ``floquet``);
 * ``"not_converged"`` — the solver finished without meeting its check (``message`` says why);
@@ -23,60 +26,157 @@ from __future__ import annotations
 import math
 import time
 import traceback
-from typing import TYPE_CHECKING
+from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 from fpucore.errors import ParameterError
 from fpucore.floquet.finite_size import SENTENCE_CHARS
-from fpucore.floquet.multipliers import spectrum
+from fpucore.floquet.multipliers import DEFAULT_METHOD, FloquetResult, spectrum
 from fpucore.wave import solve_solitary, solve_superkink
 from fpucore.wave.continuation import solve_from_neighbour
+from fpucore.wave.driver import WaveResult
 from fpucore.wave.setup import spec_of
 
 if TYPE_CHECKING:
     from collections.abc import Callable
 
-# name → (numpy dtype, fill value of a point not computed)
-FIELDS: dict[str, tuple[str, object]] = {
-    "status": ("<U16", ""),
-    "message": ("<U512", ""),
-    "kind": ("<U16", ""),
-    "converged": ("bool", False),
-    "amplitude": ("f8", math.nan),
-    "energy": ("f8", math.nan),
-    "residual": ("f8", math.nan),
-    "dropped_residual": ("f8", math.nan),
-    "tail_error": ("f8", math.nan),
-    "integrator_error": ("f8", math.nan),
-    "qc_max_deviation": ("f8", math.nan),
-    "profile_error": ("f8", math.nan),
-    "amplitude_error": ("f8", math.nan),
-    "energy_error": ("f8", math.nan),
-    "N": ("i8", -1),
-    "iterations": ("i8", -1),
-    "wave_elapsed_s": ("f8", math.nan),
-    "max_modulus": ("f8", math.nan),
-    "max_modulus_away_from_1": ("f8", math.nan),
-    "max_modulus_error": ("f8", math.nan),
-    "symmetry_error": ("f8", math.nan),
-    "floquet_integrator_error": ("f8", math.nan),
-    "n_unstable": ("i8", -1),
-    "n_trivial": ("i8", -1),
-    "trivial_split": ("f8", math.nan),
+    from fpucore.atlas.grid import Grid
+    from fpucore.law.base import HardeningSofteningLaw
+    from fpucore.wave.setup import Spec
+
+
+@dataclass(frozen=True)
+class FloquetOptions:
+    """What each point's spectrum is asked for (:func:`fpucore.floquet.spectrum`).
+
+    enabled : compute the spectrum of every converged wave.  finite_size : with the spectrum's
+    finite-size test (its classification).  method : the eigenvalue route, "structured" |
+    "dense".  m : RK steps per period of the tangent integration (None: automatic)."""
+
+    enabled: bool = False
+    finite_size: bool = True
+    method: str = DEFAULT_METHOD
+    m: int | None = None
+
+    def spectrum(self, r: WaveResult) -> FloquetResult:
+        """The spectrum of the wave ``r`` with these options."""
+        return spectrum(r, m=self.m, finite_size=self.finite_size, method=self.method)
+
+
+@dataclass(frozen=True)
+class ChunkTask:
+    """One chunk of an atlas, as a worker computes it: the points ``V`` along one row, and where
+    their records go in the grid (``row_index``, ``start``: the column of ``V[0]``).  The same
+    record, without row and V, describes every chunk of a run (:meth:`at` places it).
+
+    law : the force law.  kind : "solitary" | "superkink".  row : w₊ (solitary) or the branch
+    (superkink).  V : velocities, in grid order.  N : chain size (None: automatic per point).
+    tol : Newton tolerance.  floquet : the spectra's options.  continuation : each point from
+    its converged neighbour (else from the QC guess)."""
+
+    law: HardeningSofteningLaw
+    kind: str
+    N: int | None
+    tol: float
+    floquet: FloquetOptions = FloquetOptions()
+    continuation: bool = True
+    row: Any = None
+    V: tuple[float, ...] = ()
+    row_index: int = 0
+    start: int = 0
+
+    @property
+    def stop(self) -> int:
+        """The grid column after the chunk's last point."""
+        return self.start + len(self.V)
+
+    def at(self, grid: Grid, i: int, j0: int, j1: int) -> ChunkTask:
+        """This task for the chunk of row ``i``, columns ``j0:j1`` of ``grid``."""
+        return replace(self, row=grid.rows[i], V=tuple(float(v) for v in grid.V[j0:j1]),
+                       row_index=int(i), start=int(j0))  # fmt: skip
+
+
+class Column(NamedTuple):
+    """One field of a point's record (one variable of the store): its dtype, the fill of a point
+    not computed, and where its value comes from — ``source`` "point" (the chunk's own: status,
+    message, total time), "wave" (:class:`~fpucore.wave.driver.WaveResult`) or "floquet"
+    (:class:`~fpucore.floquet.FloquetResult`), under the key ``key`` of that result's
+    ``as_dict()`` (the result protocol; "a.b" reads the nested record ``a``)."""
+
+    dtype: str
+    fill: object
+    source: str
+    key: str
+
+
+def _wave(dtype: str, fill: object, key: str) -> Column:
+    return Column(dtype, fill, "wave", key)
+
+
+def _floquet(dtype: str, fill: object, key: str) -> Column:
+    return Column(dtype, fill, "floquet", key)
+
+
+NAN = math.nan
+# record name → Column: the one list of a record's fields, in store order
+COLUMNS: dict[str, Column] = {
+    "status": Column("<U16", "", "point", "status"),
+    "message": Column("<U512", "", "point", "message"),
+    "kind": _wave("<U16", "", "kind"),
+    "converged": _wave("bool", False, "converged"),
+    "amplitude": _wave("f8", NAN, "amplitude"),
+    "energy": _wave("f8", NAN, "energy"),
+    "residual": _wave("f8", NAN, "residual"),
+    "dropped_residual": _wave("f8", NAN, "dropped_residual"),
+    "tail_error": _wave("f8", NAN, "tail_error"),
+    "integrator_error": _wave("f8", NAN, "integrator_error"),
+    "qc_max_deviation": _wave("f8", NAN, "qc_max_deviation"),
+    "profile_error": _wave("f8", NAN, "profile_error"),
+    "amplitude_error": _wave("f8", NAN, "amplitude_error"),
+    "energy_error": _wave("f8", NAN, "energy_error"),
+    "N": _wave("i8", -1, "N"),
+    "iterations": _wave("i8", -1, "iterations"),
+    "wave_elapsed_s": _wave("f8", NAN, "elapsed_s"),
+    "max_modulus": _floquet("f8", NAN, "max_modulus"),
+    "max_modulus_away_from_1": _floquet("f8", NAN, "max_modulus_away_from_1"),
+    "max_modulus_error": _floquet("f8", NAN, "error"),
+    "symmetry_error": _floquet("f8", NAN, "symmetry_error"),
+    "floquet_integrator_error": _floquet("f8", NAN, "integrator_error"),
+    "n_unstable": _floquet("i8", -1, "n_unstable"),
+    "n_trivial": _floquet("i8", -1, "n_trivial"),
+    "trivial_split": _floquet("f8", NAN, "trivial_split"),
     # the decision's sentence (fpucore.floquet.finite_size.Decision: at most SENTENCE_CHARS)
-    "verdict": (f"<U{SENTENCE_CHARS}", ""),
-    "classification": ("<U32", ""),
-    "headline": ("<U64", ""),
-    "floquet_converged": ("bool", False),
-    "floquet_elapsed_s": ("f8", math.nan),
-    "elapsed_s": ("f8", math.nan),
+    "verdict": _floquet(f"<U{SENTENCE_CHARS}", "", "verdict"),
+    "classification": _floquet("<U32", "", "classification"),
+    "headline": _floquet("<U64", "", "decision.headline"),
+    "floquet_converged": _floquet("bool", False, "converged"),
+    "floquet_elapsed_s": _floquet("f8", NAN, "elapsed_s"),
+    "elapsed_s": Column("f8", NAN, "point", "elapsed_s"),
 }
+# name → (numpy dtype, fill value of a point not computed): the store's schema
+FIELDS: dict[str, tuple[str, object]] = {k: (c.dtype, c.fill) for k, c in COLUMNS.items()}
 MESSAGE_CHARS = 512
 
 
-def empty_record(status: str = "", message: str = "") -> dict:
+def empty_record(status: str = "", message: str = "") -> dict[str, Any]:
+    """The record of a point with nothing computed (every field its fill), with ``status`` and
+    ``message`` (cut to :data:`MESSAGE_CHARS`)."""
     rec = {k: fill for k, (_, fill) in FIELDS.items()}
     rec["status"], rec["message"] = status, message[:MESSAGE_CHARS]
     return rec
+
+
+def _lookup(d: dict[str, Any], key: str) -> Any:
+    for part in key.split("."):
+        d = d[part]
+    return d
+
+
+def _fill_from(rec: dict[str, Any], source: str, d: dict[str, Any]) -> None:
+    """The record's fields of ``source`` from that result's ``as_dict()``."""
+    for name, col in COLUMNS.items():
+        if col.source == source:
+            rec[name] = _lookup(d, col.key)
 
 
 def failure_text(exc: BaseException) -> str:
@@ -86,40 +186,28 @@ def failure_text(exc: BaseException) -> str:
     return f"{type(exc).__name__}: {exc}{at}"
 
 
-def wave_record(r) -> dict:
+def wave_record(r: WaveResult) -> dict[str, Any]:
+    """The record of a solved wave (its status and message; no spectrum yet)."""
     rec = empty_record(r.status, r.message)
-    rec.update(
-        kind=r.kind, converged=bool(r.converged), amplitude=r.amplitude, energy=r.energy,
-        residual=r.residual, dropped_residual=r.dropped_residual, tail_error=r.tail_error,
-        integrator_error=r.integrator_error, qc_max_deviation=r.qc_max_deviation,
-        # error bounds added to WaveResult by the "error bars that bound the truth" work
-        profile_error=getattr(r, "profile_error", math.nan),
-        amplitude_error=getattr(r, "amplitude_error", math.nan),
-        energy_error=getattr(r, "energy_error", math.nan),
-        N=r.N, iterations=r.iterations, wave_elapsed_s=r.elapsed_s, elapsed_s=r.elapsed_s,
-    )  # fmt: skip
+    _fill_from(rec, "wave", r.as_dict(profile=False))
+    rec["elapsed_s"] = r.elapsed_s
     return rec
 
 
-def add_floquet(rec: dict, fr) -> None:
-    rec.update(
-        max_modulus=fr.max_modulus, max_modulus_away_from_1=fr.max_modulus_away_from_1,
-        max_modulus_error=fr.error, symmetry_error=fr.symmetry_error,
-        floquet_integrator_error=fr.integrator_error, n_unstable=fr.n_unstable,
-        n_trivial=fr.n_trivial, trivial_split=fr.trivial_split, verdict=fr.verdict,
-        classification=str(getattr(fr, "classification", "")),
-        headline=fr.decision.headline if fr.decision is not None else "",
-        floquet_converged=bool(fr.converged), floquet_elapsed_s=fr.elapsed_s,
-        elapsed_s=rec["wave_elapsed_s"] + fr.elapsed_s,
-    )  # fmt: skip
+def add_floquet(rec: dict[str, Any], fr: FloquetResult) -> None:
+    """Add the spectrum ``fr`` of the record's wave; a spectrum that did not converge makes the
+    point ``not_converged`` with the spectrum's message."""
+    _fill_from(rec, "floquet", fr.as_dict(arrays=False))
+    rec["elapsed_s"] = rec["wave_elapsed_s"] + fr.elapsed_s
     if not fr.converged:
         rec["status"], rec["message"] = "not_converged", f"spectrum: {fr.message}"[:MESSAGE_CHARS]
 
 
-def solve_point(sp, N: int, tol: float, prev):
-    """The wave ``sp`` (a :class:`fpucore.wave.Spec`) describes — from prev = (wave, spec) by the
-    QC-shift predictor when both lie on the same velocity interval, else (or if that fails) from
-    the QC guess (:func:`fpucore.wave.continuation.solve_from_neighbour`)."""
+def solve_point(sp: Spec, N: int | None, tol: float,
+                prev: tuple[WaveResult, Spec] | None) -> WaveResult:  # fmt: skip
+    """The wave ``sp`` describes — from prev = (wave, spec) by the QC-shift predictor when both
+    lie on the same velocity interval, else (or if that fails) from the QC guess
+    (:func:`fpucore.wave.continuation.solve_from_neighbour`)."""
 
     def solve(pred):
         if sp.kind == "superkink":
@@ -129,20 +217,18 @@ def solve_point(sp, N: int, tol: float, prev):
     return solve_from_neighbour(sp, prev, solve)
 
 
-def solve_chunk(task: dict, progress: Callable[[float], None] | None = None) -> list[dict]:
-    """Records of the points ``task["V"]`` along one row, in order.  task: law (a force-law
-    object), kind, row, V (list), N (int or None: automatic), tol, floquet (bool), m (RK steps or
-    None), finite_size (bool: the spectrum's finite-size test, which gives the classification),
-    floquet_method ("structured" | "dense"), continuation (bool).
-    ``progress(frac)`` after each point."""
-    law = task["law"]
-    kind, row, N, tol = task["kind"], task["row"], task["N"], task["tol"]
-    out, prev = [], None
-    Vs = list(task["V"])
+def solve_chunk(
+    task: ChunkTask, progress: Callable[[float], None] | None = None
+) -> list[dict[str, Any]]:
+    """The records of the points ``task.V`` along the row ``task.row``, in order (keys
+    :data:`FIELDS`).  ``progress(frac)`` after each point."""
+    out: list[dict[str, Any]] = []
+    prev = None
+    Vs = task.V
     for k, V in enumerate(Vs):
         t0 = time.perf_counter()
         try:
-            sp = spec_of(law, kind, row, float(V))
+            sp = spec_of(task.law, task.kind, task.row, float(V))
         except ParameterError as exc:  # outside the existence region
             out.append(empty_record("no_wave", str(exc)) | {"elapsed_s": time.perf_counter() - t0})
             prev = None
@@ -150,13 +236,11 @@ def solve_chunk(task: dict, progress: Callable[[float], None] | None = None) -> 
                 progress((k + 1) / len(Vs))
             continue
         try:
-            r = solve_point(sp, N, tol, prev)
+            r = solve_point(sp, task.N, task.tol, prev)
             rec = wave_record(r)
-            prev = (r, sp) if (r.converged and task.get("continuation", True)) else None
-            if r.converged and task["floquet"]:
-                fs = task.get("finite_size", True)
-                method = task["floquet_method"]
-                add_floquet(rec, spectrum(r, m=task.get("m"), finite_size=fs, method=method))
+            prev = (r, sp) if (r.converged and task.continuation) else None
+            if r.converged and task.floquet.enabled:
+                add_floquet(rec, task.floquet.spectrum(r))
         except ParameterError as exc:  # the wave exists, the settings do not suit it (N, ...)
             rec, prev = empty_record("failed", str(exc)), None
         except Exception as exc:  # noqa: BLE001  (recorded with its reason; the sweep goes on)

@@ -5,19 +5,19 @@ table (and the Zarr store), resumable.
                     out="atlas.zarr", backend="process", workers=None, resume=False)
     res.dataset        # xarray.Dataset (w_plus, V): every field of point.FIELDS, plus done
 
-Chunks that were stored before (``resume=True``) are loaded, not recomputed.  A chunk whose
-worker died is retried once in the same run; if it dies again its points are recorded as
-``failed`` with the reason but not marked done, so a later ``--resume`` retries them.  Ctrl-C
-(KeyboardInterrupt) cancels the running chunks, releases the store and re-raises: every chunk
-written so far is kept.
+Everything is checked first; then one :class:`~fpucore.atlas.point.ChunkTask` (the settings and
+the Floquet options, :class:`~fpucore.atlas.point.FloquetOptions`) is placed on each chunk not
+done and computed through :func:`fpucore.atlas.execute.execute`.  Chunks that were stored before
+(``resume=True``) are loaded, not recomputed.  A chunk whose worker died is retried once in the
+same run; if it dies again its points are recorded as ``failed`` with the reason but not marked
+done, so a later ``--resume`` retries them.  Ctrl-C (KeyboardInterrupt) cancels the running
+chunks, releases the store and re-raises: every chunk written so far is kept.
 """
 
 from __future__ import annotations
 
 import math
-import queue
 import time
-from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, ClassVar
@@ -25,19 +25,18 @@ from typing import TYPE_CHECKING, Any, ClassVar
 import numpy as np
 
 from fpucore.atlas.estimate import measure, require_within
+from fpucore.atlas.execute import Hooks, Pool, Table, execute
 from fpucore.atlas.grid import Grid, make_grid
 from fpucore.atlas.plan import plan
-from fpucore.atlas.point import FIELDS, empty_record, failure_text, solve_chunk
+from fpucore.atlas.point import ChunkTask, FloquetOptions
 from fpucore.atlas.store import (
     StoreLock,
     Writer,
     check_out,
     create,
     identity_attrs,
-    load_records,
     open_existing,
     read_done,
-    skeleton,
     xarray_module,
     zarr_module,
 )
@@ -52,7 +51,7 @@ if TYPE_CHECKING:
     from collections.abc import Sequence
 
     import xarray as xr
-from fpucore.parallel import BACKENDS, Cancelled, Executor, WorkerDied
+from fpucore.parallel import BACKENDS, Executor
 from fpucore.parallel.scheduler import check_scheduler, parse_scheduler_address
 from fpucore.result import Result, status_of
 
@@ -117,31 +116,6 @@ def check_args(N, tol, time_budget_s, m=None, **flags) -> None:
     for name, value in flags.items():
         if not isinstance(value, (bool, np.bool_)):
             raise ParameterError(name, value, "True | False")
-
-
-class Table:
-    """The grid's records as one numpy array per field (what the store holds)."""
-
-    def __init__(self, grid: Grid, attrs: dict):
-        self.ds = skeleton(grid, attrs)
-        self.cols = {k: self.ds[k].values for k in [*FIELDS, "done"]}
-        self.grid = grid
-
-    def put(self, i: int, j0: int, records: list[dict], final: bool) -> None:
-        for j, rec in enumerate(records, start=j0):
-            for k in FIELDS:
-                self.cols[k][i, j] = rec[k]
-            self.cols["done"][i, j] = 1 if final else 0
-
-    def load(self, group) -> int:
-        """The stored records of the done points (damaged chunks left to recompute, see
-        :func:`fpucore.atlas.store.load_records`); returns how many were loaded."""
-        done = load_records(group, self.grid, self.cols)
-        self.cols["done"][done] = 1
-        return int(done.sum())
-
-    def count(self, status: str) -> int:
-        return int(np.sum(self.cols["status"] == status))
 
 
 def run(
@@ -223,8 +197,12 @@ def run(
         p = plan(grid, "external", executor.workers, None, True, N, floquet, memory_budget)
     else:
         p = plan(grid, backend, workers, address, force_workers, N, floquet, memory_budget)
-    attrs = identity_attrs(grid, law, N, tol, floquet, finite_size, m, continuation,
-                           floquet_method)  # fmt: skip
+    # the one task every chunk is computed from (its row and V set per chunk)
+    task = ChunkTask(law, grid.kind, N=None if N is None else int(N), tol=float(tol),
+                     floquet=FloquetOptions(bool(floquet), bool(finite_size), floquet_method,
+                                            None if m is None else int(m)),
+                     continuation=bool(continuation))  # fmt: skip
+    attrs = identity_attrs(grid, task)
     path = None
     if out is not None:
         path = check_out(out)
@@ -242,10 +220,7 @@ def run(
         xarray_module()
         zarr_module()
     if estimate:  # measured before the store exists: a refused run leaves nothing behind
-        base = {"law": law, "kind": grid.kind, "N": None if N is None else int(N),
-                "tol": float(tol), "floquet": bool(floquet), "finite_size": bool(finite_size),
-                "floquet_method": floquet_method, "m": m}  # fmt: skip
-        est = measure(grid, _stored_done(path, grid, attrs, resume), base, p.workers or 1)
+        est = measure(grid, _stored_done(path, grid, attrs, resume), task, p.workers or 1)
         notes.append(est.line())
         if note is not None:
             note(est.line())
@@ -262,13 +237,9 @@ def run(
             else:
                 create(path, table.ds, grid.chunk)
             writer = Writer(path)
-        res = _execute(
-            grid, table, law, N, tol, (floquet, finite_size, floquet_method), m, continuation,
-            writer, executor,
-            backend, (p.workers, workers is None), address, progress, on_points, time_budget_s,
-            t0, caller_runs,
-        )  # fmt: skip
-        n_computed, used_backend, n_workers, stopped, msg = res
+        pool = Pool(backend, p.workers, workers is None, address, caller_runs)
+        res = execute(task, grid, table, writer, executor, pool,
+                      Hooks(progress, on_points, time_budget_s, t0))  # fmt: skip
         if writer is not None:
             writer.touch()
     finally:
@@ -285,12 +256,12 @@ def run(
         kind=grid.kind, shape=grid.shape, path=None if path is None else str(path),
         dataset=table.ds, n_points=grid.size, n_ok=counts["ok"],
         n_not_converged=counts["not_converged"], n_no_wave=counts["no_wave"],
-        n_failed=counts["failed"], n_pending=n_pending, n_computed=n_computed, n_loaded=n_loaded,
-        max_residual=maxf(c["residual"]), max_modulus_error=maxf(c["max_modulus_error"]),
-        backend=used_backend, workers=n_workers,
-        points_per_s=n_computed / elapsed if elapsed > 0 else math.nan,
-        converged=n_pending == 0 and counts["failed"] == 0, stopped=stopped,
-        message=msg or f"{grid.size} points: {summary} ({n_loaded} from the store)",
+        n_failed=counts["failed"], n_pending=n_pending, n_computed=res.n_computed,
+        n_loaded=n_loaded, max_residual=maxf(c["residual"]),
+        max_modulus_error=maxf(c["max_modulus_error"]), backend=res.backend, workers=res.workers,
+        points_per_s=res.n_computed / elapsed if elapsed > 0 else math.nan,
+        converged=n_pending == 0 and counts["failed"] == 0, stopped=res.stopped,
+        message=res.message or f"{grid.size} points: {summary} ({n_loaded} from the store)",
         elapsed_s=elapsed, notes=tuple(notes), memory_estimate_bytes=p.memory_bytes,
     )  # fmt: skip
 
@@ -302,99 +273,3 @@ def _stored_done(path, grid: Grid, attrs: dict, resume: bool) -> np.ndarray:
         return np.zeros(grid.shape, bool)
     open_existing(path, grid, attrs)
     return read_done(path, grid)
-
-
-def _execute(grid, table, law, N, tol, floquet, m, continuation, writer, executor, backend,
-             workers, address, progress, on_points, time_budget_s, t0, caller_runs):  # fmt: skip
-    """Submit the chunks not yet done, gather and store them; (n_computed, backend, workers,
-    stopped, message).  workers : (the plan's count, whether it was chosen automatically)."""
-    done = table.cols["done"] == 1
-    todo = [(i, j0, j1) for i, j0, j1 in grid.chunks() if not done[i, j0:j1].all()]
-
-    def task(i, j0, j1):
-        return {"law": law, "kind": grid.kind, "row": grid.rows[i],
-                "V": [float(v) for v in grid.V[j0:j1]], "N": None if N is None else int(N),
-                "tol": float(tol), "floquet": bool(floquet[0]), "finite_size": bool(floquet[1]),
-                "floquet_method": floquet[2], "m": m,
-                "continuation": bool(continuation)}  # fmt: skip
-
-    own = executor is None and bool(todo)
-    if own:
-        planned, automatic = workers
-        if backend == "process" and len(todo) == 1 and automatic:
-            backend = "inline"  # one chunk: no pool to start
-        n = None if planned is None else min(planned, len(todo))
-        executor = Executor(backend, workers=n, address=address,
-                            caller_runs=caller_runs and backend == "process")  # fmt: skip
-    total, failed = grid.size, int(np.sum(table.cols["status"] == "failed"))
-    n_done = int(done.sum())
-    if progress is not None:
-        progress(n_done, total, failed)
-    finished: queue.Queue = queue.Queue()
-    jobs: dict = {}
-    retried: set = set()
-
-    def submit(key):
-        job = executor.submit(solve_chunk, task(*key))
-        jobs[job] = key
-        job.add_done_callback(finished.put)
-
-    n_computed, stopped, msg = 0, False, ""
-    n_workers = executor.workers if executor is not None else 0
-    waiting = deque(todo)  # chunks not submitted yet
-
-    def gather(job) -> None:
-        """One finished chunk: stored and reported, or retried once if its worker died."""
-        nonlocal n_computed, n_done, failed
-        key = jobs.pop(job)
-        i, j0, j1 = key
-        exc = job.exception()
-        if isinstance(exc, Cancelled):
-            return
-        final = True
-        if exc is None:
-            records = job.result()
-        elif isinstance(exc, WorkerDied) and key not in retried:
-            retried.add(key)
-            submit(key)
-            return
-        else:  # the chunk as a whole failed (worker died twice, unpicklable, ...)
-            final = not isinstance(exc, WorkerDied)  # a dead worker is retried on resume
-            records = [empty_record("failed", failure_text(exc)) for _ in range(j1 - j0)]
-        table.put(i, j0, records, final)
-        if writer is not None:
-            writer.write(i, j0, j1, records, final)
-        n_computed += j1 - j0
-        n_done += j1 - j0
-        failed += sum(r["status"] == "failed" for r in records)
-        if on_points is not None:
-            on_points([(i, j, r) for j, r in enumerate(records, start=j0)])
-        if progress is not None:
-            progress(n_done, total, failed)
-
-    try:
-        while waiting or jobs:
-            if time_budget_s is not None and time.perf_counter() - t0 > time_budget_s:
-                stopped = True
-                msg = (f"time budget {time_budget_s:g} s exhausted: "
-                       f"{len(waiting) + len(jobs)} chunks not done")  # fmt: skip
-                break
-            if waiting:
-                submit(waiting.popleft())
-                # an inline executor has run the chunk already: gather it now, so progress,
-                # on_points and the time budget follow each chunk rather than the whole grid
-                while not finished.empty():
-                    gather(finished.get_nowait())
-                continue
-            try:
-                job = executor.next_done(finished, timeout=0.2)  # caller_runs: computes here
-            except queue.Empty:
-                continue
-            gather(job)
-    finally:
-        for job in list(jobs):
-            job.cancel()
-        if own:
-            executor.shutdown()
-    name = executor.backend if executor is not None else "none"
-    return n_computed, name, n_workers, stopped, msg

@@ -33,14 +33,13 @@ import time
 import warnings
 from importlib import metadata
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from fpucore.atlas.grid import Grid
-from fpucore.atlas.point import FIELDS
+from fpucore.atlas.point import FIELDS, ChunkTask
 from fpucore.errors import ParameterError, import_extra
-from fpucore.floquet.multipliers import DEFAULT_METHOD
 from fpucore.jit_cache import source_hash
 from fpucore.law import CubicLaw
 from fpucore.result import jsonable
@@ -162,16 +161,17 @@ def skeleton(grid: Grid, attrs: dict) -> xr.Dataset:
     return xr.Dataset(data, coords={grid.row_dim: skeleton_rows(grid), "V": grid.V}, attrs=attrs)
 
 
-def identity_attrs(grid: Grid, law, N, tol: float, floquet: bool, finite_size: bool, m,
-                   continuation: bool, floquet_method: str = DEFAULT_METHOD) -> dict:  # fmt: skip
-    """The store's attributes: everything that determines its records (see IDENTITY), plus a
-    and b for the cubic law."""
+def identity_attrs(grid: Grid, task: ChunkTask) -> dict:
+    """The store's attributes: everything that determines its records (see IDENTITY: the
+    grid's and the run's task's), plus a and b for the cubic law."""
+    law: Any = task.law  # every concrete law describes itself (describe())
+    fl = task.floquet
     attrs = {
         "kind": grid.kind, "law": law.describe(), "params": [float(x) for x in law.params],
-        "N": -1 if N is None else int(N), "tol": float(tol), "floquet": int(bool(floquet)),
-        "finite_size": int(bool(finite_size)), "floquet_method": str(floquet_method),
-        "m": -1 if m is None else int(m),
-        "chunk": int(grid.chunk), "continuation": int(bool(continuation)),
+        "N": -1 if task.N is None else int(task.N), "tol": float(task.tol),
+        "floquet": int(bool(fl.enabled)), "finite_size": int(bool(fl.finite_size)),
+        "floquet_method": str(fl.method), "m": -1 if fl.m is None else int(fl.m),
+        "chunk": int(grid.chunk), "continuation": int(bool(task.continuation)),
         "fpucore_source": source_hash(), "fpucore_version": fpucore_version(),
     }  # fmt: skip
     if isinstance(law, CubicLaw):

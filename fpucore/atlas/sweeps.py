@@ -1,12 +1,11 @@
 """Sweeps of the Floquet spectrum along wave families (paper Figs. floquet_SK, floquet_cubicSW).
 
 A sweep is a one-row atlas (:func:`fpucore.atlas.run` with ``floquet=True``), so it lives in the
-atlas stage (``fpucore.floquet.sweep`` names it for older callers, see :mod:`fpucore.floquet`):
-every velocity is one
-task (``CHUNK`` = 1) on a worker of the execution layer (:mod:`fpucore.parallel`; all cores, one
-BLAS thread each): its wave solved from the QC guess and its spectrum computed.  A sweep that
-starts its own pool computes in the calling process too (``caller_runs``: K cores = the caller
-and K - 1 workers, so only K - 1 processes pay the worker start-up and none is oversubscribed).
+atlas stage: every velocity is one task (``CHUNK`` = 1) on a worker of the execution layer
+(:mod:`fpucore.parallel`; all cores, one BLAS thread each): its wave solved from the QC guess
+and its spectrum computed.  A sweep that starts its own pool computes in the calling process
+too (``caller_runs``: K cores = the caller and K - 1 workers, so only K - 1 processes pay the
+worker start-up and none is oversubscribed).
 Each spectrum takes the structured route by default (``method``, as every entry point:
 :data:`fpucore.floquet.DEFAULT_METHOD`; the quarter-size reversible one for the paper's families,
 max|μ| and classification equal to dense within the error bar).

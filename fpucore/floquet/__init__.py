@@ -3,19 +3,16 @@
 kernels (Numba: shifted rows, exact deflation)  →  monodromy (𝓜 from the tangent flow,
 its multipliers)  →  reversible_kernels → reversible (the quarter-size route of reversible
 waves)  →  structured_kernels → arnoldi_kernels → structured (the half-size symplectic route)
-→  multipliers (FloquetResult: spectrum, error bars, verdict)
+→  spectrum_steps (prepare, monodromy pair, eigen-solve, error bars, convergence: one typed
+function each)  →  multipliers (FloquetResult: spectrum = those steps, the finite-size window
+and the verdict)
 →  checks (quartet symmetry, homogeneous closed form, phonon gap)  →  finite_size (is an
 excess |μ| − 1 an artefact of the finite ring?)  →  decision (the one Decision record and its
 words)  →  energy (extrema of E_ren(V) along solitary families, where stability may change)
 
 Sweeps of max|μ| along V are one-row atlases and live in the atlas stage
-(:func:`fpucore.atlas.sweep`, their home: call them there).  ``floquet.sweep``,
-``floquet.SweepResult`` and ``floquet.sweeps`` are aliases of ``atlas.sweep``,
-``atlas.SweepResult`` and ``fpucore.atlas.sweeps``, kept for older callers: loaded on first use
-(PEP 562, as in ``fpucore/__init__``), so importing this package never imports the atlas above it.
+(:func:`fpucore.atlas.sweep`): this package imports nothing above it.
 """
-
-import importlib
 
 from fpucore.floquet.checks import (
     HomogeneousState,
@@ -64,16 +61,3 @@ __all__ = [
     "FloquetResult",
     "spectrum",
 ]
-# names of the atlas stage kept for older callers (see the module doc): name → attribute of
-# fpucore.atlas.sweeps (None: the module itself)
-_FROM_ATLAS = {"sweep": "sweep", "SweepResult": "SweepResult", "sweeps": None}
-
-
-def __getattr__(name: str):
-    if name not in _FROM_ATLAS:
-        raise AttributeError(f"module 'fpucore.floquet' has no attribute {name!r}")
-    value = importlib.import_module("fpucore.atlas.sweeps")
-    if _FROM_ATLAS[name] is not None:
-        value = getattr(value, _FROM_ATLAS[name])  # type: ignore[arg-type]
-    globals()[name] = value
-    return value

@@ -13,13 +13,17 @@ from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
 
-from fpucore.errors import ParameterError, require_finite
-from fpucore.floquet.checks import phonon_gap, quartet_symmetry_error
+from fpucore.errors import ParameterError
 from fpucore.floquet.decision import Decision, decide
 from fpucore.floquet.finite_size import base_at, chain_lengths, min_chain, settled
-from fpucore.floquet.monodromy import base_state, default_steps, monodromy, multipliers_of
-from fpucore.floquet.reversible import reversor_of
-from fpucore.floquet.structured import structured_multipliers
+from fpucore.floquet.spectrum_steps import (
+    BaseWave,
+    convergence,
+    eigen_solve,
+    error_bars,
+    monodromy_pair,
+    prepare,
+)
 from fpucore.parallel.threads import on_budget
 from fpucore.result import Result, status_of
 
@@ -154,10 +158,42 @@ def _wave_summary(r) -> dict:
     return out
 
 
-def _background_states(r, law) -> list[float]:
-    """Strains the chain tends to at its ends (where the continuous spectrum lives)."""
-    w = np.asarray(r.w)
-    return [float(w[0]), float(w[-1])]
+Points = list[tuple[int, float, float]]  # (N, max|μ| − 1, its error bar) per ring
+
+
+def finite_size_window(base: BaseWave, excess: float, error: float, integrator_error: float,
+                       finite_size: bool, report: Callable[[str, float], None]
+                       ) -> tuple[Points, str, list[int]]:  # fmt: skip
+    """The excess max|μ| − 1 ± error at N and, when it exceeds its bar and ``finite_size``, on the
+    window of shorter rings in [N/2, N] (structured route, shortest first, stopping once an
+    absent excess or a dip has decided it: :mod:`fpucore.floquet.finite_size`).  Returns (the
+    points, sorted by N; why the window is incomplete, "" if it is not; the rings whose wave
+    could not be rebuilt)."""
+    N = base.N
+    integ = integrator_error if math.isfinite(integrator_error) else 0.0
+    pts = [(N, excess, error)]
+    why = "finite_size=False"
+    missing: list[int] = []  # rings of the window whose wave could not be rebuilt
+    if finite_size and excess > error:
+        lengths = chain_lengths(N, min_chain(base.r))
+        why = "" if lengths else f"N = {N} is too short for a window of rings in [N/2, N]"
+        for k, n_k in enumerate(lengths):
+            report("shorter rings", k / len(lengths))
+            r_k, reason = base_at(base.r, n_k)
+            if r_k is None:
+                why = reason
+                missing.append(int(n_k))
+                continue
+            # the shorter rings only supply max|μ| − 1: the structured route (quarter size for
+            # the paper's reversible waves; agreement with dense within the error bar tested)
+            f_k = spectrum(r_k, m=base.m, check=False, finite_size=False, method="structured")
+            pts.append((n_k, f_k.excess, max(f_k.error, integ)))
+            if settled(*zip(*sorted(pts))):  # type: ignore[arg-type]  # absent or a dip: the rest cannot change it
+                break
+    elif finite_size:
+        why = ""
+    pts.sort()
+    return pts, why, missing
 
 
 @on_budget
@@ -170,165 +206,106 @@ def spectrum(
     method: str = DEFAULT_METHOD,
     progress: Callable[[str, float], None] | None = None,
 ) -> FloquetResult:
-    """Floquet multipliers of the traveling wave r (from ``wave.solve_superkink/solve_solitary``,
-    or a :class:`HomogeneousState`), with their error bars and the trivial cluster at 1.
+    """Floquet multipliers of the traveling wave r (paper §6, eq. linear_map), with their error
+    bars, the trivial cluster at 1 and the stability decision.
 
-    m : RK steps per period for the tangent integration (default: max(r.m, h·ω_max ≤ 0.12)).
-    trivial_radius : radius of the disc around μ = 1 counted as the trivial (symmetry) cluster;
-    default min(phonon_gap/10, max(1e-6, 100 √ε)), ε = max(error bar, wave residual) (a Jordan
-    block perturbed by ε splits by ~√ε; typically 1e-4), phonon_gap = distance from 1 of the
-    nearest continuous-spectrum multiplier of the end states (:func:`phonon_gap`).
-    check : also build 𝓜 with 2m steps and report ‖𝓜_m − 𝓜_2m‖ as integrator_error.
-    finite_size : when max|μ| − 1 exceeds the error bar, also compute the spectrum of the same
-    wave on the window of five shorter rings in [N/2, N] (structured route, shortest first,
-    stopping once an absent excess or a dip has decided it) and decide
-    (:mod:`fpucore.floquet.finite_size`).  False: no extra spectra; an excess beyond the error
-    bar is then "undetermined" and the verdict says which test was not run.
-    method : "structured" (:data:`DEFAULT_METHOD`: half-size structure-preserving route,
-    :mod:`fpucore.floquet.structured`:
-    elliptic multipliers exactly on the circle; its error bar comes from the measured
-    non-symplecticity and the dropped isotropy defect, ``structure_error``, instead of the
-    quartet symmetry; a base state with a centre of reflection, :func:`reversor_of`, takes
-    the quarter-size reversible route, :mod:`fpucore.floquet.reversible`) or "dense" (LAPACK
-    dgeev on the deflated (2N−2)² block, the reference).  The finite-size spectra on the shorter
-    rings always use "structured".
-    progress : ``progress(stage, fraction)`` at each step: ("Floquet spectrum", 0 → 1: the
-    monodromy, its check, the eigenvalues), then ("shorter rings", k / number of rings) while
-    the finite-size window is computed.
+    The steps (:mod:`fpucore.floquet.spectrum_steps`): prepare the base state → the monodromy 𝓜
+    (and 𝓜 with 2m steps) → its 2N eigenvalues → error bars and the trivial cluster →
+    convergence checks → the finite-size window (:func:`finite_size_window`) → the verdict
+    (:func:`fpucore.floquet.decision.decide`).
+
+    Parameters
+    ----------
+    r : WaveResult or HomogeneousState
+        The base state: a wave from ``wave.solve_superkink`` / ``wave.solve_solitary`` (N sites,
+        strains ``w`` (N,), rates ``wdot`` (N,), velocity V > 0) or a constant state.
+    m : int, optional
+        RK steps per period T = 1/V of the tangent integration, in [2, 20000]; default
+        max(r.m, h·ω_max ≤ 0.12).
+    trivial_radius : float, optional
+        Radius (dimensionless, in the μ plane) of the disc around μ = 1 counted as the trivial
+        (symmetry) cluster; default min(phonon_gap/10, max(1e-6, 100 √ε)),
+        ε = max(error bar, wave residual) (a Jordan block perturbed by ε splits by ~√ε;
+        typically 1e-4), phonon_gap = distance from 1 of the nearest continuous-spectrum
+        multiplier of the end states (:func:`phonon_gap`).
+    check : bool
+        Also build 𝓜 with 2m steps and report ‖𝓜_m − 𝓜_2m‖₂ as ``integrator_error``.
+    finite_size : bool
+        When max|μ| − 1 exceeds the error bar, also compute the spectrum of the same wave on the
+        window of five shorter rings in [N/2, N] (structured route, shortest first, stopping
+        once an absent excess or a dip has decided it) and decide
+        (:mod:`fpucore.floquet.finite_size`).  False: no extra spectra; an excess beyond the
+        error bar is then "undetermined" and the verdict says which test was not run.
+    method : {"structured", "dense"}
+        "structured" (:data:`DEFAULT_METHOD`: the half-size structure-preserving route,
+        :mod:`fpucore.floquet.structured`: elliptic multipliers exactly on the circle; its error
+        bar comes from the measured non-symplecticity and the dropped isotropy defect,
+        ``structure_error``, instead of the quartet symmetry; a base state with a centre of
+        reflection, :func:`reversor_of`, takes the quarter-size reversible route,
+        :mod:`fpucore.floquet.reversible`) or "dense" (LAPACK dgeev on the deflated (2N−2)²
+        block, the reference).  The spectra on the shorter rings always use "structured".
+    progress : callable, optional
+        ``progress(stage, fraction)`` at each step: ("Floquet spectrum", 0 → 1: the monodromy,
+        its check, the eigenvalues), then ("shorter rings", k / number of rings) while the
+        finite-size window is computed.
+
+    Returns
+    -------
+    FloquetResult
+        ``multipliers`` (2N,) complex, ``error`` (absolute bar of |μ|), ``decision`` /
+        ``classification`` / ``verdict``, wall times in s (see :class:`FloquetResult`).
+
+    Raises
+    ------
+    ParameterError
+        A bad ``method``, ``m`` or ``trivial_radius``, a base state that cannot be integrated
+        (see :func:`fpucore.floquet.monodromy.base_state`) or a non-finite monodromy.
     """
     t0 = time.perf_counter()
     report = progress if progress is not None else (lambda stage, x: None)
     if method not in METHODS:
         raise ParameterError("method", method, " | ".join(repr(x) for x in METHODS))
-    law, w, wd, V, N, wl, wr = base_state(r)
-    if m is None:
-        m = max(int(getattr(r, "m", 0) or 0), default_steps(law, V))
-    elif not (isinstance(m, (int, np.integer)) and 2 <= m <= 20000):
-        raise ParameterError("m", m, "an integer in [2, 20000]", "RK steps per period")
+    base = prepare(r, m)
     report("Floquet spectrum", 0.0)
-    mono = monodromy(r, int(m))
-    check_s, integ = 0.0, math.nan
-    if check:
-        tc = time.perf_counter()
-        mono2 = monodromy(r, 2 * int(m))
-        d = np.abs(mono.matrix - mono2.matrix)
-        integ = float(math.sqrt(d.sum(axis=0).max() * d.sum(axis=1).max()))  # ≥ ‖δ𝓜‖₂
-        check_s = time.perf_counter() - tc
+    pair = monodromy_pair(base, check)
+    mono, integ = pair.mono, pair.integrator_error
     report("Floquet spectrum", 0.1)  # the monodromy is cheap; the eigenvalues are the cost
-    te = time.perf_counter()
-    if method == "dense":
-        mu_rest, mu_sums, defect = multipliers_of(mono.matrix, N)
-        mu_err, struct, route = np.zeros(2 * N - 2), math.nan, "dense"
-    else:
-        c = reversor_of(law, w, wd)
-        mu_rest, mu_sums, defect, info = structured_multipliers(mono.matrix, N, mono.K, reversor=c)
-        mu_err, struct, route = info["mu_error"], float(info["lam_error"]), info["route"]
-    eig_s = time.perf_counter() - te
+    eig = eigen_solve(base, mono, method)
     report("Floquet spectrum", 1.0)
-    if not np.all(np.isfinite(mu_rest)):
+    if not np.all(np.isfinite(eig.mu_rest)):
         raise ParameterError("r", "non-finite monodromy", "a bounded base trajectory")
-    mu = np.concatenate([mu_sums, mu_rest])
-    sym, conj = quartet_symmetry_error(mu)
-    norm = float(np.abs(mono.matrix).sum(axis=0).max())
-    floor = 64.0 * np.finfo(float).eps * norm
-    error = max(sym, integ if math.isfinite(integ) else 0.0, floor)
-    if method == "structured":  # λ-level bound; per-multiplier bounds mu_err below
-        error = max(error, struct)
-
-    gap = min(phonon_gap(law, wb, V, N) for wb in _background_states(r, law))
-    # a Jordan block at 1 perturbed by ε splits by ~√ε: ε = the error bar or the wave's residual
-    split_scale = math.sqrt(max(error, float(getattr(r, "residual", 0.0) or 0.0)))
-    if trivial_radius is None:
-        trivial_radius = min(0.1 * gap, max(1e-6, 100.0 * split_scale))
-    trivial_radius = require_finite("trivial_radius", trivial_radius)
-    if not trivial_radius >= 0:
-        raise ParameterError("trivial_radius", trivial_radius, "a radius >= 0")
-    near = np.abs(mu_rest - 1.0) < trivial_radius
-    trivial = np.concatenate([mu_sums, mu_rest[near]])
-    away = mu_rest[~near]
-    err_away = np.maximum(mu_err[~near], error)
-    max_mod = float(np.abs(mu).max())
-    max_away = float(np.abs(away).max(initial=0.0))
-    excess = max_away - 1.0
-    if away.size:  # the error bar of the largest multiplier (structured: its own bound)
-        error = float(err_away[int(np.argmax(np.abs(away)))])
-    unstable = away[np.abs(away) - 1.0 > err_away]
-    unstable = unstable[np.argsort(-np.abs(unstable))]
-    msgs = []
-    converged = True
-    if not getattr(r, "converged", True):
-        converged = False
-        msgs.append("the base wave did not converge: its spectrum describes no traveling wave")
-    if mono.truncation > 1e-14:
-        converged = False
-        msgs.append(f"tangent window truncation {mono.truncation:.1e} (increase K)")
-    if trivial_radius > 0.5 * gap or gap < 10.0 * split_scale:
-        converged = False
-        msgs.append(
-            f"phonon gap {gap:.1e} (nearest continuous-spectrum multiplier to 1) is not well "
-            f"outside the round-off split {split_scale:.0e} of the trivial cluster / its radius "
-            f"{trivial_radius:.0e}: cluster and continuous spectrum overlap (increase N or move "
-            "V away from the sound speed)"
-        )
-    if (trivial.size % 2) != 0:
-        msgs.append(
-            f"odd trivial cluster size {trivial.size}: radius {trivial_radius:.1e} cuts a pair"
-        )
-    if sym > 1e-6:
-        converged = False
-        msgs.append(f"quartet symmetry violated by {sym:.1e} (increase m)")
-    growth = V * math.log(max_away) if max_away > 0 else math.nan
+    bars = error_bars(base, eig, mono, integ, method, trivial_radius)
+    converged, msgs = convergence(base, mono, bars)
+    max_away, excess, error = bars.max_modulus_away_from_1, bars.excess, bars.error
+    growth = base.V * math.log(max_away) if max_away > 0 else math.nan
     tf = time.perf_counter()
-    pts = [(N, excess, error)]
-    why = "finite_size=False"
-    missing: list[int] = []  # rings of the window whose wave could not be rebuilt
-    if finite_size and excess > error:
-        lengths = chain_lengths(N, min_chain(r))
-        why = "" if lengths else f"N = {N} is too short for a window of rings in [N/2, N]"
-        for k, n_k in enumerate(lengths):
-            report("shorter rings", k / len(lengths))
-            r_k, reason = base_at(r, n_k)
-            if r_k is None:
-                why = reason
-                missing.append(int(n_k))
-                continue
-            # the shorter rings only supply max|μ| − 1: the structured route (quarter size for
-            # the paper's reversible waves; agreement with dense within the error bar tested)
-            f_k = spectrum(r_k, m=mono.m, check=False, finite_size=False, method="structured")
-            pts.append((n_k, f_k.excess, max(f_k.error, integ if math.isfinite(integ) else 0.0)))
-            if settled(*zip(*sorted(pts))):  # type: ignore[arg-type]  # absent or a dip: the rest cannot change it
-                break
-    elif finite_size:
-        why = ""
-    pts.sort()
+    pts, why, missing = finite_size_window(base, excess, error, integ, finite_size, report)
     fs_N = np.array([p[0] for p in pts], dtype=np.int64)
     fs_e = np.array([p[1] for p in pts])
     fs_err = np.array([p[2] for p in pts])
     decision, fit = decide(fs_N, fs_e, fs_err, growth, why, min_chain(r), missing_N=missing)
-    cls = decision.classification
-    verdict = decision.sentence
     finite_s = time.perf_counter() - tf
-    msgs.insert(0, verdict)
+    msgs.insert(0, decision.sentence)
     return FloquetResult(
-        multipliers=mu,
-        max_modulus=max_mod,
+        multipliers=bars.mu,
+        max_modulus=bars.max_modulus,
         max_modulus_away_from_1=max_away,
-        trivial=trivial,
-        n_trivial=int(trivial.size),
-        trivial_radius=trivial_radius,
-        trivial_split=float(np.abs(trivial - 1.0).max(initial=0.0)),
-        symmetry_error=sym,
-        conjugate_error=conj,
+        trivial=bars.trivial,
+        n_trivial=int(bars.trivial.size),
+        trivial_radius=bars.trivial_radius,
+        trivial_split=float(np.abs(bars.trivial - 1.0).max(initial=0.0)),
+        symmetry_error=bars.symmetry_error,
+        conjugate_error=bars.conjugate_error,
         integrator_error=integ,
-        conservation_defect=defect,
+        conservation_defect=eig.conservation_defect,
         error=error,
         excess=excess,
         excess_significant=bool(excess > error),
-        unstable=unstable,
-        verdict=verdict,
+        unstable=bars.unstable,
+        verdict=decision.sentence,
         method=method,
-        structure_error=struct,
-        classification=cls,
+        structure_error=eig.structure_error,
+        classification=decision.classification,
         growth_rate=growth,
         finite_size_N=fs_N,
         finite_size_excess=fs_e,
@@ -341,17 +318,17 @@ def spectrum(
         finite_size_checked=bool(fit["checked"]),
         decision=decision,
         finite_size_s=finite_s,
-        phonon_gap=gap,
-        N=N,
-        V=V,
+        phonon_gap=bars.phonon_gap,
+        N=base.N,
+        V=base.V,
         m=mono.m,
         K=mono.K,
         monodromy_s=mono.elapsed_s,
-        check_s=check_s,
-        eig_s=eig_s,
+        check_s=pair.check_s,
+        eig_s=eig.eig_s,
         elapsed_s=time.perf_counter() - t0,
         converged=converged,
         message="; ".join(msgs),
         wave=_wave_summary(r),
-        route=route,
+        route=eig.route,
     )

@@ -114,15 +114,15 @@ def test_no_wave_not_converged_and_failed_points_carry_reasons():
 def test_an_inline_run_reports_each_chunk_as_it_is_done(monkeypatch):
     """The inline executor runs a chunk when it is submitted (the app's worker runs its atlas
     so): progress and the time budget follow each chunk, not the end of the whole grid."""
-    run_module = sys.modules["fpucore.atlas.run"]  # the module (atlas.run is the function)
+    exec_module = sys.modules["fpucore.atlas.execute"]  # where the chunks are submitted
     events = []
-    real = run_module.solve_chunk
+    real = exec_module.solve_chunk
 
     def chunk(task):
         events.append("computed")
         return real(task)
 
-    monkeypatch.setattr(run_module, "solve_chunk", chunk)
+    monkeypatch.setattr(exec_module, "solve_chunk", chunk)
     atlas.run(LAW, "solitary", rows=[1.0, 3.0, 6.0], V=[4.6, 5.0], N=N, backend="inline",
               progress=lambda done, total, failed: events.append(done))  # fmt: skip
     assert events == [0, "computed", 2, "computed", 4, "computed", 6]

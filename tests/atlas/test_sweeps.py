@@ -60,12 +60,14 @@ def test_time_budget_stops_with_a_message(tmp_path, monkeypatch):
     assert missing and all("time budget" in r["message"] and r["N"] == 64 for r in missing)
 
 
-def test_floquet_sweep_is_an_alias_loaded_without_a_cycle():
-    """``floquet.sweep`` (older callers) is the atlas's sweep itself, and importing
-    fpucore.floquet does not load the atlas above it (the alias loads it on first use)."""
-    assert fq.sweep is atlas.sweep and fq.SweepResult is atlas.SweepResult
-    probe = ("import sys, fpucore.floquet as f; a = 'fpucore.atlas' in sys.modules; f.sweep; "
-             "print(a, 'fpucore.atlas' in sys.modules)")  # fmt: skip
+def test_the_sweep_lives_in_the_atlas_only():
+    """The sweep is named once, in the atlas stage: ``floquet.sweep`` (an alias that ran back up
+    from the floquet stage to the atlas) is gone, and importing fpucore.floquet loads no atlas."""
+    for name in ("sweep", "SweepResult", "sweeps"):
+        assert not hasattr(fq, name), name
+    with pytest.raises(AttributeError):
+        fq.sweep  # noqa: B018
+    probe = "import sys, fpucore.floquet; print('fpucore.atlas' in sys.modules)"
     out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
                          check=True, timeout=120)  # fmt: skip
-    assert out.stdout.split() == ["False", "True"]
+    assert out.stdout.split() == ["False"]

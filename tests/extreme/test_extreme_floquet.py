@@ -95,7 +95,7 @@ def test_structured_route_agrees_with_dense_on_extreme_laws(law, frac, route, mo
     and the half-size Arnoldi one, forced by hiding the reversor) against dense eigvals on the
     same 𝓜 — max|μ| within the error bar, the same unstable multipliers and classification."""
     if route == "arnoldi":
-        monkeypatch.setattr(floquet.multipliers, "reversor_of", lambda *a: None)
+        monkeypatch.setattr(floquet.spectrum_steps, "reversor_of", lambda *a: None)
     lo, hi = qc.superkink_velocity_bounds(law)
     r = wave.solve_superkink(law, lo + frac * (hi - lo), N=96)
     a = floquet.spectrum(r, method="dense")

@@ -13,7 +13,7 @@ import pytest
 import xarray as xr
 
 from fpucore import atlas, floquet
-from fpucore.atlas import store, sweeps
+from fpucore.atlas import sweeps
 from fpucore.cli import build_parser, choices
 
 D = floquet.DEFAULT_METHOD
@@ -30,7 +30,7 @@ def test_the_api_entry_points_share_the_default():
     assert _default(atlas.sweep, "method") == D
     assert _default(sweeps.cache_key, "method") == D
     assert _default(sweeps.check_sweep_args, "method") == D
-    assert _default(store.identity_attrs, "floquet_method") == D
+    assert atlas.FloquetOptions().method == D  # the atlas's task, and so its store's identity
 
 
 @pytest.mark.parametrize("argv", [

@@ -31,7 +31,7 @@ def route(request, monkeypatch):
     """Both structured routes: the reversible one the waves below take, and the isotropic
     Arnoldi one (every non-reversible wave's), forced by hiding the reversor."""
     if request.param == "arnoldi":
-        monkeypatch.setattr(fq.multipliers, "reversor_of", lambda *a: None)
+        monkeypatch.setattr(fq.spectrum_steps, "reversor_of", lambda *a: None)
     return request.param
 
 

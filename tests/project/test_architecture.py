@@ -18,9 +18,12 @@ library's ``ast``, nothing imported):
 from __future__ import annotations
 
 import ast
+import functools
 import subprocess
 import sys
 from pathlib import Path
+
+import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
 PKG = ROOT / "fpucore"
@@ -140,11 +143,18 @@ def _parents(mod: str) -> list[str]:
     return [".".join(parts[:k]) for k in range(1, len(parts))]
 
 
+@functools.cache
+def _source(path: Path) -> tuple[str, ast.Module]:
+    """(text, syntax tree) of one file, read and parsed once per test run."""
+    text = path.read_text()
+    return text, ast.parse(text)
+
+
 def _edges() -> dict[str, set[str]]:
     g: dict[str, set[str]] = {m: set() for m in MODULES}
     for mod, path in MODULES.items():
         own = set(_parents(mod))  # already in sys.modules while mod runs
-        for base, name, _ in _imports(mod, ast.parse(path.read_text())):
+        for base, name, _ in _imports(mod, _source(path)[1]):
             if name and f"{base}.{name}" in MODULES:
                 target = f"{base}.{name}"  # from pkg import submodule
             elif base in MODULES:
@@ -164,9 +174,9 @@ def _stage(mod: str) -> str | None:
     return parts[1]
 
 
-def _stage_edges() -> dict[str, set[str]]:
+def _stage_edges(edges: dict[str, set[str]]) -> dict[str, set[str]]:
     g: dict[str, set[str]] = {}
-    for mod, targets in _edges().items():
+    for mod, targets in edges.items():
         s = _stage(mod)
         if s is None:
             continue
@@ -218,43 +228,55 @@ def test_the_folder_reads_as_the_flow_of_the_paper():
     ]
 
 
-def test_import_graph_has_no_cycles():
-    cycle = _first_cycle(_edges())
+@pytest.fixture(scope="module")
+def graph() -> dict[str, set[str]]:
+    """The module import graph, built once for every test of this file (one build parses every
+    file of fpucore and app: the cost of this file)."""
+    return _edges()
+
+
+@pytest.fixture(scope="module")
+def stages(graph: dict[str, set[str]]) -> dict[str, set[str]]:
+    """The stage graph, from the one module graph."""
+    return _stage_edges(graph)
+
+
+def test_import_graph_has_no_cycles(graph):
+    cycle = _first_cycle(graph)
     assert cycle is None, "import cycle: " + " -> ".join(cycle or [])
 
 
-def test_an_import_runs_its_parent_packages():
+def test_an_import_runs_its_parent_packages(graph):
     """The graph has the edges Python takes: atlas/point.py's ``from fpucore.floquet.multipliers
     import spectrum`` runs ``fpucore/floquet/__init__`` first; its own package is no edge."""
-    g = _edges()["fpucore.atlas.point"]
+    g = graph["fpucore.atlas.point"]
     assert {"fpucore.floquet.multipliers", "fpucore.floquet"} <= g
     assert "fpucore.atlas" not in g and "fpucore" not in g
 
 
-def test_stages_form_no_cycle():
-    g = _stage_edges()
-    assert set(STAGES) <= set(g), sorted(g)
-    cycle = _first_cycle(g)
+def test_stages_form_no_cycle(stages):
+    assert set(STAGES) <= set(stages), sorted(stages)
+    cycle = _first_cycle(stages)
     assert cycle is None, "stage cycle: " + " -> ".join(cycle or [])
 
 
-def test_the_execution_layer_sits_on_the_force_law_only():
+def test_the_execution_layer_sits_on_the_force_law_only(stages):
     """parallel/ runs any job; it knows no wave, spectrum or atlas (test support lives in
     tests/, not in the stage)."""
     allowed = {"law", "errors", "budget", "result", "jit_cache"}
-    assert _stage_edges()["parallel"] <= allowed, _stage_edges()["parallel"]
+    assert stages["parallel"] <= allowed, stages["parallel"]
 
 
-def test_common_modules_import_nothing_back():
-    g = _edges()
+def test_common_modules_import_nothing_back(graph):
+    g = graph
     assert not g["fpucore.errors"], g["fpucore.errors"]
     assert not g["fpucore.jit_cache"], g["fpucore.jit_cache"]
     assert g["fpucore.result"] <= {"fpucore.errors"}, g["fpucore.result"]
 
 
-def test_budget_imports_only_errors():
+def test_budget_imports_only_errors(graph):
     """fpucore.budget is shared by every stage: it may import fpucore.errors and nothing else."""
-    assert _edges()["fpucore.budget"] <= {"fpucore.errors"}
+    assert graph["fpucore.budget"] <= {"fpucore.errors"}
 
 
 def _files(*roots: str) -> list[Path]:
@@ -267,9 +289,9 @@ def _files(*roots: str) -> list[Path]:
 def test_no_imports_inside_functions():
     bad = []
     for path in _files("fpucore", "app"):
-        text = path.read_text()
+        text, tree = _source(path)
         lines = text.splitlines()
-        for fn in ast.walk(ast.parse(text)):
+        for fn in ast.walk(tree):
             if not isinstance(fn, (ast.FunctionDef, ast.AsyncFunctionDef)):
                 continue
             for node in ast.walk(fn):
@@ -285,7 +307,7 @@ def test_no_private_name_crosses_a_module():
     bad = []
     for path in _files("fpucore", "app", "tests", "benchmarks"):
         mod = _modname(path)
-        tree = ast.parse(path.read_text())
+        tree = _source(path)[1]
         aliases: set[str] = set()
         for base, name, node in _imports(mod, tree):
             target = base if name is None else f"{base}.{name}"
@@ -313,7 +335,7 @@ def test_fpucore_is_headless():
     ui = ("panel", "holoviews", "bokeh", "hvplot", "matplotlib")
     for path in _files("fpucore"):
         rel = path.relative_to(ROOT).as_posix()
-        for base, _, node in _imports(_modname(path), ast.parse(path.read_text())):
+        for base, _, node in _imports(_modname(path), _source(path)[1]):
             if (rel, ast.unparse(node)) in PLOTTING:
                 continue
             assert base.split(".")[0] not in ui, f"{path}:{node.lineno} imports {base}"
