@@ -140,6 +140,32 @@ class Representation:
         return clenshaw(self.coef[k], lo, hi, w)
 
 
+def require_resolvable(ddf, lo: float, hi: float) -> None:
+    """Refuse at once (ValueError) a law that :func:`build` would refuse as unresolved: f″ (the
+    hardest of the three to represent) fitted in float64 on :data:`UNRESOLVED_PANELS` panels
+    still misses by more than :data:`UNRESOLVED` relative — a few ms of float64, instead of the
+    longdouble doubling up to that panel count.  ``ddf`` evaluates f″ on float64 arrays."""
+    npan = UNRESOLVED_PANELS
+    X = np.asarray(nodes(lo, hi, npan), dtype=np.float64)
+    P = _check_points(lo, hi, npan)
+    with np.errstate(all="ignore"):
+        v = np.asarray(ddf(X), dtype=np.float64)
+        ref = np.asarray(ddf(P), dtype=np.float64)
+    if not (np.all(np.isfinite(v)) and np.all(np.isfinite(ref))):
+        return  # build names the point
+    _, F = _tables()
+    c = v @ F.astype(np.float64)
+    scale = float(max(np.max(np.abs(v)), np.max(np.abs(ref))))
+    rel = float(np.max(np.abs(clenshaw(c, lo, hi, P) - ref))) / scale if scale > 0 else 0.0
+    if rel > UNRESOLVED:
+        raise ValueError(unresolved_reason(npan, lo, hi, rel))
+
+
+def unresolved_reason(npan: int, lo: float, hi: float, rel: float) -> str:
+    return (f"the law varies on a scale below 1/{npan * NCOEF} of [{lo:.6g}, {hi:.6g}] "
+            f"(relative error {rel:.2g} with {npan} panels): too steep to represent")  # fmt: skip
+
+
 def build(long_fns, mp_fns, lo: float, hi: float) -> Representation:
     """The representation of (f, f′, f″) on [lo, hi]; ``long_fns`` evaluate the exact
     expressions on longdouble arrays, ``mp_fns`` on one mpmath number.  Raises ValueError with
@@ -165,10 +191,7 @@ def build(long_fns, mp_fns, lo: float, hi: float) -> Representation:
         if max(rel) <= TARGET or npan >= MAX_PANELS:
             break
         if npan >= UNRESOLVED_PANELS and max(rel) > UNRESOLVED:  # refuse fast (≤ 50 ms)
-            raise ValueError(
-                f"the law varies on a scale below 1/{npan * NCOEF} of [{lo:.6g}, {hi:.6g}] "
-                f"(relative error {max(rel):.2g} with {npan} panels): too steep to represent"
-            )
+            raise ValueError(unresolved_reason(npan, lo, hi, max(rel)))
         npan *= 2
     if max(rel) > ACCEPT:
         which = ("f", "f'", "f''")[int(np.argmax(rel))]
