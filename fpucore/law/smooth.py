@@ -192,7 +192,9 @@ class SmoothLaw(HardeningSofteningLaw):
         try:  # too steep: refused before any longdouble or 30-digit work
             cheb.require_resolvable(fl[2], lo, hi)
         except ValueError as exc:
-            raise ClassFailure(f"the law cannot be represented on [{lo:.6g}, {hi:.6g}]: {exc}") from None
+            raise ClassFailure(
+                f"the law cannot be represented on [{lo:.6g}, {hi:.6g}]: {exc}"
+            ) from None
         # in the class: the 30-digit roots, and the represented interval from them
         beta, beta_err = beta_root.polished(mp[1])
         alpha, alpha_err = alpha_root.polished(mp[1]) if alpha_root else (-math.inf, 0.0)
@@ -223,7 +225,8 @@ class SmoothLaw(HardeningSofteningLaw):
         if r is None or r.a == r.b:
             return
         with np.errstate(all="ignore"):
-            at, ends = abs(float(df(np.float64(r.x)))), max(abs(float(df(r.a))), abs(float(df(r.b))))
+            at = abs(float(df(np.float64(r.x))))
+            ends = max(abs(float(df(np.float64(r.a)))), abs(float(df(np.float64(r.b)))))
         if at <= ends:
             return
         xb = r.x + side * 1e-6 * max(1.0, abs(r.x))

@@ -2,8 +2,8 @@
 
 Roots in float64 by bracketing (brentq on the exact expression); the class is decided on those, and
 only a law that passes has them polished by mpmath at 30 digits (:meth:`Root.polished`: a refusal
-costs no extended precision), each with an error bar |x_float − x_30 digits| + 2 ulp.  The steps, each refused with the
-reason and the place:
+costs no extended precision), each with an error bar |x_float − x_30 digits| + 2 ulp.  The
+steps, each refused with the reason and the place:
 
 * f(0) = 0 (|f(0)| at 40 digits ≤ 1e-25 max(1, f′(0))) and f′(0) > 0;
 * β: the first zero of f′ above 0 found on the geometric grid 10^(−30 … 30) (16 points a decade),
@@ -15,7 +15,6 @@ reason and the place:
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
