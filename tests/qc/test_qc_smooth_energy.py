@@ -107,5 +107,5 @@ def test_energy_and_profile_against_40_digit_quadrature(name, side):
             got = float(sw.profile(np.float64(x)))
             slope = abs(float(sw.dprofile(np.array([x]))[0]))
             bound = slope * sw.xi_error + sw.w_M_error + sw.w_B_error
-            assert abs(got - float(w)) <= bound + eps * max(1, abs(float(w))), (t, got, float(w),
-                                                                                  bound)  # fmt: skip
+            err = abs(got - float(w))
+            assert err <= bound + eps * max(1, abs(float(w))), (t, got, float(w), bound)
