@@ -190,7 +190,7 @@ class SmoothLaw(HardeningSofteningLaw):
         n_grid = 8 * cheb.MAX_PANELS
         w_star_root = inflection(ddf, alpha if math.isfinite(alpha) else lo, beta, n_grid)
         try:  # too steep: refused before any longdouble or 30-digit work
-            cheb.require_resolvable(fl[2], lo, hi)
+            start = cheb.first_level(fl[2], lo, hi)
         except ValueError as exc:
             raise ClassFailure(
                 f"the law cannot be represented on [{lo:.6g}, {hi:.6g}]: {exc}"
@@ -209,7 +209,7 @@ class SmoothLaw(HardeningSofteningLaw):
         c2 = float(df(np.float64(w_star)))
         require_computable("expression", self.text, alpha, beta, w_star, c2, "f'(w*)")
         try:
-            rep = cheb.build(lg, mp, lo, hi)
+            rep = cheb.build(lg, mp, lo, hi, start)
         except ValueError as exc:
             raise ClassFailure(
                 f"the law cannot be represented on [{lo:.6g}, {hi:.6g}]: {exc}"
