@@ -52,7 +52,8 @@ typecheck: setup
 # (-W, nitpicky -n): a broken cross-reference, a docstring that does not parse or a gallery figure
 # that raises fails the build.  The gallery's 17 figures are computed (full size; FPU_DOCS_REDUCED=1
 # for reduced grids) and cached in $FPU_CACHE_DIR (default .fpu_cache) keyed by fpucore's source:
-# a rebuild with the same fpucore reads them back.
+# a rebuild with the same fpucore reads them back.  So are the worked-example pages of the smooth
+# preset laws (docs/_ext/law_gallery.py: docs/laws/, a few seconds a law).
 docs: setup
 	$(BIN)/sphinx-build -W --keep-going -n -q -b html docs build/docs/html -d build/docs/doctrees
 	@echo "docs: build/docs/html/index.html"

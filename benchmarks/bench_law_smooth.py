@@ -14,6 +14,13 @@ C. each non-polynomial preset: its superkink at the velocity at the same place o
    the cubic's time (different waves: the ratio includes the work of another wave, e.g. another
    step count m from another c_max).  Target ≤ 2.
 
+D. refusal of a law outside the class (three or five inflections, w* < 0, no softening, a
+   domain error, too steep to represent), warm process, SymPy's caches cleared, best of
+   ``reps``; target ≤ 50 ms (the class is decided on float64 scans before any 30-digit root or
+   representation: tests/law/test_law_smooth.py::test_class_refusals_do_no_extended_precision_work).
+E. the build of a stiff law that needs the full 4096 panels (exponential d = 1e-4, tanh m = 0.05,
+   s = 0.01).
+
 Times are process CPU time (single-threaded: set OPENBLAS_NUM_THREADS=1), best of ``reps``,
 interleaved so load hits every law alike.
 """
@@ -71,6 +78,7 @@ def best(calls: dict, reps: int) -> dict:
 def main(argv=None) -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--reps", type=int, default=3)
+    ap.add_argument("--only-law", action="store_true", help="only A, D and E (no waves)")
     args = ap.parse_args(argv)
     smooth_names = [n for n in PRESETS if n not in ("cubic", "quartic")]
     for n in smooth_names:
@@ -79,6 +87,9 @@ def main(argv=None) -> None:
     for n in smooth_names:
         cpu, wall = min(first_use(n) for _ in range(args.reps))
         print(f"   {n:12s} {cpu:6.3f} s CPU ({wall:6.3f} s wall)")
+    refusals_and_stiff(args.reps)
+    if args.only_law:
+        return
     cubic = CubicLaw(-1.0, 10.0)
     same = SmoothLaw("a*w**3 + b*w**2 + w", {"a": -1.0, "b": 10.0})
     calls = {"cubic (LAW_CUBIC)": wave_and_spectrum(cubic, 5.2),
@@ -94,6 +105,52 @@ def main(argv=None) -> None:
         print(f"   {k:20s} V = {r.V:.6g}  {v:7.3f} s  ratio {v / base:5.2f}   wave {r.status} "
               f"residual {r.residual:.1e}, m = {r.m}; spectrum {s.status}, "
               f"max|mu|-1 = {s.max_modulus - 1:.1e}")  # fmt: skip
+
+
+REFUSALS = [
+    ("w + k*(tanh((w - m)/s) + tanh(m/s)) - c*w**3", {"c": 0.1, "k": 1, "m": 1, "s": 0.01}),
+    ("w + w**2/(1 + exp(-(w - 1)/e)) - w**3/100", {"e": 0.05}),
+    ("w - w**2*exp(w)", None),
+    ("log(1 + w)", None),
+    ("w + w**2 - w**3 + log(w + 0.5) - log(0.5)", None),
+    ("w + k*(tanh((w - m)/s) + tanh(m/s)) - c*w**3", {"c": 0.1, "k": 1, "m": 0.01, "s": 0.002}),
+]
+STIFF = [
+    ("w + b*w**2 - c*w**3*exp(w/d)", {"b": 10, "c": 1, "d": 1e-4}),
+    ("w + k*(tanh((w - m)/s) + tanh(m/s)) - c*w**3", {"c": 0.1, "k": 1, "m": 0.05, "s": 0.01}),
+]
+
+
+def timed_law(text, consts, clear: bool) -> tuple[float, float, str]:
+    """(CPU s, wall s, outcome) of law_from_expression (SymPy's caches cleared if ``clear``)."""
+    from sympy.core.cache import clear_cache
+
+    from fpucore.errors import ParameterError
+    from fpucore.law import law_from_expression, smooth, smooth_parse
+
+    if clear:
+        clear_cache()
+        smooth.symbolic.cache_clear()
+        smooth_parse.parse_smooth.cache_clear()
+    t0, c0 = time.perf_counter(), time.process_time()
+    try:
+        law = law_from_expression(text, consts)
+        out = f"{law.representation_error.panels} panels"
+    except ParameterError as exc:
+        out = "refused: ..." + str(exc)[-70:]
+    return time.process_time() - c0, time.perf_counter() - t0, out
+
+
+def refusals_and_stiff(reps: int) -> None:
+    print("\nD. refusal by the class check (warm process, caches cleared), target <= 0.05 s")
+    for text, consts in REFUSALS:
+        cpu, wall, out = min(timed_law(text, consts, True) for _ in range(reps))
+        print(f"   {cpu * 1e3:6.1f} ms CPU ({wall * 1e3:6.1f} ms wall)  {text[:44]:44s} {consts}")
+        print(f"          {out}")
+    print("\nE. build of a stiff law (4096 panels), warm process")
+    for text, consts in STIFF:
+        cpu, wall, out = min(timed_law(text, consts, False) for _ in range(reps))
+        print(f"   {cpu:6.3f} s CPU ({wall:6.3f} s wall)  {text[:44]:44s} {consts}: {out}")
 
 
 if __name__ == "__main__":

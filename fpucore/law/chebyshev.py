@@ -13,10 +13,12 @@ Layout of ``params`` (float64): ``[lo, hi, npan, NCOEF, npan/(hi − lo), 0, 0, 
 coefficients of f (npan × NCOEF, row per panel), of f′ and of f″.  Outside [lo, hi] the kernels
 return NaN: a state that leaves the represented interval is never extrapolated.
 
-The number of panels doubles from 16 until the measured error of each of f, f′, f″ — the
-largest difference between the Clenshaw evaluation in float64 (the kernel's own operations) and
-the longdouble exact expression at 3 points per Chebyshev node interval, relative to the
-function's largest magnitude on [lo, hi] — is below :data:`TARGET` (at most :data:`MAX_PANELS`).
+The number of panels doubles from 16 (from the first level whose float64 fit of f″ is within
+:data:`SKIP`, :func:`first_level`: the same result) until the measured error of each of f, f′,
+f″ — the largest difference between the Clenshaw evaluation in float64 (the kernel's own
+operations) and the longdouble exact expression at 3 points per Chebyshev node interval,
+relative to the function's largest magnitude on [lo, hi] — is below :data:`TARGET` (at most
+:data:`MAX_PANELS`).
 The longdouble reference is itself checked against mpmath at 30 digits at :data:`N_MP` points;
 its own error is added; the stored error is that measurement × :data:`SAFETY` + 8 eps × scale
 (sampled, not a bound: the rounding of Clenshaw between the check points).
@@ -41,6 +43,7 @@ SAFETY = 2.0
 # still unresolved here (error > 1 %) means the law varies on a scale the 4096 panels will not
 # reach either (convergence is ~ (h/scale)^NCOEF once resolved): refused at once, not after 4 s
 UNRESOLVED_PANELS, UNRESOLVED = 256, 1e-2
+SKIP = 1e-6  # float64 fit of f″ still this far off: a level the longdouble doubling skips
 EPS = float(np.finfo(float).eps)
 
 
@@ -111,12 +114,12 @@ def clenshaw(coef: np.ndarray, lo: float, hi: float, w: np.ndarray, start=None) 
     ok = (x >= 0.0) & (x <= npan)
     k = np.minimum(np.where(ok, x, 0.0).astype(np.int64), npan - 1)
     t = 2.0 * (np.where(ok, x, 0.0) - k) - 1.0
-    c = coef[k]
+    cT = np.ascontiguousarray(coef.T)  # gather one coefficient row at a time (contiguous)
     b1 = np.zeros_like(t)
     b2 = np.zeros_like(t)
     for j in range(coef.shape[1] - 1, 0, -1):
-        b1, b2 = c[..., j] + 2.0 * t * b1 - b2, b1
-    out = c[..., 0] + t * b1 - b2
+        b1, b2 = cT[j][k] + 2.0 * t * b1 - b2, b1
+    out = cT[0][k] + t * b1 - b2
     if start is not None:
         out = out + start[k]
     return np.where(ok, out, np.nan)
@@ -140,11 +143,51 @@ class Representation:
         return clenshaw(self.coef[k], lo, hi, w)
 
 
-def build(long_fns, mp_fns, lo: float, hi: float) -> Representation:
-    """The representation of (f, f′, f″) on [lo, hi]; ``long_fns`` evaluate the exact
-    expressions on longdouble arrays, ``mp_fns`` on one mpmath number.  Raises ValueError with
-    the reason when the values are not finite or the error stays above :data:`ACCEPT`."""
+def _f64_error(ddf, lo: float, hi: float, npan: int) -> float:
+    """Relative error of f″ fitted in float64 on ``npan`` panels (NaN if not finite there)."""
+    X = np.asarray(nodes(lo, hi, npan), dtype=np.float64)
+    P = _check_points(lo, hi, npan)
+    with np.errstate(all="ignore"):
+        v = np.asarray(ddf(X), dtype=np.float64)
+        ref = np.asarray(ddf(P), dtype=np.float64)
+    if not (np.all(np.isfinite(v)) and np.all(np.isfinite(ref))):
+        return float("nan")
+    _, F = _tables()
+    c = v @ F.astype(np.float64)
+    scale = float(max(np.max(np.abs(v)), np.max(np.abs(ref))))
+    return float(np.max(np.abs(clenshaw(c, lo, hi, P) - ref))) / scale if scale > 0 else 0.0
+
+
+def first_level(ddf, lo: float, hi: float) -> int:
+    """The panel count at which :func:`build` starts, from a float64 scan of f″ (the hardest
+    of the three to represent): panels double from :data:`MIN_PANELS` while the float64 fit
+    misses by more than :data:`SKIP` relative — levels where the longdouble fit would miss by
+    as much (≫ the float64 rounding), so :func:`build` would not stop there: skipping them
+    leaves its result bit for bit the same and saves their longdouble work.  Raises
+    ValueError at once (a few ms of float64) where :func:`build` would refuse the law as
+    unresolved: still above :data:`UNRESOLVED` at :data:`UNRESOLVED_PANELS`."""
     npan = MIN_PANELS
+    while npan < MAX_PANELS:
+        rel = _f64_error(ddf, lo, hi, npan)
+        if not rel > SKIP:  # resolved to SKIP, or not finite (build names the point)
+            break
+        if npan >= UNRESOLVED_PANELS and rel > UNRESOLVED:
+            raise ValueError(unresolved_reason(npan, lo, hi, rel))
+        npan *= 2
+    return npan
+
+
+def unresolved_reason(npan: int, lo: float, hi: float, rel: float) -> str:
+    return (f"the law varies on a scale below 1/{npan * NCOEF} of [{lo:.6g}, {hi:.6g}] "
+            f"(relative error {rel:.2g} with {npan} panels): too steep to represent")  # fmt: skip
+
+
+def build(long_fns, mp_fns, lo: float, hi: float, start: int = MIN_PANELS) -> Representation:
+    """The representation of (f, f′, f″) on [lo, hi]; ``long_fns`` evaluate the exact
+    expressions on longdouble arrays, ``mp_fns`` on one mpmath number; panels double from
+    ``start`` (:func:`first_level`).  Raises ValueError with the reason when the values are not
+    finite or the error stays above :data:`ACCEPT`."""
+    npan = start
     while True:
         X = nodes(lo, hi, npan)
         vals = [np.asarray(g(X), dtype=np.longdouble) for g in long_fns]
@@ -165,10 +208,7 @@ def build(long_fns, mp_fns, lo: float, hi: float) -> Representation:
         if max(rel) <= TARGET or npan >= MAX_PANELS:
             break
         if npan >= UNRESOLVED_PANELS and max(rel) > UNRESOLVED:  # refuse fast (≤ 50 ms)
-            raise ValueError(
-                f"the law varies on a scale below 1/{npan * NCOEF} of [{lo:.6g}, {hi:.6g}] "
-                f"(relative error {max(rel):.2g} with {npan} panels): too steep to represent"
-            )
+            raise ValueError(unresolved_reason(npan, lo, hi, max(rel)))
         npan *= 2
     if max(rel) > ACCEPT:
         which = ("f", "f'", "f''")[int(np.argmax(rel))]

@@ -168,8 +168,15 @@ class SmoothLaw(HardeningSofteningLaw):
         if not d0 > 0:
             raise ClassFailure(f"f'(0) = {d0:.6g} must be positive: the unstrained chain must be "
                                "stable (0 inside the convex interval (alpha, beta))")  # fmt: skip
-        beta, beta_err, _ = convex_end(df, mp[1], mp[2], 1.0, diag_df)
-        alpha, alpha_err, _ = convex_end(df, mp[1], mp[2], -1.0, diag_df)
+        # the class is decided on float64 roots; only a law that passes pays for the 30-digit
+        # polish and the representation (a refusal stays within ~10 ms of float64 scans)
+        beta_root = convex_end(df, 1.0, diag_df)
+        alpha_root = convex_end(df, -1.0, diag_df)
+        assert beta_root is not None  # no upper end is refused inside convex_end
+        for r, side in ((beta_root, 1.0), (alpha_root, -1.0)):
+            self._not_a_pole(r, side, f, df, diag_f, diag_df)
+        beta = beta_root.x
+        alpha = alpha_root.x if alpha_root is not None else -math.inf
         # a lower end that overflows/leaves the domain close to 0 is a domain error in (α, β)
         lo_probe = -np.logspace(-30, math.log10(4 * beta), 400)
         with np.errstate(all="ignore"):
@@ -179,13 +186,20 @@ class SmoothLaw(HardeningSofteningLaw):
             x = float(lo_probe[pv_bad][0])
             raise ClassFailure(f"f' is not finite at w = {x:.6g} inside the convex interval: "
                                f"{diag_df(x)}")  # fmt: skip
-        w_ref = alpha if math.isfinite(alpha) else -beta
-        W = beta - w_ref
-        lo, hi = w_ref - MARGIN * W, beta + MARGIN * W
-        lo, hi = self._domain(fl, lo, hi, alpha, beta, diag_f)
+        lo, hi = self._domain(fl, *self._margins(alpha, beta), alpha, beta, diag_f)
         n_grid = 8 * cheb.MAX_PANELS
-        w_star, w_star_err = inflection(ddf, mp[2], None, alpha if math.isfinite(alpha) else lo,
-                                        beta, n_grid)  # fmt: skip
+        w_star_root = inflection(ddf, alpha if math.isfinite(alpha) else lo, beta, n_grid)
+        try:  # too steep: refused before any longdouble or 30-digit work
+            start = cheb.first_level(fl[2], lo, hi)
+        except ValueError as exc:
+            raise ClassFailure(
+                f"the law cannot be represented on [{lo:.6g}, {hi:.6g}]: {exc}"
+            ) from None
+        # in the class: the 30-digit roots, and the represented interval from them
+        beta, beta_err = beta_root.polished(mp[1])
+        alpha, alpha_err = alpha_root.polished(mp[1]) if alpha_root else (-math.inf, 0.0)
+        w_star, w_star_err = w_star_root.polished(mp[2])
+        lo, hi = self._domain(fl, *self._margins(alpha, beta), alpha, beta, diag_f)
         set_(self, "alpha", alpha)
         set_(self, "beta", beta)
         set_(self, "alpha_error", alpha_err)
@@ -195,13 +209,40 @@ class SmoothLaw(HardeningSofteningLaw):
         c2 = float(df(np.float64(w_star)))
         require_computable("expression", self.text, alpha, beta, w_star, c2, "f'(w*)")
         try:
-            rep = cheb.build(lg, mp, lo, hi)
+            rep = cheb.build(lg, mp, lo, hi, start)
         except ValueError as exc:
             raise ClassFailure(
                 f"the law cannot be represented on [{lo:.6g}, {hi:.6g}]: {exc}"
             ) from None
         set_(self, "interval", (float(lo), float(hi)))
         set_(self, "_rep", rep)
+
+    @staticmethod
+    def _not_a_pole(r, side, f, df, diag_f, diag_df) -> None:
+        """A sign change of f′ through a singularity (|f′| → ∞ at the float root, e.g. the
+        1/(w + 1/2) of log(w + 1/2)) is no end of the convex interval: refused as the domain
+        error it is (f beyond it), or as the singularity."""
+        if r is None or r.a == r.b:
+            return
+        with np.errstate(all="ignore"):
+            at = abs(float(df(np.float64(r.x))))
+            ends = max(abs(float(df(np.float64(r.a)))), abs(float(df(np.float64(r.b)))))
+        if at <= ends:
+            return
+        xb = r.x + side * 1e-6 * max(1.0, abs(r.x))
+        with np.errstate(all="ignore"):
+            if not math.isfinite(float(f(np.float64(xb)))):
+                raise ClassFailure(f"f is not a finite real number at w = {xb:.6g} inside the "
+                                   f"convex interval: {diag_f(xb)}")  # fmt: skip
+        raise ClassFailure(f"f' changes sign through a singularity at w = {r.x:.6g} (|f'| is "
+                           f"unbounded there), not through a zero: {diag_df(r.x)}")  # fmt: skip
+
+    @staticmethod
+    def _margins(alpha: float, beta: float) -> tuple[float, float]:
+        """[α − W/2, β + W/2], W = β − α (α = −∞: −β in its place)."""
+        w_ref = alpha if math.isfinite(alpha) else -beta
+        W = beta - w_ref
+        return w_ref - MARGIN * W, beta + MARGIN * W
 
     @staticmethod
     def _domain(fl, lo, hi, alpha, beta, diag_f):

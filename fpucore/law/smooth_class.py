@@ -1,8 +1,9 @@
 """The hardening–softening class check of a smooth law on its own convex interval (paper §2).
 
-Roots in float64 by bracketing (brentq on the exact expression), polished by mpmath at 30 digits;
-each carries an error bar |x_float − x_30 digits| + 2 ulp.  The steps, each refused with the
-reason and the place:
+Roots in float64 by bracketing (brentq on the exact expression); the class is decided on those, and
+only a law that passes has them polished by mpmath at 30 digits (:meth:`Root.polished`: a refusal
+costs no extended precision), each with an error bar |x_float − x_30 digits| + 2 ulp.  The
+steps, each refused with the reason and the place:
 
 * f(0) = 0 (|f(0)| at 40 digits ≤ 1e-25 max(1, f′(0))) and f′(0) > 0;
 * β: the first zero of f′ above 0 found on the geometric grid 10^(−30 … 30) (16 points a decade),
@@ -14,7 +15,7 @@ reason and the place:
 
 from __future__ import annotations
 
-import math
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -49,16 +50,33 @@ def polish(mp_fn, mp_dfn, x: float, a: float, b: float) -> tuple[float, float]:
     return r, abs(r - x) + 2 * EPS * abs(r)
 
 
-def root(fn, mp_fn, mp_dfn, a: float, b: float) -> tuple[float, float]:
+@dataclass(frozen=True)
+class Root:
+    """A float64 root ``x`` of a bracket [a, b] (brentq to 4 ulp), not yet polished: the class
+    check decides on these, and only a law that passes pays for the 30-digit polish."""
+
+    x: float
+    a: float
+    b: float
+
+    def polished(self, mp_fn) -> tuple[float, float]:
+        """(root, error bar) at 30 digits (:func:`polish`); an exact zero on the grid: 2 ulp."""
+        if self.a == self.b:
+            return self.x, 2 * EPS * abs(self.x)
+        return polish(mp_fn, None, self.x, self.a, self.b)
+
+
+def root(fn, a: float, b: float) -> Root:
     from scipy.optimize import brentq  # SciPy on first use: `import fpucore.law` stays light
 
     g = lambda z: float(_finite(fn, z))  # noqa: E731
     x = brentq(g, a, b, xtol=4 * EPS * max(abs(a), abs(b)), rtol=4 * EPS, maxiter=500)
-    return polish(mp_fn, mp_dfn, x, a, b)
+    return Root(float(x), float(a), float(b))
 
 
-def convex_end(df, mp_df, mp_ddf, sign: float, diagnose) -> tuple[float, float, bool]:
-    """(end, error, finite?) of the convex interval on the side ``sign`` of 0."""
+def convex_end(df, sign: float, diagnose) -> Root | None:
+    """The end of the convex interval on the side ``sign`` of 0 (float64, unpolished; an exact
+    zero on the grid has a = b = x), or None when that end is −∞."""
     x = sign * GRID
     v = _finite(df, x)
     bad = ~(v > 0) | ~np.isfinite(v)
@@ -68,22 +86,22 @@ def convex_end(df, mp_df, mp_ddf, sign: float, diagnose) -> tuple[float, float, 
                 "no softening: f'(w) > 0 for every w in (0, 1e30], so the convex interval has "
                 "no upper end beta and no superkink exists"
             )
-        return -math.inf, 0.0, False
+        return None
     j = int(np.argmax(bad))
     if not np.isfinite(v[j]):
         if sign < 0:
-            return -math.inf, 0.0, False  # decided by the caller against beta
+            return None  # decided by the caller against beta
         raise ClassFailure(f"f' is not finite at w = {x[j]:.6g} before it vanishes: "
                            f"{diagnose(x[j])}")  # fmt: skip
     a = x[j - 1] if j > 0 else 0.0
     if v[j] == 0.0:
-        return float(x[j]), 2 * EPS * abs(x[j]), True
-    r, e = root(df, mp_df, mp_ddf, a, float(x[j]))
-    return r, e, True
+        return Root(float(x[j]), float(x[j]), float(x[j]))
+    return root(df, a, float(x[j]))
 
 
-def inflection(ddf, mp_ddf, mp_dddf, alpha: float, beta: float, n: int) -> tuple[float, float]:
-    """The unique sign change of f″ in (α, β), + to −, at w* > 0 (ClassFailure otherwise)."""
+def inflection(ddf, alpha: float, beta: float, n: int) -> Root:
+    """The unique sign change of f″ in (α, β), + to −, at w* > 0 (ClassFailure otherwise;
+    float64, unpolished)."""
     x = np.linspace(alpha, beta, max(n, N_INFLECTION))[1:-1]
     v = _finite(ddf, x)
     if not np.all(np.isfinite(v)):
@@ -107,8 +125,8 @@ def inflection(ddf, mp_ddf, mp_dddf, alpha: float, beta: float, n: int) -> tuple
     if ss[i] < 0:
         raise ClassFailure(f"f'' changes from - to + at w ~ {where}: softening-hardening, not "
                            "hardening-softening")  # fmt: skip
-    w_star, err = root(ddf, mp_ddf, mp_dddf, float(xs[i]), float(xs[i + 1]))
-    if not w_star > 0:
-        raise ClassFailure(f"the inflection w* = {w_star:.10g} must lie at positive strain "
+    r = root(ddf, float(xs[i]), float(xs[i + 1]))
+    if not r.x > 0:
+        raise ClassFailure(f"the inflection w* = {r.x:.10g} must lie at positive strain "
                            "(hardening at w = 0, paper §2)")  # fmt: skip
-    return w_star, err
+    return r

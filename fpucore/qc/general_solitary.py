@@ -125,6 +125,11 @@ def solitary(
     if not (Jw(w_near) < 0 < Jw(other)):
         raise ParameterError("V", V, valid, "too close to an end of the interval to resolve")
     wM, wM_err = bracketed_root(Jw, w_near, other, noisy=is_smooth(law))
+    if wB_err > 0:  # w_B = w_S carries its root error into w_M: G_B(w_M; w_B) = 0 gives
+        # dw_M/dw_B = −(V² − f′(w_B))(w_M − w_B)/h_B(w_M), h_B = f − f(w_B) − V²(· − w_B)
+        hM = float(law.f(wM)) - float(law.f(wB)) - V2 * (wM - wB)
+        if hM != 0.0:
+            wM_err += abs((V2 - float(law.df(wB))) * (wM - wB) / hM) * wB_err
     sgn = 1.0 if other > wB else -1.0
     br = march_outward(Jw, other, sgn, 0.125 * abs(other - wB), n=80)
     wT = bracketed_root(Jw, *br)[0] if br else math.nan

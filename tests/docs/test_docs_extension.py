@@ -93,3 +93,16 @@ def test_absolute_value_bars_are_escaped_outside_literals():
 def test_markdown_cells_escape_punctuation():
     assert paper_gallery.md_text("w* | b_1 [x]") == "w\\* \\| b\\_1 \\[x\\]"
     assert Path(paper_gallery.__file__).parent == ROOT / "docs" / "_ext"
+
+
+def test_a_law_page_whose_route_raises_fails_the_build(monkeypatch, tmp_path):
+    import law_gallery
+
+    def failing(name):
+        raise FloatingPointError("overflow in the Riemann run")
+
+    monkeypatch.setattr(law_gallery, "compute", failing)
+    monkeypatch.setenv("FPU_CACHE_DIR", str(tmp_path / "cache"))
+    app = SimpleNamespace(srcdir=str(tmp_path))
+    with pytest.raises(ExtensionError, match="law pages: exponential: FloatingPointError"):
+        law_gallery.build_law_pages(app)

@@ -71,6 +71,32 @@ def test_every_promised_page_is_built(site):
     assert all(f"{label}.html" in index for label in FIGURES)
 
 
+def test_a_page_per_smooth_preset_with_its_figures(site):
+    """docs/laws: one page per non-polynomial preset, each with its five routes' figures and
+    numbers (the class check's α, w*, β, a converged superkink, a Floquet verdict, a Riemann run
+    that reached its end time), computed by the same build."""
+    from fpucore.law import SmoothLaw
+    from fpucore.law.presets import PRESETS, preset_law
+
+    names = [n for n in PRESETS if isinstance(preset_law(n), SmoothLaw)]
+    assert set(names) == {"exponential", "tanh", "rational"}
+    index = (site / "laws" / "index.html").read_text()
+    for name in names:
+        assert f"{name}.html" in index, name
+        page = (site / "laws" / f"{name}.html").read_text()
+        text = html.unescape(re.sub(r"<[^>]+>", "", page))
+        for fig in ("force", "diagram", "superkink", "solitary", "floquet", "riemann"):
+            assert f'src="../_images/{name}_{fig}.png"' in page, (name, fig)
+            assert (site / "_images" / f"{name}_{fig}.png").stat().st_size > 1000, (name, fig)
+        law = preset_law(name)
+        assert f"{law.w_star:.10g}" in text and f"{law.beta:.10g}" in text, name
+        assert text.count("converged True") == 2, name  # the superkink and the solitary wave
+        verdict = r"max\|μ\| = [0-9.]+ ± [0-9.e-]+,\s+(stable|finite_size|unstable) — "
+        assert re.search(verdict, text), name
+        assert "Riemann run" in text and "reached t =" in text, name
+        assert "def compute(" in text, name  # the code that computed the page
+
+
 def test_rebuild_reads_the_cache(site):
     """A second build with the same fpucore computes nothing (cached figures, unchanged pages)."""
     proc, dt = sphinx()

@@ -217,3 +217,43 @@ def _mp_eval(text, vals, w):
 def test_w_star_near_beta_is_reported_close():
     law = law_from_expression("w + b*w**2 - c*w**3*exp(w/d)", {"b": 10, "c": 1, "d": 0.02})
     assert (law.beta - law.w_star) / (law.beta - law.alpha) < 0.25
+
+
+CLASS_REFUSALS = [
+    ("w + k*(tanh((w - m)/s) + tanh(m/s)) - c*w**3", {"c": 0.1, "k": 1, "m": 1, "s": 0.01},
+     "f'' changes sign 3 times"),
+    ("w + w**2/(1 + exp(-(w - 1)/e)) - w**3/100", {"e": 0.05}, "f'' changes sign 5 times"),
+    ("w - w**2*exp(w)", None, "the inflection w* = -0.58578"),
+    ("log(1 + w)", None, "no softening"),
+    ("w + w**2 - w**3 + log(w + 0.5) - log(0.5)", None, "log of a non-positive"),
+    ("w + k*(tanh((w - m)/s) + tanh(m/s)) - c*w**3", {"c": 0.1, "k": 1, "m": 0.01, "s": 0.002},
+     "too steep to represent"),
+]  # fmt: skip
+
+
+@pytest.mark.parametrize("text, consts, cause", CLASS_REFUSALS)
+def test_class_refusals_do_no_extended_precision_work(monkeypatch, text, consts, cause):
+    """A law refused by the class check (or as too steep) is refused on float64 scans alone:
+    no root is polished at 30 digits and no representation is built (the work that made such
+    refusals take 0.3-0.5 s; ≤ 50 ms now, benchmarks/bench_law_smooth.py D)."""
+    from fpucore.law import chebyshev, smooth_class
+
+    def forbidden(*a, **k):
+        raise AssertionError("extended-precision work before the refusal")
+
+    monkeypatch.setattr(smooth_class, "polish", forbidden)
+    monkeypatch.setattr(chebyshev, "build", forbidden)
+    with pytest.raises(ParameterError) as exc:
+        law_from_expression(text, consts)
+    assert cause in str(exc.value), str(exc.value)
+
+
+def test_an_accepted_law_polishes_its_three_roots_once(monkeypatch):
+    from fpucore.law import smooth_class
+
+    calls = []
+    real = smooth_class.polish
+    monkeypatch.setattr(smooth_class, "polish", lambda *a: calls.append(a) or real(*a))
+    law = law_from_expression("w + b*w**2 - c*w**3*exp(w/d)", {"b": 10, "c": 1, "d": 50})
+    assert len(calls) == 3  # alpha, beta, w*
+    assert law.alpha_error < 1e-15 and law.beta_error < 1e-14 and law.w_star_error < 1e-14
