@@ -43,10 +43,10 @@ def ui():
         Panel's ESM model, whose shim is a server path ("static/extensions/panel/...") — a page
         opened from disk fails to fetch it (net::ERR_FILE_NOT_FOUND).  These plots use none."""
 
-        def _collect_external_resources(self, resource_attr):  # type: ignore[no-untyped-def]
+        def _collect_external_resources(self, resource_attr):
             return []
 
-        def clone(self, *, components=None):  # type: ignore[no-untyped-def]
+        def clone(self, *, components=None):
             copy = super().clone(components=components)  # Bokeh's bundle clones: keep the class
             copy.__class__ = type(self)
             return copy
