@@ -30,8 +30,9 @@ from panel.io.state import set_curdoc
 from fpucore.errors import ParameterError
 
 from .law_editor import LawEditor
+from .scene_registry import TABS
 from .slider_marks import SliderMark
-from .state import N_RANGE, STATE_PARAMS, TABS, TOL_OPTIONS, ExplorerState
+from .state import N_RANGE, STATE_PARAMS, TOL_OPTIONS, ExplorerState
 from .views import SCENES
 from .views.untrusted import LITERAL_MD, LiteralAlert, LiteralMarkdown, md_literal
 from .widgets import FloatInput, FloatSlider, IntInput, IntSlider, put, widened

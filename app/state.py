@@ -27,9 +27,9 @@ from fpucore import qc
 from fpucore.errors import ParameterError
 
 from . import compute, paper_figures
+from .scene_registry import TABS
 from .sim_url import format_sim, sc_inputs
 
-TABS = ("force", "phase", "profiles", "diagram", "floquet", "simulation", "atlas", "paper")
 MODES = ("solitary", "superkink")
 #: what the sliders (and so the URL) may set; N even (fpucore's N_MIN = 64)
 A_RANGE = (-5.0, -0.1)
@@ -96,7 +96,7 @@ class ExplorerState(param.Parameterized):
     w_plus = param.Number(1.0, doc="strain w_+ ahead of the superkink")
     V = param.Number(5.0, doc="velocity V > 0")
     mode = param.Selector(default="solitary", objects=list(MODES))
-    tab = param.Selector(default="force", objects=list(TABS))
+    tab = param.Selector(default=TABS[0], objects=list(TABS))
     N = param.Integer(500, doc="number of lattice sites of the discrete solve (even)")
     tol = param.Number(1e-10, doc="Newton tolerance of the discrete solve")
     atlas = param.String("", doc="the Atlas scene's store, relative to ATLAS_ROOT; empty: none")

@@ -49,7 +49,6 @@ RUN = "background run"  # the source of the atlas on screen when it is the butto
 
 
 class AtlasScene(BokehScene):
-    key = "atlas"
     title = "Atlas"
     caption = (
         "_Heat map of an atlas of discrete solitary waves over the existence region (w₊, V): "

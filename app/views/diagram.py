@@ -56,7 +56,6 @@ CSW_LINE = "#9e9ac8"
 
 
 class DiagramScene(BranchViews, BokehScene):
-    key = "diagram"
     title = "Amplitude, energy, existence"
     caption = (
         "_Amplitude and renormalized energy of the solitary waves against their velocity "

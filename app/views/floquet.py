@@ -83,7 +83,6 @@ def square_figure(title: str):
 
 
 class FloquetScene(BokehScene):
-    key = "floquet"
     title = "Floquet stability"
     caption = (
         "_Floquet multipliers of the discrete traveling wave: a multiplier outside the unit "

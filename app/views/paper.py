@@ -88,7 +88,6 @@ window.scrollTo(0, 0);
 
 
 class PaperScene(Scene):
-    key = "paper"
     title = "Paper"
     caption = (
         "_The paper's figures: a button opens the scene that shows the figure with its "

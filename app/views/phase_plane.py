@@ -48,7 +48,6 @@ def contour_lines(pp, levels) -> tuple[np.ndarray, np.ndarray]:
 
 
 class PhasePlaneScene(BokehScene):
-    key = "phase"
     title = "Phase plane"
     caption = (
         "_Level sets of the first integral of the quasicontinuum traveling-wave equation, "

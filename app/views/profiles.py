@@ -46,7 +46,6 @@ def n_advice(need: int, N: int) -> str:
 
 
 class ProfilesScene(BokehScene):
-    key = "profiles"
     title = "Wave profiles"
     caption = (
         "_Strain profile of the traveling wave: quasicontinuum closed form (line) and the "

@@ -49,11 +49,13 @@ log = logging.getLogger("fpu-explorer")
 class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
     """Base class of the scenes (a Panel Viewer: ``__panel__`` is the scene's layout).
 
-    Subclasses set ``key``/``title``/``caption`` and implement :meth:`make_plot`,
+    Subclasses set ``title``/``caption`` and implement :meth:`make_plot`,
     :meth:`render` (filling ``info``, returning what :meth:`publish` applies),
     :meth:`python_code` and :meth:`download_data`; optionally :meth:`controls`.  The busy
-    indicators come from :class:`SceneProgress`, the download buttons from :class:`SceneFiles`."""
+    indicators come from :class:`SceneProgress`, the download buttons from :class:`SceneFiles`.
+    A scene is registered once, in app/scene_registry.py, which gives it its ``key``."""
 
+    #: the tab's name in URLs and CSS, set from the scene's registry entry (app/views/__init__)
     key = "scene"
     title = "Scene"
     #: one line under the plot: what it shows in words and the paper's figure

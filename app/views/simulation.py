@@ -135,7 +135,6 @@ def wave_table(waves) -> str:
 
 
 class SimulationScene(BokehScene):
-    key = "simulation"
     title = "Simulation"
     caption = (
         "_Direct simulation of the FPU chain: strain w_n(t) in space and time, and the waves "
