@@ -98,7 +98,8 @@ class AtlasScene(BokehScene):
         )
         return [self.store, self.quantity, pn.Row(self.n_w, self.n_V), self.N_run, self.run_btn]
 
-    def _extra_watch(self) -> None:
+    def __init__(self, state):
+        super().__init__(state)
         self._want_run = False
         self._refused = ""  # a click on a blank cell, named above the plot
         self._data: AtlasData | None = None

@@ -21,8 +21,8 @@ from fpucore import qc
 from fpucore.floquet import CLASSES
 
 from .. import compute
-from .bokeh_scene import Updates, add_legend, add_points
-from .floquet import CLASS_STYLE
+from .bokeh_scene import Updates
+from .class_style import CLASS_STYLE
 from .report import Info
 
 
@@ -194,14 +194,3 @@ def _class_counts(info: Info, cls: np.ndarray, sw, what: str) -> str:
     if np.isfinite(err).any():
         info.error(f"max |μ| error bound ({what})", float(np.nanmax(err)))
     return ", ".join(f"{n} {CLASS_STYLE[c][0].split(' (')[0]}" for c, n in counts.items())
-
-
-def class_points(fig, name: str) -> tuple[dict, list]:
-    """One point renderer per Floquet class on ``fig`` (its source named ``name-<class>``, read
-    by the tests) and their legend at the right: ({class: (renderer, source)}, legend items)."""
-    rs = {}
-    for c in CLASSES:
-        r = add_points(fig, "circle", 9, color=CLASS_STYLE[c][1], line_color="black")
-        r[1].name = f"{name}-{c}"
-        rs[c] = r
-    return rs, add_legend(fig, "right", [(CLASS_STYLE[c][0], [rs[c][0]]) for c in CLASSES])

@@ -61,7 +61,8 @@ class ProfilesScene(BokehScene):
         self.held.set_source(lambda: self.last_info is not None and bool(getattr(self, "_cols", 0)))
         return [self.show_discrete, self.show_fronts, *self.held.widgets()]
 
-    def _extra_watch(self):
+    def __init__(self, state):
+        super().__init__(state)
         for w in (self.show_discrete, self.show_fronts):
             w.param.watch(lambda e: self.request(), "value")
 

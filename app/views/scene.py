@@ -128,20 +128,6 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
         self._cancel = False
         self._stamp = state_stamp(state)
         self._render_stamp = self._stamp
-        self._extra_watch()
-        if hasattr(self, "show_scenario"):  # a paper figure's initial data (state.scenario)
-            if state.scenario:
-                self.show_scenario(**state.scenario)  # run (if asked) at the first render
-            state.param.watch(self._on_scenario, "scenario")
-
-    def _on_scenario(self, event) -> None:
-        """A paper figure set this scene's initial data: shown now, and run if it asks."""
-        if not event.new:
-            return
-        if self.state.tab != self.key:
-            self.show_scenario(**event.new)  # run (if asked) when the tab is opened
-            return
-        self.request(prepare=lambda: self.show_scenario(**event.new))
 
     def __panel__(self):
         return self.panel
@@ -156,9 +142,6 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
     def extra_panes(self) -> list:
         """Further panes under the main plot (e.g. a clickable diagram)."""
         return []
-
-    def _extra_watch(self) -> None:
-        """Subclasses watch their own widgets here (call self.request() on change)."""
 
     def render(self, info: Info):  # pragma: no cover - abstract
         raise NotImplementedError

@@ -83,3 +83,69 @@ def test_no_second_list_of_scenes_can_disagree_with_the_registry():
                     if any(isinstance(t, ast.Name) and t.id == "key" for t in targets):
                         bad.append(f"{rel}:{stmt.lineno}: {node.name} sets its own key")
     assert not bad, "scene names written beside app/scene_registry.py:\n" + "\n".join(bad)
+
+
+MAX_LINES = 400
+
+
+def test_no_module_of_the_explorer_passes_400_lines():
+    long = {
+        str(p.relative_to(APP.parent)): n
+        for p in _app_files()
+        if (n := len(p.read_text().splitlines())) > MAX_LINES
+    }
+    assert not long, f"files over {MAX_LINES} lines (split them by topic): {long}"
+
+
+def _scene_modules() -> dict[str, Path]:
+    return {
+        f"app.views.{e.module}": APP / "views" / f"{e.module}.py" for e in scene_registry.SCENES
+    }
+
+
+def _imported_modules(path: Path) -> set[str]:
+    """The app modules ``path`` imports (relative imports resolved; ``from . import x`` names
+    the module x when it is one)."""
+    rel = path.relative_to(APP.parent).with_suffix("")
+    parts = list(rel.parts)
+    pkg = parts[:-1]  # the package of a module, and of an __init__ its own package
+    out: set[str] = set()
+    for node in ast.walk(ast.parse(path.read_text())):
+        if isinstance(node, ast.ImportFrom):
+            base = pkg[: len(pkg) - (node.level - 1)] if node.level else []
+            mod = ".".join(base + ([node.module] if node.module else []))
+            out.add(mod)
+            out |= {f"{mod}.{a.name}" for a in node.names}
+        elif isinstance(node, ast.Import):
+            out |= {a.name for a in node.names}
+    return out
+
+
+def test_no_scene_imports_another_scene():
+    """What two scenes share (the Floquet classes' colours, the formatting of a comparison, …)
+    lives in a module both import; only the registry's loader (app/views/__init__) reaches the
+    scene modules."""
+    scenes = _scene_modules()
+    assert all(p.exists() for p in scenes.values()), scenes
+    bad = []
+    for path in _app_files():
+        if path == APP / "views" / "__init__.py":
+            continue
+        own = next((m for m, p in scenes.items() if p == path), None)
+        for target in sorted(_imported_modules(path) & set(scenes) - {own}):
+            bad.append(f"{path.relative_to(APP.parent)} imports the scene {target}")
+    assert not bad, "\n".join(bad)
+
+
+def test_a_scene_builds_its_state_in_its_constructor():
+    """A scene's attributes and its widgets' watchers are set up in ``__init__`` (after the
+    base class has built its widgets and figures), not in a hook the base class calls."""
+    hooks = [
+        f"{p.relative_to(APP.parent)}: {node.name}"
+        for p in _app_files()
+        for node in ast.walk(ast.parse(p.read_text()))
+        if isinstance(node, ast.FunctionDef) and node.name == "_extra_watch"
+    ]
+    assert not hooks, hooks
+    for cls in SCENES:
+        assert "_extra_watch" not in vars(cls)
