@@ -1,7 +1,7 @@
 """Scene "Atlas" — heat maps over the existence diagram (w₊, V) from an atlas store (read by
 :func:`fpucore.atlas.open_atlas`), or from a small atlas computed as a job of :mod:`app.compute`
-(:func:`~app.compute.small_atlas`: in a worker process of the server's pool, cached on its exact
-request, with progress and Cancel, as every heavy computation of the app).
+(``compute.run(law, AtlasRequest(...))``: in a worker process of the server's pool, cached on
+its exact request, with progress and Cancel, as every heavy computation of the app).
 
 Quantities: max |μ| − 1 (log scale of the excess; needs Floquet), amplitude, E_ren^D.  Cells
 without a wave (outside the existence region, or not converged) are blank; the counts by status
@@ -155,8 +155,8 @@ class AtlasScene(BokehScene):
     def run_small(self, info: Info) -> AtlasData:
         req = self.atlas_request()
         self.set_stage("atlas points")
-        c = compute.small_atlas(self.state.law(), req, stop=self.superseded,
-                                progress=self.stage_progress("atlas points"))  # fmt: skip
+        c = compute.run(self.state.law(), req, stop=self.superseded,
+                        progress=self.stage_progress("atlas points"))  # fmt: skip
         res = c.value
         label = f"atlas run ({res.n_computed} points)"
         self._run = (req, label, c.elapsed_s)

@@ -260,14 +260,14 @@ class DiagramScene(DiagramFiles, BranchViews, BokehScene):
     def _discrete_points(self, info: Info, fam):
         s = self.state
         Vs = self._velocities(fam)
-        key_args = (s.law(), s.w_plus, Vs, s.N, s.tol)
-        if not self._want_discrete and not compute.discrete_family_cached(*key_args):
+        lw, req = s.law(), compute.FamilyRequest(s.w_plus, Vs, s.N, s.tol)
+        if not self._want_discrete and not compute.is_cached(lw, req):
             info.notes.append("discrete dots: press 'Add discrete points'")
             return None
         self._want_discrete = False
-        self._family_args = key_args
-        c = compute.discrete_family(
-            *key_args, stop=self.superseded, progress=self.stage_progress("discrete family")
+        self._family = (lw, req)
+        c = compute.run(
+            lw, req, stop=self.superseded, progress=self.stage_progress("discrete family")
         )
         info.time(f"{len(Vs)} discrete waves", c)
         rows = [r for r in c.value if hasattr(r, "amplitude")]
@@ -376,7 +376,7 @@ class DiagramScene(DiagramFiles, BranchViews, BokehScene):
             label = "E_ren^QC " + "; ".join(fmt_extremum(k, v, d) for k, v, d in zip(kinds, V, dV))
             up.set(self.ext_legend[0], label={"value": label})
         words = [criterion_words(V, dV, kinds, "the QC family", "between c₊ and c₋")]
-        cd = compute.family_energy_extrema(*self._family_args) if with_discrete else None
+        cd = compute.family_energy_extrema(*self._family) if with_discrete else None
         if cd is not None:
             ed = self._ec_d = cd.value
             info.time("energy criterion (discrete dots)", cd)

@@ -134,29 +134,25 @@ class DiagramFiles:
         )
         if getattr(self, "_rows", None):
             Vs = [float(r.V) for r in self._rows]
+            req = compute.FamilyRequest(s.w_plus, Vs, s.N, s.tol)
             code += (
-                f"rows = wave.solitary_family(law, {float(s.w_plus)!r}, {Vs!r}, "
-                f"N={int(s.N)}, tol={float(s.tol)!r}).results\n"
+                f"rows = {req.call().code()}.results\n"
                 "print([(r.V, r.amplitude, r.energy) for r in rows])\n"
             )
         sw = getattr(self, "_branch", None)
         if sw is not None:
-            Vs = [float(v) for v in sw.V]
+            req = compute.SweepRequest("solitary", float(sw.w_plus), sw.V, s.N, "lower")
             code += (
                 "# branch view: the family's Floquet sweep, classified\n"
-                "from fpucore.atlas import sweep\n"
-                f"sw = sweep(law, kind='solitary', V_values={Vs!r}, "
-                f"w_plus={float(sw.w_plus)!r}, N={int(s.N)}, branch='lower')\n"
+                f"sw = {req.call().code()}\n"
                 "print(list(zip(sw.V, sw.energy, sw.classification)))\n"
             )
         if self._sk_branch is not None:
             sk, _, branch = self._sk_branch
-            Vs = [float(v) for v in sk.V]
+            req = compute.SweepRequest("superkink", None, sk.V, s.N, branch)
             code += (
                 "# superkink branch view: the superkink family's Floquet sweep, classified\n"
-                "from fpucore.atlas import sweep\n"
-                f"sk = sweep(law, kind='superkink', V_values={Vs!r}, N={int(s.N)}, "
-                f"branch={branch!r})\n"
+                f"sk = {req.call().code()}\n"
                 f"amp = [abs(qc.superkink_from_V(law, v, branch={branch!r}).w_minus\n"
                 f"           - qc.superkink_from_V(law, v, branch={branch!r}).w_plus) "
                 "for v in sk.V]\n"

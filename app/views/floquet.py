@@ -199,12 +199,12 @@ class FloquetScene(FloquetFiles, BokehScene):
     def _sweep(self, info: Info, up: Updates) -> bool:
         s = self.state
         kind, wp, Vs, vsk, branch = self._sweep_values()
-        args = (s.law(), kind, wp, Vs, s.N, branch)
-        if not self._want_sweep and not compute.floquet_sweep_cached(*args):
+        lw, req = s.law(), compute.SweepRequest(kind, wp, Vs, s.N, branch)
+        if not self._want_sweep and not compute.is_cached(lw, req):
             self._sweep_result = self._ec = None
             return False
         self._want_sweep = False
-        c = compute.floquet_sweep(*args, stop=self.superseded, progress=self.set_progress)
+        c = compute.run(lw, req, stop=self.superseded, progress=self.set_progress)
         sw = c.value
         info.time(f"sweep ({len(Vs)} V)", c)
         self._sweep_result = sw
@@ -247,7 +247,10 @@ class FloquetScene(FloquetFiles, BokehScene):
         QC family) and the cross-check of the sweep's classifications against them."""
         s = self.state
         self._ec = None
-        c = compute.sweep_energy_check(s.law(), wp, Vs, s.N) if kind == "solitary" else None
+        c = None
+        if kind == "solitary":  # the sweep's own request (_sweep: the solitary one is "lower")
+            req = compute.SweepRequest(kind, wp, Vs, s.N, "lower")
+            c = compute.sweep_energy_check(s.law(), req)
         if c is None:
             for marks, item in ((self.ext_d, self.sw_legend[1]), (self.ext_q, self.sw_legend[2])):
                 marks.update(up, [], [], (), *ylim, item)
@@ -290,10 +293,10 @@ class FloquetScene(FloquetFiles, BokehScene):
         s = self.state
         self.require_valid()
         self._fr = self._r = None
+        req = compute.WaveRequest(s.mode, s.w_plus, s.V, s.N, s.tol)
         rc, fc = compute.floquet_spectrum(
-            s.law(), s.mode, s.w_plus, s.V, s.N, s.tol, stop=self.superseded,
-            progress=self.set_progress,
-        )  # fmt: skip
+            s.law(), req, stop=self.superseded, progress=self.set_progress
+        )
         r = rc.value
         info.time(f"discrete wave N={r.N}", rc)
         info.error("wave residual", r.residual)
@@ -310,7 +313,7 @@ class FloquetScene(FloquetFiles, BokehScene):
         up = Updates()
         mu = np.asarray(fr.multipliers)
         unstable = np.asarray(fr.unstable)
-        key = compute.floquet_key(s.law(), compute.WaveRequest(s.mode, s.w_plus, s.V, s.N, s.tol))
+        key = compute.spectrum_key(s.law(), req)
         up.data(self.r_mu[1], key, x=mu.real, y=mu.imag)
         up.data(self.r_unst[1], key, x=unstable.real, y=unstable.imag)
         up.show(self.r_unst[0], self.legend_a[1], unstable.size > 0)

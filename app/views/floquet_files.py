@@ -24,7 +24,7 @@ class FloquetFiles:
         s = self.state
         req = compute.WaveRequest(s.mode, s.w_plus, s.V, s.N, s.tol)
         code = python_preamble(s) + (
-            f"r = {compute.wave_call(s.law(), req).code()}\n"
+            f"r = {req.call(s.law()).code()}\n"
             "print(r.converged, r.residual)\n"
             "fr = floquet.spectrum(r)\n"
             "print(len(fr.multipliers), fr.max_modulus, fr.error, fr.classification)\n"
@@ -33,10 +33,9 @@ class FloquetFiles:
         sw = self._sweep_result
         if sw is not None:
             kind, wp, Vs, _, branch = self._sweep_values()
+            req = compute.SweepRequest(kind, wp, Vs, s.N, branch)
             code += (
-                "from fpucore.atlas import sweep\n"
-                f"sw = sweep(law, kind={kind!r}, V_values={[float(v) for v in Vs]!r}, "
-                f"w_plus={wp!r}, N={int(s.N)}, branch={branch!r})\n"
+                f"sw = {req.call().code()}\n"
                 "print(sw.V.tolist(), sw.max_modulus.tolist(), list(sw.classification))\n"
             )
             if kind == "solitary":

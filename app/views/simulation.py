@@ -234,11 +234,11 @@ class SimulationScene(SimulationInputs, BokehScene):
             mode, w_plus = "superkink", sk.w_plus
         else:
             mode, w_plus = "solitary", float(wv.background)
-        c = compute.discrete_wave(s.law(), mode, w_plus, V, s.N, s.tol, stop=self.superseded)
+        req = compute.WaveRequest(mode, w_plus, V, s.N, s.tol)
+        c = compute.run(s.law(), req, stop=self.superseded)
         r = c.value
         info.time(f"wave at V = {V:.6g}", c)
-        req = compute.WaveRequest(mode, w_plus, V, s.N, s.tol)
-        return r, compute.wave_call(s.law(), req).code()
+        return r, req.call(s.law()).code()
 
     def render(self, info: Info):
         # a failed or superseded run must not leave the previous run's numbers on screen
@@ -255,7 +255,7 @@ class SimulationScene(SimulationInputs, BokehScene):
         # wave; a seeded one uses the wave of the moment Run was pressed)
         info.stamp = run_stamp(state_stamp(s), req)
         self.computing_for(info.stamp)
-        c = compute.simulation(
+        c = compute.run(
             s.law(), req, stop=self.superseded, progress=self.stage_progress("simulation")
         )
         sim = c.value
@@ -319,7 +319,7 @@ class SimulationScene(SimulationInputs, BokehScene):
         req, _ = self._sim
         first = "law"
         if isinstance(req, compute.SeededRequest):
-            code += f"r = {compute.wave_call(self.state.law(), req.wave).code()}\n"
+            code += f"r = {req.wave.call(self.state.law()).code()}\n"
             first = "r"
         code += f"sim = {req.call().code(first)}\n"
         code += (
