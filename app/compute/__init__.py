@@ -70,20 +70,10 @@ from .qc_calls import (
     qc_wave,
     spec_of,
 )
-from .requests import (
-    SMALL_ATLAS_N,
-    SMALL_ATLAS_POINTS,
-    AtlasRequest,
-    Call,
-    FamilyRequest,
-    GaussianRequest,
-    Request,
-    RiemannRequest,
-    SeededRequest,
-    SimulationRequest,
-    SweepRequest,
-    WaveRequest,
-)
+
+# every request of requests.py (its __all__) is app.compute's: a new request needs no line here
+from .requests import *  # noqa: F403
+from .requests import __all__ as _REQUESTS
 from .workers import (
     CANCELLED,
     Superseded,
@@ -135,18 +125,7 @@ __all__ = [
     "spec_of",
     "n_needed",
     # the road: typed requests, run in workers and cached on their exact keys
-    "Request",
-    "Call",
-    "WaveRequest",
-    "FamilyRequest",
-    "SweepRequest",
-    "SimulationRequest",
-    "RiemannRequest",
-    "GaussianRequest",
-    "SeededRequest",
-    "AtlasRequest",
-    "SMALL_ATLAS_POINTS",
-    "SMALL_ATLAS_N",
+    *_REQUESTS,
     "run",
     "is_cached",
     "job_key",
