@@ -35,6 +35,7 @@ SCENES = (
     SceneEntry("simulation", "simulation", "SimulationScene", warm=True),
     SceneEntry("atlas", "atlas", "AtlasScene", warm=False),
     SceneEntry("paper", "paper", "PaperScene", warm=False),
+    SceneEntry("echo", "echo", "EchoScene", warm=False),
 )
 
 #: the tabs' keys in tab order (the URL's tab= values)
