@@ -35,7 +35,6 @@ SCENES = (
     SceneEntry("simulation", "simulation", "SimulationScene", warm=True),
     SceneEntry("atlas", "atlas", "AtlasScene", warm=False),
     SceneEntry("paper", "paper", "PaperScene", warm=False),
-    SceneEntry("echo", "echo", "EchoScene", warm=False),
 )
 
 #: the tabs' keys in tab order (the URL's tab= values)

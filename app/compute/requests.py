@@ -27,8 +27,6 @@ from __future__ import annotations
 from dataclasses import dataclass, fields
 from typing import ClassVar
 
-import numpy as np
-
 from fpucore import atlas, qc, wave
 from fpucore import simulate as sim
 from fpucore.errors import ParameterError, require_finite, require_int, require_tol
@@ -44,7 +42,6 @@ __all__ = [
     "WaveRequest",
     "FamilyRequest",
     "SweepRequest",
-    "EchoRequest",
     "SimulationRequest",
     "RiemannRequest",
     "GaussianRequest",
@@ -324,14 +321,3 @@ class AtlasRequest(Request):
         this worker (a pool worker may not start a pool of its own); ``progress``: the
         fraction of points done, after each chunk."""
         return self.call().run(lw, executor=Executor(backend="inline"), progress=fraction(progress))
-
-
-@dataclass(frozen=True)
-class EchoRequest(Request):
-    """Throw-away: the force law on n points of [0, 1]."""
-
-    n: int
-
-    def job(self, lw, progress=None):
-        w = np.linspace(0.0, 1.0, self.n)
-        return w, np.array([lw.f(x) for x in w])
