@@ -53,7 +53,9 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
     :meth:`render` (filling ``info``, returning what :meth:`publish` applies),
     :meth:`python_code` and :meth:`download_data`; optionally :meth:`controls`.  The busy
     indicators come from :class:`SceneProgress`, the download buttons from :class:`SceneFiles`.
-    A scene is registered once, in app/scene_registry.py, which gives it its ``key``."""
+    A scene is registered once, in app/scene_registry.py, which gives it its ``key``.  A
+    subclass sets up its own state and widget watchers in its ``__init__``, after
+    ``super().__init__`` has built the widgets and figures."""
 
     #: the tab's name in URLs and CSS, set from the scene's registry entry (app/views/__init__)
     key = "scene"
