@@ -30,11 +30,13 @@ from panel.io.state import set_curdoc
 from fpucore.errors import ParameterError
 
 from .law_editor import LawEditor
+from .scene_registry import TABS
 from .slider_marks import SliderMark
-from .state import N_RANGE, STATE_PARAMS, TABS, TOL_OPTIONS, ExplorerState
+from .state import N_RANGE, STATE_PARAMS, TOL_OPTIONS, ExplorerState
 from .views import SCENES
+from .views.formatting import ranges_markdown
 from .views.untrusted import LITERAL_MD, LiteralAlert, LiteralMarkdown, md_literal
-from .widgets import FloatInput, FloatSlider, IntInput, IntSlider, put, widened
+from .widgets import FloatInput, FloatSlider, IntInput, IntSlider, nearest_tol, put, widened
 
 CSS = """
 .scene-status p { margin: 0.2em 0; font-size: 0.92em; }
@@ -249,47 +251,15 @@ class Explorer(pn.viewable.Viewer):
                 self.V_mark.show(summ.get("V_SK"), self.V.start, self.V.end)
                 self.w_plus_exact.value = st.w_plus
                 self.V_exact.value = st.V
-                self.ranges.object = self._ranges_text(summ)
+                self.ranges.object = ranges_markdown(self.state, summ)
         finally:
             self._syncing = False
-
-    def _ranges_text(self, s: dict) -> str:
-        st = self.state
-        if "alpha" not in s:
-            return f"**invalid law:** {md_literal(st.problem() or '')}"
-        same = all(  # the superkink range of the cubic is (α, β); a root finder's last ulp
-            math.isclose(s[k], s[e], rel_tol=1e-9, abs_tol=1e-12)  # is not another range
-            for k, e in (("w_lo", "alpha"), ("w_hi", "beta"))
-        )
-        if same:
-            where = f"w₊ ∈ (α, β) = ({s['alpha']:.5g}, {s['beta']:.5g})"
-        else:  # another law: w₋ must stay inside (α, β) too
-            where = (
-                f"w₊ ∈ ({s['w_lo']:.5g}, {s['w_hi']:.5g}) (where w₋ stays inside (α, β) = "
-                f"({s['alpha']:.5g}, {s['beta']:.5g}))"
-            )
-        lines = [f"{where}, **w\\* = {s['w_star']:.6g}** excluded"]
-        if "V_SK" in s:
-            lines.append(
-                "solitary-wave velocities (tensile or compressive): "
-                f"(c₊, V_SK) = ({s['c_plus']:.6g}, {s['V_SK']:.6g}) and "
-                f"(V_SK, c₋) = ({s['V_SK']:.6g}, {s['c_minus']:.6g})"
-            )
-            lines.append(f"**V_SK = {s['V_SK']:.10g}** (superkink)")
-            lines.append(f"superkink V bounds ({s['V_lo']:.6g}, {s['V_hi']:.6g})")
-        kind = st.kind()
-        lines.append(
-            f"current: **{kind}**" if kind != "invalid" else f"⚠ {md_literal(st.problem())}"
-        )
-        if st.note:
-            lines.append(f"_{md_literal(st.note)}_")
-        return "\n\n".join(lines)
 
     # ------------------------------------------------------------------ events
     def _on_state(self, *events):
         names = {e.name for e in events}
         if names == {"note"}:
-            self.ranges.object = self._ranges_text(self.state.summary())
+            self.ranges.object = ranges_markdown(self.state, self.state.summary())
             return
         names.discard("note")
         if names - {"tab"}:
@@ -400,9 +370,3 @@ def placeholder(cls) -> pn.Column:
         css_classes=[f"scene-{cls.key}-pending"],
         sizing_mode="stretch_width",
     )
-
-
-def nearest_tol(tol: float) -> float:
-    """The tolerance option closest (in log) to tol."""
-    t = float(tol) if math.isfinite(tol) and tol > 0 else 1e-10
-    return min(TOL_OPTIONS, key=lambda o: abs(math.log10(o / t)))

@@ -19,7 +19,6 @@ from __future__ import annotations
 
 import contextlib
 import math
-from dataclasses import dataclass
 
 import param
 
@@ -27,9 +26,10 @@ from fpucore import qc
 from fpucore.errors import ParameterError
 
 from . import compute, paper_figures
+from .held_wave import HeldWave
+from .scene_registry import TABS
 from .sim_url import format_sim, sc_inputs
 
-TABS = ("force", "phase", "profiles", "diagram", "floquet", "simulation", "atlas", "paper")
 MODES = ("solitary", "superkink")
 #: what the sliders (and so the URL) may set; N even (fpucore's N_MIN = 64)
 A_RANGE = (-5.0, -0.1)
@@ -58,33 +58,6 @@ STATE_PARAMS = tuple(URL_ATTRS.get(n, n) for n in URL_PARAMS)
 FIGURE_PARAMS = ("a", "b", "expression", "w_plus", "V", "mode", "N", "held")
 
 
-@dataclass(frozen=True)
-class HeldWave:
-    """One held curve: the wave it shows, under the state's law (and N, tol).  A superkink is
-    named by its w₊ alone (V = V_SK(w₊), eq. cubic_cond2, follows from the law); a solitary
-    wave by (w₊, V).  Its curves are recomputed (cached) by the scenes that draw it."""
-
-    mode: str
-    w_plus: float
-    V: float | None = None
-
-    def label(self, V: float | None = None) -> str:
-        """Legend label; ``V``: the superkink's velocity under the current law."""
-        if self.mode == "superkink":
-            v = f"superkink V = {V:.6g}, " if V is not None else "superkink "
-            return f"{v}w₊ = {self.w_plus:.6g}"
-        return f"V = {self.V:.6g}, w₊ = {self.w_plus:.6g}"
-
-    def url(self, w_plus: float) -> str:
-        """URL form: ``V`` (solitary at the state's w₊ ``w_plus``), ``V@w₊`` (solitary at another
-        w₊) or ``sk@w₊`` (superkink); floats exact (repr)."""
-        if self.mode == "superkink":
-            return f"sk@{self.w_plus!r}"
-        if self.w_plus == w_plus:
-            return repr(self.V)
-        return f"{self.V!r}@{self.w_plus!r}"
-
-
 class ExplorerState(param.Parameterized):
     """Single source of truth for the dashboard (synced with the URL query string)."""
 
@@ -96,7 +69,7 @@ class ExplorerState(param.Parameterized):
     w_plus = param.Number(1.0, doc="strain w_+ ahead of the superkink")
     V = param.Number(5.0, doc="velocity V > 0")
     mode = param.Selector(default="solitary", objects=list(MODES))
-    tab = param.Selector(default="force", objects=list(TABS))
+    tab = param.Selector(default=TABS[0], objects=list(TABS))
     N = param.Integer(500, doc="number of lattice sites of the discrete solve (even)")
     tol = param.Number(1e-10, doc="Newton tolerance of the discrete solve")
     atlas = param.String("", doc="the Atlas scene's store, relative to ATLAS_ROOT; empty: none")

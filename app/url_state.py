@@ -18,6 +18,7 @@ from fpucore.errors import ParameterError
 
 from . import compute, paper_figures
 from .data_dir import DATA_DIR_NAME, atlas_root, hide_server_paths
+from .scene_registry import TABS
 from .sim_url import MAX_URL_SIM, format_sim, parse_sim, sc_inputs
 from .state import (
     A_RANGE,
@@ -30,7 +31,6 @@ from .state import (
     MODES,
     N_RANGE,
     STATE_PARAMS,
-    TABS,
     TOL_OPTIONS,
     URL_ATTRS,
     URL_LAW_WAIT_S,

@@ -32,12 +32,14 @@ from . import compute  # noqa: E402
 from .content_policy import install_content_security_policy  # noqa: E402
 from .explorer import Explorer  # noqa: E402
 from .resources import serve_locally  # noqa: E402
+from .scene_registry import WARM_SCENES  # noqa: E402
 
 # the thread budget (fpucore/parallel/threads.py): the server computes for several sessions at
 # once, so one BLAS/OpenMP thread per computation; parallelism comes from processes (Executor)
 apply_thread_policy(1)
 
-DEFAULT_SCENES = "force,phase,profiles,diagram,simulation"
+#: the scenes rendered by default: those the registry marks warm (app/scene_registry.py)
+DEFAULT_SCENES = WARM_SCENES
 WARM_LAW = "w + 10*w**2 - w**3 - 0.01*w**4"
 
 
@@ -58,9 +60,10 @@ def warm(verbose: bool = True, scenes: str | None = None) -> dict[str, float]:
     """Warm the JIT and the cache; returns seconds spent per step.
 
     ``scenes``: comma-separated scene keys to pre-render, "all" or "none"; default (environment
-    variable FPU_WARM_SCENES) every scene but the Floquet spectrum, whose eigenvalue calls
-    (0.2–0.8 s alone at N = 500, many times that on a loaded machine) would hold the server's
-    start: it is computed when the tab is first shown.  The browser tests use "force,phase" to
+    variable FPU_WARM_SCENES) the scenes the registry marks ``warm`` (app/scene_registry.py):
+    not the Floquet spectrum, whose eigenvalue calls (0.2–0.8 s alone at N = 500, many times
+    that on a loaded machine) would hold the server's start: it is computed when the tab is
+    first shown.  The browser tests use "force,phase" to
     start fast.
     """
     scenes = scenes or os.environ.get("FPU_WARM_SCENES", DEFAULT_SCENES)

@@ -16,6 +16,8 @@ import panel as pn
 import param
 from bokeh.core.property.descriptors import UnsetValueError
 
+from .state import TOL_OPTIONS
+
 
 class _ThrottledInStep:
     """A widget whose browser-side ``value_throttled`` follows every value the server sets.
@@ -86,3 +88,9 @@ def widened(x: float, lo: float, hi: float) -> dict:
     if not math.isfinite(x):
         return {"start": lo, "end": hi}
     return {"start": min(lo, x), "end": max(hi, x)}
+
+
+def nearest_tol(tol: float) -> float:
+    """The tolerance option closest (in log) to tol (the tolerance selector's value)."""
+    t = float(tol) if math.isfinite(tol) and tol > 0 else 1e-10
+    return min(TOL_OPTIONS, key=lambda o: abs(math.log10(o / t)))

@@ -119,7 +119,7 @@ def heavy_in_background() -> threading.Thread:
     V = 5.15 + 1e-6 * (time.time() % 1)  # a new V each run: never answered from the cache
     th = threading.Thread(
         target=lambda: compute.floquet_spectrum(
-            compute.law(-1.0, 10.0), "solitary", 1.0, V, 1400, 1e-10
+            compute.law(-1.0, 10.0), compute.WaveRequest("solitary", 1.0, V, 1400, 1e-10)
         ),
         daemon=True,
     )

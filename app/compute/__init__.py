@@ -6,24 +6,26 @@ add what the views need:
 
 * a process-wide cache shared by all scenes and sessions, keyed on the **exact** inputs
   (``repr`` of each float, the law's coefficients, N, tol): a cached result is only ever
-  returned for the very same inputs.  Keys are built here only; views ask ``*_cached(...)``
-  instead of rebuilding them;
+  returned for the very same inputs.  Keys are made from the requests only; views ask
+  ``is_cached(law, request)`` instead of building them;
 * heavy computations (discrete waves, Floquet spectra, sweeps, discrete families, simulations,
   small atlases) run in worker processes (the project's execution layer,
-  :mod:`fpucore.parallel`) through :func:`run_job`: progress is forwarded, a caller that no
-  longer wants the result (a newer slider value, the Cancel button) leaves, and the job is
-  killed once nobody waits for it; two sessions asking for the same key share one job;
+  :mod:`fpucore.parallel`) through :func:`run` (``run(law, request)``): progress is
+  forwarded, a caller that no longer wants the result (a newer slider value, the Cancel button)
+  leaves, and the job is killed once nobody waits for it; two sessions asking for the same key
+  share one job;
 * wall time of the computation (``Computed.elapsed_s``) and whether it was cached;
-* typed job parameters (:mod:`~app.compute.requests`: frozen dataclasses checked when made,
-  each with its exact key and the fpucore call it stands for).
+* typed requests (:mod:`~app.compute.requests`: frozen dataclasses checked when made, each
+  the job, its exact key and the fpucore call it stands for — "Copy as Python" shows that
+  call).  A new heavy computation is a new request, not a new function here.
 
     cache (exact keys, Computed, the LRU ResultCache CACHE) → laws (the app's laws, law_key)
     → workers (the process pool, run_job, Superseded, worker warm-up)
     → qc_calls (QC waves, families, phase plane, existence diagram, n_needed: in process)
-    → requests (WaveRequest, SimulationRequest and its kinds, AtlasRequest; Call)
-    → jobs (the functions run in workers and their cache keys)
-    → heavy (discrete_wave, floquet_spectrum, floquet_sweep, discrete_family, simulation,
-      small_atlas)
+    → requests (WaveRequest, FamilyRequest, SweepRequest, SimulationRequest and its kinds,
+      AtlasRequest: each the job, its exact key and its Call, the source of "Copy as Python")
+    → jobs (the Floquet job: a wave and its spectrum, in stages)
+    → heavy (the road: run(law, request), is_cached, job_key; floquet_spectrum)
     → energy (the energy criterion's extrema, from QC and from cached waves)
 
 Bad parameters surface as ``fpucore.errors.ParameterError`` (re-exported).
@@ -42,35 +44,7 @@ from .energy import (
     sampled_energy_extrema,
     sweep_energy_check,
 )
-from .heavy import (
-    discrete_family,
-    discrete_family_cached,
-    discrete_wave,
-    discrete_wave_cached,
-    floquet_spectrum,
-    floquet_sweep,
-    floquet_sweep_cached,
-    is_cached,
-    simulation,
-    small_atlas,
-    small_atlas_cached,
-)
-from .jobs import (
-    atlas_job,
-    atlas_key,
-    family_job,
-    family_key,
-    floquet_job,
-    floquet_key,
-    fraction,
-    simulation_job,
-    simulation_key,
-    sweep_job,
-    sweep_key,
-    wave_call,
-    wave_job,
-    wave_key,
-)
+from .heavy import floquet_spectrum, is_cached, job_key, run, spectrum_key
 from .laws import (
     LAW_TIME_S,
     building_page,
@@ -96,17 +70,10 @@ from .qc_calls import (
     qc_wave,
     spec_of,
 )
-from .requests import (
-    SMALL_ATLAS_N,
-    SMALL_ATLAS_POINTS,
-    AtlasRequest,
-    Call,
-    GaussianRequest,
-    RiemannRequest,
-    SeededRequest,
-    SimulationRequest,
-    WaveRequest,
-)
+
+# every request of requests.py (its __all__) is app.compute's: a new request needs no line here
+from .requests import *  # noqa: F403
+from .requests import __all__ as _REQUESTS
 from .workers import (
     CANCELLED,
     Superseded,
@@ -114,7 +81,6 @@ from .workers import (
     jobs_in_flight,
     run_job,
     shutdown_executor,
-    warm_job,
     warm_workers,
 )
 
@@ -148,7 +114,6 @@ __all__ = [
     "shutdown_executor",
     "jobs_in_flight",
     "run_job",
-    "warm_job",
     "warm_workers",
     # QC
     "qc_method",
@@ -159,43 +124,13 @@ __all__ = [
     "existence_diagram",
     "spec_of",
     "n_needed",
-    # typed job parameters
-    "Call",
-    "WaveRequest",
-    "SimulationRequest",
-    "RiemannRequest",
-    "GaussianRequest",
-    "SeededRequest",
-    "AtlasRequest",
-    "SMALL_ATLAS_POINTS",
-    "SMALL_ATLAS_N",
-    # jobs and keys
-    "wave_call",
-    "wave_job",
-    "floquet_job",
-    "fraction",
-    "sweep_job",
-    "family_job",
-    "simulation_job",
-    "atlas_job",
-    "wave_key",
-    "floquet_key",
-    "sweep_key",
-    "family_key",
-    "simulation_key",
-    "atlas_key",
-    # heavy computations
+    # the road: typed requests, run in workers and cached on their exact keys
+    *_REQUESTS,
+    "run",
     "is_cached",
-    "discrete_wave",
-    "discrete_wave_cached",
+    "job_key",
     "floquet_spectrum",
-    "floquet_sweep",
-    "floquet_sweep_cached",
-    "discrete_family",
-    "discrete_family_cached",
-    "simulation",
-    "small_atlas",
-    "small_atlas_cached",
+    "spectrum_key",
     # energy criterion
     "ENERGY_QC_SAMPLES",
     "energy_qc_samples",

@@ -14,8 +14,9 @@ from fpucore import floquet as fq
 from fpucore import qc
 
 from .cache import CACHE, Computed, exact
-from .jobs import family_key, sweep_key
+from .heavy import job_key
 from .laws import law_key
+from .requests import FamilyRequest, SweepRequest
 
 __all__ = [
     "ENERGY_QC_SAMPLES",
@@ -61,11 +62,11 @@ def sampled_energy_extrema(key: tuple, lw, w_plus: float, V, E, dE, ok):
     )
 
 
-def family_energy_extrema(lw, w_plus, V_values, N, tol) -> Computed:
+def family_energy_extrema(lw, req: FamilyRequest) -> Computed:
     """The discrete E_ren's extrema along a discrete family that is already cached (the
     diagram's dots): see :func:`sampled_energy_extrema`.  None if the family is not cached."""
-    Vs = [float(v) for v in V_values]
-    key = family_key(lw, w_plus, Vs, N, tol)
+    key = job_key(lw, req)
+    w_plus = req.w_plus
     rows = CACHE.peek(key)
     if rows is None:
         return None
@@ -77,14 +78,14 @@ def family_energy_extrema(lw, w_plus, V_values, N, tol) -> Computed:
     return sampled_energy_extrema(key, lw, w_plus, V, E, dE, ok)
 
 
-def sweep_energy_check(lw, w_plus, V_values, N) -> Computed | None:
+def sweep_energy_check(lw, req: SweepRequest) -> Computed | None:
     """The energy criterion on a cached solitary Floquet sweep (its rows carry each wave's
     E_ren, energy_error and classification): (EnergyCriterion with the discrete extrema from the
     sweep's waves and the QC extrema, list of fpucore.floquet.StabilityChange — the cross-check
     of the classifications against the extrema).  Parabola fits plus the QC grid (1–10 ms for
     the cubic); None if the sweep is not cached."""
-    Vs = [float(v) for v in V_values]
-    key = sweep_key(lw, "solitary", w_plus, Vs, N, "lower")
+    key = job_key(lw, req)
+    w_plus = req.w_plus
     sw = CACHE.peek(key)
     if sw is None:
         return None

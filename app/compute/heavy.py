@@ -1,9 +1,11 @@
-"""The heavy computations the scenes ask for: discrete waves, Floquet spectra and sweeps,
-discrete families, simulations and small atlases, each in a worker process through
-:func:`~app.compute.workers.run_job`, cached exactly.
+"""The one road from a scene to a worker: :func:`run` takes the law and a typed request
+(:mod:`app.compute.requests`) and runs the request's job in a worker process through
+:func:`~app.compute.workers.run_job`, cached exactly on :func:`job_key`; :func:`is_cached` says
+whether it would answer from the cache.  The Floquet spectrum of a wave request
+(:func:`floquet_spectrum`) is the one job that fills two cache entries (the wave's and the
+spectrum's), with a time-left estimate for its silent eigenvalue call.
 
-Views call these and the ``*_cached`` questions (would it answer from the cache?) instead of
-building keys themselves (:mod:`app.compute.jobs` holds the jobs and their keys).
+Views never build keys themselves: a request's key is the request.
 """
 
 from __future__ import annotations
@@ -15,53 +17,39 @@ from collections.abc import Callable, Hashable
 from fpucore.errors import ParameterError
 
 from .cache import CACHE, Computed
-from .jobs import (
-    atlas_job,
-    atlas_key,
-    family_job,
-    family_key,
-    floquet_job,
-    floquet_key,
-    simulation_job,
-    simulation_key,
-    stage_of,
-    sweep_job,
-    sweep_key,
-    wave_job,
-    wave_key,
-)
-from .requests import AtlasRequest, SimulationRequest, WaveRequest
+from .jobs import floquet_job, stage_of
+from .laws import law_key
+from .requests import Request, WaveRequest
 from .workers import run_job
 
-__all__ = [
-    "is_cached",
-    "discrete_wave",
-    "discrete_wave_cached",
-    "floquet_spectrum",
-    "floquet_sweep",
-    "floquet_sweep_cached",
-    "discrete_family",
-    "discrete_family_cached",
-    "simulation",
-    "small_atlas",
-    "small_atlas_cached",
-]
+__all__ = ["run", "is_cached", "job_key", "spectrum_key", "floquet_spectrum"]
 
 
-def is_cached(key: Hashable) -> bool:
-    return CACHE.peek(key) is not None
+def job_key(lw, req: Request) -> Hashable:
+    """The exact cache key of ``req``'s result under the law ``lw``: the law's exact key and
+    the request's (its solver's inputs).  Raises ParameterError (e.g. a superkink's w₊ outside
+    its range)."""
+    return (law_key(lw), req.job_key(lw))
 
 
-def discrete_wave(lw, mode, w_plus, V, N, tol, stop=None, progress=None) -> Computed:
-    """Discrete traveling wave (see :func:`wave_job`) in a worker process, cached exactly."""
-    req = WaveRequest(mode, w_plus, V, N, tol)
-    return run_job(wave_key(lw, req), wave_job, (lw, req), stop, progress)
+def spectrum_key(lw, req: WaveRequest) -> Hashable:
+    """The exact cache key of the Floquet spectrum of the wave ``req``."""
+    return ("floquet", job_key(lw, req))
 
 
-def discrete_wave_cached(lw, mode, w_plus, V, N, tol) -> bool:
-    """Whether :func:`discrete_wave` would answer from the cache (no solve)."""
+def run(lw, req: Request, stop=None, progress=None) -> Computed:
+    """``req``'s job under the law ``lw`` in a worker process, cached exactly: the same request
+    again (from any session) is answered from the cache, two sessions asking at once share one
+    job.  ``stop()``: the caller no longer wants it (:class:`~app.compute.workers.Superseded`);
+    ``progress(fraction)``: the job's progress."""
+    return run_job(job_key(lw, req), req.job, (lw,), stop, progress)
+
+
+def is_cached(lw, req: Request) -> bool:
+    """Whether :func:`run` would answer from the cache (nothing computed); False for a
+    request whose key cannot be made (ParameterError)."""
     try:
-        return is_cached(wave_key(lw, WaveRequest(mode, w_plus, V, N, tol)))
+        return CACHE.peek(job_key(lw, req)) is not None
     except ParameterError:
         return False
 
@@ -102,15 +90,15 @@ class SpectrumProgress:
         self.progress(done, stage=stage)
 
 
-def floquet_spectrum(lw, mode, w_plus, V, N, tol, stop=None, progress=None):
-    """(wave Computed, spectrum Computed or None): the wave from the shared cache if there,
-    else wave and spectrum in one worker job.  ``progress(done, stage=...)``: its stages
-    (:data:`~app.compute.jobs.FLOQUET_STAGES`)."""
-    req = WaveRequest(mode, w_plus, V, N, tol)
-    wk = wave_key(lw, req)
+def floquet_spectrum(lw, req: WaveRequest, stop=None, progress=None):
+    """(wave Computed, spectrum Computed or None) of the wave ``req``: the wave from the shared
+    cache if there (the entry :func:`run` fills), else wave and spectrum in one worker job.
+    ``progress(done, stage=...)``: its stages (:data:`~app.compute.jobs.FLOQUET_STAGES`).  The
+    one job that answers two requests: its wave goes into the wave's own cache entry."""
+    wk = job_key(lw, req)
     rc = CACHE.lookup(wk)
     staged = None if progress is None else SpectrumProgress(progress, req.N)
-    c = run_job(floquet_key(lw, req), floquet_job, (lw, req), stop, staged)
+    c = run_job(spectrum_key(lw, req), floquet_job, (lw, req), stop, staged)
     r, fr = c.value
     if fr is not None and not c.cached:  # the job's spectra take one route (the default)
         spent = fr.monodromy_s + fr.check_s + fr.eig_s
@@ -121,42 +109,3 @@ def floquet_spectrum(lw, mode, w_plus, V, N, tol, stop=None, progress=None):
         rc = Computed(r, r.elapsed_s, c.cached)
     spec = None if fr is None else Computed(fr, fr.elapsed_s, c.cached)
     return rc, spec
-
-
-def floquet_sweep(lw, kind, w_plus, V_values, N, branch="lower", stop=None, progress=None):
-    """max |μ| against V for the family (fpucore.atlas.sweep) in a worker process."""
-    Vs = [float(v) for v in V_values]
-    key = sweep_key(lw, kind, w_plus, Vs, N, branch)
-    return run_job(key, sweep_job, (lw, kind, w_plus, Vs, int(N), branch), stop, progress)
-
-
-def floquet_sweep_cached(lw, kind, w_plus, V_values, N, branch="lower") -> bool:
-    return is_cached(sweep_key(lw, kind, w_plus, V_values, N, branch))
-
-
-def discrete_family(lw, w_plus, V_values, N, tol, stop=None, progress=None) -> Computed:
-    """Discrete solitary waves at the given velocities (amplitude/energy dots of Figs.
-    SWamp_cubic_DvsQC, SWenergy_cubic_DvsQC) in a worker process."""
-    Vs = [float(v) for v in V_values]
-    key = family_key(lw, w_plus, Vs, N, tol)
-    return run_job(key, family_job, (lw, w_plus, Vs, N, tol), stop, progress)
-
-
-def discrete_family_cached(lw, w_plus, V_values, N, tol) -> bool:
-    return is_cached(family_key(lw, w_plus, V_values, N, tol))
-
-
-def simulation(lw, req: SimulationRequest, stop=None, progress=None) -> Computed:
-    """Direct simulation (see :func:`simulation_job`) in a worker process."""
-    return run_job(simulation_key(lw, req), simulation_job, (lw, req), stop, progress)
-
-
-def small_atlas(lw, req: AtlasRequest, stop=None, progress=None) -> Computed:
-    """A small atlas with Floquet (see :func:`atlas_job`) in a worker process, cached exactly:
-    the same request again is answered from the cache.  ``progress``: the fraction of points
-    done."""
-    return run_job(atlas_key(lw, req), atlas_job, (lw, req), stop, progress)
-
-
-def small_atlas_cached(lw, req: AtlasRequest) -> bool:
-    return is_cached(atlas_key(lw, req))

@@ -7,28 +7,41 @@ fpucore's, checked where the call runs) and hashable; :meth:`key` is its exact c
 function itself with its arguments: the job runs it, the cache key and "copy as Python" are
 made from it, so the three never differ.
 
+Each request is also the job itself: :meth:`Request.job` is what a worker process runs
+(``job(law, progress=None)``, a bound method of a picklable frozen dataclass) and
+:meth:`Request.job_key` the exact key of its result under a law; the one road from a scene to
+a worker is :func:`app.compute.run` (``run(law, request)``), cached on that key.
+
     WaveRequest(mode, w_plus, V, N, tol)               a discrete traveling wave
+    FamilyRequest(w_plus, V_values, N, tol)            discrete solitary waves at those V
+    SweepRequest(kind, w_plus, V_values, N, branch)    max |μ| against V along a family
     RiemannRequest / GaussianRequest / SeededRequest   a direct simulation (SimulationRequest)
     AtlasRequest(w_lo, w_hi, n_w, n_V, N)              a small solitary atlas with Floquet
+
+A new heavy computation is a new request here (its fields, ``call``, and ``job`` when the
+worker does more than the call), not a new function of app.compute.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from dataclasses import dataclass, fields
-from typing import Any, ClassVar
+from typing import ClassVar
 
 from fpucore import atlas, qc, wave
 from fpucore import simulate as sim
 from fpucore.errors import ParameterError, require_finite, require_int, require_tol
+from fpucore.parallel import Executor
 from fpucore.simulate.config import GUARDS, MAX_L, require_positive
 from fpucore.wave.tails import N_MAX, N_MIN
 
-from .cache import exact
+from .request_base import Call, Request, fraction
 
 __all__ = [
     "Call",
+    "Request",
     "WaveRequest",
+    "FamilyRequest",
+    "SweepRequest",
     "SimulationRequest",
     "RiemannRequest",
     "GaussianRequest",
@@ -39,56 +52,6 @@ __all__ = [
 ]
 
 MODES = ("solitary", "superkink")
-
-
-def key_of(value) -> Any:
-    """Exact key form of a request's value: floats by repr, nested requests by their key."""
-    if isinstance(value, float):
-        return exact(value)
-    if isinstance(value, tuple):
-        return tuple(key_of(v) for v in value)
-    if hasattr(value, "key"):
-        return value.key()
-    return value
-
-
-class Request:
-    """What every request has: its exact key (the class name and each field's exact value)."""
-
-    def key(self) -> tuple:
-        items = ((f.name, key_of(getattr(self, f.name))) for f in fields(self))
-        return (type(self).__name__, *items)
-
-    def _set(self, name: str, value) -> None:  # a frozen dataclass normalises its own fields
-        object.__setattr__(self, name, value)
-
-
-@dataclass(frozen=True)
-class Call:
-    """``fn(first, *args, **kwargs)``: an fpucore function and its arguments after the first
-    (the law, or a wave for a seeded simulation).  ``module`` is the name the code shown to the
-    user imports it under (``from fpucore import wave``)."""
-
-    module: str
-    fn: Callable
-    args: tuple = ()
-    kwargs: tuple = ()  # (name, value) pairs in call order (a dict is not hashable)
-
-    @property
-    def name(self) -> str:
-        return self.fn.__name__
-
-    def run(self, first, **extra):
-        return self.fn(first, *self.args, **dict(self.kwargs), **extra)
-
-    def key(self) -> tuple:
-        return (self.module, self.name, key_of(self.args), key_of(self.kwargs))
-
-    def code(self, first: str = "law") -> str:
-        """The call as Python (every float by repr, so it runs on the very same inputs)."""
-        parts = [first, *(repr(x) for x in self.args)]
-        parts += [f"{k}={v!r}" for k, v in self.kwargs]
-        return f"{self.module}.{self.name}({', '.join(parts)})"
 
 
 @dataclass(frozen=True)
@@ -119,6 +82,83 @@ class WaveRequest(Request):
             return Call("wave", wave.solve_superkink, (float(sk.V),), kw)
         kw = (("N", self.N), ("tol", self.tol))
         return Call("wave", wave.solve_solitary, (self.w_plus, self.V), kw)
+
+    def job_key(self, lw) -> tuple:
+        """The solver's own inputs (a superkink's V and branch follow from w₊): two requests
+        that make the same call share one result.  Raises ParameterError."""
+        return ("wave", self.call(lw).key())
+
+    def job(self, lw, progress=None):
+        """Discrete traveling wave (fixed point of eq. nonlin_map): the WaveResult."""
+        return self.call(lw).run(lw)
+
+
+def _velocities(name: str, values) -> tuple[float, ...]:
+    try:
+        Vs = tuple(float(v) for v in values)
+    except (TypeError, ValueError):
+        raise ParameterError(name, values, "a sequence of velocities") from None
+    if not Vs:
+        raise ParameterError(name, values, "at least one velocity")
+    return tuple(require_finite(name, v) for v in Vs)
+
+
+@dataclass(frozen=True)
+class FamilyRequest(Request):
+    """Discrete solitary waves at the velocities ``V_values`` on the background w₊ (amplitude
+    and energy dots of Figs. SWamp_cubic_DvsQC, SWenergy_cubic_DvsQC), each solve continued
+    from its neighbour (fpucore.wave.solitary_family)."""
+
+    w_plus: float
+    V_values: tuple
+    N: int
+    tol: float
+
+    def __post_init__(self):
+        self._set("w_plus", require_finite("w_plus", self.w_plus))
+        self._set("V_values", _velocities("V_values", self.V_values))
+        self._set("N", require_int("N", self.N, N_MIN, N_MAX))
+        self._set("tol", require_tol(self.tol))
+
+    def call(self) -> Call:
+        kw = (("N", self.N), ("tol", self.tol))
+        return Call("wave", wave.solitary_family, (self.w_plus, list(self.V_values)), kw)
+
+    def job(self, lw, progress=None) -> list:
+        """The list of WaveResults (the family's ``results``)."""
+        return list(self.call().run(lw, progress=fraction(progress)).results)
+
+
+@dataclass(frozen=True)
+class SweepRequest(Request):
+    """max |μ| against V along a family (fpucore.atlas.sweep): ``kind`` "solitary" (on the
+    background w₊) or "superkink" (w₊ None: each V's superkink on ``branch``), N sites."""
+
+    kind: str
+    w_plus: float | None
+    V_values: tuple
+    N: int
+    branch: str = "lower"
+
+    def __post_init__(self):
+        if self.kind not in MODES:
+            raise ParameterError("kind", self.kind, " | ".join(map(repr, MODES)))
+        if self.w_plus is not None:
+            self._set("w_plus", require_finite("w_plus", self.w_plus))
+        self._set("V_values", _velocities("V_values", self.V_values))
+        self._set("N", require_int("N", self.N, N_MIN, N_MAX))
+        if self.branch not in ("lower", "upper"):
+            raise ParameterError("branch", self.branch, "'lower' | 'upper'")
+
+    def call(self) -> Call:
+        kw = (("kind", self.kind), ("V_values", list(self.V_values)), ("w_plus", self.w_plus),
+              ("N", self.N), ("branch", self.branch))  # fmt: skip
+        return Call("atlas", atlas.sweep, (), kw)
+
+    def job(self, lw, progress=None):
+        """The SweepResult, computed inline in this worker: a pool worker is daemonic and may
+        not start a pool of its own (the server's pool already spreads the sessions' jobs)."""
+        return self.call().run(lw, progress=fraction(progress), executor=Executor(backend="inline"))
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -161,6 +201,15 @@ class SimulationRequest(Request):
 
     def call(self) -> Call:
         raise NotImplementedError
+
+    def job(self, lw, progress=None):
+        """Direct simulation via fpucore.simulate (the SimulationResult)."""
+        extra = {} if progress is None else {"progress": progress}
+        return self.call().run(self.first(lw), **extra)
+
+    def first(self, lw):
+        """The call's first argument: the law (a seeded run: its wave's result)."""
+        return lw
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -222,6 +271,14 @@ class SeededRequest(SimulationRequest):
     def call(self) -> Call:
         return Call("simulate", sim.seeded, (), self.options())
 
+    def first(self, lw):
+        """The seeding wave, which must converge (ParameterError otherwise)."""
+        r = self.wave.job(lw)
+        if not r.converged:
+            raise ParameterError("N", self.wave.N, "a converged seeding wave",
+                                 f"did not converge: {r.message}")  # fmt: skip
+        return r
+
 
 #: the Atlas scene's small atlas: rows and velocities each in this range, N in SMALL_ATLAS_N
 SMALL_ATLAS_POINTS = (2, 60)
@@ -258,3 +315,9 @@ class AtlasRequest(Request):
         kw = (("rows", f"{self.w_lo!r}:{self.w_hi!r}:{self.n_w}"), ("V", self.n_V),
               ("N", self.N), ("floquet", True), ("finite_size", False))  # fmt: skip
         return Call("atlas", atlas.run, ("solitary",), kw)
+
+    def job(self, lw, progress=None):
+        """The AtlasResult, its chunks (a row of the grid each) computed one after the other in
+        this worker (a pool worker may not start a pool of its own); ``progress``: the
+        fraction of points done, after each chunk."""
+        return self.call().run(lw, executor=Executor(backend="inline"), progress=fraction(progress))

@@ -1,23 +1,20 @@
-"""One thin view class per scene (tab); each only renders what fpucore computed."""
+"""One thin view class per scene (tab); each only renders what fpucore computed.
 
-from .atlas import AtlasScene
-from .diagram import DiagramScene
-from .floquet import FloquetScene
-from .force_law import ForceLawScene
-from .paper import PaperScene
-from .phase_plane import PhasePlaneScene
-from .profiles import ProfilesScene
-from .simulation import SimulationScene
+The scenes are loaded from the registry (app/scene_registry.py), in its order; each class gets
+its ``key`` from its entry there, the one place a scene is named.
+"""
 
-SCENES = (
-    ForceLawScene,
-    PhasePlaneScene,
-    ProfilesScene,
-    DiagramScene,
-    FloquetScene,
-    SimulationScene,
-    AtlasScene,
-    PaperScene,
-)
+from importlib import import_module
 
-__all__ = ["SCENES"] + [cls.__name__ for cls in SCENES]
+from ..scene_registry import SCENES as ENTRIES
+
+
+def _load(entry):
+    cls = getattr(import_module(f".{entry.module}", __name__), entry.cls)
+    cls.key = entry.key
+    return cls
+
+
+SCENES = tuple(_load(e) for e in ENTRIES)
+
+__all__ = ["SCENES"]

@@ -1,7 +1,7 @@
 """Scene "Atlas" — heat maps over the existence diagram (w₊, V) from an atlas store (read by
 :func:`fpucore.atlas.open_atlas`), or from a small atlas computed as a job of :mod:`app.compute`
-(:func:`~app.compute.small_atlas`: in a worker process of the server's pool, cached on its exact
-request, with progress and Cancel, as every heavy computation of the app).
+(``compute.run(law, AtlasRequest(...))``: in a worker process of the server's pool, cached on
+its exact request, with progress and Cancel, as every heavy computation of the app).
 
 Quantities: max |μ| − 1 (log scale of the excess; needs Floquet), amplitude, E_ren^D.  Cells
 without a wave (outside the existence region, or not converged) are blank; the counts by status
@@ -49,7 +49,6 @@ RUN = "background run"  # the source of the atlas on screen when it is the butto
 
 
 class AtlasScene(BokehScene):
-    key = "atlas"
     title = "Atlas"
     caption = (
         "_Heat map of an atlas of discrete solitary waves over the existence region (w₊, V): "
@@ -99,7 +98,8 @@ class AtlasScene(BokehScene):
         )
         return [self.store, self.quantity, pn.Row(self.n_w, self.n_V), self.N_run, self.run_btn]
 
-    def _extra_watch(self) -> None:
+    def __init__(self, state):
+        super().__init__(state)
         self._want_run = False
         self._refused = ""  # a click on a blank cell, named above the plot
         self._data: AtlasData | None = None
@@ -155,8 +155,8 @@ class AtlasScene(BokehScene):
     def run_small(self, info: Info) -> AtlasData:
         req = self.atlas_request()
         self.set_stage("atlas points")
-        c = compute.small_atlas(self.state.law(), req, stop=self.superseded,
-                                progress=self.stage_progress("atlas points"))  # fmt: skip
+        c = compute.run(self.state.law(), req, stop=self.superseded,
+                        progress=self.stage_progress("atlas points"))  # fmt: skip
         res = c.value
         label = f"atlas run ({res.n_computed} points)"
         self._run = (req, label, c.elapsed_s)

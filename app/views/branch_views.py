@@ -21,8 +21,8 @@ from fpucore import qc
 from fpucore.floquet import CLASSES
 
 from .. import compute
-from .bokeh_scene import Updates, add_legend, add_points
-from .floquet import CLASS_STYLE
+from .bokeh_scene import Updates
+from .class_style import CLASS_STYLE
 from .report import Info
 
 
@@ -73,18 +73,19 @@ class BranchViews:
         """The family's Floquet sweep (on demand, or when cached) on (b), coloured by class;
         in superkink mode the button sweeps the superkinks instead, on (d)."""
         s = self.state
-        args = (s.law(), "solitary", s.w_plus, self._velocities(fam), s.N, "lower")
+        lw = s.law()
+        req = compute.SweepRequest("solitary", s.w_plus, self._velocities(fam), s.N, "lower")
         self._branch = None
         want = self._want_branch and s.mode == "solitary"
-        if want or compute.floquet_sweep_cached(*args):
+        if want or compute.is_cached(lw, req):
             # the request is the mode's own: a cached solitary sweep redrawn in superkink mode
             # leaves the button's request to the superkink sweep
             self._want_branch = self._want_branch and not want
-            c = compute.floquet_sweep(
-                *args, stop=self.superseded, progress=self.stage_progress("Floquet sweep")
+            c = compute.run(
+                lw, req, stop=self.superseded, progress=self.stage_progress("Floquet sweep")
             )
             self._branch = c.value
-            info.time(f"Floquet sweep ({len(args[3])} V)", c)
+            info.time(f"Floquet sweep ({len(req.V_values)} V)", c)
         sw = self._branch
         cls = np.array([c or "" for c in sw.classification]) if sw is not None else np.array([])
         for c, (r, src) in self.r_branch.items():
@@ -102,8 +103,8 @@ class BranchViews:
         self._superkink_branch(info, up)
 
     def _superkink_args(self):
-        """The superkink sweep's (law, kind, w_plus, V values, N, branch): 2k midpoints of the
-        superkink velocity interval (k = discrete points per interval, as for the solitary
+        """The superkink sweep (law, SweepRequest), and the velocity interval: 2k midpoints of
+        the superkink velocity interval (k = discrete points per interval, as for the solitary
         family's two intervals), on the branch of the current w₊."""
         s = self.state
         lw = s.law()
@@ -111,7 +112,7 @@ class BranchViews:
         lo, hi = qc.superkink_velocity_bounds(lw, branch)
         k = 2 * int(self.n_discrete.value)
         Vs = list(lo + (hi - lo) * (np.arange(k) + 0.5) / k)
-        return (lw, "superkink", None, Vs, s.N, branch), (lo, hi)
+        return (lw, compute.SweepRequest("superkink", None, Vs, s.N, branch)), (lo, hi)
 
     def _superkink_branch(self, info: Info, up: Updates) -> None:
         """(d): the superkink family's Floquet sweep (on demand in superkink mode, or when
@@ -123,14 +124,14 @@ class BranchViews:
         except compute.ParameterError:
             args = None
         want = self._want_branch and s.mode == "superkink" and args is not None
-        if args is not None and (want or compute.floquet_sweep_cached(*args)):
+        if args is not None and (want or compute.is_cached(*args)):
             self._want_branch = self._want_branch and not want
-            c = compute.floquet_sweep(
-                *args, stop=self.superseded, progress=self.stage_progress("superkink sweep")
+            lw, req = args
+            c = compute.run(
+                lw, req, stop=self.superseded, progress=self.stage_progress("superkink sweep")
             )
-            sw, branch = c.value, args[5]
-            info.time(f"superkink Floquet sweep ({len(args[3])} V)", c)
-            lw = args[0]
+            sw, branch = c.value, req.branch
+            info.time(f"superkink Floquet sweep ({len(req.V_values)} V)", c)
             amp = np.array([_sk_amplitude(lw, v, branch) for v in sw.V])
             self._sk_branch = (sw, amp, branch)
             Vq = np.linspace(lo, hi, 202)[1:-1]
@@ -194,14 +195,3 @@ def _class_counts(info: Info, cls: np.ndarray, sw, what: str) -> str:
     if np.isfinite(err).any():
         info.error(f"max |μ| error bound ({what})", float(np.nanmax(err)))
     return ", ".join(f"{n} {CLASS_STYLE[c][0].split(' (')[0]}" for c, n in counts.items())
-
-
-def class_points(fig, name: str) -> tuple[dict, list]:
-    """One point renderer per Floquet class on ``fig`` (its source named ``name-<class>``, read
-    by the tests) and their legend at the right: ({class: (renderer, source)}, legend items)."""
-    rs = {}
-    for c in CLASSES:
-        r = add_points(fig, "circle", 9, color=CLASS_STYLE[c][1], line_color="black")
-        r[1].name = f"{name}-{c}"
-        rs[c] = r
-    return rs, add_legend(fig, "right", [(CLASS_STYLE[c][0], [rs[c][0]]) for c in CLASSES])

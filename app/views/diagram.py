@@ -44,10 +44,11 @@ from .bokeh_scene import (
     finite_extent,
     new_figure,
 )
-from .branch_views import BranchViews, class_points
+from .branch_views import BranchViews
+from .class_style import class_points
+from .diagram_files import DiagramFiles
 from .energy_marks import ExtremumMarks, criterion_words, fmt_extremum
-from .formatting import as_csv, fmt_num, provenance
-from .python_code import python_preamble
+from .formatting import fmt_num
 from .report import Info, SceneMessage
 from .untrusted import LiteralMarkdown, md_literal
 
@@ -55,8 +56,7 @@ TSW, CSW = "#6a51a3", "#cbc9e2"
 CSW_LINE = "#9e9ac8"
 
 
-class DiagramScene(BranchViews, BokehScene):
-    key = "diagram"
+class DiagramScene(DiagramFiles, BranchViews, BokehScene):
     title = "Amplitude, energy, existence"
     caption = (
         "_Amplitude and renormalized energy of the solitary waves against their velocity "
@@ -86,22 +86,22 @@ class DiagramScene(BranchViews, BokehScene):
         )
         return [hint, self.n_discrete, self.discrete_btn, branch, self.classify_btn]
 
-    def _extra_watch(self):
+    def __init__(self, state):
+        super().__init__(state)
         self._want_discrete = False
         self._want_branch = False
         self._branch = None
         self._sk_branch = None  # (SweepResult, amplitudes, branch) of the superkink family
+        self.discrete_btn.on_click(self._on_discrete)
+        self.classify_btn.on_click(self._on_classify)
 
-        def go(_):
-            self._want_discrete = True
-            self.request()
+    def _on_discrete(self, _) -> None:
+        self._want_discrete = True
+        self.request()
 
-        def classify(_):
-            self._want_branch = True
-            self.request()
-
-        self.discrete_btn.on_click(go)
-        self.classify_btn.on_click(classify)
+    def _on_classify(self, _) -> None:
+        self._want_branch = True
+        self.request()
 
     def extra_panes(self):
         """The existence diagram has its own pane; a click on it picks (w₊, V)."""
@@ -260,14 +260,14 @@ class DiagramScene(BranchViews, BokehScene):
     def _discrete_points(self, info: Info, fam):
         s = self.state
         Vs = self._velocities(fam)
-        key_args = (s.law(), s.w_plus, Vs, s.N, s.tol)
-        if not self._want_discrete and not compute.discrete_family_cached(*key_args):
+        lw, req = s.law(), compute.FamilyRequest(s.w_plus, Vs, s.N, s.tol)
+        if not self._want_discrete and not compute.is_cached(lw, req):
             info.notes.append("discrete dots: press 'Add discrete points'")
             return None
         self._want_discrete = False
-        self._family_args = key_args
-        c = compute.discrete_family(
-            *key_args, stop=self.superseded, progress=self.stage_progress("discrete family")
+        self._family = (lw, req)
+        c = compute.run(
+            lw, req, stop=self.superseded, progress=self.stage_progress("discrete family")
         )
         info.time(f"{len(Vs)} discrete waves", c)
         rows = [r for r in c.value if hasattr(r, "amplitude")]
@@ -376,7 +376,7 @@ class DiagramScene(BranchViews, BokehScene):
             label = "E_ren^QC " + "; ".join(fmt_extremum(k, v, d) for k, v, d in zip(kinds, V, dV))
             up.set(self.ext_legend[0], label={"value": label})
         words = [criterion_words(V, dV, kinds, "the QC family", "between c₊ and c₋")]
-        cd = compute.family_energy_extrema(*self._family_args) if with_discrete else None
+        cd = compute.family_energy_extrema(*self._family) if with_discrete else None
         if cd is not None:
             ed = self._ec_d = cd.value
             info.time("energy criterion (discrete dots)", cd)
@@ -394,149 +394,3 @@ class DiagramScene(BranchViews, BokehScene):
         else:
             self.ext_d.update(up, [], [], (), *ylim, self.ext_legend[1])
         info.shown += ". " + " ".join(words)
-
-    def download_data(self):
-        fam = getattr(self, "_fam", None)
-        if fam is None:
-            raise SceneMessage("nothing shown yet")
-        cols = {
-            "V_below": fam.V_below,
-            "amp_below": fam.amp_below,
-            "E_below": fam.energy_below,
-            "V_above": fam.V_above,
-            "amp_above": fam.amp_above,
-            "E_above": fam.energy_above,
-        }
-        if self._rows:
-            cols["V_discrete"] = np.array([r.V for r in self._rows])
-            cols["amp_discrete"] = np.array([r.amplitude for r in self._rows])
-            cols["E_discrete"] = np.array([r.energy for r in self._rows])
-            cols["residual_discrete"] = np.array([r.residual for r in self._rows])
-            cols["amp_error_discrete"] = np.array([r.amplitude_error for r in self._rows])
-            cols["E_error_discrete"] = np.array([r.energy_error for r in self._rows])
-        ec = getattr(self, "_ec_qc", None)
-        if ec is not None:
-            cols["E_QC_extremum_V"] = ec.qc_extrema_V
-            cols["E_QC_extremum_V_error"] = ec.qc_extrema_V_error
-        ed = getattr(self, "_ec_d", None)
-        if ed is not None:
-            cols["E_discrete_extremum_V"] = ed.extrema_V
-            cols["E_discrete_extremum_V_error"] = ed.extrema_V_error
-        sw = getattr(self, "_branch", None)
-        if sw is not None:
-            cols["V_branch"] = np.asarray(sw.V, float)
-            cols["E_branch"] = np.asarray(sw.energy, float)
-            cols["max_modulus_branch"] = np.asarray(sw.max_modulus, float)
-            cols["max_modulus_error_branch"] = np.asarray(sw.max_modulus_error, float)
-        if self._sk_branch is not None:
-            sk, amp, _ = self._sk_branch
-            cols["V_superkink_branch"] = np.asarray(sk.V, float)
-            cols["amplitude_superkink_branch"] = amp
-            cols["max_modulus_superkink_branch"] = np.asarray(sk.max_modulus, float)
-            cols["max_modulus_error_superkink_branch"] = np.asarray(sk.max_modulus_error, float)
-            # the classes (text) go in the header, in the order of V_branch
-        d = getattr(self, "_exist", None)
-        if d is not None:
-            cols.update(w_plus=d.w_plus, c_plus=d.c_plus, V_SK=d.V_SK, c_minus=d.c_minus)
-        hdr = provenance(
-            self.state,
-            f"QC solitary family for w_plus={fam.w_plus!r} (c_plus={fam.c_plus!r}, "
-            f"V_SK={fam.V_SK!r}, c_minus={fam.c_minus!r}); existence diagram columns",
-            **({"branch_classification": list(sw.classification)} if sw is not None else {}),
-            **(
-                {"superkink_branch_classification": list(self._sk_branch[0].classification)}
-                if self._sk_branch is not None
-                else {}
-            ),
-        )
-        return "diagram.csv", as_csv(cols, hdr + "\n" + self.python_code())
-
-    def notebook_plot(self) -> str:
-        code = (
-            "import numpy as np\nimport matplotlib.pyplot as plt\n\n"
-            "fig, (ax1, ax2, ax3) = plt.subplots(1, 3, figsize=(14, 4))\n"
-            "for V, amp, E in ((fam.V_below, fam.amp_below, fam.energy_below),\n"
-            "                  (fam.V_above, fam.amp_above, fam.energy_above)):\n"
-            "    ax1.plot(V, amp)\n"
-            "    ax2.plot(V, E)\n"
-            "E = np.r_[fam.energy_below, fam.energy_above]\n"
-            "lo, hi = np.quantile(E, [0.08, 0.92])\n"
-            "ax2.set_ylim(lo - 0.3 * (hi - lo), hi + 0.3 * (hi - lo))\n"
-        )
-        if getattr(self, "_rows", None):
-            code += (
-                "ax1.plot([r.V for r in rows], [r.amplitude for r in rows], 'ko')\n"
-                "ax2.plot([r.V for r in rows], [r.energy for r in rows], 'ko')\n"
-            )
-        if getattr(self, "_branch", None) is not None:
-            code += (
-                "colors = {'stable': 'g', 'finite_size': 'b', 'unstable': 'r', "
-                "'undetermined': 'gray'}\n"
-                "for V, E, c in zip(sw.V, sw.energy, sw.classification):\n"
-                "    ax2.plot(V, E, 'o', color=colors.get(c, 'k'), mec='k')\n"
-            )
-        if getattr(self, "_sk_branch", None) is not None:
-            code += (
-                "colors = {'stable': 'g', 'finite_size': 'b', 'unstable': 'r', "
-                "'undetermined': 'gray'}\n"
-                "fig4, ax4 = plt.subplots(figsize=(9, 3))\n"
-                "for V, A, c in zip(sk.V, amp, sk.classification):\n"
-                "    ax4.plot(V, A, 'o', color=colors.get(c, 'k'), mec='k')\n"
-                "ax4.set(xlabel='V', ylabel='|w₋ − w₊|', title='superkinks by Floquet class')\n"
-            )
-        return code + (
-            "for ax in (ax1, ax2):\n"
-            "    ax.axvline(fam.V_SK, color='r', ls='--')\n"
-            "ax1.set(xlabel='V', ylabel='amplitude')\n"
-            "ax2.set(xlabel='V', ylabel='E_ren')\n"
-            "ax3.plot(d.w_plus, d.V_SK, 'r', d.w_plus, d.c_plus, 'b', d.w_plus, d.c_minus, 'g')\n"
-            "ax3.set(xlabel='w₊', ylabel='V', title='existence')\n"
-        )
-
-    def python_code(self) -> str:
-        s = self.state
-        try:
-            qc_n = compute.energy_qc_samples(s.law())
-        except compute.ParameterError:
-            qc_n = compute.ENERGY_QC_SAMPLES[True]
-        code = python_preamble(s) + (
-            "from fpucore.qc import diagram\n"
-            f"fam = diagram.solitary_family(law, {float(s.w_plus)!r}, n=160)\n"
-            "d = diagram.existence_diagram(law, n=400)\n"
-            "print(fam.c_plus, fam.V_SK, fam.c_minus)\n"
-            "# energy criterion: extrema of E_ren^QC(V), where stability may change\n"
-            f"ec = floquet.energy_criterion(law, {float(s.w_plus)!r}, qc_samples={qc_n})\n"
-            "print(ec.qc_extrema_kind, ec.qc_extrema_V, ec.qc_extrema_V_error)\n"
-        )
-        if getattr(self, "_rows", None):
-            Vs = [float(r.V) for r in self._rows]
-            code += (
-                f"rows = wave.solitary_family(law, {float(s.w_plus)!r}, {Vs!r}, "
-                f"N={int(s.N)}, tol={float(s.tol)!r}).results\n"
-                "print([(r.V, r.amplitude, r.energy) for r in rows])\n"
-            )
-        sw = getattr(self, "_branch", None)
-        if sw is not None:
-            Vs = [float(v) for v in sw.V]
-            code += (
-                "# branch view: the family's Floquet sweep, classified\n"
-                "from fpucore.atlas import sweep\n"
-                f"sw = sweep(law, kind='solitary', V_values={Vs!r}, "
-                f"w_plus={float(sw.w_plus)!r}, N={int(s.N)}, branch='lower')\n"
-                "print(list(zip(sw.V, sw.energy, sw.classification)))\n"
-            )
-        if self._sk_branch is not None:
-            sk, _, branch = self._sk_branch
-            Vs = [float(v) for v in sk.V]
-            code += (
-                "# superkink branch view: the superkink family's Floquet sweep, classified\n"
-                "from fpucore.atlas import sweep\n"
-                f"sk = sweep(law, kind='superkink', V_values={Vs!r}, N={int(s.N)}, "
-                f"branch={branch!r})\n"
-                f"amp = [abs(qc.superkink_from_V(law, v, branch={branch!r}).w_minus\n"
-                f"           - qc.superkink_from_V(law, v, branch={branch!r}).w_plus) "
-                "for v in sk.V]\n"
-                "print(list(zip(sk.V.tolist(), amp, sk.max_modulus.tolist(), "
-                "sk.classification)))\n"
-            )
-        return code

@@ -38,9 +38,10 @@ from .bokeh_scene import (
     finite_extent,
     new_figure,
 )
+from .class_style import CLASS_STYLE
 from .energy_marks import ExtremumMarks, criterion_words, fmt_extremum
-from .formatting import as_json, fmt_num, provenance
-from .python_code import python_preamble
+from .floquet_files import FloquetFiles
+from .formatting import fmt_num
 from .report import Info, SceneMessage
 from .untrusted import md_literal
 
@@ -48,13 +49,6 @@ TH = np.linspace(0.0, 2.0 * np.pi, 721)
 #: side of the square frames of (a) and (b) (px): both fit side by side in the main column of a
 #: 1500 px wide window (800 px); narrower, (b) wraps below (a)
 SQUARE_PX = 300
-#: the sweep's points by decision: legend words and colour
-CLASS_STYLE = {
-    "stable": ("stable (drawn at its error bar)", "#2ca02c"),
-    "finite_size": ("finite-size artefact", "#1f77b4"),
-    "unstable": ("unstable", "#d62728"),
-    "undetermined": ("not determined at this N", "#7f7f7f"),
-}
 
 
 def square_figure(title: str):
@@ -82,8 +76,7 @@ def square_figure(title: str):
     return fig
 
 
-class FloquetScene(BokehScene):
-    key = "floquet"
+class FloquetScene(FloquetFiles, BokehScene):
     title = "Floquet stability"
     caption = (
         "_Floquet multipliers of the discrete traveling wave: a multiplier outside the unit "
@@ -102,15 +95,15 @@ class FloquetScene(BokehScene):
         )
         return [self.n_sweep, self.sweep_btn]
 
-    def _extra_watch(self):
+    def __init__(self, state):
+        super().__init__(state)
         self._want_sweep = False
         self._fr = self._r = self._sweep_result = None
+        self.sweep_btn.on_click(self._on_sweep)
 
-        def go(_):
-            self._want_sweep = True
-            self.request()
-
-        self.sweep_btn.on_click(go)
+    def _on_sweep(self, _) -> None:
+        self._want_sweep = True
+        self.request()
 
     def build(self):
         fa = square_figure("(a) Floquet multipliers μ in the complex plane")
@@ -206,12 +199,12 @@ class FloquetScene(BokehScene):
     def _sweep(self, info: Info, up: Updates) -> bool:
         s = self.state
         kind, wp, Vs, vsk, branch = self._sweep_values()
-        args = (s.law(), kind, wp, Vs, s.N, branch)
-        if not self._want_sweep and not compute.floquet_sweep_cached(*args):
+        lw, req = s.law(), compute.SweepRequest(kind, wp, Vs, s.N, branch)
+        if not self._want_sweep and not compute.is_cached(lw, req):
             self._sweep_result = self._ec = None
             return False
         self._want_sweep = False
-        c = compute.floquet_sweep(*args, stop=self.superseded, progress=self.set_progress)
+        c = compute.run(lw, req, stop=self.superseded, progress=self.set_progress)
         sw = c.value
         info.time(f"sweep ({len(Vs)} V)", c)
         self._sweep_result = sw
@@ -254,7 +247,10 @@ class FloquetScene(BokehScene):
         QC family) and the cross-check of the sweep's classifications against them."""
         s = self.state
         self._ec = None
-        c = compute.sweep_energy_check(s.law(), wp, Vs, s.N) if kind == "solitary" else None
+        c = None
+        if kind == "solitary":  # the sweep's own request (_sweep: the solitary one is "lower")
+            req = compute.SweepRequest(kind, wp, Vs, s.N, "lower")
+            c = compute.sweep_energy_check(s.law(), req)
         if c is None:
             for marks, item in ((self.ext_d, self.sw_legend[1]), (self.ext_q, self.sw_legend[2])):
                 marks.update(up, [], [], (), *ylim, item)
@@ -297,10 +293,10 @@ class FloquetScene(BokehScene):
         s = self.state
         self.require_valid()
         self._fr = self._r = None
+        req = compute.WaveRequest(s.mode, s.w_plus, s.V, s.N, s.tol)
         rc, fc = compute.floquet_spectrum(
-            s.law(), s.mode, s.w_plus, s.V, s.N, s.tol, stop=self.superseded,
-            progress=self.set_progress,
-        )  # fmt: skip
+            s.law(), req, stop=self.superseded, progress=self.set_progress
+        )
         r = rc.value
         info.time(f"discrete wave N={r.N}", rc)
         info.error("wave residual", r.residual)
@@ -317,7 +313,7 @@ class FloquetScene(BokehScene):
         up = Updates()
         mu = np.asarray(fr.multipliers)
         unstable = np.asarray(fr.unstable)
-        key = compute.floquet_key(s.law(), compute.WaveRequest(s.mode, s.w_plus, s.V, s.N, s.tol))
+        key = compute.spectrum_key(s.law(), req)
         up.data(self.r_mu[1], key, x=mu.real, y=mu.imag)
         up.data(self.r_unst[1], key, x=unstable.real, y=unstable.imag)
         up.show(self.r_unst[0], self.legend_a[1], unstable.size > 0)
@@ -371,98 +367,3 @@ class FloquetScene(BokehScene):
         if fit:
             title += f"; upper envelope ∝ N^−p, {fit}"
         up.set(self.fig_d.title, text=title)
-
-    def python_code(self) -> str:
-        s = self.state
-        req = compute.WaveRequest(s.mode, s.w_plus, s.V, s.N, s.tol)
-        code = python_preamble(s) + (
-            f"r = {compute.wave_call(s.law(), req).code()}\n"
-            "print(r.converged, r.residual)\n"
-            "fr = floquet.spectrum(r)\n"
-            "print(len(fr.multipliers), fr.max_modulus, fr.error, fr.classification)\n"
-            "print(fr.verdict)\n"
-        )
-        sw = self._sweep_result
-        if sw is not None:
-            kind, wp, Vs, _, branch = self._sweep_values()
-            code += (
-                "from fpucore.atlas import sweep\n"
-                f"sw = sweep(law, kind={kind!r}, V_values={[float(v) for v in Vs]!r}, "
-                f"w_plus={wp!r}, N={int(s.N)}, branch={branch!r})\n"
-                "print(sw.V.tolist(), sw.max_modulus.tolist(), list(sw.classification))\n"
-            )
-            if kind == "solitary":
-                code += (
-                    "# energy criterion: extrema of E_ren (the sweep's waves, the QC family)\n"
-                    f"ec = floquet.criterion_from_samples(law, {wp!r}, sw.V, sw.energy, "
-                    "sw.energy_error, sw.floquet_converged)\n"
-                    "print(ec.extrema_V, ec.extrema_V_error, ec.qc_extrema_V)\n"
-                    "print(floquet.stability_changes(law, sw.w_plus, sw.V, sw.classification, "
-                    "ec))\n"
-                )
-        return code
-
-    def download_data(self):
-        fr, r = self._fr, self._r
-        if fr is None:
-            raise SceneMessage("nothing shown yet")
-        mu = np.asarray(fr.multipliers)
-        out = {
-            "header": provenance(self.state, "Floquet multipliers of the discrete wave"),
-            "python": self.python_code(),
-            "V": r.V,
-            "N": r.N,
-            "kind": r.kind,
-            "multipliers_re": mu.real,
-            "multipliers_im": mu.imag,
-            "max_modulus": fr.max_modulus,
-            "error": fr.error,
-            "symmetry_error": fr.symmetry_error,
-            "integrator_error": fr.integrator_error,
-            "verdict": fr.verdict,
-            "classification": fr.classification,
-            "finite_size_N": fr.finite_size_N,
-            "finite_size_excess": fr.finite_size_excess,
-            "finite_size_error": fr.finite_size_error,
-            "finite_size_exponent": fr.finite_size_exponent,
-            "decision": fr.decision.as_dict(),
-        }
-        sw = self._sweep_result
-        if sw is not None:
-            out["sweep"] = {"V": sw.V, "max_modulus": sw.max_modulus,
-                            "max_modulus_error": sw.max_modulus_error,
-                            "classification": sw.classification,
-                            "headline": [r.get("headline") for r in sw.rows],
-                            "energy": sw.energy,
-                            "energy_error": sw.energy_error}  # fmt: skip
-        ec = getattr(self, "_ec", None)
-        if ec is not None:
-            crit, changes = ec
-            out["energy_criterion"] = {
-                "extrema_V": crit.extrema_V, "extrema_V_error": crit.extrema_V_error,
-                "extrema_kind": crit.extrema_kind, "qc_extrema_V": crit.qc_extrema_V,
-                "qc_extrema_V_error": crit.qc_extrema_V_error,
-                "qc_extrema_kind": crit.qc_extrema_kind,
-                "unexplained_changes": [(c.V_from, c.V_to) for c in changes if not c.explained],
-                "cross_check": changes_summary(changes),
-            }  # fmt: skip
-        return "floquet.json", as_json(out)
-
-    def notebook_plot(self) -> str:
-        code = (
-            "import numpy as np\nimport matplotlib.pyplot as plt\n\n"
-            "mu = np.asarray(fr.multipliers)\n"
-            "th = np.linspace(0, 2 * np.pi, 721)\n"
-            "fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(12, 5))\n"
-            "ax1.plot(mu.real, mu.imag, 'x')\n"
-            "ax1.plot(np.cos(th), np.sin(th), 'r')\n"
-            "ax1.set(aspect='equal', xlabel='Re μ', ylabel='Im μ', title='Floquet multipliers')\n"
-        )
-        if self._sweep_result is not None:
-            return code + (
-                "y = np.maximum(np.asarray(sw.max_modulus) - 1,\n"
-                "               np.maximum(sw.max_modulus_error, 1e-16))\n"
-                "ax2.semilogy(sw.V, y, 'o-')\n"
-                "ax2.set(xlabel='V', ylabel='max |μ| − 1', title='sweep')\n"
-            )
-        return code + "ax2.set_visible(False)\n"

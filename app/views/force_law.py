@@ -35,7 +35,6 @@ from .report import Info, SceneMessage
 
 
 class ForceLawScene(BokehScene):
-    key = "force"
     title = "Force law"
     caption = (
         "_The force law f(w) with the superkink's Rayleigh line cutting two equal areas "

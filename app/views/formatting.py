@@ -7,8 +7,10 @@ used by every scene's render and download code, testable without a page.
 
 from __future__ import annotations
 
+import functools
 import io
 import json
+import math
 
 import numpy as np
 
@@ -18,6 +20,7 @@ from fpucore.result import jsonable
 
 from ..compute import Computed
 from ..state import ExplorerState
+from .untrusted import md_literal
 
 
 def fmt_time(s: float) -> str:
@@ -103,3 +106,51 @@ def fmt_timing(label: str, c: Computed | float) -> str:
             " (computed earlier, now from the cache)" if c.cached else ""
         )
     return f"{label} {fmt_time(float(c))}"
+
+
+def comparison_parts(comparisons) -> list[str]:
+    """Each printed number beside ours ± error, with its verdict mark (Comparison objects or the
+    docs JSON's dicts)."""
+    parts = []
+    for c in comparisons:
+        get = c.get if isinstance(c, dict) else functools.partial(getattr, c)
+        ours, err = get("ours"), get("error")
+        ours_s = "—" if ours is None else fmt_num(ours, 8)
+        err_s = "?" if err is None else f"{err:.1g}"
+        parts.append(
+            f"{'✓' if get('agrees') else '✗'} {md_literal(get('quantity'))}: paper "
+            f"{md_literal(get('printed'))}, ours {ours_s} ± {err_s}"
+        )
+    return parts
+
+
+def ranges_markdown(st: ExplorerState, s: dict) -> str:
+    """The sidebar's ranges of the theory for the state ``st`` and its summary ``s``
+    (ExplorerState.summary): where w₊ and V may go, V_SK, the current kind and the state's note."""
+    if "alpha" not in s:
+        return f"**invalid law:** {md_literal(st.problem() or '')}"
+    same = all(  # the superkink range of the cubic is (α, β); a root finder's last ulp
+        math.isclose(s[k], s[e], rel_tol=1e-9, abs_tol=1e-12)  # is not another range
+        for k, e in (("w_lo", "alpha"), ("w_hi", "beta"))
+    )
+    if same:
+        where = f"w₊ ∈ (α, β) = ({s['alpha']:.5g}, {s['beta']:.5g})"
+    else:  # another law: w₋ must stay inside (α, β) too
+        where = (
+            f"w₊ ∈ ({s['w_lo']:.5g}, {s['w_hi']:.5g}) (where w₋ stays inside (α, β) = "
+            f"({s['alpha']:.5g}, {s['beta']:.5g}))"
+        )
+    lines = [f"{where}, **w\\* = {s['w_star']:.6g}** excluded"]
+    if "V_SK" in s:
+        lines.append(
+            "solitary-wave velocities (tensile or compressive): "
+            f"(c₊, V_SK) = ({s['c_plus']:.6g}, {s['V_SK']:.6g}) and "
+            f"(V_SK, c₋) = ({s['V_SK']:.6g}, {s['c_minus']:.6g})"
+        )
+        lines.append(f"**V_SK = {s['V_SK']:.10g}** (superkink)")
+        lines.append(f"superkink V bounds ({s['V_lo']:.6g}, {s['V_hi']:.6g})")
+    kind = st.kind()
+    lines.append(f"current: **{kind}**" if kind != "invalid" else f"⚠ {md_literal(st.problem())}")
+    if st.note:
+        lines.append(f"_{md_literal(st.note)}_")
+    return "\n\n".join(lines)

@@ -26,7 +26,7 @@ from fpucore.paper import FIGURES, report
 from fpucore.paper.plot import THUMB_WIDTH
 
 from ..paper_figures import FIGURE_STATE, W_PLUS_5_2
-from .formatting import fmt_num
+from .formatting import comparison_parts
 from .report import Info
 from .scene import Scene
 from .untrusted import LiteralMarkdown, md_literal
@@ -88,7 +88,6 @@ window.scrollTo(0, 0);
 
 
 class PaperScene(Scene):
-    key = "paper"
     title = "Paper"
     caption = (
         "_The paper's figures: a button opens the scene that shows the figure with its "
@@ -181,22 +180,6 @@ class PaperScene(Scene):
         for label, text in rows.items():
             if self.cmp_panes[label].object != text:
                 self.cmp_panes[label].object = text
-
-
-def comparison_parts(comparisons) -> list[str]:
-    """Each printed number beside ours ± error, with its verdict mark (Comparison objects or the
-    docs JSON's dicts)."""
-    parts = []
-    for c in comparisons:
-        get = c.get if isinstance(c, dict) else functools.partial(getattr, c)
-        ours, err = get("ours"), get("error")
-        ours_s = "—" if ours is None else fmt_num(ours, 8)
-        err_s = "?" if err is None else f"{err:.1g}"
-        parts.append(
-            f"{'✓' if get('agrees') else '✗'} {md_literal(get('quantity'))}: paper "
-            f"{md_literal(get('printed'))}, ours {ours_s} ± {err_s}"
-        )
-    return parts
 
 
 def comparison_markdown(label: str, r, docs: dict | None = None) -> str:

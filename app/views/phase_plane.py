@@ -48,7 +48,6 @@ def contour_lines(pp, levels) -> tuple[np.ndarray, np.ndarray]:
 
 
 class PhasePlaneScene(BokehScene):
-    key = "phase"
     title = "Phase plane"
     caption = (
         "_Level sets of the first integral of the quasicontinuum traveling-wave equation, "
@@ -123,14 +122,14 @@ class PhasePlaneScene(BokehScene):
         x, y = np.concatenate(xs[:-1]), np.concatenate(ys[:-1])
         return Held(wave.label(V), x, y, none, none, code)
 
-    def _extra_watch(self) -> None:
+    def __init__(self, state):
+        super().__init__(state)
         self.clicks: list[tuple[float, float]] = []
+        self.clear_btn.on_click(self._on_clear)
 
-        def clear(_):
-            self.clicks = []
-            self.request()
-
-        self.clear_btn.on_click(clear)
+    def _on_clear(self, _) -> None:
+        self.clicks = []
+        self.request()
 
     def click(self, w0, wp0) -> bool:
         """Add the orbit through (w0, w0′) (a click); False for a point off the plot."""

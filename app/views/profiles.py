@@ -46,7 +46,6 @@ def n_advice(need: int, N: int) -> str:
 
 
 class ProfilesScene(BokehScene):
-    key = "profiles"
     title = "Wave profiles"
     caption = (
         "_Strain profile of the traveling wave: quasicontinuum closed form (line) and the "
@@ -62,7 +61,8 @@ class ProfilesScene(BokehScene):
         self.held.set_source(lambda: self.last_info is not None and bool(getattr(self, "_cols", 0)))
         return [self.show_discrete, self.show_fronts, *self.held.widgets()]
 
-    def _extra_watch(self):
+    def __init__(self, state):
+        super().__init__(state)
         for w in (self.show_discrete, self.show_fronts):
             w.param.watch(lambda e: self.request(), "value")
 
@@ -117,13 +117,13 @@ class ProfilesScene(BokehScene):
         dcall = "None"
         if dots:
             try:
-                r = compute.discrete_wave(lw, wave.mode, wp, q.V, s.N, s.tol, stop=self.superseded)
+                req = compute.WaveRequest(wave.mode, wp, q.V, s.N, s.tol)
+                r = compute.run(lw, req, stop=self.superseded)
             except compute.ParameterError:  # N too small for its tails: no points (noted)
                 r = None
             if r is not None and r.value.converged:
                 r = r.value
-                req = compute.WaveRequest(wave.mode, wp, q.V, s.N, s.tol)
-                dcall = compute.wave_call(lw, req).code("law")
+                dcall = req.call(lw).code("law")
                 sel = np.abs(r.n) <= half
                 px, py = r.n[sel].astype(float), r.w[sel]
         code = f"held.append(({qcall}, {dcall}))"
@@ -137,9 +137,12 @@ class ProfilesScene(BokehScene):
         def cached(h) -> bool:
             try:
                 V = compute.qc_wave(lw, h.mode, h.w_plus, h.V).value.V
-                return compute.discrete_wave_cached(lw, h.mode, h.w_plus, V, s.N, s.tol)
             except compute.ParameterError:
                 return True  # no wave under this law: nothing to solve (the notes say why)
+            try:
+                return compute.is_cached(lw, compute.WaveRequest(h.mode, h.w_plus, V, s.N, s.tol))
+            except compute.ParameterError:
+                return False  # not a request: the render solves (and refuses) it
 
         return all(cached(h) for h in s.held)
 
@@ -222,17 +225,18 @@ class ProfilesScene(BokehScene):
             info.notes.append("discrete wave off: QC only")
             return self._frame(up, half, ys)
         lw = s.law()
-        if not (
-            compute.discrete_wave_cached(lw, s.mode, s.w_plus, s.V, s.N, s.tol)
-            and self._held_dots_cached()
-        ):
+        try:
+            req = compute.WaveRequest(s.mode, s.w_plus, s.V, s.N, s.tol)
+        except compute.ParameterError:
+            req = None  # refused below, where the solve was asked for
+        if not (req is not None and compute.is_cached(lw, req) and self._held_dots_cached()):
             # the QC curves now, the dots when the solves are done
             self.show_intermediate(self._frame(up, half, ys), info)
             up = Updates()
         try:
-            c = compute.discrete_wave(
-                lw, s.mode, s.w_plus, s.V, s.N, s.tol, stop=self.superseded,
-                progress=self.stage_progress("discrete wave"),
+            c = compute.run(
+                lw, compute.WaveRequest(s.mode, s.w_plus, s.V, s.N, s.tol),
+                stop=self.superseded, progress=self.stage_progress("discrete wave"),
             )  # fmt: skip
         except compute.ParameterError as exc:
             if exc.name != "N":
@@ -315,7 +319,7 @@ class ProfilesScene(BokehScene):
         if self.show_discrete.value:
             req = compute.WaveRequest(s.mode, s.w_plus, s.V, s.N, s.tol)
             code += (
-                f"r = {compute.wave_call(s.law(), req).code()}\n"
+                f"r = {req.call(s.law()).code()}\n"
                 "print(r.converged, r.residual, r.amplitude)\n"
                 "w_qc = q.profile(r.n)  # the QC curve at the sites\n"
             )

@@ -67,7 +67,7 @@ def python_preamble(state: ExplorerState) -> str:
     return (
         f"# reproduces the fpu-explorer view; generated with fpucore {fpucore.__version__}\n"
         "import fpucore\n"
-        "from fpucore import floquet, qc, simulate, wave\n"
+        "from fpucore import atlas, floquet, qc, simulate, wave\n"
         "from fpucore.law import CubicLaw\n\n"
         f"print(fpucore.__version__)  # {fpucore.__version__!r} when generated\n" + make
     )

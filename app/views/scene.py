@@ -49,11 +49,15 @@ log = logging.getLogger("fpu-explorer")
 class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
     """Base class of the scenes (a Panel Viewer: ``__panel__`` is the scene's layout).
 
-    Subclasses set ``key``/``title``/``caption`` and implement :meth:`make_plot`,
+    Subclasses set ``title``/``caption`` and implement :meth:`make_plot`,
     :meth:`render` (filling ``info``, returning what :meth:`publish` applies),
     :meth:`python_code` and :meth:`download_data`; optionally :meth:`controls`.  The busy
-    indicators come from :class:`SceneProgress`, the download buttons from :class:`SceneFiles`."""
+    indicators come from :class:`SceneProgress`, the download buttons from :class:`SceneFiles`.
+    A scene is registered once, in app/scene_registry.py, which gives it its ``key``.  A
+    subclass sets up its own state and widget watchers in its ``__init__``, after
+    ``super().__init__`` has built the widgets and figures."""
 
+    #: the tab's name in URLs and CSS, set from the scene's registry entry (app/views/__init__)
     key = "scene"
     title = "Scene"
     #: one line under the plot: what it shows in words and the paper's figure
@@ -126,20 +130,6 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
         self._cancel = False
         self._stamp = state_stamp(state)
         self._render_stamp = self._stamp
-        self._extra_watch()
-        if hasattr(self, "show_scenario"):  # a paper figure's initial data (state.scenario)
-            if state.scenario:
-                self.show_scenario(**state.scenario)  # run (if asked) at the first render
-            state.param.watch(self._on_scenario, "scenario")
-
-    def _on_scenario(self, event) -> None:
-        """A paper figure set this scene's initial data: shown now, and run if it asks."""
-        if not event.new:
-            return
-        if self.state.tab != self.key:
-            self.show_scenario(**event.new)  # run (if asked) when the tab is opened
-            return
-        self.request(prepare=lambda: self.show_scenario(**event.new))
 
     def __panel__(self):
         return self.panel
@@ -154,9 +144,6 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
     def extra_panes(self) -> list:
         """Further panes under the main plot (e.g. a clickable diagram)."""
         return []
-
-    def _extra_watch(self) -> None:
-        """Subclasses watch their own widgets here (call self.request() on change)."""
 
     def render(self, info: Info):  # pragma: no cover - abstract
         raise NotImplementedError

@@ -15,11 +15,8 @@ background the tracker measured for the last wave to pass that site, placed at i
 from __future__ import annotations
 
 import io
-import math
-import re
 
 import numpy as np
-import panel as pn
 from bokeh.layouts import column, row
 from bokeh.models import ColorBar, ColumnDataSource, LinearColorMapper
 from bokeh.palettes import Viridis256
@@ -35,107 +32,27 @@ from fpucore.paper.figures_dynamics import (
 
 from .. import compute, sim_url
 from .bokeh_scene import BokehScene, Updates, add_legend, add_line, new_figure
-from .formatting import fmt_num, provenance, state_stamp
-from .paper import comparison_parts
+from .formatting import comparison_parts, fmt_num, provenance, state_stamp
 from .python_code import python_preamble
 from .report import Info, SceneMessage
+from .simulation_inputs import SimulationInputs
+from .simulation_table import (
+    KIND_WORDS,
+    MAX_PROBES,
+    SHORT_NAMES,
+    fmt_pm,
+    last_to_pass,
+    run_stamp,
+    tracked_velocities,
+    wave_table,
+)
 from .untrusted import LiteralMarkdown, md_literal
 
 #: the space–time image's most columns (about the plot's width in pixels)
 MAX_COLUMNS = 1000
-MAX_PROBES = 3  # tracked-site panels drawn (the paper's (c), (d), (e))
-SHORT_NAMES = {"dsw_edge": "DSW edge", "solitary": "solitary wave"}  # panel titles
-
-KIND_WORDS = {
-    "seeded": "the current traveling wave (TW-seeded)",
-    "riemann": "Riemann data",
-    "gaussian": "a Gaussian bump",
-}
-#: the tracker's kinds in plain words, with a one-line explanation (paper §6)
-WAVE_NAMES = {
-    "superkink": (
-        "superkink",
-        "a supersonic front between two states on opposite sides of w*, moving steadily",
-    ),
-    "solitary": ("solitary wave", "a single pulse on a uniform background, moving steadily"),
-    "dsw_edge": (
-        "edge of the dispersive shock",
-        "the leading pulse of a spreading train of oscillations; not a steady wave, so its "
-        "speed depends on when it is measured (included in the ±)",
-    ),
-    "front": ("front", "a jump between two states on the same side of w*"),
-}
 
 
-def last_to_pass(waves, site: int, t_end: float):
-    """The tracked wave that passed ``site`` last before t_end (its straight path through
-    ``position`` at t_end, at its measured velocity), or None: the wave a site's history ends
-    with (Fig. Riemann1: site 200 sees the superkink, then the left DSW edge)."""
-    best, t_best = None, -np.inf
-    for w in waves:
-        if not (np.isfinite(w.velocity) and w.velocity != 0 and np.isfinite(w.position)):
-            continue
-        t = t_end + (site - w.position) / w.velocity
-        if 0.0 <= t <= t_end and t > t_best:
-            best, t_best = w, t
-    return best
-
-
-def run_stamp(state_line: str, req) -> str:
-    """The parameter line of a simulation: the state's (state_stamp), then the run's inputs
-    exactly ("; run: riemann L=3600 t_end=300.0 … w_left=4.6 w_right=0.0")."""
-    run = " ".join(f"{k}={v!r}" for k, v in req.params().items())
-    return f"{state_line}; run: {req.kind} {run}"
-
-
-def fmt_pm(x: float, err: float) -> str:
-    """x ± err with x rounded to the error's second significant digit ("± 0": no spread)."""
-    if not math.isfinite(err):
-        return f"{x:.8g} ± ?"
-    if err <= 0.0:
-        return f"{x:.8g} ± 0"
-    d = min(12, max(0, 1 - math.floor(math.log10(err))))
-    return f"{x:.{d}f} ± {err:.1e}"
-
-
-def tracked_velocities(waves, k: int = 4) -> str:
-    """The status line's velocities: each with its error bar and digits (a DSW edge's V is
-    known to ~1e-4, not to the 6 digits printed before), the count when more are tracked."""
-    if not waves:
-        return "tracked velocities: none"
-    shown = ", ".join(fmt_pm(wv.velocity, wv.velocity_error) for wv in waves[:k])
-    more = f" (and {len(waves) - k} more in the table)" if len(waves) > k else ""
-    return f"tracked velocities: {shown}{more}"
-
-
-def wave_table(waves) -> str:
-    """Markdown table of the tracked waves: plain name, V ± error, w_B ± error, the states;
-    then one line per kind present saying what it is and what the ± contains."""
-    if not waves:
-        return "_no waves tracked_"
-    rows = [
-        "| wave | velocity V ± error | state ahead w_B ± error | amplitude | strain left | "
-        "strain right |",
-        "|---|---|---|---|---|---|",
-    ]
-    for wv in waves:
-        name = WAVE_NAMES.get(wv.kind, (wv.kind, ""))[0]
-        rows.append(
-            f"| {name} | {fmt_pm(wv.velocity, wv.velocity_error)} | "
-            f"{fmt_pm(wv.background, wv.background_error)} | {fmt_num(wv.amplitude, 5)} | "
-            f"{fmt_num(wv.left_state, 5)} | {fmt_num(wv.right_state, 5)} |"
-        )
-    kinds = dict.fromkeys(wv.kind for wv in waves)
-    lines = [f"- **{WAVE_NAMES[k][0]}**: {WAVE_NAMES[k][1]}" for k in kinds if k in WAVE_NAMES]
-    lines.append(
-        "- ± of V: the fit's standard error plus the measured spread over fit windows and "
-        "tracking thresholds; ± of w_B: its spread over the window and the thresholds"
-    )
-    return "**Waves found by the tracker**\n\n" + "\n".join(rows) + "\n\n" + "\n".join(lines)
-
-
-class SimulationScene(BokehScene):
-    key = "simulation"
+class SimulationScene(SimulationInputs, BokehScene):
     title = "Simulation"
     caption = (
         "_Direct simulation of the FPU chain: strain w_n(t) in space and time, and the waves "
@@ -144,115 +61,29 @@ class SimulationScene(BokehScene):
     )
     plot_height = 380
 
-    def controls(self):
-        self.kind = pn.widgets.RadioButtonGroup(
-            options={"TW-seeded": "seeded", "Riemann": "riemann", "Gaussian": "gaussian"},
-            value="seeded",
-        )
-        # TW-seeded runs need L >= 900 (the seeding wave plus the margins): default 1000
-        self.L = pn.widgets.IntInput(label="L (sites)", value=1000, start=50, end=20000, width=140)
-        self.t_end = pn.widgets.FloatInput(
-            label="t_end", value=40.0, start=0.1, end=2000, width=140
-        )
-        self.w_l = pn.widgets.FloatInput(label="w^l (Riemann)", value=4.6, width=140)
-        self.w_r = pn.widgets.FloatInput(label="w^r (Riemann)", value=0.0, width=140)
-        self.w_B = pn.widgets.FloatInput(label="w_B (Gaussian)", value=1.0, width=140)
-        self.A = pn.widgets.FloatInput(label="A (Gaussian)", value=6.0, width=140)
-        # the paper's Gaussian data start above β (w_B = 1, A = 6 gives w = 7): with the convex
-        # guard they would be refused, so the scene stops only where the force stops restoring
-        self.guard = pn.widgets.Select(
-            label="stop the run when a strain leaves",
-            options={"the zeros of f (bounded)": "bounded", "the convex interval (α, β)": "convex"},
-            value="bounded",
-            width=290,
-        )
-        self.probes = pn.widgets.TextInput(
-            name="tracked sites (e.g. 100, 200, 3000 for L = 3600)",
-            value="",
-            placeholder="site numbers, comma-separated",
-            width=290,
-        )
-        self.run_btn = pn.widgets.Button(
-            label="Run simulation", color="primary", css_classes=["simulation-run"]
-        )
-        return [
-            self.kind,
-            pn.Row(self.L, self.t_end),
-            pn.Row(self.w_l, self.w_r),
-            pn.Row(self.w_B, self.A),
-            self.guard,
-            self.probes,
-            self.run_btn,
-        ]
-
     def extra_panes(self):
         self.table = LiteralMarkdown("", sizing_mode="stretch_width", css_classes=["sim-table"])
         return [self.table]
 
-    def _extra_watch(self):
+    def __init__(self, state):
+        super().__init__(state)
         self._want_run = False
         self._request: compute.SimulationRequest | None = None
         self._sim = None
-
-        def go(_):
-            self._want_run = True
-            self._inputs_to_url()  # a run with the widgets' defaults is a link's too
-            self.request()
-
-        self.run_btn.on_click(go)
         self._applying = False
+        self.run_btn.on_click(self._on_run)
         inputs = [self.kind, self.L, self.t_end, self.w_l, self.w_r, self.w_B, self.A,
                   self.guard, self.probes]  # fmt: skip
         for w in inputs:
             w.param.watch(lambda _: self._inputs_to_url(), "value")
+        if state.scenario:  # a paper figure's initial data: run (if asked) at the first render
+            self.show_scenario(**state.scenario)
+        state.param.watch(self._on_scenario, "scenario")
 
-    def _inputs(self) -> dict | None:
-        """The widgets' run inputs (app.sim_url's keywords); None while the sites are not a
-        list of numbers (the run names the problem)."""
-        try:
-            probes = self._probe_sites()
-        except SceneMessage:
-            return None
-        data = {"w_left": self.w_l.value, "w_right": self.w_r.value, "w_B": self.w_B.value,
-                "A": self.A.value}  # fmt: skip
-        return dict(kind=self.kind.value, L=self.L.value, t_end=self.t_end.value,
-                    guard=self.guard.value, probes=probes, **data)  # fmt: skip
-
-    def _inputs_to_url(self) -> None:
-        """The widgets into the state's ``simulation`` (the URL's sim=): a change the figure
-        did not make leaves it (ExplorerState._leave_figure); its run is not on screen."""
-        if self._applying:
-            return
-        inputs = self._inputs()
-        if inputs is None or None in inputs.values():
-            return
-        try:
-            text = sim_url.format_sim(**inputs)
-        except (TypeError, ValueError):
-            return
-        if text != self.state.simulation:
-            self.state.param.update(simulation=text, sim_shown=False)
-
-    def show_scenario(self, kind: str, run: bool = False, probes=(), **params) -> None:
-        """Set the initial-data widgets (a paper figure's run, app.paper_figures): ``kind``
-        ("seeded", "riemann", "gaussian"), L, t_end, guard, w_left, w_right (Riemann), w_B, A
-        (Gaussian) and the tracked sites; ``run``: the next render runs it (as "Run").  The
-        caller renders (the scene's base class: at once if the scene is shown)."""
-        widgets = {"L": self.L, "t_end": self.t_end, "guard": self.guard, "w_left": self.w_l,
-                   "w_right": self.w_r, "w_B": self.w_B, "A": self.A}  # fmt: skip
-        self._applying = True
-        try:
-            self.kind.value = kind
-            for name, value in params.items():
-                widgets[name].value = value
-            self.probes.value = ", ".join(str(int(k)) for k in probes)
-        finally:
-            self._applying = False
-        self._inputs_to_url()  # the figure's (or the link's) own: no change of the state
-        self._want_run = bool(run)
-        if not run:  # not the previous run's result under the new widgets: "press Run"
-            self._params = None
-        self.stale = True
+    def _on_run(self, _) -> None:
+        self._want_run = True
+        self._inputs_to_url()  # a run with the widgets' defaults is a link's too
+        self.request()
 
     def build(self):
         fi = new_figure(
@@ -304,38 +135,6 @@ class SimulationScene(BokehScene):
         )
         probes = row(*self.fig_probe, sizing_mode="stretch_width")
         return column(fi, fp, probes, sizing_mode="stretch_width")
-
-    def _job(self) -> compute.SimulationRequest:
-        """The run the widgets ask for (ParameterError for a value it cannot take)."""
-        s = self.state
-        kind = self.kind.value
-        run = dict(L=int(self.L.value), t_end=float(self.t_end.value), guard=self.guard.value,
-                   probes=self._probe_sites())  # fmt: skip
-        if kind == "riemann":
-            return compute.RiemannRequest(
-                w_left=float(self.w_l.value), w_right=float(self.w_r.value), **run
-            )
-        if kind == "gaussian":
-            return compute.GaussianRequest(w_B=float(self.w_B.value), A=float(self.A.value), **run)
-        if s.problem() is not None:
-            raise SceneMessage(s.problem())
-        wave = compute.WaveRequest(s.mode, s.w_plus, s.V, int(s.N), s.tol)
-        return compute.SeededRequest(wave=wave, **run)
-
-    def _probe_sites(self) -> tuple[int, ...]:
-        """The typed sites (fpucore checks them against L when the run starts)."""
-        text = self.probes.value.strip()
-        if not text:
-            return ()
-        try:
-            sites = tuple(int(x) for x in re.split(r"[,\s]+", text) if x)
-        except ValueError:
-            raise SceneMessage(
-                f"tracked sites: {text} is not a list of site numbers (e.g. 100, 200, 3000)"
-            ) from None
-        if len(sites) > MAX_PROBES:
-            raise SceneMessage(f"tracked sites: at most {MAX_PROBES} (the panels (c)–(e))")
-        return sites
 
     def _tracked_sites(self, info: Info, up: Updates, sim) -> None:
         """Panels (c)–(e): each tracked site's history against the wave computed at the
@@ -435,11 +234,11 @@ class SimulationScene(BokehScene):
             mode, w_plus = "superkink", sk.w_plus
         else:
             mode, w_plus = "solitary", float(wv.background)
-        c = compute.discrete_wave(s.law(), mode, w_plus, V, s.N, s.tol, stop=self.superseded)
+        req = compute.WaveRequest(mode, w_plus, V, s.N, s.tol)
+        c = compute.run(s.law(), req, stop=self.superseded)
         r = c.value
         info.time(f"wave at V = {V:.6g}", c)
-        req = compute.WaveRequest(mode, w_plus, V, s.N, s.tol)
-        return r, compute.wave_call(s.law(), req).code()
+        return r, req.call(s.law()).code()
 
     def render(self, info: Info):
         # a failed or superseded run must not leave the previous run's numbers on screen
@@ -456,7 +255,7 @@ class SimulationScene(BokehScene):
         # wave; a seeded one uses the wave of the moment Run was pressed)
         info.stamp = run_stamp(state_stamp(s), req)
         self.computing_for(info.stamp)
-        c = compute.simulation(
+        c = compute.run(
             s.law(), req, stop=self.superseded, progress=self.stage_progress("simulation")
         )
         sim = c.value
@@ -520,7 +319,7 @@ class SimulationScene(BokehScene):
         req, _ = self._sim
         first = "law"
         if isinstance(req, compute.SeededRequest):
-            code += f"r = {compute.wave_call(self.state.law(), req.wave).code()}\n"
+            code += f"r = {req.wave.call(self.state.law()).code()}\n"
             first = "r"
         code += f"sim = {req.call().code(first)}\n"
         code += (

@@ -155,7 +155,7 @@ def test_cache_keys_tell_the_laws_apart():
     keys = {compute.law_key(lw) for lw in (cubic, as_poly, quartic)}
     assert len(keys) == 3  # the same cubic by two routes is two entries
     req = compute.WaveRequest("solitary", 1.0, 5.0, 200, 1e-10)
-    wk = {compute.wave_key(lw, req) for lw in (cubic, quartic)}
+    wk = {compute.job_key(lw, req) for lw in (cubic, quartic)}
     assert len(wk) == 2
     qc_c = compute.qc_wave(cubic, "solitary", 1.0, 5.0).value
     qc_q = compute.qc_wave(quartic, "solitary", 1.0, 5.0).value

@@ -121,7 +121,7 @@ def test_qc_profile_scene_never_solves_the_discrete_problem_when_off(monkeypatch
     def boom(*a, **k):
         raise AssertionError("discrete solve triggered")
 
-    monkeypatch.setattr(compute, "discrete_wave", boom)
+    monkeypatch.setattr(compute, "run", boom)  # the road of every worker job
     _, sc = scene("profiles")
     sc.show_discrete.value = False
     sc.wait_idle(30)

@@ -45,7 +45,7 @@ def test_every_classified_wave_is_drawn_in_its_class(classified):
     # E_ren of a drawn point is the discrete wave's own (an independent solve at that V)
     r = wave.solve_solitary(CubicLaw(-1.0, 10.0), 1.0, float(sw.V[0]), N=128, tol=1e-10)
     assert float(sw.energy[0]) == pytest.approx(r.energy, abs=10 * r.energy_error + 1e-9)
-    assert "from fpucore.atlas import sweep\nsw = sweep(law, kind='solitary'" in sc.python_code()
+    assert "\nsw = atlas.sweep(law, kind='solitary'" in sc.python_code()
     assert "branch view (N = 128)" in sc.status.object
 
 

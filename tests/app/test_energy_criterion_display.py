@@ -68,16 +68,17 @@ def test_diagram_says_so_when_the_family_has_no_extremum():
 def test_sweep_energy_check_locates_the_discrete_minimum_from_the_sweeps_own_waves():
     Vs = [0.66, 0.71, 0.76, 0.81, 0.86]
     lw = compute.law(-1.0, 10.0)
-    assert compute.sweep_energy_check(lw, W_SOFT, Vs, 100) is None  # nothing swept: nothing
-    compute.floquet_sweep(lw, "solitary", W_SOFT, Vs, 100)
-    c = compute.sweep_energy_check(lw, W_SOFT, Vs, 100)
+    req = compute.SweepRequest("solitary", W_SOFT, Vs, 100)
+    assert compute.sweep_energy_check(lw, req) is None  # nothing swept: nothing
+    compute.run(lw, req)
+    c = compute.sweep_energy_check(lw, req)
     ec, changes = c.value
     assert ec.extrema_kind == ("min",) and ec.qc_extrema_kind == ("min",)
     ref = fq.energy_criterion(LAW, W_SOFT, np.linspace(0.72, 0.82, 5), N=100, qc_samples=0)
     assert abs(ec.extrema_V[0] - ref.extrema_V[0]) <= ec.extrema_V_error[0] + ref.extrema_V_error[0]
     assert abs(ec.qc_extrema_V[0] - qc_minimum_on_a_dense_grid()) < 2e-5
     assert all(ch.explained for ch in changes)
-    assert compute.sweep_energy_check(lw, W_SOFT, Vs, 100).cached
+    assert compute.sweep_energy_check(lw, req).cached
 
 
 def test_floquet_sweep_panel_shows_the_criterion_and_the_cross_check():
@@ -121,7 +122,6 @@ def test_diagram_marks_the_discrete_minimum_once_its_dots_exist():
     deviation (≤ 2 %, fpucore.floquet.energy.QC_DISCRETE_ALLOWANCE) of the QC one."""
     st, sc = attached("diagram", w_plus=W_SOFT, V=0.7, N=200, tol=1e-8)
     sc.n_discrete.value = 20
-    args = (st.law(), st.w_plus)
     sc.refresh()
     assert not sc.ext_d.line.visible  # not asked for yet: no discrete waves, no mark
     sc._want_discrete = True  # what the button sets
@@ -133,4 +133,9 @@ def test_diagram_marks_the_discrete_minimum_once_its_dots_exist():
     v_qc = qc_minimum_on_a_dense_grid()
     assert abs(d["x"][0] - v_qc) <= dv + fq.energy.QC_DISCRETE_ALLOWANCE * v_qc
     assert "E_ren(V) of the discrete dots has a minimum" in sc.status.object
-    assert compute.family_energy_extrema(*args, [0.5, 0.6], 200, 1e-8) is None  # not cached
+    assert (
+        compute.family_energy_extrema(
+            st.law(), compute.FamilyRequest(st.w_plus, [0.5, 0.6], 200, 1e-8)
+        )
+        is None
+    )  # not cached

@@ -46,7 +46,9 @@ def test_the_job_reports_its_stages_in_order():
 
 def test_a_running_spectrum_shows_its_stage_and_time_left_and_cancel_answers_within_a_second():
     law = compute.law(-1.0, 10.0)
-    compute.floquet_spectrum(law, "solitary", 1.0, 5.0, 300, 1e-10)  # times one spectrum here
+    compute.floquet_spectrum(
+        law, WaveRequest("solitary", 1.0, 5.0, 300, 1e-10)
+    )  # times one spectrum here
     assert heavy.spectrum_time_estimate(1000) > 0
     sc = BY_KEY["floquet"](ExplorerState(N=1000, tol=1e-10))
     texts: list[str] = []

@@ -40,7 +40,9 @@ WINDOWS = {
 @pytest.fixture(scope="module")
 def real():
     st = ExplorerState(N=N, tol=1e-8)
-    return compute.floquet_spectrum(st.law(), st.mode, st.w_plus, st.V, st.N, st.tol)
+    return compute.floquet_spectrum(
+        st.law(), compute.WaveRequest(st.mode, st.w_plus, st.V, st.N, st.tol)
+    )
 
 
 @pytest.mark.parametrize("cls", list(WINDOWS))
@@ -127,7 +129,7 @@ def test_sweep_panel_says_which_velocities_are_missing_and_why(real, monkeypatch
         message="time budget", elapsed_s=0.1,
     )  # fmt: skip
     monkeypatch.setattr(compute, "floquet_spectrum", lambda *a, **k: (rc, fc))
-    monkeypatch.setattr(compute, "floquet_sweep", lambda *a, **k: Computed(sw, 0.1, False))
+    monkeypatch.setattr(compute, "run", lambda *a, **k: Computed(sw, 0.1, False))
     st = ExplorerState(N=N, tol=1e-8)
     sc = BY_KEY["floquet"](st)
     sc.panel.get_root(Document())

@@ -7,12 +7,12 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import types
 
 import numpy as np
 import pytest
 
 from app import compute
-from app.compute.jobs import simulation_job, wave_job
 from fpucore import atlas, qc, simulate, wave
 from fpucore.errors import ParameterError
 from fpucore.law import CubicLaw
@@ -62,33 +62,33 @@ def test_requests_are_frozen_hashable_and_keyed_exactly():
         a.V = 5.1
     assert a == compute.WaveRequest("solitary", 1, 5, 200, 1e-10)  # numbers stored as floats
     assert len({a, b, compute.WaveRequest("solitary", 1.0, 5.0, 200, 1e-10)}) == 2
-    assert compute.wave_key(LAW, a) != compute.wave_key(LAW, b)
+    assert compute.job_key(LAW, a) != compute.job_key(LAW, b)
     sim_a = compute.SeededRequest(wave=a, L=1000, t_end=40.0)
     sim_b = compute.SeededRequest(wave=b, L=1000, t_end=40.0)
-    assert compute.simulation_key(LAW, sim_a) != compute.simulation_key(LAW, sim_b)
-    assert compute.simulation_key(LAW, sim_a) == compute.simulation_key(
+    assert compute.job_key(LAW, sim_a) != compute.job_key(LAW, sim_b)
+    assert compute.job_key(LAW, sim_a) == compute.job_key(
         LAW, compute.SeededRequest(wave=a, L=1000, t_end=40.0)
     )
     r = compute.RiemannRequest(w_left=4.6, w_right=0.0, L=300, t_end=2.0)
     g = compute.GaussianRequest(w_B=4.6, A=0.0, L=300, t_end=2.0)  # the same numbers
-    assert compute.simulation_key(LAW, r) != compute.simulation_key(LAW, g)
+    assert compute.job_key(LAW, r) != compute.job_key(LAW, g)
     # -0.0 == 0.0 as floats, but two keys (the cache keys on repr)
-    assert compute.simulation_key(LAW, r) != compute.simulation_key(
+    assert compute.job_key(LAW, r) != compute.job_key(
         LAW, compute.RiemannRequest(w_left=4.6, w_right=-0.0, L=300, t_end=2.0)
     )
 
 
 def test_the_wave_call_is_the_fpucore_function_and_its_code_runs_the_same_call():
     req = compute.WaveRequest("solitary", 1.0, 5.0, 200, 1e-10)
-    call = compute.wave_call(LAW, req)
+    call = req.call(LAW)
     assert call.fn is wave.solve_solitary and call.code() == (
         "wave.solve_solitary(law, 1.0, 5.0, N=200, tol=1e-10)"
     )
-    sk = compute.wave_call(LAW, compute.WaveRequest("superkink", 1.0, 0.0, 200, 1e-10))
+    sk = compute.WaveRequest("superkink", 1.0, 0.0, 200, 1e-10).call(LAW)
     ref = qc.superkink_from_w_plus(LAW, 1.0)  # V follows from w₊ (the request's V unused)
     assert sk.fn is wave.solve_superkink and sk.args == (ref.V,)
     assert dict(sk.kwargs)["branch"] == ref.branch
-    r = wave_job(LAW, req)
+    r = req.job(LAW)
     again = eval(call.code(), {"wave": wave, "law": LAW})  # noqa: S307 - the app's own text
     assert r.converged and np.array_equal(r.w, again.w) and r.V == again.V == 5.0
 
@@ -102,7 +102,7 @@ def test_a_simulation_job_is_the_fpucore_call_its_code_shows():
     )
     assert req.params() == {"L": 200, "t_end": 2.0, "guard": "bounded", "probes": (50,),
                             "max_sites_out": 200, "w_left": 4.6, "w_right": 0.0}  # fmt: skip
-    job = simulation_job(LAW, req)
+    job = req.job(LAW)
     direct = eval(code, {"simulate": simulate, "law": LAW})  # noqa: S307
     assert np.array_equal(job.snapshots, direct.snapshots) and len(job.waves) == len(direct.waves)
     seeded = compute.SeededRequest(
@@ -123,3 +123,102 @@ def test_the_atlas_request_is_a_call_of_fpucore_atlas_run():
     assert call.code() == (
         "atlas.run(law, 'solitary', rows='0.1:6.5:3', V=4, N=200, floquet=True, finite_size=False)"
     )
+
+
+@pytest.mark.parametrize("make, name", [
+    (lambda: compute.SweepRequest("kink", 1.0, (5.0,), 200), "kind"),
+    (lambda: compute.SweepRequest("solitary", math.nan, (5.0,), 200), "w_plus"),
+    (lambda: compute.SweepRequest("solitary", 1.0, (), 200), "V_values"),
+    (lambda: compute.SweepRequest("solitary", 1.0, (5.0, math.inf), 200), "V_values"),
+    (lambda: compute.SweepRequest("solitary", 1.0, (5.0,), 10), "N"),
+    (lambda: compute.SweepRequest("superkink", None, (5.0,), 200, "middle"), "branch"),
+    (lambda: compute.FamilyRequest(1.0, "fast", 200, 1e-10), "V_values"),
+    (lambda: compute.FamilyRequest(1.0, (5.0,), 200, 0.0), "tol"),
+])  # fmt: skip
+def test_sweep_and_family_requests_are_refused_when_made(make, name):
+    assert refused(make).name == name
+
+
+def test_a_sweep_request_is_the_fpucore_sweep_its_code_shows_and_its_own_key():
+    """The sweep is its request: the key tells one ulp apart, the code is atlas.sweep's call
+    with every float by repr, and the job (run inline as in a worker) equals that code run."""
+    Vs = (5.0, 5.3)
+    req = compute.SweepRequest("solitary", 1.0, Vs, 64)
+    near = compute.SweepRequest("solitary", 1.0, (5.0, np.nextafter(5.3, 6.0)), 64)
+    assert compute.job_key(LAW, req) != compute.job_key(LAW, near)
+    assert compute.job_key(LAW, req) == compute.job_key(LAW, compute.SweepRequest(
+        "solitary", 1, [5, 5.3], 64, "lower"))  # fmt: skip
+    call = req.call()
+    assert call.fn is atlas.sweep and call.code() == (
+        "atlas.sweep(law, kind='solitary', V_values=[5.0, 5.3], w_plus=1.0, N=64, branch='lower')"
+    )
+    job = req.job(LAW)
+    direct = eval(call.code(), {"atlas": atlas, "law": LAW})  # noqa: S307 - the app's own text
+    assert np.array_equal(job.V, direct.V) and list(job.classification) == list(
+        direct.classification
+    )
+    assert np.array_equal(job.max_modulus, direct.max_modulus, equal_nan=True)
+
+
+def test_a_family_request_is_the_fpucore_family_its_code_shows():
+    req = compute.FamilyRequest(1.0, (5.0, 5.2), 200, 1e-10)
+    assert req.call().code() + ".results" == (
+        "wave.solitary_family(law, 1.0, [5.0, 5.2], N=200, tol=1e-10).results"
+    )
+    rows = req.job(LAW)
+    direct = eval(req.call().code() + ".results", {"wave": wave, "law": LAW})  # noqa: S307
+    assert [r.V for r in rows] == [5.0, 5.2] == [r.V for r in direct]
+    assert all(np.array_equal(a.w, b.w) for a, b in zip(rows, direct))
+
+
+#: what app.compute exposes beside the requests: the road (run, is_cached, keys, the spectrum's
+#: two-entry job), the cache, the laws, the worker pool and the in-process QC and energy calls
+NOT_REQUESTS = {
+    "ParameterError", "CancelledError", "CACHE", "Computed", "ResultCache", "exact",
+    "law", "expression_law", "trusted_expression_law", "lookup_law", "request_law",
+    "shutdown_law_executor", "building_page", "LAW_TIME_S", "make_law", "law_key", "split_law",
+    "join_law", "law_from_text",
+    "CANCELLED", "Superseded", "executor", "shutdown_executor", "jobs_in_flight", "run_job",
+    "warm_workers",
+    "qc_method", "qc_wave", "qc_family", "phase_plane", "phase_orbit", "existence_diagram",
+    "spec_of", "n_needed",
+    "Call", "SMALL_ATLAS_POINTS", "SMALL_ATLAS_N",
+    "run", "is_cached", "job_key", "floquet_spectrum", "spectrum_key",
+    "ENERGY_QC_SAMPLES", "energy_qc_samples", "energy_extrema_qc", "sampled_energy_extrema",
+    "family_energy_extrema", "sweep_energy_check",
+}  # fmt: skip
+
+
+def test_app_compute_grows_requests_not_functions():
+    """A new heavy computation is a new request class (app/compute/requests.py), run by
+    compute.run: app.compute's public names are its requests and a fixed set of the road's
+    and the infrastructure's — a per-computation function (``simulation(...)``,
+    ``floquet_sweep_cached(...)``, ``sweep_key(...)``) beside them fails here."""
+    public = set(compute.__all__)
+    names = {n for n in dir(compute) if not n.startswith("_")}
+    assert public == {n for n in names if not isinstance(getattr(compute, n), types.ModuleType)}
+    requests = {n for n in public if isinstance(getattr(compute, n), type)
+                and issubclass(getattr(compute, n), compute.Request)}  # fmt: skip
+    assert {"WaveRequest", "FamilyRequest", "SweepRequest", "SimulationRequest",
+            "AtlasRequest"} <= requests  # fmt: skip
+    beside = public - requests - NOT_REQUESTS
+    assert not beside, f"per-computation names beside the request road: {sorted(beside)}"
+    assert len(public) <= 60, len(public)
+
+
+def test_only_the_road_submits_jobs():
+    """Views and other modules never call run_job (a hand-built key and job) themselves: the
+    only callers are app/compute/heavy.py's run and floquet_spectrum."""
+    import ast
+    from pathlib import Path
+
+    root = Path(compute.__file__).resolve().parents[1]
+    callers = set()
+    for path in root.rglob("*.py"):
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.Call):
+                f = node.func
+                name = f.attr if isinstance(f, ast.Attribute) else getattr(f, "id", "")
+                if name == "run_job":
+                    callers.add(path.relative_to(root.parent).as_posix())
+    assert callers == {"app/compute/heavy.py"}, callers

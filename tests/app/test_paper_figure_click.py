@@ -215,5 +215,5 @@ def test_a_superseded_caller_submits_no_job():
     cancelled, n = compute.CANCELLED[0], compute.jobs_in_flight()
     with pytest.raises(compute.Superseded):
         req = compute.RiemannRequest(L=400, t_end=1.0 + 1e-9, w_left=4.6, w_right=0.0)
-        compute.simulation(compute.law(-1.0, 10.0), req, stop=lambda: True)
+        compute.run(compute.law(-1.0, 10.0), req, stop=lambda: True)
     assert compute.CANCELLED[0] == cancelled and compute.jobs_in_flight() == n

@@ -113,7 +113,9 @@ def test_heavy_work_runs_in_another_process_and_a_superseded_job_is_killed():
 
     cancelled = compute.CANCELLED[0]
     with pytest.raises(compute.Superseded):
-        compute.floquet_spectrum(CUBIC, "solitary", 1.0, 5.1, 1400, 1e-10, stop=stop)
+        compute.floquet_spectrum(
+            CUBIC, compute.WaveRequest("solitary", 1.0, 5.1, 1400, 1e-10), stop=stop
+        )
     assert time.monotonic() - t0 < 10  # left at once, not after the spectrum
     assert compute.CANCELLED[0] == cancelled + 1  # the job was cancelled, not left queued
     assert compute.jobs_in_flight() == 0
@@ -137,7 +139,7 @@ def test_an_unconverged_profile_is_not_drawn():
     """README's flat-top example (w₊ = 6, V 1e-11 below 7√5/3) at the default N = 500."""
     st, sc = attached("profiles", w_plus=6.0, V=5.21749194749, N=500, tol=1e-10)
     sc.refresh()
-    r = compute.discrete_wave(CUBIC, "solitary", 6.0, 5.21749194749, 500, 1e-10).value
+    r = compute.run(CUBIC, compute.WaveRequest("solitary", 6.0, 5.21749194749, 500, 1e-10)).value
     if r.converged:  # pragma: no cover - fpucore got better: then the dots must be drawn
         assert len(sc.r_dots[1].data["x"]) > 0
         return
@@ -257,8 +259,8 @@ def test_cache_never_returns_a_result_for_different_inputs():
     """Two velocities 2e-13 apart on either side of V_SK (w₊ = 1)."""
     V1, V2 = 5.374838498865599, 5.3748384988658
     assert V1 < V_SK1 < V2 or V2 < V_SK1 < V1 or True  # V_SK = 5.3748384988657 (closed form)
-    k1 = compute.wave_key(CUBIC, compute.WaveRequest("solitary", 1.0, V1, 400, 1e-10))
-    k2 = compute.wave_key(CUBIC, compute.WaveRequest("solitary", 1.0, V2, 400, 1e-10))
+    k1 = compute.job_key(CUBIC, compute.WaveRequest("solitary", 1.0, V1, 400, 1e-10))
+    k2 = compute.job_key(CUBIC, compute.WaveRequest("solitary", 1.0, V2, 400, 1e-10))
     assert k1 != k2
     q1 = compute.qc_wave(CUBIC, "solitary", 1.0, V1)
     q2 = compute.qc_wave(CUBIC, "solitary", 1.0, V2)

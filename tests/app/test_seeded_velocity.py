@@ -10,7 +10,7 @@ import pytest
 pytest.importorskip("panel")
 
 from app.explorer import Explorer  # noqa: E402
-from app.views.paper import comparison_parts  # noqa: E402
+from app.views.formatting import comparison_parts  # noqa: E402
 from fpucore.paper.figures_dynamics import fig_stabSK, fig_stabSW  # noqa: E402
 
 

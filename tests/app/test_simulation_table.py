@@ -9,7 +9,7 @@ import pytest
 
 pytest.importorskip("panel")
 
-from app.views.simulation import fmt_pm, wave_table  # noqa: E402
+from app.views.simulation_table import fmt_pm, wave_table  # noqa: E402
 from fpucore import simulate  # noqa: E402
 from fpucore.law import CubicLaw  # noqa: E402
 
@@ -52,7 +52,7 @@ def test_status_line_velocities_carry_their_errors():
     every velocity now comes with its error and the digits the error supports."""
     from types import SimpleNamespace as W
 
-    from app.views.simulation import tracked_velocities
+    from app.views.simulation_table import tracked_velocities
 
     waves = [W(velocity=-5.720916787446, velocity_error=2.6e-12),
              W(velocity=-5.615766265, velocity_error=7.72e-4),

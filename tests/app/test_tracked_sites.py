@@ -13,7 +13,7 @@ pytest.importorskip("panel")
 
 from app.state import ExplorerState  # noqa: E402
 from app.views import SCENES  # noqa: E402
-from app.views.simulation import last_to_pass  # noqa: E402
+from app.views.simulation_table import last_to_pass  # noqa: E402
 
 BY_KEY = {cls.key: cls for cls in SCENES}
 
