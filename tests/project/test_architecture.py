@@ -77,7 +77,7 @@ LATE_OK: set[tuple[str, str]] = {
     ("fpucore/paper/plot.py", "import holoviews as hv"),
     ("fpucore/paper/plot.py", "from bokeh import models"),
     ("fpucore/paper/plot.py", "from bokeh.embed import file_html"),
-    ("fpucore/paper/plot.py", "from bokeh.resources import INLINE"),
+    ("fpucore/paper/plot.py", "from bokeh.resources import Resources"),
     # Pillow (a Matplotlib dependency) only when a thumbnail is written (fpu paper --thumbnails)
     ("fpucore/paper/plot.py", "from PIL import Image"),
     # the explorer's law worker imports SymPy before its time budget starts; the server
