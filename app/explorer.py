@@ -34,7 +34,16 @@ from .slider_marks import SliderMark
 from .state import N_RANGE, STATE_PARAMS, TABS, TOL_OPTIONS, ExplorerState
 from .views import SCENES
 from .views.untrusted import LITERAL_MD, LiteralAlert, LiteralMarkdown, md_literal
-from .widgets import FloatInput, FloatSlider, IntInput, IntSlider, put, widened
+from .widgets import (
+    FloatInput,
+    FloatSlider,
+    IntInput,
+    IntSlider,
+    Syncing,
+    put,
+    user_action,
+    widened,
+)
 
 CSS = """
 .scene-status p { margin: 0.2em 0; font-size: 0.92em; }
@@ -62,7 +71,7 @@ class Explorer(pn.viewable.Viewer):
         self.by_key = {
             cls.key: cls(self.state) for cls in SCENES if not lazy or cls.key == self.state.tab
         }
-        self._syncing = False
+        self._syncing = Syncing(self.state.lock)
         self._page = None  # the template, built by __panel__
         self._build_widgets()
         self.url_errors = list(url_errors or [])
@@ -163,8 +172,9 @@ class Explorer(pn.viewable.Viewer):
         self.V_exact.param.watch(lambda e: self._typed("V", e.new), "value")
         self.N_exact.param.watch(self._on_typed_N, "value")
 
+    @user_action
     def _on_typed_N(self, event) -> None:
-        if self._syncing or event.new is None:
+        if event.new is None:
             return
         self.state.set_typed_N(event.new)
         if int(self.state.N) != event.new:  # evened or clamped: show what is used
@@ -199,26 +209,24 @@ class Explorer(pn.viewable.Viewer):
             s.stale = True
         self.active_scene().request()
 
+    @user_action
     def _typed(self, name: str, value) -> None:
         """A value typed in an exact box: a non-finite one (``1e309`` arrives as inf) is
         refused with a message and the box shows the state's value again."""
-        if self._syncing or value is None:
+        if value is None:
             return
         if not math.isfinite(value):
             box = self.w_plus_exact if name == "w_plus" else self.V_exact
-            self._syncing = True
-            try:
-                with self.law_editor.muted():
-                    box.value = getattr(self.state, name)
-            finally:
-                self._syncing = False
+            with self._syncing(), self.law_editor.muted():
+                box.value = getattr(self.state, name)
             err = ParameterError(name, value, "a finite number")
             self.state.note = f"typed value ignored: {err}"
             return
         self._set(**{name: value})
 
+    @user_action
     def _set(self, **kw):
-        if self._syncing or any(v is None for v in kw.values()):
+        if any(v is None for v in kw.values()):
             return
         self.state.param.update(**kw)
 
@@ -226,8 +234,7 @@ class Explorer(pn.viewable.Viewer):
         """State → widgets: ranges from the theory; the value shown is always the state's (a
         value outside the theoretical range widens the slider, and the sidebar says so)."""
         st = self.state
-        self._syncing = True
-        try:
+        with self._syncing():
             with self.law_editor.muted():
                 self.mode.value = st.mode
                 self.law_editor.sync()
@@ -250,8 +257,6 @@ class Explorer(pn.viewable.Viewer):
                 self.w_plus_exact.value = st.w_plus
                 self.V_exact.value = st.V
                 self.ranges.object = self._ranges_text(summ)
-        finally:
-            self._syncing = False
 
     def _ranges_text(self, s: dict) -> str:
         st = self.state

@@ -4,6 +4,7 @@ typed values and typed laws.
 
 from __future__ import annotations
 
+import os
 import random
 import time
 
@@ -68,7 +69,9 @@ def test_bad_url_values_are_named_and_the_rest_is_kept(page):
     assert not app_tracebacks()
 
 
-def test_state_walk(page):
+# FPU_WALK_REPEAT=20: the same walk 20 times against one server (the load check of the walk)
+@pytest.mark.parametrize("repeat", range(int(os.environ.get("FPU_WALK_REPEAT", "1"))))
+def test_state_walk(page, repeat):
     """A seeded, bounded random walk through what users do — slider moves, mode switches, tab
     changes, invalid values typed or in the URL, and recoveries — checking after every step
     that the active scene renders the URL's state (none is dead), that the plot's data sources
