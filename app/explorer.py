@@ -22,7 +22,6 @@ Beside it: the law editor (:mod:`app.law_editor`), the widgets kept in step with
 from __future__ import annotations
 
 import math
-import threading
 
 import panel as pn
 from panel.io.state import set_curdoc
@@ -67,7 +66,10 @@ class Explorer(pn.viewable.Viewer):
         super().__init__(**params)
         self.state = state or ExplorerState()
         self._doc = pn.state.curdoc
-        self._scene_lock = threading.RLock()
+        # the state's lock: a scene is built (and its tab set) by a state change's watcher, which
+        # holds that lock; a second lock taken in the other order by a scene built on another
+        # thread (a tab click) could deadlock the two handler threads
+        self._scene_lock = self.state.lock
         self.by_key = {
             cls.key: cls(self.state) for cls in SCENES if not lazy or cls.key == self.state.tab
         }
