@@ -22,7 +22,6 @@ Beside it: the law editor (:mod:`app.law_editor`), the widgets kept in step with
 from __future__ import annotations
 
 import math
-import threading
 
 import panel as pn
 from panel.io.state import set_curdoc
@@ -36,7 +35,17 @@ from .state import N_RANGE, STATE_PARAMS, TOL_OPTIONS, ExplorerState
 from .views import SCENES
 from .views.formatting import ranges_markdown
 from .views.untrusted import LITERAL_MD, LiteralAlert, LiteralMarkdown, md_literal
-from .widgets import FloatInput, FloatSlider, IntInput, IntSlider, nearest_tol, put, widened
+from .widgets import (
+    FloatInput,
+    FloatSlider,
+    IntInput,
+    IntSlider,
+    Syncing,
+    nearest_tol,
+    put,
+    user_action,
+    widened,
+)
 
 CSS = """
 .scene-status p { margin: 0.2em 0; font-size: 0.92em; }
@@ -60,11 +69,14 @@ class Explorer(pn.viewable.Viewer):
         super().__init__(**params)
         self.state = state or ExplorerState()
         self._doc = pn.state.curdoc
-        self._scene_lock = threading.RLock()
+        # the state's lock: a scene is built (and its tab set) by a state change's watcher, which
+        # holds that lock; a second lock taken in the other order by a scene built on another
+        # thread (a tab click) could deadlock the two handler threads
+        self._scene_lock = self.state.lock
         self.by_key = {
             cls.key: cls(self.state) for cls in SCENES if not lazy or cls.key == self.state.tab
         }
-        self._syncing = False
+        self._syncing = Syncing(self.state.lock)
         self._page = None  # the template, built by __panel__
         self._build_widgets()
         self.url_errors = list(url_errors or [])
@@ -165,8 +177,9 @@ class Explorer(pn.viewable.Viewer):
         self.V_exact.param.watch(lambda e: self._typed("V", e.new), "value")
         self.N_exact.param.watch(self._on_typed_N, "value")
 
+    @user_action
     def _on_typed_N(self, event) -> None:
-        if self._syncing or event.new is None:
+        if event.new is None:
             return
         self.state.set_typed_N(event.new)
         if int(self.state.N) != event.new:  # evened or clamped: show what is used
@@ -201,26 +214,24 @@ class Explorer(pn.viewable.Viewer):
             s.stale = True
         self.active_scene().request()
 
+    @user_action
     def _typed(self, name: str, value) -> None:
         """A value typed in an exact box: a non-finite one (``1e309`` arrives as inf) is
         refused with a message and the box shows the state's value again."""
-        if self._syncing or value is None:
+        if value is None:
             return
         if not math.isfinite(value):
             box = self.w_plus_exact if name == "w_plus" else self.V_exact
-            self._syncing = True
-            try:
-                with self.law_editor.muted():
-                    box.value = getattr(self.state, name)
-            finally:
-                self._syncing = False
+            with self._syncing(), self.law_editor.muted():
+                box.value = getattr(self.state, name)
             err = ParameterError(name, value, "a finite number")
             self.state.note = f"typed value ignored: {err}"
             return
         self._set(**{name: value})
 
+    @user_action
     def _set(self, **kw):
-        if self._syncing or any(v is None for v in kw.values()):
+        if any(v is None for v in kw.values()):
             return
         self.state.param.update(**kw)
 
@@ -228,8 +239,7 @@ class Explorer(pn.viewable.Viewer):
         """State → widgets: ranges from the theory; the value shown is always the state's (a
         value outside the theoretical range widens the slider, and the sidebar says so)."""
         st = self.state
-        self._syncing = True
-        try:
+        with self._syncing():
             with self.law_editor.muted():
                 self.mode.value = st.mode
                 self.law_editor.sync()
@@ -252,8 +262,6 @@ class Explorer(pn.viewable.Viewer):
                 self.w_plus_exact.value = st.w_plus
                 self.V_exact.value = st.V
                 self.ranges.object = ranges_markdown(self.state, summ)
-        finally:
-            self._syncing = False
 
     # ------------------------------------------------------------------ events
     def _on_state(self, *events):

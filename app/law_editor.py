@@ -25,7 +25,6 @@ from __future__ import annotations
 import contextlib
 import logging
 import math
-import threading
 
 import panel as pn
 import param
@@ -38,7 +37,7 @@ from fpucore.law.presets import PRESETS
 from . import compute
 from .state import A_RANGE, B_RANGE, ExplorerState
 from .views.untrusted import LiteralAlert, LiteralMarkdown, md_literal
-from .widgets import FloatSlider, put, widened
+from .widgets import FloatSlider, Syncing, put, user_action, widened
 
 log = logging.getLogger("fpu-explorer")
 
@@ -75,9 +74,7 @@ class LawEditor(pn.viewable.Viewer):
     def __init__(self, state: ExplorerState, **params):
         super().__init__(**params)
         self.state = st = state
-        self._syncing = False
-        self._mutes = 0
-        self._mute_lock = threading.Lock()
+        self._syncing = Syncing(st.lock)
         self.law_kind = pn.widgets.RadioButtonGroup(
             options={"cubic (a, b)": "cubic", "expression": "expression"},
             value="expression" if st.expression else "cubic",
@@ -158,8 +155,9 @@ class LawEditor(pn.viewable.Viewer):
         return self._layout
 
     # ------------------------------------------------------------------ user → state
+    @user_action
     def _set(self, **kw) -> None:
-        if self._syncing or any(v is None for v in kw.values()):
+        if any(v is None for v in kw.values()):
             return
         self.state.param.update(**kw)
 
@@ -177,8 +175,9 @@ class LawEditor(pn.viewable.Viewer):
         self.refused = ""
         self._set(expression=text)
 
+    @user_action
     def _on_preset(self, event) -> None:
-        if self._syncing or not event.new:
+        if not event.new:
             return
         p = PRESETS[event.new]
         if event.new == "cubic":  # the paper's cubic: closed forms, a and b sliders
@@ -189,18 +188,18 @@ class LawEditor(pn.viewable.Viewer):
             return
         self.apply(compute.join_law(p.text, p.constants_dict))
 
+    @user_action
     def _on_const(self, name: str, value) -> None:
         """Constant slider ``name`` moved: the law text is rewritten with the new value and
         rebuilt in the law worker (as a typed law)."""
-        if self._syncing or value is None or self._const_anchor is None:
+        if value is None or self._const_anchor is None:
             return
         consts = {n: float(s.value) for n, s in self.const_sliders.items()}
         consts[name] = float(f"{float(value):.6g}")
         self.apply(compute.join_law(self._const_anchor[0], consts))
 
+    @user_action
     def _on_law_kind(self, event) -> None:
-        if self._syncing:
-            return
         st = self.state
         if event.new == "cubic":
             self._last_expression = st.expression or self._last_expression
@@ -221,9 +220,10 @@ class LawEditor(pn.viewable.Viewer):
                     pass
             self.apply(text)
 
+    @user_action
     def _on_coeff(self, k: int, value) -> None:
         """Coefficient slider k (c_{k+1}) moved: the expression is rewritten from the sliders."""
-        if self._syncing or value is None:
+        if value is None:
             return
         coeffs = [float(s.value) for s in self.coeff_sliders]
         coeffs[k] = float(f"{float(value):.6g}")  # no 10.059999999999999 from the slider step
@@ -239,12 +239,13 @@ class LawEditor(pn.viewable.Viewer):
         finally:
             self._from_slider = False
 
+    @user_action
     def apply(self, text: str | None) -> None:
         """A law typed in the box (or chosen; "" for the cubic): applied once it is built.  A
         typed text is built in the law worker within its budgets (app.compute.request_law), never
         in this handler: a law not built yet is applied from the worker's answer (if it is still
         the one wanted), and :attr:`checking` names it meanwhile."""
-        if self._syncing or text is None:
+        if text is None:
             return
         text = text.strip()
         self._law_wanted = text
@@ -268,20 +269,14 @@ class LawEditor(pn.viewable.Viewer):
     # ------------------------------------------------------------------ state → widgets
     @contextlib.contextmanager
     def muted(self):
-        """The editor ignores widget events meanwhile: the page holds it muted for its whole
-        sync, as one flag did before the split (a law typed while another handler thread syncs
-        the sidebar is dropped, not applied under a sync that then writes the older state)."""
-        # counted, not saved and restored: two threads syncing at once (a law worker's answer
-        # and a session's handler) once left the editor muted for good
-        with self._mute_lock:
-            self._mutes += 1
-            self._syncing = True
-        try:
+        """The editor ignores its own widgets' events meanwhile (the page holds it muted for its
+        whole sync); an event handled by another thread waits for the sync to end (the state's
+        lock) and is then applied — neither dropped nor applied under a sync that then writes
+        the older state."""
+        # per thread, under the state's lock (app.widgets.Syncing): a session's other handler
+        # thread waits for the sync to end and then applies its event, never drops it
+        with self._syncing():
             yield
-        finally:
-            with self._mute_lock:
-                self._mutes -= 1
-                self._syncing = self._mutes > 0
 
     def sync(self) -> None:
         """State → law widgets: a, b (their ranges widened to the state's values), the kind,

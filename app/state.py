@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import contextlib
 import math
+import threading
 
 import param
 
@@ -84,6 +85,9 @@ class ExplorerState(param.Parameterized):
 
     def __init__(self, **params):
         super().__init__(**params)
+        #: a session's handler threads (and the law worker's answers) change the state and
+        #: sync the sidebar one at a time (app.widgets.user_action, Syncing)
+        self.lock = threading.RLock()
         self._tying = False
         self._showing_figure = False
         self._solitary_V = self.V if self.mode == "solitary" else None
@@ -367,8 +371,9 @@ class ExplorerState(param.Parameterized):
     def pick(self, w_plus: float, V: float, N: int | None = None) -> None:
         """Set (w_plus, V) at once (and N, when given), e.g. from a click on the existence
         diagram or an atlas cell; V < 0 clicks (the diagram is symmetric) are mirrored to V > 0."""
-        with self._untied():
-            extra = {} if N is None else {"N": int(N)}
-            self.param.update(w_plus=float(w_plus), V=abs(float(V)), **extra)
-        if self.mode == "superkink":
-            self._tie_superkink(from_V=False)
+        with self.lock:
+            with self._untied():
+                extra = {} if N is None else {"N": int(N)}
+                self.param.update(w_plus=float(w_plus), V=abs(float(V)), **extra)
+            if self.mode == "superkink":
+                self._tie_superkink(from_V=False)

@@ -10,7 +10,10 @@ use them: this is the one place that reaches below Panel's public API.
 
 from __future__ import annotations
 
+import contextlib
+import functools
 import math
+import threading
 
 import panel as pn
 import param
@@ -71,6 +74,48 @@ class FloatInput(_ThrottledInStep, pn.widgets.FloatInput):
 
 class IntInput(_ThrottledInStep, pn.widgets.IntInput):
     pass
+
+
+class Syncing:
+    """True while the page moves its own widgets, and only in the thread that moves them
+    (which holds the state's lock meanwhile: ``with syncing():``).
+
+    Panel handles a session's browser events on its handler threads (``--num-threads 2``), two
+    at once.  A single flag, set while one thread synced the sidebar, made the other thread
+    drop a genuine event as if it were the sync's own echo: the state walk's third key press on
+    the b slider (9.95) was lost, the URL and plot kept the second (9.999999999999998) while
+    the slider showed 9.95.  Now the other thread waits for the lock and applies its event."""
+
+    def __init__(self, lock) -> None:
+        self._lock = lock
+        self._local = threading.local()
+
+    def __bool__(self) -> bool:
+        return getattr(self._local, "depth", 0) > 0
+
+    @contextlib.contextmanager
+    def __call__(self):
+        with self._lock:
+            self._local.depth = getattr(self._local, "depth", 0) + 1
+            try:
+                yield
+            finally:
+                self._local.depth -= 1
+
+
+def user_action(method):
+    """A handler of a widget event (a method of an object with ``state`` and ``_syncing``):
+    run under the state's lock, one handler thread at a time, and ignored when the event is the
+    page's own sync of that widget (in this very thread)."""
+
+    @functools.wraps(method)
+    def run(self, *args, **kwargs):
+        with self.state.lock:
+            if self._syncing:
+                return None
+            return method(self, *args, **kwargs)
+
+    return run
 
 
 def put(widget, value, **bounds) -> None:

@@ -281,10 +281,14 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
                 )
             return None  # else a newer request is pending: the loop renders it next
         except SceneMessage as exc:
+            if self._moved_on():
+                return None
             self._stamp = info.stamp or self._render_stamp
             self._show_message(str(exc), exc.kind)
             return None
         except ParameterError as exc:
+            if self._moved_on():
+                return None
             self._stamp = info.stamp or self._render_stamp
             self._show_message(str(exc), "warning")
             return None
@@ -307,7 +311,7 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
             said = f"computation failed: {type(exc).__name__}: {hide_server_paths(exc)}"
             self._show_message(said.splitlines()[0], "danger")
             return None
-        if self.session_closed:
+        if self.session_closed or self._moved_on():
             return None
         try:
             self._stamp = info.stamp or self._render_stamp
@@ -332,6 +336,13 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
             self._show_message(said, "danger")
             return None
         return info
+
+    def _moved_on(self) -> bool:
+        """True if the state's parameters changed while this render read them and a render of
+        the new ones will follow (a request pending, or the scene marked stale): the render
+        may have drawn some values of the new state under the old one's stamp (the diagram's
+        current point read after the stamp was taken), so nothing of it is shown."""
+        return (self._pending or self.stale) and state_stamp(self.state) != self._render_stamp
 
     def _show_message(self, text: str, kind: str) -> None:
         """The message instead of the plot.  Never raises (the worker thread must survive)."""

@@ -51,17 +51,14 @@ def tanh_marks(c=0.1, k=1.0, m=1.0, s=0.3) -> tuple[float, float, float]:
 
 
 def settle(ex: Explorer, done, timeout: float = 120.0) -> None:
-    """Wait until ``done()`` (the law worker answers in its own thread), then until the
-    editor's sync has been quiet for 2 s (an event meanwhile is dropped)."""
+    """Wait until ``done()`` (the law worker answers in its own thread), then until the sync
+    of the answer (in that thread, under the state's lock) has ended."""
     t_end = time.monotonic() + timeout
     while not done() and time.monotonic() < t_end:
         time.sleep(0.05)
     assert done(), ex.ranges.object
-    quiet = time.monotonic()
-    while time.monotonic() - quiet < 2.0:
-        if ex.law_editor._syncing:
-            quiet = time.monotonic()
-        time.sleep(0.02)
+    with ex.state.lock:
+        pass
 
 
 def move(slider, value: float) -> None:
@@ -137,7 +134,7 @@ def test_a_refused_law_is_named_and_the_previous_law_stays():
     assert scene.last_message is None and "'c': 0.1" in scene.code.value  # still tanh
     # a typed text outside the class: refused the same way
     law.law_text.value = "log(w)"
-    assert law.checking == "log(w)", (law.checking, law._syncing, ex._syncing)
+    assert law.checking == "log(w)", law.checking
     settle(ex, lambda: "log(w)" in law.refused and "checking" not in ex.ranges.object)
     assert ex.state.expression == before
     # a valid law clears the refusal

@@ -75,3 +75,47 @@ def test_a_run_in_flight_names_its_parameters_while_the_last_result_keeps_its_ow
         assert untimed(status) == untimed(before)
         assert computing.startswith("computing … for ") and "t_end=150.0" in computing
     assert "t_end=150.0" in stamp_of(seen[-1][0]) and not seen[-1][1]
+
+
+def test_a_state_moved_during_a_render_is_never_drawn_under_the_old_stamp(monkeypatch):
+    """The Diagrams scene takes its stamp when a render starts and reads the current point
+    (w₊, V) later: a V set in between (a second slider event handled while the render runs) was
+    drawn under the previous state's parameter line.  Such a render is not shown; the render
+    of the new state that follows is.  Checked at every status written: the current point is
+    the stamp's (w₊, V)."""
+    from app import compute
+    from app.state import ExplorerState
+
+    ex = Explorer(ExplorerState(tab="diagram"), lazy=True)
+    sc = ex.scene("diagram")
+    original = compute.existence_diagram
+    moved = []
+
+    def existence_diagram(lw, *a, **kw):  # runs after the stamp, before the point is read
+        if not moved:
+            moved.append(True)
+            ex.state.V = 5.1  # as the server's event loop does while the worker renders
+        return original(lw, *a, **kw)
+
+    monkeypatch.setattr(compute, "existence_diagram", existence_diagram)
+    shown = []
+    write = sc._write_status
+
+    def write_status(info, t0, partial=False):
+        data = sc.exist_point[1].data
+        shown.append((stamp_of_plain(sc._stamp), list(data["x"]), list(data["y"])))
+        write(info, t0, partial)
+
+    monkeypatch.setattr(sc, "_write_status", write_status)
+    sc.request()
+    assert sc.wait_idle(120.0) and sc.last_message is None, sc.last_message
+    assert moved and shown, (moved, shown)
+    for stamp, x, y in shown:
+        assert x == [stamp["w_plus"]] and y == [stamp["V"]], (stamp, x, y)
+    assert shown[-1][0]["V"] == 5.1
+
+
+def stamp_of_plain(stamp: str) -> dict:
+    """w_plus and V of a state stamp (app.views.formatting.state_stamp)."""
+    parts = dict(p.split("=", 1) for p in stamp.split() if "=" in p)
+    return {"w_plus": float(parts["w_plus"]), "V": float(parts["V"])}

@@ -4,6 +4,7 @@ typed values and typed laws.
 
 from __future__ import annotations
 
+import os
 import random
 import time
 
@@ -34,6 +35,18 @@ from browser_harness import (
 
 pytestmark = pytest.mark.browser
 WALK_STEPS = 40  # of seed 13 (about 20 s on an idle machine, 10-15 min at load 20)
+#: a sidebar slider's class suffix (.w-…) → its URL name
+SLIDER_URL_NAMES = {"wplus": "w_plus"}
+#: how long a user action may take to reach the URL (settled's patience for the render)
+REACH_S = 90.0
+
+
+def expect(page, pred, what: str, step: int) -> dict:
+    """Wait (bounded) until the URL shows what the step's action set — the state the step must
+    then find rendered; fail naming it if it never comes (a lost event, not a slow one)."""
+    q = wait_url(page, pred, REACH_S)
+    assert pred(q), f"step {step}: {what} did not reach the URL in {REACH_S} s: {q}"
+    return q
 
 
 def test_bad_url_values_are_named_and_the_rest_is_kept(page):
@@ -56,7 +69,9 @@ def test_bad_url_values_are_named_and_the_rest_is_kept(page):
     assert not app_tracebacks()
 
 
-def test_state_walk(page):
+# FPU_WALK_REPEAT=20: the same walk 20 times against one server (the load check of the walk)
+@pytest.mark.parametrize("repeat", range(int(os.environ.get("FPU_WALK_REPEAT", "1"))))
+def test_state_walk(page, repeat):
     """A seeded, bounded random walk through what users do — slider moves, mode switches, tab
     changes, invalid values typed or in the URL, and recoveries — checking after every step
     that the active scene renders the URL's state (none is dead), that the plot's data sources
@@ -75,21 +90,31 @@ def test_state_walk(page):
         if r < 0.45:
             kind = "slider"
             name = rng.choice(["a", "b", "wplus", "V", "V", "N"])
-            before = query(page)
+            url_name = SLIDER_URL_NAMES.get(name, name)
             page.locator(f".w-{name} .noUi-handle").first.focus()
+            value = widget_value(page, f"w-{name}")
             for _ in range(rng.randint(1, 3)):
                 page.keyboard.press(rng.choice(["ArrowLeft", "ArrowRight"]))
-            wait_url(page, lambda q, b=before: q != b, 3.0)  # unchanged at a slider's end
+                # each press that moves the slider is its own event to the server: the step
+                # ends once the URL shows the value of each press in turn.  (Waiting for the
+                # first change of the URL ended at the first press, and the check compared a
+                # plot drawn for the later ones with it; waiting for the last value ended early
+                # when a press went back — Right, Right, Left: the first press's value is the
+                # last's — and the step settled on the second press's state.)
+                before, value = value, widget_value(page, f"w-{name}")
+                if value != before:  # else at the slider's end: nothing was sent
+                    expect(page, lambda q, n=url_name, v=value: float(q.get(n, "nan")) == v,
+                           f"{url_name}={value!r}", steps)  # fmt: skip
         elif r < 0.6:
             kind = "tab"
             key = rng.choice(["force", "phase", "profiles", "diagram", "floquet", "simulation"])
             open_tab(page, TAB_TITLES[key])
-            wait_url(page, lambda q, k=key: q.get("tab") == k)
+            expect(page, lambda q, k=key: q.get("tab") == k, f"tab={key}", steps)
         elif r < 0.7:
             kind = "mode"
             mode = rng.choice(["superkink", "solitary"])
             page.locator(".w-mode button", has_text=mode).click()
-            wait_url(page, lambda q, m=mode: q.get("mode") == m)
+            expect(page, lambda q, m=mode: q.get("mode") == m, f"mode={mode}", steps)
         elif r < 0.75:
             # typed into the exact box: V_SK itself (invalid in solitary mode), out of range,
             # or a valid V — the slider must show it without echoing another value back
@@ -98,9 +123,9 @@ def test_state_walk(page):
             inp = page.locator(".in-V input")
             inp.fill(V)
             inp.press("Enter")
-            # (90 s: at load 20 the typed value took longer than 20 s to reach the URL, and the
+            # (at load 20 the typed value took longer than 20 s to reach the URL, and the
             # check below then compared the previous state: step 18 of seed 13)
-            wait_url(page, lambda q, v=V: q.get("V") in (v, repr(float(v))), 90.0)
+            expect(page, lambda q, v=V: q.get("V") in (v, repr(float(v))), f"V={V}", steps)
         elif r < 0.85:
             kind = "invalid URL"
             bad = rng.choice(["N=-5", "N=101", "tol=0", "V=abc", "mode=bogus", "b=1e200"])
