@@ -14,6 +14,7 @@ import pytest
 
 pytest.importorskip("panel")
 
+from app import explorer as explorer_module  # noqa: E402
 from app.explorer import Explorer  # noqa: E402
 
 
@@ -33,15 +34,15 @@ def test_an_event_during_another_threads_sync_is_applied(monkeypatch, widget, na
     ex = Explorer()
     slider = widget(ex)
     in_sync = threading.Event()
-    ranges_text = ex._ranges_text
+    ranges_markdown = explorer_module.ranges_markdown
 
-    def slow_ranges_text(s):  # the sync after the first event, held open for a moment
-        if getattr(ex.state, name) == first:
+    def slow_ranges_markdown(state, summary):  # the sync after the first event, held open
+        if getattr(state, name) == first:
             in_sync.set()
             time.sleep(0.5)
-        return ranges_text(s)
+        return ranges_markdown(state, summary)
 
-    monkeypatch.setattr(ex, "_ranges_text", slow_ranges_text)
+    monkeypatch.setattr(explorer_module, "ranges_markdown", slow_ranges_markdown)
     a = threading.Thread(target=move, args=(slider, first))
     a.start()
     assert in_sync.wait(60)
