@@ -172,7 +172,44 @@ def bench_browser_concurrent(url: str, b, n: int) -> None:
     pg.close()
 
 
-def bench_browser(loads: int, concurrent: bool = False, n: int = 9) -> None:
+JS_ALPHA = """() => {
+  const doc = Bokeh.documents[Bokeh.documents.length - 1];
+  const m = doc.get_model_by_name("force-alpha");
+  return m ? m.location : null;
+}"""
+
+
+def bench_browser_law_change(url: str, b, rounds: int) -> None:
+    """Preset chosen → force-law scene drawn for that law (its α mark at the law's α), per
+    non-polynomial preset and back to the cubic: the user's wait, measured in the page."""
+    from fpucore.law.presets import PRESETS, preset_law
+
+    pg = b.new_page(viewport={"width": 1500, "height": 1000})
+    pg.goto(url + "/main?tab=force")
+    pg.locator(".scene-force .scene-status p", has_text="Time:").first.wait_for(timeout=120_000)
+    names = [k for k in PRESETS if k != "cubic"] + ["cubic"]
+    ts: dict[str, list[float]] = {k: [] for k in names}
+    for _ in range(rounds):
+        for key in names:
+            alpha = preset_law(key).alpha
+            t = time.monotonic()
+            label = f"{key}: {PRESETS[key].description}"
+            pg.locator(".w-law-preset select").select_option(label=label)
+            while True:
+                got = pg.evaluate(JS_ALPHA)
+                if got is not None and abs(got - alpha) <= 1e-9 * max(1.0, abs(alpha)):
+                    break
+                if time.monotonic() - t > 120:
+                    raise RuntimeError(f"{key}: the force law was not drawn within 120 s")
+                pg.wait_for_timeout(10)
+            ts[key].append(time.monotonic() - t)
+    print(f"Browser: law preset chosen → force-law scene drawn ({rounds} rounds; target ≤ 1 s)")
+    for key in names:
+        print(f"  {key:12s} median {statistics.median(ts[key]):.3f} s, max {max(ts[key]):.3f} s")
+    pg.close()
+
+
+def bench_browser(loads: int, concurrent: bool = False, n: int = 9, laws: int = 0) -> None:
     """Time from navigation to the first scene's completed render, warm server cache."""
     import socket
 
@@ -219,6 +256,8 @@ def bench_browser(loads: int, concurrent: bool = False, n: int = 9) -> None:
             print(f"  first load {ts[0]:.2f} s; then median {statistics.median(ts[1:]):.2f} s")
             if concurrent:
                 bench_browser_concurrent(url, b, n)
+            if laws:
+                bench_browser_law_change(url, b, laws)
             b.close()
     finally:
         proc.terminate()
@@ -232,6 +271,12 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--loads", type=int, default=3, help="page loads for --browser")
     ap.add_argument(
         "--concurrent", action="store_true", help="QC moves while another session computes"
+    )
+    ap.add_argument(
+        "--law-changes",
+        type=int,
+        default=0,
+        help="with --browser: rounds of preset changes timed to the drawn force law",
     )
     args = ap.parse_args(argv)
     os.environ.setdefault("BOKEH_RESOURCES", "server")
@@ -247,7 +292,7 @@ def main(argv: list[str] | None = None) -> int:
     if args.concurrent:
         bench_concurrent(args.moves)
     if args.browser:
-        bench_browser(args.loads, args.concurrent, args.moves)
+        bench_browser(args.loads, args.concurrent, args.moves, args.law_changes)
     return 0
 
 

@@ -63,7 +63,8 @@ def test_a_run_in_flight_names_its_parameters_while_the_last_result_keeps_its_ow
     assert sc.wait_idle(300.0) and sc.last_message is None, sc.last_message
     before = sc.status.object
     assert "t_end=200.0" in stamp_of(before)
-    sc.t_end.value = 150.0  # a new run (not cached): ~1 s or more
+    sc.t_end.value = 400.0  # a new run (not cached), twice as long: longer than the spinner's
+    # delay (0.25 s) also with a warm JIT (t_end = 150 once ran within it in a full-suite run)
     sc._want_run = True  # the "Run simulation" button
     sc.request()
     seen = sample(sc)
@@ -73,8 +74,8 @@ def test_a_run_in_flight_names_its_parameters_while_the_last_result_keeps_its_ow
         # the last result and its stamp, unchanged (a repaint of it from the cache may time
         # its own drawing anew: the server time is not part of the result)
         assert untimed(status) == untimed(before)
-        assert computing.startswith("computing … for ") and "t_end=150.0" in computing
-    assert "t_end=150.0" in stamp_of(seen[-1][0]) and not seen[-1][1]
+        assert computing.startswith("computing … for ") and "t_end=400.0" in computing
+    assert "t_end=400.0" in stamp_of(seen[-1][0]) and not seen[-1][1]
 
 
 def test_a_state_moved_during_a_render_is_never_drawn_under_the_old_stamp(monkeypatch):

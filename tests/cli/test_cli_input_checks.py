@@ -4,7 +4,7 @@ an interrupt gives exit 130 and one line."""
 
 import pytest
 
-from fpucore import floquet
+from fpucore import atlas
 from fpucore import warm as core_warm
 from fpucore.cli import main
 
@@ -34,7 +34,7 @@ def test_bad_out_refused_before_the_sweep(capsys, monkeypatch, tmp_path, out_pat
     def no_sweep(*a, **k):  # the check must come first: the sweep is never started
         raise AssertionError("sweep started")
 
-    monkeypatch.setattr(floquet, "sweep", no_sweep)
+    monkeypatch.setattr(atlas, "sweep", no_sweep)  # what `fpu floquet sweep` runs
     argv = ["floquet", "sweep", "superkink", "--V", "5.2", "--N", "16"]
     one_line_refusal(capsys, [*argv, "--out", out_path.format(tmp=tmp_path)], "--out=")
 

@@ -107,7 +107,10 @@ def test_paper_write_failure_after_the_work_is_one_line_exit_1(tmp_path, monkeyp
             fh.write("<html>")  # a partial page, then the disk is full
         raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC), str(path))
 
-    monkeypatch.setattr(plot, "save", full_disk)
+    monkeypatch.setattr(plot, "save", full_disk)  # .svg / .png
+    monkeypatch.setattr(
+        plot, "report_html", lambda results, figures, path, *a, **k: full_disk(results, path)
+    )  # .html: the figure with its comparison rows
     monkeypatch.setenv("FPU_CACHE_DIR", str(tmp_path / "cache"))
     out = tmp_path / "out"
     out.mkdir()
