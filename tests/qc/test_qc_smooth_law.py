@@ -8,22 +8,13 @@ from __future__ import annotations
 
 import mpmath
 import pytest
+from smooth_reference import force as exact  # the presets' exact f in mpmath
 
 from fpucore import qc
-from fpucore.law.presets import PRESETS, preset_law
+from fpucore.law.presets import preset_law
 from fpucore.qc import general
 
 SMOOTH = ("exponential", "tanh", "rational")
-
-
-def exact(name):
-    c = {k: mpmath.mpf(repr(v)) for k, v in PRESETS[name].constants_dict.items()}
-    if name == "exponential":
-        return lambda w: w + c["b"] * w**2 - c["c"] * w**3 * mpmath.exp(w / c["d"])
-    if name == "tanh":
-        k, m, s = c["k"], c["m"], c["s"]
-        return lambda w: w + k * (mpmath.tanh((w - m) / s) + mpmath.tanh(m / s)) - c["c"] * w**3
-    return lambda w: w * (1 + c["b"] * w) / (1 + c["c"] * w**2)
 
 
 def close(x, ref, err):
