@@ -37,7 +37,7 @@ from fpucore.law.presets import PRESETS
 from . import compute
 from .state import A_RANGE, B_RANGE, ExplorerState
 from .views.untrusted import LiteralAlert, LiteralMarkdown, md_literal
-from .widgets import FloatSlider, Syncing, put, user_action, widened
+from .widgets import FloatSlider, Syncing, document_gone, put, user_action, widened
 
 log = logging.getLogger("fpu-explorer")
 
@@ -256,13 +256,14 @@ class LawEditor(pn.viewable.Viewer):
         doc = pn.state.curdoc
 
         def built(fut) -> None:  # in the law worker's watcher thread
-            if self._law_wanted != text:
-                return  # another law was typed meanwhile
+            if self._law_wanted != text or document_gone(doc):
+                return  # another law was typed meanwhile, or the browser left
             try:
                 with set_curdoc(doc):
                     self._offer(text, fut.result())
-            except Exception:  # noqa: BLE001 - a session closed meanwhile
-                log.exception("applying the law %r", text[:60])
+            except Exception:  # noqa: BLE001 - the session may have closed meanwhile
+                if not document_gone(doc):
+                    log.exception("applying the law %r", text[:60])
 
         compute.request_law(text).add_done_callback(built)
 

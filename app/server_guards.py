@@ -80,6 +80,10 @@ _bokeh_trigger_on_change = DocumentCallbackManager.trigger_on_change
 
 
 def trigger_on_change_in_order(self, event) -> None:
+    if not hasattr(self, "_change_callbacks"):
+        # the document was destroyed (its browser left): a worker thread that finishes later
+        # changes models nobody shows; Bokeh's own trigger would raise on the deleted table
+        return
     if not isinstance(event, SessionCallbackAdded | SessionCallbackRemoved):
         _bokeh_trigger_on_change(self, event)
         return

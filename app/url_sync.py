@@ -23,6 +23,7 @@ from . import compute
 from .explorer import Explorer
 from .state import STATE_PARAMS, URL_PARAMS
 from .url_state import state_from_url, url_query
+from .widgets import document_gone
 
 log = logging.getLogger("fpu-explorer")
 
@@ -52,11 +53,14 @@ def from_url(lazy: bool = True) -> Explorer:
         doc = pn.state.curdoc
 
         def built(fut) -> None:  # in the law worker's watcher thread (or here, if done)
+            if document_gone(doc):
+                return  # the browser left before the law was built
             try:
                 with set_curdoc(doc):
                     explorer.url_law_checked(text, fut.result())
-            except Exception:  # noqa: BLE001 - a session closed meanwhile
-                log.exception("applying the URL's law %r", text[:60])
+            except Exception:  # noqa: BLE001 - the session may have closed meanwhile
+                if not document_gone(doc):
+                    log.exception("applying the URL's law %r", text[:60])
 
         compute.request_law(text).add_done_callback(built)
     loc = pn.state.location

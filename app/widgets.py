@@ -139,3 +139,10 @@ def nearest_tol(tol: float) -> float:
     """The tolerance option closest (in log) to tol (the tolerance selector's value)."""
     t = float(tol) if math.isfinite(tol) and tol > 0 else 1e-10
     return min(TOL_OPTIONS, key=lambda o: abs(math.log10(o / t)))
+
+
+def document_gone(doc) -> bool:
+    """True once Bokeh has destroyed ``doc`` (its browser left and the session expired): a
+    worker's answer that arrives later has nobody to show it to, and touching the document's
+    models would raise (its callback tables are deleted)."""
+    return doc is not None and doc.session_context is None
