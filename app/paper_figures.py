@@ -94,8 +94,20 @@ FIGURE_SCENARIO: dict[str, dict] = {
               "guard": "bounded", "probes": (), "run_s": 0.5},
 }  # fmt: skip
 
+#: the part of a figure its scene computes only on demand elsewhere (a button), computed as part
+#: of the click while the view is the figure's: the discrete dots of Figs. SWamp/SWenergy_cubic_
+#: DvsQC (the diagram's "Add discrete points") and the Floquet sweeps of Figs. floquet_SK and
+#: floquet_cubicSW (the Floquet scene's "Sweep max |μ| against V", its default 12 velocities)
+FIGURE_PARTS: dict[str, str] = {
+    "SWamp_cubic_DvsQC": "discrete",
+    "SWenergy_cubic_DvsQC": "discrete",
+    "floquet_SK": "sweep",
+    "floquet_cubicSW": "sweep",
+}
+
 #: what of a figure the view does not show at once (another panel's parameters), in one line
 FIGURE_NOTE: dict[str, str] = {
+    "cubic": "Fig. cubic (a), w± against V_SK, is in the Paper tab's image only (no scene).",
     "pplane": "Fig. pplane (b), (c): V = V_SK and V = V_SK + 0.005 (type V).",
     "SWs_cubic": "Fig. SWs_cubic (c): V = V_SK ∓ 1e-9 with the kink and antikink fronts.",
     "SWs_cubic_DvsQC": (

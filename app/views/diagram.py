@@ -31,6 +31,7 @@ from panel.io.state import set_curdoc
 
 from .. import compute
 from ..compute import exact
+from ..paper_figures import FIGURE_PARTS
 from .bokeh_scene import (
     BokehScene,
     FigurePane,
@@ -66,6 +67,7 @@ class DiagramScene(DiagramFiles, BranchViews, BokehScene):
     )
     cheap = True
     plot_height = 300
+    depends = (*BokehScene.depends, "figure")  # a figure's click adds its discrete dots
     pane_kw: dict = {}
 
     def controls(self):
@@ -261,7 +263,8 @@ class DiagramScene(DiagramFiles, BranchViews, BokehScene):
         s = self.state
         Vs = self._velocities(fam)
         lw, req = s.law(), compute.FamilyRequest(s.w_plus, Vs, s.N, s.tol)
-        if not self._want_discrete and not compute.is_cached(lw, req):
+        wanted = self._want_discrete or FIGURE_PARTS.get(s.figure) == "discrete"
+        if not wanted and not compute.is_cached(lw, req):
             info.notes.append("discrete dots: press 'Add discrete points'")
             return None
         self._want_discrete = False

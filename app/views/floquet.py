@@ -28,6 +28,7 @@ from fpucore import qc
 from fpucore.floquet import CLASSES, changes_summary
 
 from .. import compute
+from ..paper_figures import FIGURE_PARTS
 from .bokeh_scene import (
     BokehScene,
     Updates,
@@ -84,6 +85,7 @@ class FloquetScene(FloquetFiles, BokehScene):
         "(floquet_SK, Floquet_example, floquet_cubicSW)._"
     )
     plot_height = 340
+    depends = (*BokehScene.depends, "figure")  # a figure's click runs its sweep
 
     def controls(self):
         # the total: a solitary sweep shares it between its two intervals (_sweep_values)
@@ -200,7 +202,8 @@ class FloquetScene(FloquetFiles, BokehScene):
         s = self.state
         kind, wp, Vs, vsk, branch = self._sweep_values()
         lw, req = s.law(), compute.SweepRequest(kind, wp, Vs, s.N, branch)
-        if not self._want_sweep and not compute.is_cached(lw, req):
+        wanted = self._want_sweep or FIGURE_PARTS.get(s.figure) == "sweep"
+        if not wanted and not compute.is_cached(lw, req):
             self._sweep_result = self._ec = None
             return False
         self._want_sweep = False
