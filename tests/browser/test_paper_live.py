@@ -314,3 +314,45 @@ def test_paper_tab_shows_every_thumbnail_embedded(page):
     widths = {imgs.nth(k).evaluate("e => e.getBoundingClientRect().width") for k in range(17)}
     assert widths == {200}, widths
     assert not app_tracebacks()
+
+
+#: what a simulation status says it shows → the run kind its parameter line must name
+RUN_WORDS = {
+    "Riemann data": "run: riemann",
+    "(TW-seeded)": "run: seeded",
+    "a Gaussian bump": "run: gaussian",
+}
+
+
+def test_figure_after_figure_never_shows_a_result_under_another_stamp(page):
+    """Paper → Riemann1, stabSW, SWdyn, stabSK, Riemann1 without waiting between them more than
+    the click takes: every status the page shows on the way — sampled every 50 ms — has a
+    parameter line that names the run it describes (a Riemann run's velocities never stand
+    under a seeded run's parameters), and the last one is the last figure's."""
+    page.goto(f"{page.server}/main?tab=paper&{FAST}")
+    seen: list[str] = []
+    for label in ("Riemann1", "stabSW", "SWdyn", "stabSK", "Riemann1"):
+        if query(page).get("tab") != "paper":
+            open_tab(page, "Paper")
+            wait_url(page, lambda q: q.get("tab") == "paper")
+        page.locator(f".paper-open-{label} button").click()
+        wait_url(page, lambda q, lab=label: q.get("fig") == lab, timeout=60.0)
+        t_end = time.monotonic() + (300.0 if label == "Riemann1" else 5.0)
+        while time.monotonic() < t_end:  # the next click comes while this one may still run
+            seen.append(status_text(page, "simulation"))
+            if label == "Riemann1" and "Riemann data" in seen[-1] and "Time:" in seen[-1]:
+                break
+            page.wait_for_timeout(50)
+    text = wait_rendered(page, "simulation", 300.0)
+    assert "Riemann data" in text and "run: riemann" in text, text
+    checked = 0
+    for s in seen:
+        if "Parameters:" not in s:
+            continue
+        stamp_line = s.rsplit("Parameters:", 1)[1]
+        for words, run in RUN_WORDS.items():
+            if words in s.rsplit("Parameters:", 1)[0]:
+                assert run in stamp_line, (words, s)
+                checked += 1
+    assert checked >= 3, seen[-5:]
+    assert not app_tracebacks()
