@@ -17,7 +17,7 @@ from __future__ import annotations
 import io
 
 import numpy as np
-from bokeh.layouts import column, row
+from bokeh.layouts import column
 from bokeh.models import ColorBar, ColumnDataSource, LinearColorMapper
 from bokeh.palettes import Viridis256
 
@@ -112,7 +112,9 @@ class SimulationScene(SimulationInputs, BokehScene):
         )
         self.fig_probe, self.r_probe, self.r_probe_wave, self.probe_legend = [], [], [], []
         for k in range(MAX_PROBES):
-            f = new_figure(f"({'cde'[k]}) site", "t", "w", height=240, width=300,
+            # one above the other, each the scene's width: a title names the site, the wave,
+            # its V and w_B ± error (~300 px; three side by side got ~266 px each and cut it)
+            f = new_figure(f"({'cde'[k]}) site", "t", "w", height=200, width=300,
                            sizing_mode="stretch_width")  # fmt: skip
             site = add_line(f, "black", 1.5)
             site[1].name = f"sim-probe-{k}"  # read by the tests
@@ -133,7 +135,7 @@ class SimulationScene(SimulationInputs, BokehScene):
         self.prof_legend = add_legend(
             fp, "right", [("t = 0", [self.r_first[0]]), ("final", [self.r_last[0]])]
         )
-        probes = row(*self.fig_probe, sizing_mode="stretch_width")
+        probes = column(*self.fig_probe, sizing_mode="stretch_width")
         return column(fi, fp, probes, sizing_mode="stretch_width")
 
     def _tracked_sites(self, info: Info, up: Updates, sim) -> None:

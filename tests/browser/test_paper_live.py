@@ -10,6 +10,7 @@ import pytest
 from browser_harness import (
     FAST,
     app_tracebacks,
+    cut_titles,
     inputs_reach_the_server,
     open_tab,
     query,
@@ -115,6 +116,8 @@ def test_paper_tab_opens_three_figures(page):
                 wait_source(page, f"sim-probe-{k}", lambda s: len(s["x"]) > 50)
                 wait_source(page, f"sim-probe-wave-{k}", lambda s: len(s["x"]) > 10)
             page.screenshot(path="/tmp/fpu-paper-Riemann1.png", full_page=True)
+            # every title whole: (c)-(e) name the site, the wave, its V and w_B ± error
+            assert not cut_titles(page), cut_titles(page)
             assert top_in_view(page, "simulation")  # the scene opens at its top, not scrolled
         else:
             assert "hold" not in q

@@ -187,6 +187,23 @@ JS_SOURCE = """(name) => { for (const d of Bokeh.documents) { for (const m of d.
 } } return null; }"""
 
 
+JS_TITLES = """() => { const ctx = document.createElement("canvas").getContext("2d"); const out = [];
+  for (const d of Bokeh.documents) { for (const m of d.all_models) {
+    if (!m.title || typeof m.title.text !== "string" || !m.title.text || !m.visible) continue;
+    const t = m.title, w = m.outer_width ?? m.inner_width ?? m.width;
+    if (!w) continue;
+    ctx.font = `${t.text_font_style} ${t.text_font_size} ${t.text_font}`;
+    const widest = Math.max(...t.text.split("\\n").map((s) => ctx.measureText(s).width));
+    out.push({text: t.text, text_px: widest, plot_px: w});
+  } } return out; }"""
+
+
+def cut_titles(page) -> list[dict]:
+    """The visible figures whose title is wider than the figure (BokehJS draws a title on the
+    canvas and cuts what does not fit): each title's widest line measured with its own font."""
+    return [t for t in page.evaluate(JS_TITLES) if t["text_px"] > t["plot_px"]]
+
+
 def source(page, name: str) -> dict:
     """The browser's copy of a named ColumnDataSource (what the plot draws)."""
     return page.evaluate(JS_SOURCE, name)
