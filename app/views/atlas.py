@@ -7,8 +7,10 @@ Quantities: max |μ| − 1 (log scale of the excess; needs Floquet), amplitude, 
 without a wave (outside the existence region, or not converged) are blank; the counts by status
 and the largest error bars are shown next to the plot.  A click on a cell sets (w₊, V) to that
 cell's point and the atlas's N (``ExplorerState.pick``), marks the cell, and the Profiles /
-Floquet tabs then show that wave.  A store is read only below ``app.url_state.atlas_root()``; its
-path is part of the state, so the URL carries it.
+Floquet tabs then show that wave.  A superkink atlas (rows: the branches, over V only) is
+drawn as the quantity against V, one series per branch; a click on a point opens that
+superkink (superkink mode, w₊ from V on its branch).  A store is read only below
+``app.url_state.atlas_root()``; its path is part of the state, so the URL carries it.
 """
 
 from __future__ import annotations
@@ -16,10 +18,11 @@ from __future__ import annotations
 import numpy as np
 import panel as pn
 from bokeh.events import Tap
+from bokeh.layouts import column
 from bokeh.models import ColorBar, ColumnDataSource, LinearColorMapper
 
 import fpucore
-from fpucore import atlas
+from fpucore import atlas, qc
 from fpucore.atlas import AtlasData
 from fpucore.errors import ParameterError
 
@@ -28,7 +31,7 @@ from ..compute import Computed
 from ..data_dir import hide_server_paths
 from ..state import N_RANGE
 from ..url_state import resolve_atlas_store
-from .bokeh_scene import BokehScene, Updates, new_figure
+from .bokeh_scene import BokehScene, Updates, add_points, finite_extent, new_figure
 from .formatting import as_csv
 from .python_code import python_preamble
 from .report import Info, SceneMessage
@@ -46,6 +49,8 @@ FLOQUET_QUANTITY = "max |μ| − 1"
 #: the excess drawn on the log scale is floored here (a stable wave's is ~0 or below)
 EXCESS_FLOOR = 1e-16
 RUN = "background run"  # the source of the atlas on screen when it is the button's run
+#: a superkink atlas's branches, drawn in these colours
+BRANCH_COLOURS = {"lower": "#1f77b4", "upper": "#d62728"}
 
 
 class AtlasScene(BokehScene):
@@ -79,7 +84,17 @@ class AtlasScene(BokehScene):
         fig.quad(left="l", right="r", bottom="b", top="t", source=self.pick_src,
                  fill_alpha=0.0, line_color="#d62728", line_width=3)  # fmt: skip
         fig.on_event(Tap, lambda ev: self.pick(ev.x, ev.y))
-        return fig
+        # a superkink atlas: the quantity against V per branch (hidden until one is shown)
+        self.fig_sk = new_figure("Superkink atlas (click a point: that superkink)", "V", "",
+                                 sizing_mode="stretch_width", height=self.plot_height)  # fmt: skip
+        self.sk_points = {}
+        for branch, colour in BRANCH_COLOURS.items():
+            r, src = add_points(self.fig_sk, "circle", 8, color=colour, legend_label=branch)
+            src.name = f"atlas-superkink-{branch}"
+            self.sk_points[branch] = (r, src)
+        self.fig_sk.visible = False
+        self.fig_sk.on_event(Tap, lambda ev: self.pick_superkink(ev.x, ev.y))
+        return column(fig, self.fig_sk, sizing_mode="stretch_width")
 
     def controls(self):
         self.store = pn.widgets.TextInput(
@@ -140,8 +155,6 @@ class AtlasScene(BokehScene):
         except ParameterError as exc:  # no store there, or unreadable: the reason names it
             # relative to the server's data directory, never its absolute path
             raise SceneMessage(hide_server_paths(exc.reason or str(exc))) from None
-        if data.kind != "solitary":
-            raise SceneMessage("this store is a superkink atlas (over V only): no (w₊, V) map")
         return data
 
     def atlas_request(self) -> compute.AtlasRequest:
@@ -188,17 +201,21 @@ class AtlasScene(BokehScene):
         z = np.where(ok & np.isfinite(z), z, np.nan)
         if not np.isfinite(z).any():
             raise SceneMessage(f"no {name} in this atlas (computed without Floquet?)")
-        info.shown = f"{name} over (w₊, V), {md_literal(self._source)}"
         info.error("max residual", np.nanmax(np.where(ok, data.residual, np.nan)))
         if name == FLOQUET_QUANTITY:
             info.error("max |μ| error bar", np.nanmax(np.where(ok, data.max_modulus_error, np.nan)))
         info.notes.append(", ".join(f"{v} {k}" for k, v in data.counts().items() if v))
+        if data.kind == "superkink":
+            return self._render_superkink(info, data, name, z)
+        info.shown = f"{name} over (w₊, V), {md_literal(self._source)}"
         w, V = data.w_plus, data.V
         self.last_z = z  # (n_w, n_V): what the image shows
         # cell edges half way between grid points (the grid may be non-uniform in V)
         dw = (w[-1] - w[0]) / max(len(w) - 1, 1) if len(w) > 1 else 1.0
         dv = (V[-1] - V[0]) / max(len(V) - 1, 1) if len(V) > 1 else 1.0
         up = Updates()
+        up.set(self.fig, visible=True)
+        up.set(self.fig_sk, visible=False)
         drawn, bar = z, name
         if name == FLOQUET_QUANTITY:  # the excess spans decades: drawn on a log scale
             drawn = np.log10(np.maximum(z, EXCESS_FLOOR))
@@ -222,6 +239,58 @@ class AtlasScene(BokehScene):
             i, j = self._cell
             info.notes.append(f"picked cell w₊ = {w[i]:.6g}, V = {V[j]:.6g} (N = {self.atlas_N})")
         return up
+
+    def _render_superkink(self, info: Info, data: AtlasData, name: str, z: np.ndarray):
+        """A superkink atlas: ``name`` against V, one series per branch (its rows); the excess
+        max |μ| − 1 on log₁₀ (floored as on the map)."""
+        info.shown = f"{name} of superkinks against V, {md_literal(self._source)}"
+        self.last_z = z
+        drawn, label = z, name
+        if name == FLOQUET_QUANTITY:
+            drawn = np.log10(np.maximum(z, EXCESS_FLOOR))
+            label = f"log₁₀(max |μ| − 1) (≤ {EXCESS_FLOOR:.0e} drawn at the floor)"
+        up = Updates()
+        up.set(self.fig, visible=False)
+        up.set(self.fig_sk, visible=True)
+        up.set(self.fig_sk.yaxis[0], axis_label=label)
+        up.set(self.fig_sk.title, text=f"{name} of superkinks against V (click a point: that "
+                                       "superkink)")  # fmt: skip
+        rows = [str(r) for r in data.rows]
+        for branch, (_, src) in self.sk_points.items():
+            if branch in rows:
+                y = drawn[rows.index(branch)]
+                keep = np.isfinite(y)
+                up.data(src, x=data.V[keep], y=y[keep])
+            else:
+                up.data(src, x=np.empty(0), y=np.empty(0))
+        up.range(self.fig_sk.x_range, float(data.V.min()), float(data.V.max()), pad=0.04)
+        up.range(self.fig_sk.y_range, *finite_extent(drawn), pad=0.08)
+        return up
+
+    def pick_superkink(self, x, y) -> bool:
+        """A click on the superkink atlas: the nearest computed point (in V, then the branch
+        nearest in the drawn value) becomes the current superkink; False if none."""
+        d = self._data
+        if x is None or y is None or d is None or d.kind != "superkink":
+            return False
+        j = int(np.argmin(np.abs(d.V - x)))
+        z = QUANTITIES[self.quantity.value](d)[:, j]
+        if self.quantity.value == FLOQUET_QUANTITY:
+            z = np.log10(np.maximum(z, EXCESS_FLOOR))
+        rows = [i for i in range(len(d.rows)) if d.ok[i, j] and np.isfinite(z[i])]
+        if not rows:
+            return False
+        i = min(rows, key=lambda k: abs(z[k] - y))
+        V, branch = float(d.V[j]), str(d.rows[i])
+        try:
+            w_plus = qc.superkink_from_V(self.state.law(), V, branch).w_plus
+            self.state.mode = "superkink"
+            N = self.atlas_N
+            N = N if N is not None and N_RANGE[0] <= N <= N_RANGE[1] else None
+            self.state.pick(w_plus, V, N=N)
+        except ParameterError:
+            return False
+        return True
 
     def _cell_outline(self) -> dict:
         if self._cell is None or self._data is None:

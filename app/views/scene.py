@@ -42,6 +42,7 @@ from .report import Info, SceneMessage, status_markdown
 from .scene_files import SceneFiles
 from .scene_progress import SceneProgress
 from .untrusted import LITERAL_MD, LiteralAlert, LiteralMarkdown, md_literal
+from .wait_line import WaitLine
 
 log = logging.getLogger("fpu-explorer")
 
@@ -85,12 +86,17 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
             "", css_classes=["scene-status"], sizing_mode="stretch_width", **LITERAL_MD
         )
         self._make_progress_widgets()
+        self.wait = WaitLine()
+        self._asked_at = time.perf_counter()
         self._make_file_widgets()
         self.code, self.copy_btn, self.code_card = code_box()
         self._extra = self.extra_panes()
         side = pn.Column(
             LiteralMarkdown("#### Error and time", margin=(0, 5)),
             self.status,
+            self.wait.line,
+            self.wait.probe,
+            self.wait.token,
             self.computing_text,
             self.progress,
             self.progress_text,
@@ -123,6 +129,8 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
         # resources (server-relative, not CDN) and schedules model updates on its event loop
         self._doc = pn.state.curdoc
         self._served = self._doc is not None and self._doc.session_context is not None
+        if self._served:
+            pn.state.onload(self.wait.arm)
         self._connected = False  # a browser has had this session open (see session_closed)
         self._lock = threading.Lock()
         self._pending = False
@@ -214,6 +222,7 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
         10 s instead of 2 s."""
         with self._lock:
             self._pending = True
+            self._asked_at = time.perf_counter()  # the wait's "queued" part starts here
             if prepare is not None:
                 prepare()
             if self._running:
@@ -260,6 +269,7 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
         if self.session_closed:
             return None
         t0 = time.perf_counter()
+        queued_s = max(t0 - self._asked_at, 0.0) if not building else 0.0
         info = Info()
         self.stale = False
         # the stamp on screen changes only with the result it describes (published below);
@@ -323,6 +333,7 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
             self.renders += 1
             self.last_info = info
             self._write_status(info, t0)
+            self.wait.served(queued_s, time.perf_counter() - t0)
             self.code.value = self.python_code()
             self.download.disabled = False
             self.copy_btn.disabled = False

@@ -183,3 +183,37 @@ def test_a_running_atlas_shows_its_progress_and_cancel_frees_its_worker_within_a
     assert compute.CANCELLED[0] == cancelled + 1 and compute.jobs_in_flight() == 0
     assert not compute.is_cached(compute.law(-1.0, 10.0), sc.atlas_request())
     assert sc.atlas_data is None  # nothing half-done on screen
+
+
+def test_a_superkink_atlas_is_drawn_against_V_and_a_click_opens_that_superkink(root):
+    """A superkink store (rows: branches, over V only; the README's ``sk.zarr``) was refused
+    ("no (w₊, V) map").  Now each branch's max |μ| − 1 is drawn against V (the store's values,
+    on log₁₀), and a click on a point sets superkink mode and the w₊ of that V on its branch:
+    eq. wpm_cubic, w₊ = w* ∓ √((c_max² − V²)/|a|), evaluated here."""
+    out = root / "sk.zarr"
+    Vs = [4.9, 5.3, 5.7]
+    atlas.run(CubicLaw(-1.0, 10.0), "superkink", rows=["lower", "upper"], V=Vs, N=64,
+              floquet=True, finite_size=False, out=out, backend="inline")  # fmt: skip
+    st = ExplorerState()
+    sc = AtlasScene(st)
+    sc.store.value = str(out)
+    sc.wait_idle(120)
+    info = sc.refresh()
+    assert info is not None and sc.last_message is None, sc.last_message
+    assert sc.fig_sk.visible and not sc.fig.visible
+    group = zarr.open_group(out, mode="r", zarr_format=2)
+    ok = group["status"][:] == "ok"
+    for i, branch in enumerate(["lower", "upper"]):
+        src = sc.sk_points[branch][1]
+        ref = group["max_modulus"][:][i] - 1.0
+        keep = ok[i]
+        assert np.array_equal(np.asarray(src.data["x"]), np.asarray(Vs)[keep])
+        assert np.allclose(src.data["y"], np.log10(np.maximum(ref[keep], 1e-16)), rtol=0, atol=0)
+    # a click at V = 5.3 on the upper branch's point
+    y_upper = sc.sk_points["upper"][1].data["y"][1]
+    assert sc.pick_superkink(5.31, y_upper)
+    a, b, V = -1.0, 10.0, 5.3
+    w_star, c_max2 = b / (3 * abs(a)), 1 + b * b / (3 * abs(a))
+    assert st.mode == "superkink"
+    assert abs(st.w_plus - (w_star + ((c_max2 - V * V) / abs(a)) ** 0.5)) < 1e-12
+    assert abs(st.V - V) < 1e-12 and st.N == 64

@@ -187,7 +187,8 @@ JS_SOURCE = """(name) => { for (const d of Bokeh.documents) { for (const m of d.
 } } return null; }"""
 
 
-JS_TITLES = """() => { const ctx = document.createElement("canvas").getContext("2d"); const out = [];
+JS_TITLES = """() => {
+  const ctx = document.createElement("canvas").getContext("2d"); const out = [];
   for (const d of Bokeh.documents) { for (const m of d.all_models) {
     if (!m.title || typeof m.title.text !== "string" || !m.title.text || !m.visible) continue;
     const t = m.title, w = m.outer_width ?? m.inner_width ?? m.width;
