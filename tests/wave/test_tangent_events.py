@@ -22,7 +22,7 @@ def compact_state():
 
 
 def bump_state():
-    """A pulse on w_B = 0.2 through the hard regime of a non-degenerate law (crossings both ways)."""
+    """A pulse on w_B = 0.2 into the hard regime of a non-degenerate law (a crossing)."""
     n = np.arange(-10, 10)
     w0 = 0.2 + 1.1 / np.cosh(0.8 * n)
     wd0 = -1.6 * np.gradient(w0)
