@@ -68,7 +68,7 @@ def continue_to(
         N = max(N_t, sp.required_N(tols.tail_tol))
         if N > N_cap:
             continue
-        x0 = sp.qc_guess(N)
+        x0 = sp.first_guess(N)[0]
         # choose_m, not the solve's choose_m_floor: on stiff laws (b = 1000) that moves the path's
         # waves by 1e-9..1e-6 (within their error bars); kept bit-identical to earlier releases
         m = sp.choose_m(x0, tols.int_tol)
