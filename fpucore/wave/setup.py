@@ -140,7 +140,7 @@ class Spec:
         on the zero-modulus regime of a degenerate PL law at V below its v_max — there the QC
         profile is far from the discrete wave (measured 0.08 off at V = 0.5 for an amplitude of
         0.35, and Newton stalls from it) — else the QC profile (:meth:`qc_guess`)."""
-        if self.kind != "superkink" and getattr(self.law, "breakpoints", ()):
+        if self.kind != "superkink" and hasattr(self.law, "breakpoints"):
             try:
                 cw = compact_wave(self.law, self.V, self.w_left)
             except ParameterError:
