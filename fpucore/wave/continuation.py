@@ -58,7 +58,10 @@ def continue_to(
     easy, mid = spec.easy_end(), 0.5 * (lo + hi)
     N_t = spec.required_N(tols.tail_tol)
     start = None
-    for target, frac in ((easy, 0.3), (easy, 0.6), (easy, 0.85), (mid, 0.3), (mid, 0.7)):
+    tries = [(easy, 0.3), (easy, 0.6), (easy, 0.85), (mid, 0.3), (mid, 0.7)]
+    if hasattr(spec.law, "breakpoints"):  # PL solitary waves: only close to V_SK (Spec.easy_end)
+        tries.insert(3, (easy, 0.95))
+    for target, frac in tries:
         if left() <= 0:
             break
         Vs = spec.V + frac * (target - spec.V)

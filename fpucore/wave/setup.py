@@ -117,10 +117,16 @@ class Spec:
     def easy_end(self) -> float:
         """The end of V's interval where the QC guess is accurate: the sonic limit for solitary
         waves (small amplitude: c₊ below V_SK, c₋ above), the upper velocity bound for
-        superkinks (weak, wide)."""
+        superkinks (weak, wide).  A piecewise-linear law's solitary waves: the superkink limit
+        V_SK, where the QC kink–antikink profile is close to the discrete flat top (measured:
+        Newton from the QC guess converges at 1.75–1.85 for the trilinear law w₁ = 0.5, w₂ = 1.5,
+        E = 1, 4, 0.2, w₊ = 0.3, V_SK = 1.769, and fails at 1.02–1.6: the sonic limit keeps an
+        amplitude through the hard regime there, no small-amplitude wave)."""
         lo, hi = self.interval()
         if self.kind == "superkink":
             return hi
+        if hasattr(self.law, "breakpoints"):
+            return hi if (lo, hi) == self.intervals()[0] else lo
         return lo if (lo, hi) == self.intervals()[0] else hi
 
     # ------------------------------------------------------------------ initial states

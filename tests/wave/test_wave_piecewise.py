@@ -111,3 +111,22 @@ def test_a_law_typed_as_text_gives_the_same_superkink():
     b = F.wave.solve_superkink(text, 1.6, N=64)
     assert np.array_equal(a.w, b.w) and np.array_equal(a.wdot, b.wdot)
     assert a.profile_error == b.profile_error
+
+
+def test_trilinear_solitary_wave_by_continuation_from_the_superkink_limit():
+    """The QC guess converges only near V_SK (the kink–antikink limit); the solver continues from
+    there (Spec.easy_end of a PL law).  Then N = 64 against N = 128: the bars cover the change,
+    and the energy of both agrees within its bars."""
+    V = 1.4
+    a = F.wave.solve_solitary(GENERAL, 0.3, V, N=64)
+    assert a.converged and "continuation from V=1.6" in a.route, a.message
+    x = state(a.w, a.wdot)
+    b = F.wave.solve_solitary(
+        GENERAL, 0.3, V, N=128, predictor=lambda N: resize(x, 64, N, a.w_left, a.w_right)
+    )
+    assert b.converged
+    i = np.searchsorted(b.n, a.n)
+    assert np.max(np.abs(a.w - b.w[i])) <= a.profile_error + b.profile_error
+    assert abs(a.amplitude - b.amplitude) <= a.amplitude_error + b.amplitude_error
+    assert abs(a.energy - b.energy) <= a.energy_error + b.energy_error
+    assert a.profile_error <= 1e-10
