@@ -130,3 +130,21 @@ def test_trilinear_solitary_wave_by_continuation_from_the_superkink_limit():
     assert abs(a.amplitude - b.amplitude) <= a.amplitude_error + b.amplitude_error
     assert abs(a.energy - b.energy) <= a.energy_error + b.energy_error
     assert a.profile_error <= 1e-10
+
+
+@pytest.mark.parametrize("d", [-1e-6, 1e-6])
+def test_trilinear_flat_tops_next_to_V_SK(d):
+    """Flat tops 1e-6 from V_SK on both sides (kink–antikink bundles): converged with finite
+    bars, and the same wave on N = 128 within them (measured: V_SK ∓ 1e-10 is refused with the
+    reason, NOT converged, by the plateau route)."""
+    vsk = F.qc.sound_speeds(GENERAL, 0.3)[1]
+    a = F.wave.solve_solitary(GENERAL, 0.3, vsk + d, N=64)
+    assert a.converged, a.message
+    assert a.profile_error <= 1e-6
+    x = state(a.w, a.wdot)
+    b = F.wave.solve_solitary(
+        GENERAL, 0.3, vsk + d, N=128, predictor=lambda N: resize(x, 64, N, a.w_left, a.w_right)
+    )
+    assert b.converged
+    i = np.searchsorted(b.n, a.n)
+    assert np.max(np.abs(a.w - b.w[i])) <= a.profile_error + b.profile_error
