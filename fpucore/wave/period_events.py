@@ -17,7 +17,8 @@ breakpoint takes the regime it moves into.  Each sub-step then integrates one li
 Measured against the exact compact wave (tests/wave/test_wave_period_events.py): log–log slope
 8.3 for DOP853 and 4.2 for RK4 with location, 2.5 and 1.8 without.  Crossings are counted
 (``crossings``); a tangential crossing (w′ = 0 at the breakpoint) is not located (no sign
-change) and keeps the reduced order.
+change) and keeps the reduced order: ``crossing_speed``, the smallest |ẇ| of a site at its
+located crossing, says how far from tangential the located ones are.
 
 :func:`fpucore.wave.period_map.integrate` takes this route for every law with breakpoints
 (Newton solver, step doubling, Floquet monodromy); with ``store_df`` the sub-steps and their
@@ -122,16 +123,18 @@ def _earliest(w, w1, bps):
 @njit(cache=True, nogil=True)
 def _events_kernel(
     w0, wd0, T, m, A, B, law_id, p, bps, w_left, w_right, periodic, locate, w, wd, work, counts,
-    store, hs, sl, nsub,
+    store, hs, sl, nsub, speed,
 ):  # fmt: skip
     """Integrate over [0, T] with m nominal steps, restarting at located breakpoint crossings.
     work : (6, N) scratch rows; counts = [crossings located, largest |w − b| at them, times…].
     store (with locate): every sub-step taken, in order, as hs[k] (its size) and sl[k, n] (the
     frozen f′ of site n in it), up to hs.size of them; nsub[0] = the number taken (> hs.size:
-    the caller retries with room for it)."""
+    the caller retries with room for it); speed[0] = the smallest |ẇ| of a site at its located
+    crossing (∞ if none: transversality, 0 would be a tangential crossing)."""
     N = w0.size
     s = B.size
     ns = 0
+    vmin = np.inf
     kw = np.empty((s, N))
     kwd = np.empty((s, N))
     g = np.empty(N + 2)
@@ -230,6 +233,7 @@ def _events_kernel(
                 )
             else:
                 resid = max(resid, abs(wt[bn] - b))
+                vmin = min(vmin, abs(wdt[bn]))
                 if nev < counts.size - 2:
                     counts[2 + nev] = t + th * rem
                 wt[bn] = b  # on the breakpoint: the next step starts on its far side
@@ -245,6 +249,7 @@ def _events_kernel(
     counts[0] = nev
     counts[1] = resid
     nsub[0] = ns
+    speed[0] = vmin
 
 
 @njit(cache=True, nogil=True)
@@ -273,6 +278,7 @@ class EventPeriodResult:
     event_times: np.ndarray | None = None  # the first (up to 8) crossing times
     hs: np.ndarray | None = None
     dfs: np.ndarray | None = None
+    crossing_speed: float = float("inf")  # smallest |ẇ| at a located crossing (transversality)
 
 
 def integrate_events(
@@ -304,11 +310,12 @@ def integrate_events(
     cap = 2 * m + 16 if store else 1
     while True:
         w, wd, counts, nsub = np.empty(N), np.empty(N), np.zeros(10), np.zeros(1, np.int64)
+        speed = np.full(1, np.inf)
         hs, sl = np.empty(cap), np.empty((cap, N) if store else (1, 1))
         _events_kernel(
             w0, wd0, T, m, tableau.A, tableau.B, law.law_id, law.params,
             np.asarray(law.breakpoints, dtype=np.float64), w_left, w_right, bool(periodic),
-            bool(locate), w, wd, np.empty((6, N)), counts, store, hs, sl, nsub,
+            bool(locate), w, wd, np.empty((6, N)), counts, store, hs, sl, nsub, speed,
         )  # fmt: skip
         k = int(nsub[0])
         if not store or k <= cap:
@@ -317,4 +324,5 @@ def integrate_events(
     return EventPeriodResult(
         w, wd, int(counts[0]), T, m, float(counts[1]), counts[2 : 2 + int(counts[0])].copy(),
         hs[:k].copy() if store else None, sl[:k, None, :].copy() if store else None,
+        float(speed[0]),
     )  # fmt: skip

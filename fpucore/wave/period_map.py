@@ -189,7 +189,8 @@ class PeriodResult:
 
     A piecewise-linear law's period (event location, :mod:`.period_events`) is taken in
     k ≥ m sub-steps: hs (k,) their sizes and dfs (k, 1, N) the frozen f′ of each; crossings
-    counts the located breakpoint crossings.  hs None: m equal steps T/m."""
+    counts the located breakpoint crossings and crossing_speed is the smallest |ẇ| of a site at
+    its located crossing (transversality).  hs None: m equal steps T/m."""
 
     w: np.ndarray
     wd: np.ndarray
@@ -199,6 +200,7 @@ class PeriodResult:
     tableau: Tableau
     hs: np.ndarray | None = None
     crossings: int = 0
+    crossing_speed: float = math.inf  # smallest |ẇ| at a located crossing (transversality)
 
     def step_sizes(self) -> np.ndarray:
         """(k,) the (sub-)step sizes of the integration."""
@@ -251,7 +253,8 @@ def integrate(
 
         e = integrate_events(law, w0, wd0, T, m, w_left, w_right, periodic, True, tableau,
                              store_df)  # fmt: skip
-        return PeriodResult(e.w, e.wd, e.dfs, e.T, e.m, tableau, e.hs, e.crossings)
+        return PeriodResult(e.w, e.wd, e.dfs, e.T, e.m, tableau, e.hs, e.crossings,
+                            e.crossing_speed)  # fmt: skip
     w0, wd0 = check_state(w0, wd0)
     T = require_finite("T", T)
     if T <= 0:
@@ -262,26 +265,10 @@ def integrate(
     w, wd = np.empty(N), np.empty(N)
     dfs = np.empty((m, s, N)) if store_df else np.empty((1, 1, 1))
     _rk_period_kernel(
-        w0,
-        wd0,
-        T,
-        m,
-        tableau.A,
-        tableau.B,
-        law.law_id,
-        law.params,
-        w_left,
-        w_right,
-        bool(periodic),
-        bool(store_df),
-        w,
-        wd,
-        dfs,
-        np.empty((s, N)),
-        np.empty((s, N)),
-        np.empty(N),
-        np.empty(N + 2),
-    )
+        w0, wd0, T, m, tableau.A, tableau.B, law.law_id, law.params, w_left, w_right,
+        bool(periodic), bool(store_df), w, wd, dfs, np.empty((s, N)), np.empty((s, N)),
+        np.empty(N), np.empty(N + 2),
+    )  # fmt: skip
     return PeriodResult(w, wd, dfs if store_df else None, T, m, tableau)
 
 

@@ -84,3 +84,16 @@ def test_step_doubling_estimate_holds_across_crossings():
     assert np.all((r >= 1.0) & (r <= 1.02))
     bad = doubling_ratios(False)
     assert np.max(np.abs(np.log(bad))) > np.log(2.0)
+
+
+@pytest.mark.parametrize("V", [0.3, 0.5, 0.7])
+def test_crossing_speed_is_the_compact_waves_slope_at_its_core_edge(V):
+    """Transversality, measured: the compact wave crosses b at ξ = ±a with w′ = ∓Cω, so each
+    located crossing has |ẇ| = V|C|ω (fpucore.wave.compact)."""
+    w = compact_wave(LAW, V, WB)
+    w0, wd0 = w.lattice(np.arange(-8, 8), PHASE)
+    r = integrate_events(LAW, w0, wd0, 1 / V, 16, WB, WB)
+    assert r.crossings == 2
+    assert r.crossing_speed == pytest.approx(V * abs(w.C) * w.omega, rel=1e-9)
+    smooth = integrate_events(LAW, np.full(4, WB), np.zeros(4), 1.0, 4, WB, WB)
+    assert smooth.crossings == 0 and smooth.crossing_speed == np.inf

@@ -148,3 +148,12 @@ def test_trilinear_flat_tops_next_to_V_SK(d):
     assert b.converged
     i = np.searchsorted(b.n, a.n)
     assert np.max(np.abs(a.w - b.w[i])) <= a.profile_error + b.profile_error
+
+
+def test_the_result_says_how_transversal_its_crossings_are():
+    V = 0.5
+    r = F.wave.solve_solitary(DEGENERATE, WB, V)
+    cw = compact_wave(DEGENERATE, V, WB)
+    assert "2 breakpoint crossings located per period" in r.message
+    assert f"crossing {V * abs(cw.C) * cw.omega:.3g} (transversal)" in r.message
+    assert "crossing" not in F.wave.solve_superkink(F.CubicLaw(), 5.2, N=64).message
