@@ -13,4 +13,6 @@ SIMULATE_METHODS = ("rkn12", "dop853", "dopri5", "rkn8", "symplectic")  # fpucor
 BOUNDARIES = ("fixed_particles", "fixed_strain", "free")  # fpucore.simulate.BOUNDARIES
 GUARDS = ("convex", "bounded")  # fpucore.simulate.GUARDS
 # fpucore.warm.LAZY: the kernel groups `fpu warm --essential` leaves to the server
-LAZY_WARM = ("floquet-structured", "simulate", "simulate-dopri5", "simulate-symplectic")
+LAZY_WARM = (
+    "floquet-structured", "wave-pwl", "simulate", "simulate-dopri5", "simulate-symplectic",
+)  # fmt: skip

@@ -31,6 +31,10 @@ Structure used here (all exact for the ring, whatever the base state):
 
 The fundamental matrix comes from the tangent kernel of :mod:`fpucore.wave.period_map` (fixed-step
 8th-order RK along the stored base trajectory, columns on local windows with periodic wrap).
+For a piecewise-linear law the base trajectory is event-located (steps cut at every breakpoint
+crossing, regimes frozen per sub-step) and the tangent follows the same sub-steps: f is
+continuous, so the saltation matrix of a transversal crossing is the identity and only f′ of
+the crossing site switches there (:mod:`fpucore.wave.period_map`).
 """
 
 from __future__ import annotations
@@ -46,7 +50,7 @@ import scipy.linalg
 from fpucore.errors import ParameterError, require_int
 from fpucore.floquet.checks import require_velocity
 from fpucore.floquet.kernels import deflate_sums, extract_deflated, scatter_shifted
-from fpucore.law import require_law, require_smooth_dynamics
+from fpucore.law import require_law
 from fpucore.parallel.threads import on_budget
 from fpucore.wave import period_map as pm
 
@@ -113,7 +117,6 @@ def base_state(r):
     per period (w = 1e6 once overflowed the monodromy, which reached LAPACK as "illegal
     value")."""
     law = require_law(_attr(r, "law", lambda x: x), "r.law")
-    require_smooth_dynamics(law, "Floquet spectra")
     V = _attr(r, "V", float)
     w = _attr(r, "w", _strain_array)
     wd = _attr(r, "wdot", _strain_array)

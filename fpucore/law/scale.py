@@ -94,6 +94,10 @@ def require_discrete(law, name: str = "law"):
             "below it the discrete wave's error bounds are lost (the QC closed forms of "
             "fpucore.qc still apply)",
         )  # fmt: skip
+    if getattr(law, "breakpoints", ()):
+        # a PL law's f′ is one stored slope, not a sum of large terms: no digits are lost at any
+        # contrast, and a zero first modulus (c₁ = 0) is the degenerate case of compact waves
+        return law
     c1 = float(law.df(0.0))
     c_max2 = float(law.df(law.w_star))
     contrast = c_max2 / c1 if c1 > 0 else math.inf

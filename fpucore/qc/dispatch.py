@@ -31,13 +31,6 @@ def _pl(law):
     return None
 
 
-def _pl_refuse(law, what: str):
-    raise ParameterError(
-        "law", law.expression, "a cubic or polynomial law",
-        f"{what} is not available for piecewise-linear laws yet (use the state w_plus)",
-    )  # fmt: skip
-
-
 def is_closed_form(law: HardeningSofteningLaw) -> TypeGuard[CubicLaw]:
     """True when the closed forms of paper §4 apply (the cubic law object); ParameterError
     naming ``law`` when it is no law at all (None, a string ...)."""
@@ -120,8 +113,8 @@ def superkink_velocity_bounds(
 ) -> tuple[float, float]:
     """(V_lo, V_hi) of superkinks on a branch.  The cubic's two branches share eq.
     V_bounds_cubic; for a general law they may differ."""
-    if _pl(law):
-        _pl_refuse(law, "superkink_velocity_bounds")
+    if pl := _pl(law):
+        return pl[0].superkink_velocity_bounds(law, branch)
     if is_closed_form(law):
         return cf.superkink_velocity_bounds(law)
     return gen.superkink_velocity_bounds(law, branch)
@@ -143,8 +136,8 @@ def superkink_w_plus_range(
 
 def superkink_from_V(law: HardeningSofteningLaw, V: float, branch: str = "lower") -> cf.QCSuperkink:
     """Superkink with velocity V on a branch (eq. wpm_cubic for the cubic)."""
-    if _pl(law):
-        _pl_refuse(law, "superkink_from_V")
+    if pl := _pl(law):
+        return pl[1].superkink(law, pl[0].w_plus_of_V(law, V, branch))
     if is_closed_form(law):
         return cf.superkink_from_V(law, V, branch)
     return gen.superkink_from_V(law, V, branch)

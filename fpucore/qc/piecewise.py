@@ -258,3 +258,67 @@ def w_S(law, w_plus: float, V: float) -> float:
         cm = c_minus_sonic(law, w_plus)[0]
         raise ParameterError("V", V, f"(0, {cm:.10g})", "no saddle beyond the hard regime")
     return far[-1] if w_plus < w1 else far[0]
+
+
+# =============================================================================== V ↦ w₊
+def _vsk2(law, w_plus: float) -> float:
+    """V_SK² of the state w₊ (chord slope to its equal-area partner), no validation."""
+    x = _partner(law, w_plus)
+    return math.nan if x is None else slope_mean(law, w_plus, x)
+
+
+def superkink_velocity_bounds(law, branch: str = "lower") -> tuple[float, float]:
+    """(V_lo, V_hi): the superkink velocities of a branch, the limits of V_SK(w₊) at the ends of
+    :func:`superkink_w_plus_range`.  Next to the hard regime the partner tends to its far end
+    (H's only root at w₊ = w₁ is w₂), so V_SK² → s_h = c_max².  At a finite far end the partner
+    runs to infinity (a_∞ = 0): V_SK² → the slope of the last regime beyond (s_m on the lower
+    branch, s₀ on the upper); at an infinite far end w₊ runs away from a finite partner:
+    V_SK² → the slope of w₊'s own outer regime (s₀ lower, s_m upper)."""
+    lo, hi = superkink_w_plus_range(law, branch)  # validates law and branch
+    s = law._s
+    lower = branch == "lower"
+    far = lo if lower else hi
+    if math.isfinite(far):
+        s_far = s[-1] if lower else s[0]
+    else:
+        s_far = s[0] if lower else s[-1]
+    return math.sqrt(float(s_far)), math.sqrt(float(s[law._h]))
+
+
+def w_plus_of_V(law, V: float, branch: str = "lower") -> float:
+    """The state w₊ ahead of the superkink of velocity V on a branch: the root of
+    V_SK(w₊) = V (V_SK² exact on each piece, module docstring; monotone on a branch, checked
+    in tests/qc/test_qc_piecewise_velocity.py), bracketed between the hard regime's edge and
+    the far end, solved by Brent's method to the last bit of w₊."""
+    from scipy.optimize import brentq
+
+    V = require_finite("V", V)
+    vlo, vhi = superkink_velocity_bounds(law, branch)
+    if not (vlo < V < vhi):
+        raise ParameterError(
+            "V", V, fmt_interval(vlo, vhi), f"superkink velocities of the {branch} branch"
+        )
+    lo, hi = superkink_w_plus_range(law, branch)
+    w1, w2 = law.hard_regime
+    edge, sgn = (w1, -1.0) if branch == "lower" else (w2, 1.0)
+    V2 = V * V
+
+    def g(w: float) -> float:  # V_SK² − V²: > 0 next to the hard regime
+        return (float(law._s[law._h]) if w == edge else _vsk2(law, w)) - V2
+
+    far = lo if branch == "lower" else hi
+    fail = ParameterError("V", V, fmt_interval(vlo, vhi), "no state w_plus bracketed for this V")
+    if math.isfinite(far):  # halve the way toward the far end until V_SK < V
+        t = 0.5
+        while not g(x := far + (edge - far) * t) < 0.0:
+            t *= 0.5
+            if t < 1e-18:
+                raise fail
+    else:  # march outward, doubling
+        d = w2 - w1
+        while not g(x := edge + sgn * d) < 0.0:
+            d *= 2.0
+            if d > 1e300:
+                raise fail
+    a, b = (x, edge) if branch == "lower" else (edge, x)
+    return float(brentq(g, a, b, xtol=1e-300, rtol=4 * EPS, maxiter=200))

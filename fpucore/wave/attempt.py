@@ -86,6 +86,7 @@ class WaveSolve:
     history: list = field(init=False, default_factory=list)
     routes: list = field(init=False, default_factory=list)
     floor: float = field(init=False, default=0.0)
+    start: str = field(init=False, default="qc-guess")  # what x0 is: route name
 
     def __post_init__(self):
         self.t0 = work_clock()
@@ -96,7 +97,10 @@ class WaveSolve:
         self.tols = self.spec.tolerances(self.tol)
         self.N = self.spec.choose_N(self.N_req, self.tol)
         pred = self.predictor
-        self.x0 = pred(self.N) if pred is not None else self.spec.qc_guess(self.N)
+        if pred is not None:
+            self.x0, self.start = pred(self.N), "predictor"
+        else:
+            self.x0, self.start = self.spec.first_guess(self.N)
         self.m = self.spec.choose_m_floor(self.x0, self.tols.int_tol)
         self.K = self.spec.choose_K(self.x0, self.m)
         self.system = self.build(self.N)
@@ -246,7 +250,7 @@ class WaveSolve:
     def ordinary(self) -> NewtonOutcome:
         """The default route: QC guess (or predictor), then the rescues."""
         out = self.newton(self.system, self.x0)
-        self.routes.append("predictor" if self.predictor is not None else "qc-guess")
+        self.routes.append(self.start)
         for rescue in (self.grow_N, self.cut_N, self.continue_in_V):
             if out.converged or self.left() <= 0:
                 break
@@ -270,7 +274,7 @@ class WaveSolve:
         if self.N >= 256 or self.predictor is not None:
             return out
         N_b = max(4 * self.N, 256)
-        o_b = self.newton(self.build(N_b), self.spec.qc_guess(N_b))
+        o_b = self.newton(self.build(N_b), self.spec.first_guess(N_b)[0])
         if not o_b.converged:
             return out
         self.routes.append(f"cut-N from {N_b}")

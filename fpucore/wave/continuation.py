@@ -58,7 +58,10 @@ def continue_to(
     easy, mid = spec.easy_end(), 0.5 * (lo + hi)
     N_t = spec.required_N(tols.tail_tol)
     start = None
-    for target, frac in ((easy, 0.3), (easy, 0.6), (easy, 0.85), (mid, 0.3), (mid, 0.7)):
+    tries = [(easy, 0.3), (easy, 0.6), (easy, 0.85), (mid, 0.3), (mid, 0.7)]
+    if hasattr(spec.law, "breakpoints"):  # PL solitary waves: only close to V_SK (Spec.easy_end)
+        tries.insert(3, (easy, 0.95))
+    for target, frac in tries:
         if left() <= 0:
             break
         Vs = spec.V + frac * (target - spec.V)
@@ -68,7 +71,7 @@ def continue_to(
         N = max(N_t, sp.required_N(tols.tail_tol))
         if N > N_cap:
             continue
-        x0 = sp.qc_guess(N)
+        x0 = sp.first_guess(N)[0]
         # choose_m, not the solve's choose_m_floor: on stiff laws (b = 1000) that moves the path's
         # waves by 1e-9..1e-6 (within their error bars); kept bit-identical to earlier releases
         m = sp.choose_m(x0, tols.int_tol)

@@ -207,6 +207,25 @@ def newton_count(iterations: int) -> str:
     return f"in {iterations} iteration" + ("" if iterations == 1 else "s")
 
 
+def crossing_note(spec: Spec, w: np.ndarray, wd: np.ndarray, m: int) -> str:
+    """For a piecewise-linear law: how many breakpoint crossings one period of the wave locates
+    and how transversal they are (the smallest |ẇ| of a site at its crossing, against V × the
+    amplitude); "" for a smooth law.  A crossing slower than 1e-3 of that scale is named as
+    near-tangential: the located map's order is not guaranteed there (integrator_error, step
+    doubling, still measures it)."""
+    if not hasattr(spec.law, "breakpoints"):
+        return ""
+    r = pm.integrate(spec.law, w, wd, 1.0 / spec.V, m, spec.w_left, spec.w_right)
+    if r.crossings == 0:
+        return "; no breakpoint crossing in a period"
+    scale = spec.V * max(spec.amplitude_qc, abs(spec.w_left - spec.w_right))
+    note = (f"; {r.crossings} breakpoint crossings located per period, smallest |wdot| at a "
+            f"crossing {r.crossing_speed:.3g}")  # fmt: skip
+    if r.crossing_speed < 1e-3 * scale:
+        return note + " (near-tangential: the located map's order is not guaranteed there)"
+    return note + " (transversal)"
+
+
 def _result(spec: Spec, done: Solved, jacobian: str, tol: float, t0: float) -> WaveResult:
     out, N, hist, route = done.out, done.N, done.history, done.route
     bd = _bounds(spec, done)
@@ -229,7 +248,7 @@ def _result(spec: Spec, done: Solved, jacobian: str, tol: float, t0: float) -> W
                 f"accepted at {done.residual_floor:.2g} (achievable), profile error "
                 f"{bd.profile:.2g}"
             )
-        msg += done.note
+        msg += done.note + crossing_note(spec, w, wd, done.m)
     else:
         msg = f"NOT converged ({route}): {msg}"
     return WaveResult(

@@ -17,11 +17,13 @@ breakpoint takes the regime it moves into.  Each sub-step then integrates one li
 Measured against the exact compact wave (tests/wave/test_wave_period_events.py): log–log slope
 8.3 for DOP853 and 4.2 for RK4 with location, 2.5 and 1.8 without.  Crossings are counted
 (``crossings``); a tangential crossing (w′ = 0 at the breakpoint) is not located (no sign
-change) and keeps the reduced order.
+change) and keeps the reduced order: ``crossing_speed``, the smallest |ẇ| of a site at its
+located crossing, says how far from tangential the located ones are.
 
-Only the base map (no stored stage f′ for the tangent map): additive to
-:mod:`fpucore.wave.period_map`; wiring it into the Newton solver, the tangent and Floquet maps
-is left to do.
+:func:`fpucore.wave.period_map.integrate` takes this route for every law with breakpoints
+(Newton solver, step doubling, Floquet monodromy); with ``store_df`` the sub-steps and their
+frozen f′ are kept for the tangent map (its saltation matrix is the identity: see
+:mod:`fpucore.wave.period_map`).
 """
 
 from __future__ import annotations
@@ -120,12 +122,19 @@ def _earliest(w, w1, bps):
 
 @njit(cache=True, nogil=True)
 def _events_kernel(
-    w0, wd0, T, m, A, B, law_id, p, bps, w_left, w_right, periodic, locate, w, wd, work, counts
-):
+    w0, wd0, T, m, A, B, law_id, p, bps, w_left, w_right, periodic, locate, w, wd, work, counts,
+    store, hs, sl, nsub, speed,
+):  # fmt: skip
     """Integrate over [0, T] with m nominal steps, restarting at located breakpoint crossings.
-    work : (6, N) scratch rows; counts = [crossings located, largest |w − b| at them]."""
+    work : (6, N) scratch rows; counts = [crossings located, largest |w − b| at them, times…].
+    store (with locate): every sub-step taken, in order, as hs[k] (its size) and sl[k, n] (the
+    frozen f′ of site n in it), up to hs.size of them; nsub[0] = the number taken (> hs.size:
+    the caller retries with room for it); speed[0] = the smallest |ẇ| of a site at its located
+    crossing (∞ if none: transversality, 0 would be a tangential crossing)."""
     N = w0.size
     s = B.size
+    ns = 0
+    vmin = np.inf
     kw = np.empty((s, N))
     kwd = np.empty((s, N))
     g = np.empty(N + 2)
@@ -150,6 +159,9 @@ def _events_kernel(
             )
             th, bn, bk = _earliest(w, w1, bps) if locate else (2.0, -1, -1)
             if bn < 0:
+                if store and ns < hs.size:
+                    _record(p, pc, rem, hs, sl, ns)
+                ns += 1
                 for n in range(N):
                     w[n] = w1[n]
                     wd[n] = wd1[n]
@@ -221,10 +233,14 @@ def _events_kernel(
                 )
             else:
                 resid = max(resid, abs(wt[bn] - b))
+                vmin = min(vmin, abs(wdt[bn]))
                 if nev < counts.size - 2:
                     counts[2 + nev] = t + th * rem
                 wt[bn] = b  # on the breakpoint: the next step starts on its far side
                 nev += 1
+            if store and ns < hs.size:
+                _record(p, pc, th * rem, hs, sl, ns)
+            ns += 1
             for n in range(N):
                 w[n] = wt[n]
                 wd[n] = wdt[n]
@@ -232,11 +248,26 @@ def _events_kernel(
             rem -= th * rem
     counts[0] = nev
     counts[1] = resid
+    nsub[0] = ns
+    speed[0] = vmin
+
+
+@njit(cache=True, nogil=True)
+def _record(p, pc, h, hs, sl, k):
+    """Sub-step k: its size and each site's frozen slope s_{pc[n]} (f′ of the frozen piece)."""
+    m = int(p[0])
+    hs[k] = h
+    for n in range(pc.size):
+        sl[k, n] = p[1 + m + pc[n]]
 
 
 @dataclass(frozen=True)
 class EventPeriodResult:
-    """Final state of one period (w, wd at t = T) and the number of crossings located."""
+    """Final state of one period (w, wd at t = T) and the number of crossings located.
+
+    With ``store_df``: hs (k,) the sizes of the k sub-steps taken (nominal steps cut at located
+    crossings; Σ hs = T) and dfs (k, 1, N) each site's frozen f′ in each of them (the same at
+    every stage), the input of :func:`fpucore.wave.period_map.tangent_columns`."""
 
     w: np.ndarray
     wd: np.ndarray
@@ -245,6 +276,9 @@ class EventPeriodResult:
     m: int
     location_residual: float = 0.0  # largest |w − b| at a located crossing (before snapping)
     event_times: np.ndarray | None = None  # the first (up to 8) crossing times
+    hs: np.ndarray | None = None
+    dfs: np.ndarray | None = None
+    crossing_speed: float = float("inf")  # smallest |ẇ| at a located crossing (transversality)
 
 
 def integrate_events(
@@ -258,9 +292,11 @@ def integrate_events(
     periodic: bool = False,
     locate: bool = True,
     tableau: Tableau = DOP853,
+    store_df: bool = False,
 ) -> EventPeriodResult:
     """Eq. FPUstrain over [0, T] with m nominal RK steps and event location at the law's
-    breakpoints (``locate=False``: plain fixed steps, for comparison)."""
+    breakpoints (``locate=False``: plain fixed steps, for comparison).  ``store_df`` (with
+    ``locate``): keep the sub-steps and their frozen f′ for the tangent map."""
     if not hasattr(law, "breakpoints"):
         raise ParameterError("law", type(law).__name__, "a piecewise-linear law")
     w0, wd0 = check_state(w0, wd0)
@@ -270,12 +306,23 @@ def integrate_events(
     m = check_m(m)
     w_left, w_right = require_finite("w_left", w_left), require_finite("w_right", w_right)
     N = w0.size
-    w, wd, counts = np.empty(N), np.empty(N), np.zeros(10)
-    _events_kernel(
-        w0, wd0, T, m, tableau.A, tableau.B, law.law_id, law.params,
-        np.asarray(law.breakpoints, dtype=np.float64), w_left, w_right, bool(periodic),
-        bool(locate), w, wd, np.empty((6, N)), counts,
-    )  # fmt: skip
+    store = bool(store_df and locate)
+    cap = 2 * m + 16 if store else 1
+    while True:
+        w, wd, counts, nsub = np.empty(N), np.empty(N), np.zeros(10), np.zeros(1, np.int64)
+        speed = np.full(1, np.inf)
+        hs, sl = np.empty(cap), np.empty((cap, N) if store else (1, 1))
+        _events_kernel(
+            w0, wd0, T, m, tableau.A, tableau.B, law.law_id, law.params,
+            np.asarray(law.breakpoints, dtype=np.float64), w_left, w_right, bool(periodic),
+            bool(locate), w, wd, np.empty((6, N)), counts, store, hs, sl, nsub, speed,
+        )  # fmt: skip
+        k = int(nsub[0])
+        if not store or k <= cap:
+            break
+        cap = k  # deterministic: the same run again, with room for every sub-step
     return EventPeriodResult(
-        w, wd, int(counts[0]), T, m, float(counts[1]), counts[2 : 2 + int(counts[0])].copy()
-    )
+        w, wd, int(counts[0]), T, m, float(counts[1]), counts[2 : 2 + int(counts[0])].copy(),
+        hs[:k].copy() if store else None, sl[:k, None, :].copy() if store else None,
+        float(speed[0]),
+    )  # fmt: skip

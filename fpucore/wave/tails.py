@@ -23,8 +23,12 @@ N_MAX = 20_000
 
 
 def decay_rate(law, w_inf: float, V: float) -> float:
-    """Positive root λ of V λ = 2 c sinh(λ/2), c² = f′(w_∞); NaN unless V² > f′(w_∞)."""
+    """Positive root λ of V λ = 2 c sinh(λ/2), c² = f′(w_∞); NaN unless V² > f′(w_∞).
+    A zero-modulus tail state (f′(w_∞) = 0, the degenerate PL law): ∞, the tail is reached
+    exactly (compact waves, :mod:`fpucore.wave.compact`)."""
     c2 = float(law.df(w_inf))
+    if c2 == 0.0 and V > 0.0:
+        return math.inf
     if not (c2 > 0 and V * V > c2):
         return math.nan
     c = math.sqrt(c2)
@@ -67,7 +71,7 @@ def required_half_width(
     L = 0.0
     for side, w_inf in ((-1, w_left), (1, w_right)):
         lam = decay_rate(law, w_inf, V)
-        if not math.isfinite(lam):
+        if math.isnan(lam):  # not supersonic (λ = ∞: a compact tail, reached at the core)
             return math.inf
         start = 1e-3 * amplitude
         xc = _core_edge(profile, w_inf, start, side)

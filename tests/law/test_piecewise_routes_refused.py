@@ -1,5 +1,6 @@
-"""Piecewise-linear laws on routes whose integrators do not locate corner crossings yet: refused
-with the reason, never answered with error bars that assume the method's full order."""
+"""Piecewise-linear laws on routes whose integrators do not locate corner crossings yet (the
+simulation): refused with the reason, never answered with error bars that assume the method's
+full order; the routes that locate them answer."""
 
 import numpy as np
 import pytest
@@ -11,25 +12,32 @@ from fpucore.floquet.monodromy import base_state
 LAW = F.TrilinearLaw(0.5, 1.5, 1.0, 4.0, 0.5)
 
 
-def test_discrete_solitary_wave_is_refused_with_the_reason():
-    with pytest.raises(ParameterError, match="event location at its corners"):
-        F.wave.solitary_spec(LAW, 0.1, 1.05)
-
-
 def test_simulation_is_refused_with_the_reason():
     with pytest.raises(ParameterError, match="simulations of a piecewise-linear law"):
         F.simulate.config.configure(LAW, 200, 1.0, "fixed_strain", "dop853", 1e-8)
 
 
-def test_floquet_is_refused_with_the_reason():
+def test_the_refusal_names_only_the_routes_still_refused():
+    with pytest.raises(ParameterError) as e:
+        F.simulate.config.configure(LAW, 200, 1.0, "fixed_strain", "dop853", 1e-8)
+    msg = str(e.value)
+    assert "which simulations do not have yet" in msg
+    assert "discrete waves and Floquet spectra (event-located period map)" in msg
+
+
+def test_discrete_waves_and_floquet_are_answered():
+    """No longer refused: the period map, its tangent and the monodromy locate the crossings
+    (tests/wave/test_wave_piecewise.py, tests/floquet/test_floquet_piecewise.py)."""
+    spec = F.wave.solitary_spec(LAW, 0.1, 1.05)
+    assert spec.law is LAW
+
     class Wave:  # the duck-typed wave a Floquet spectrum takes
         law, V, N = LAW, 1.05, 8
         w = np.zeros(8)
         wdot = np.zeros(8)
         w_left = w_right = 0.1
 
-    with pytest.raises(ParameterError, match="Floquet spectra of a piecewise-linear law"):
-        base_state(Wave())
+    assert base_state(Wave())[0] is LAW
 
 
 def test_qc_of_the_same_law_is_answered():

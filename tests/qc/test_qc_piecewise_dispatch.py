@@ -52,11 +52,7 @@ def test_cli_qc_numbers_for_a_trilinear_law():
     assert out["breakpoints"] == [0.5, 1.5] and out["solitary"]["kind"] == "tensile"
 
 
-def test_unported_functions_refuse_instead_of_guessing():
-    for fn, args in ((qc.superkink_from_V, (1.8,)), (qc.superkink_velocity_bounds, ())):
-        with pytest.raises(ParameterError) as e:
-            fn(LAW, *args)
-        assert e.value.name == "law" and "piecewise-linear" in str(e.value)
+def test_a_state_in_the_hard_regime_is_refused():
     with pytest.raises(ParameterError) as e:
         qc.superkink_from_w_plus(LAW, 1.0)  # inside the hard regime
     assert e.value.name == "w_plus"

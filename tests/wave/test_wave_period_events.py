@@ -55,3 +55,45 @@ def test_refuses_a_smooth_law():
     with pytest.raises(ParameterError) as e:
         integrate_events(CubicLaw(), np.zeros(4), np.zeros(4), 1.0, 4)
     assert e.value.name == "law"
+
+
+def doubling_ratios(events):
+    """true error / step-doubling estimate |Φ_m − Φ_2m| of the period map (the public
+    period_map.integrate, which locates by default) against the exact compact wave."""
+    from fpucore.wave import period_map as pm
+
+    out = []
+    for V, phase in ((0.3, 0.71), (0.5, PHASE), (0.7, 0.05)):
+        w = compact_wave(LAW, V, WB)
+        n = np.arange(-8, 8)
+        w0, wd0 = w.lattice(n, phase)
+        w1, wd1 = w.lattice(n - 1, phase)
+        for m in (4, 6, 8, 12, 16):
+            a = pm.integrate(LAW, w0, wd0, 1 / V, m, WB, WB, events=events)
+            b = pm.integrate(LAW, w0, wd0, 1 / V, 2 * m, WB, WB, events=events)
+            est = max(np.max(np.abs(a.w - b.w)), np.max(np.abs(a.wd - b.wd)))
+            true = max(np.max(np.abs(a.w - w1)), np.max(np.abs(a.wd - wd1)))
+            out.append(true / est)
+    return np.array(out)
+
+
+def test_step_doubling_estimate_holds_across_crossings():
+    """With location the estimate is the order-8 one: true = est / (1 − 2⁻⁸) (measured 1.003–
+    1.012 over 15 cases); without, it misjudges the error (measured 0.23–7.1)."""
+    r = doubling_ratios(None)
+    assert np.all((r >= 1.0) & (r <= 1.02))
+    bad = doubling_ratios(False)
+    assert np.max(np.abs(np.log(bad))) > np.log(2.0)
+
+
+@pytest.mark.parametrize("V", [0.3, 0.5, 0.7])
+def test_crossing_speed_is_the_compact_waves_slope_at_its_core_edge(V):
+    """Transversality, measured: the compact wave crosses b at ξ = ±a with w′ = ∓Cω, so each
+    located crossing has |ẇ| = V|C|ω (fpucore.wave.compact)."""
+    w = compact_wave(LAW, V, WB)
+    w0, wd0 = w.lattice(np.arange(-8, 8), PHASE)
+    r = integrate_events(LAW, w0, wd0, 1 / V, 16, WB, WB)
+    assert r.crossings == 2
+    assert r.crossing_speed == pytest.approx(V * abs(w.C) * w.omega, rel=1e-9)
+    smooth = integrate_events(LAW, np.full(4, WB), np.zeros(4), 1.0, 4, WB, WB)
+    assert smooth.crossings == 0 and smooth.crossing_speed == np.inf
