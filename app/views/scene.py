@@ -87,7 +87,9 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
         )
         self._make_progress_widgets()
         self.wait = WaitLine()
-        self._asked_at = time.perf_counter()
+        # the first request not yet answered by a published render (the scene's construction
+        # counts: a lazy scene is built by the click that opened its tab)
+        self._unanswered_since: float | None = time.perf_counter()
         self._make_file_widgets()
         self.code, self.copy_btn, self.code_card = code_box()
         self._extra = self.extra_panes()
@@ -222,7 +224,8 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
         10 s instead of 2 s."""
         with self._lock:
             self._pending = True
-            self._asked_at = time.perf_counter()  # the wait's "queued" part starts here
+            if self._unanswered_since is None:  # the server's part of the wait starts here
+                self._unanswered_since = time.perf_counter()
             if prepare is not None:
                 prepare()
             if self._running:
@@ -269,7 +272,6 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
         if self.session_closed:
             return None
         t0 = time.perf_counter()
-        queued_s = max(t0 - self._asked_at, 0.0) if not building else 0.0
         info = Info()
         self.stale = False
         # the stamp on screen changes only with the result it describes (published below);
@@ -333,7 +335,10 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
             self.renders += 1
             self.last_info = info
             self._write_status(info, t0)
-            self.wait.served(queued_s, time.perf_counter() - t0)
+            now = time.perf_counter()
+            since = self._unanswered_since if self._unanswered_since is not None else t0
+            self._unanswered_since = None
+            self.wait.served(now - min(since, t0), now - t0)
             self.code.value = self.python_code()
             self.download.disabled = False
             self.copy_btn.disabled = False
