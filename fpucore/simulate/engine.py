@@ -333,6 +333,10 @@ def run_chain(
         "memory_estimate_bytes": cfg.memory_bytes,
         "time_budget_s": cfg.time_budget_s,
     }
+    if cfg.pwl:  # event location at the breakpoints (fpucore.simulate.pwl_rkn)
+        n_cross, resid = stepper.event_counts(state)
+        res["details"].update(breakpoint_crossings=n_cross, location_residual=resid,
+                              event_location=bool(stepper.locate))  # fmt: skip
     internals = dict(
         ext_t=sch.t_extra,
         ext_w=ext_w,
