@@ -241,7 +241,8 @@ def double_crossing(w1, L, pb, cfirst):
     return best
 
 
-SNAP_TOL = 1e-12  # |w − b| (relative to max(1, |b|)) of a crossing simultaneous with the located one
+#: |w − b| (relative to max(1, |b|)) of a crossing simultaneous with the located one
+SNAP_TOL = 1e-12
 
 
 @njit(cache=True, nogil=True)
@@ -372,8 +373,8 @@ def pwl_rkn_chunk(q, t, t_stop, h, step_limit, pair, ctl, chain, work, obs, pc, 
             for _it in range(100):  # Illinois on θ
                 if win:
                     _trial(WW[0], th * hh, pair, pat, KW, rows, Lw, law_id, p, pc[w0 : w0 + Lw],
-                           pb[:, w0 : w0 + Lw], cfirst, True, BC_LOAD, 0.0, 0.0, gw, WW[1], WW[2], WW[3], WW[3], WW[4],
-                           False)  # fmt: skip
+                           pb[:, w0 : w0 + Lw], cfirst, True, BC_LOAD, 0.0, 0.0, gw, WW[1], WW[2],
+                           WW[3], WW[3], WW[4], False)  # fmt: skip
                     ft = WW[2, R] - b
                 else:
                     _trial(cur, th * hh, pair, pat, K, rows, L, law_id, p, pc, pb, cfirst, True, bc,

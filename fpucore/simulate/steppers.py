@@ -167,7 +167,7 @@ STEPPERS: dict[str, ErkStepper | RknStepper | YoshidaStepper] = {
     "symplectic": YoshidaStepper(),
 }
 METHODS = tuple(STEPPERS)
-#: the methods of piecewise-linear laws: event location at the breakpoints (fpucore.simulate.pwl_rkn)
+#: the methods of piecewise-linear laws: event location at the breakpoints (simulate.pwl_rkn)
 PWL_STEPPERS = {"rkn12": PwlRknStepper("rkn12"), "rkn8": PwlRknStepper("rkn8")}
 RKN_METHODS = tuple(m for m, s in STEPPERS.items() if isinstance(s, RknStepper))
 # h·ω_max of each adaptive method at rtol = 1e-10 on the paper's Riemann run (ω_max = 2 c_max,
