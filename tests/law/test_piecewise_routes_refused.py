@@ -16,9 +16,11 @@ def test_discrete_solitary_wave_is_refused_with_the_reason():
         F.wave.solitary_spec(LAW, 0.1, 1.05)
 
 
-def test_simulation_is_refused_with_the_reason():
-    with pytest.raises(ParameterError, match="simulations of a piecewise-linear law"):
+def test_simulation_without_event_location_is_refused_with_the_reason():
+    with pytest.raises(ParameterError, match="event location at its breakpoints"):
         F.simulate.config.configure(LAW, 200, 1.0, "fixed_strain", "dop853", 1e-8)
+    cfg = F.simulate.config.configure(LAW, 200, 1.0, "fixed_strain", "rkn12", 1e-8)
+    assert cfg.pwl and cfg.stepper.locate  # the RKN pairs locate the crossings
 
 
 def test_floquet_is_refused_with_the_reason():
