@@ -282,6 +282,31 @@ def _snap(w1, L, pb, bn, bb, evs):
         w1[n] = b
 
 @njit(cache=True, nogil=True)
+def _probe(win, hh, cur, bn, b, w0, R, Lw, pair, pat, K, KW, WW, rows, L, law_id, p, pc, pb,
+           cfirst, bc, fL, fR, g, gw, Y, nxt, e, ed, zero):  # fmt: skip
+    """w_bn − b after a frozen sub-step of hh: on the window of bonds w0 … w0 + Lw − 1 (copied
+    into WW[0], KW by the caller) if ``win``, else on the whole chain."""
+    if win:
+        _trial(WW[0], hh, pair, pat, KW, rows, Lw, law_id, p, pc[w0 : w0 + Lw], pb[:, w0 : w0 + Lw],
+               cfirst, True, BC_LOAD, 0.0, 0.0, gw, WW[1], WW[2], WW[3], WW[3], WW[4],
+               False)  # fmt: skip
+        return WW[2, R] - b
+    _trial(cur, hh, pair, pat, K, rows, L, law_id, p, pc, pb, cfirst, True, bc, fL, fR, g, Y, nxt,
+           e, ed, zero, False)  # fmt: skip
+    return nxt[bn] - b
+
+
+@njit(cache=True, nogil=True)
+def _flip(n, b, p, pc, pb):
+    """Bond n, on breakpoint b, into the piece on b's other side."""
+    m = int(p[0])
+    j = pc[n] + 1 if pb[1, n] == b else pc[n] - 1
+    pc[n] = j
+    pb[0, n] = p[j] if j > 0 else -math.inf
+    pb[1, n] = p[1 + j] if j < m else math.inf
+
+
+@njit(cache=True, nogil=True)
 def pwl_rkn_chunk(q, t, t_stop, h, step_limit, pair, ctl, chain, work, obs, pc, pb, cfirst,
                   KW, WW, evs, locate):  # fmt: skip
     """Advance (q, q̇) from t to t_stop as :func:`fpucore.simulate.rkn.rkn_chunk` (same arguments,
@@ -317,6 +342,7 @@ def pwl_rkn_chunk(q, t, t_stop, h, step_limit, pair, ctl, chain, work, obs, pc, 
         freeze(cur, K[iqd], L, p, pc, pb)
     hforce = 0.0  # the controller's step, kept over a retry up to a double crossing
     retried = False
+    nflip = 0  # pieces flipped for a bond on its breakpoint in this step
     while t < t_stop:
         if stats[0] >= step_limit:
             status = ST_BUDGET
@@ -357,8 +383,6 @@ def pwl_rkn_chunk(q, t, t_stop, h, step_limit, pair, ctl, chain, work, obs, pc, 
         if bn >= 0:  # a crossing inside the step: locate it, take the sub-step up to it
             b = bb
             lo, flo, hi, fhi = 0.0, cur[bn] - b, 1.0, nxt[bn] - b
-            if flo == 0.0:  # started on b (a located crossing) and went back: inside first
-                flo = -1e-300 if fhi > 0.0 else 1e-300
             win = bn - R >= 0 and bn + R + 1 <= L
             w0 = bn - R
             if win:
@@ -369,17 +393,32 @@ def pwl_rkn_chunk(q, t, t_stop, h, step_limit, pair, ctl, chain, work, obs, pc, 
                 WW[0, Lw] = 0.0
                 KW[f0, Lw] = 0.0
                 KW[iqd, Lw] = 0.0
+            if flo == 0.0:  # started on b (a located crossing) and went back: an inside point
+                th = 0.5
+                for _h in range(60):
+                    ft = _probe(win, th * hh, cur, bn, b, w0, R, Lw, pair, pat, K, KW, WW, rows, L,
+                                law_id, p, pc, pb, cfirst, bc, fL, fR, g, gw, Y, nxt, e, ed, zero)
+                    if ft != 0.0 and (ft < 0.0) != (fhi < 0.0):
+                        lo, flo = th, ft
+                        break
+                    if ft != 0.0:
+                        hi, fhi = th, ft
+                    th *= 0.5
+                if flo == 0.0:  # it leaves at once (ẇ ≈ 0 on b): the other piece, retried
+                    if nflip == 0:
+                        _flip(bn, b, p, pc, pb)
+                        nflip = 1
+                    else:  # both pieces leave at once: a tangency; shorter steps
+                        h = 0.5 * hh
+                        if h < 1e-14 * max(1.0, abs(t)):
+                            status = ST_STEP_UNDERFLOW
+                            break
+                    continue
+                th = lo - flo * (hi - lo) / (fhi - flo)
             side = 0
             for _it in range(100):  # Illinois on θ
-                if win:
-                    _trial(WW[0], th * hh, pair, pat, KW, rows, Lw, law_id, p, pc[w0 : w0 + Lw],
-                           pb[:, w0 : w0 + Lw], cfirst, True, BC_LOAD, 0.0, 0.0, gw, WW[1], WW[2],
-                           WW[3], WW[3], WW[4], False)  # fmt: skip
-                    ft = WW[2, R] - b
-                else:
-                    _trial(cur, th * hh, pair, pat, K, rows, L, law_id, p, pc, pb, cfirst, True, bc,
-                           fL, fR, g, Y, nxt, e, ed, zero, False)  # fmt: skip
-                    ft = nxt[bn] - b
+                ft = _probe(win, th * hh, cur, bn, b, w0, R, Lw, pair, pat, K, KW, WW, rows, L,
+                            law_id, p, pc, pb, cfirst, bc, fL, fR, g, gw, Y, nxt, e, ed, zero)
                 if ft == 0.0 or hi - lo <= 4e-16:
                     break
                 if (ft < 0.0) == (flo < 0.0):
@@ -413,6 +452,7 @@ def pwl_rkn_chunk(q, t, t_stop, h, step_limit, pair, ctl, chain, work, obs, pc, 
             h_next = hforce
             hforce = 0.0
         retried = False
+        nflip = 0
         if not fsal:
             _F(nxt, L, law_id, p, pc, locate, bc, fL, fR, g, K[fn])
             stats[2] += 1
