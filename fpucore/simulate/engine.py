@@ -284,7 +284,10 @@ def run_chain(
         probe_t, probe_out = probe_t[pk], probe_out[:, pk]
 
     waves = []
-    if cfg.track and st == "ok":
+    if cfg.track and st == "ok" and deadline.expired():  # tracking would run past the budget
+        msg += ("; wave tracking skipped: the time budget ran out as the run reached t_end "
+                "(raise time_budget_s, CLI: --time-budget)")  # fmt: skip
+    elif cfg.track and st == "ok":
         waves = tracking.track(
             law,
             sch.t_trk,
