@@ -119,3 +119,9 @@ def test_zero_modulus_strains_need_the_bounded_guard():
     with pytest.raises(ParameterError) as e:  # w = 0 lies in the soundless regime E1 = 0
         riemann(LAW, 1.0, 0.0, 40, 1.0)
     assert e.value.name == "w_right"
+
+
+def test_a_stopped_run_says_its_estimate_leaves_out_the_crossings():
+    r = riemann(LAW, 1.0, 0.0, 200, 20.0, guard="bounded", time_budget_s=1e-6)
+    assert r.stop_reason == "time_budget"
+    assert "before the steps its breakpoint crossings add" in r.message
