@@ -337,8 +337,9 @@ def run_chain(
         "time_budget_s": cfg.time_budget_s,
     }
     if cfg.pwl:  # event location at the breakpoints (fpucore.simulate.pwl_rkn)
-        n_cross, resid = stepper.event_counts(state)
+        n_cross, resid, n_tan = stepper.event_counts(state)
         res["details"].update(breakpoint_crossings=n_cross, location_residual=resid,
+                              unlocated_tangencies=n_tan,
                               event_location=bool(stepper.locate))  # fmt: skip
     internals = dict(
         ext_t=sch.t_extra,

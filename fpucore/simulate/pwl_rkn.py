@@ -35,7 +35,9 @@ rkn.rkn_chunk`):
   step's end (in and out within the step) is caught by the stage values (the step is retried up
   to that stage node); a bond set on a breakpoint that goes back across it is bracketed from an
   inside point (halving the fraction), and one that leaves at once (ẇ ≈ 0 on b) takes the other
-  piece.
+  piece; if that one leaves at once too (a bond at rest on b, e.g. Riemann data on a breakpoint,
+  pushed out of either regime by its neighbours), the step is taken without location and counted
+  (``evs[2]``, details["unlocated_tangencies"]): the order is not kept across that step.
 * ``locate=False`` evaluates the true law at every stage and takes the steps whole (the plain
   RKN stepper), for the tests that show what location buys.
 
@@ -319,8 +321,8 @@ def pwl_rkn_chunk(q, t, t_stop, h, step_limit, pair, ctl, chain, work, obs, pc, 
     work layout and return value), with frozen regimes and event location at the breakpoints
     the law's breakpoints (module docstring) if ``locate``.  pc (L,) int64, pb (2, L), cfirst
     (L,) work; KW (s+3, 2R+2), WW (5, 2R+2)
-    the Illinois window's work (R = s + 2); evs (2,) = [crossings located, largest |w − b| at
-    one], accumulated over calls."""
+    the Illinois window's work (R = s + 2); evs (3,) = [crossings located, largest |w − b| at
+    one, steps taken unlocated at a tangency], accumulated over calls."""
     rtol, atol, alpha, beta = ctl.rtol, ctl.atol, ctl.lo, ctl.hi
     L, law_id, p, bc, fL, fR = chain.L, chain.law_id, chain.p, chain.bc, chain.fL, chain.fR
     K, W, g, stats, bad = work.K, work.W, work.g, work.stats, work.bad
@@ -348,7 +350,9 @@ def pwl_rkn_chunk(q, t, t_stop, h, step_limit, pair, ctl, chain, work, obs, pc, 
         freeze(cur, K[iqd], L, p, pc, pb)
     hforce = 0.0  # the controller's step, kept over a retry up to a double crossing
     retried = False
-    nflip = 0  # pieces flipped for a bond on its breakpoint in this step
+    nflip = 0  # pieces flipped for bonds on their breakpoint in this step, the last one's bond
+    lastflip = -1
+    skiploc = False  # the step after an unresolved tangency is taken without location
     while t < t_stop:
         if stats[0] >= step_limit:
             status = ST_BUDGET
@@ -377,8 +381,8 @@ def pwl_rkn_chunk(q, t, t_stop, h, step_limit, pair, ctl, chain, work, obs, pc, 
                 break
             continue
         h_next = hh * step_factor(err, err_exp)
-        th, bn, bb = earliest(cur, nxt, L, pb) if locate else (2.0, -1, 0.0)
-        if locate and not retried:
+        th, bn, bb = earliest(cur, nxt, L, pb) if locate and not skiploc else (2.0, -1, 0.0)
+        if locate and not retried and not skiploc:
             cs = double_crossing(nxt, L, pb, cfirst)
             if cs < th:  # in and out inside the step: retry up to the stage node beyond it
                 h = cs * hh
@@ -411,14 +415,14 @@ def pwl_rkn_chunk(q, t, t_stop, h, step_limit, pair, ctl, chain, work, obs, pc, 
                         hi, fhi = th, ft
                     th *= 0.5
                 if flo == 0.0:  # it leaves at once (ẇ ≈ 0 on b): the other piece, retried
-                    if nflip == 0:
+                    if bn != lastflip and nflip <= 2 * L:  # each bond flips once in turn
                         _flip(bn, b, p, pc, pb)
-                        nflip = 1
-                    else:  # both pieces leave at once: a tangency; shorter steps
-                        h = 0.5 * hh
-                        if h < 1e-14 * max(1.0, abs(t)):
-                            status = ST_STEP_UNDERFLOW
-                            break
+                        nflip += 1
+                        lastflip = bn
+                    else:  # both pieces leave at once (a bond on b at rest, pushed both ways
+                        # by its neighbours' regimes): this step is taken unlocated, and counted
+                        skiploc = True
+                        evs[2] += 1
                     continue
                 th = lo - flo * (hi - lo) / (fhi - flo)
             side = 0
@@ -459,6 +463,9 @@ def pwl_rkn_chunk(q, t, t_stop, h, step_limit, pair, ctl, chain, work, obs, pc, 
             hforce = 0.0
         retried = False
         nflip = 0
+        lastflip = -1
+        skipped = skiploc
+        skiploc = False
         if not fsal:
             _F(nxt, L, law_id, p, pc, locate, bc, fL, fR, g, K[fn])
             stats[2] += 1
@@ -481,7 +488,7 @@ def pwl_rkn_chunk(q, t, t_stop, h, step_limit, pair, ctl, chain, work, obs, pc, 
             stats[4] = err
         if snap >= 0:  # on the breakpoint: the next step starts in the piece it moves into
             _snap(cur, L, pb, snap, bb, evs)
-        if locate and bn >= 0:
+        if locate and (bn >= 0 or skipped):
             freeze(cur, K[iqd], L, p, pc, pb)
             accel_frozen(cur, L, p, pc, bc, fL, fR, g, K[f0])
             stats[2] += 1

@@ -106,7 +106,7 @@ class PwlRknStepper(RknStepper):
     """The RKN pair with frozen regimes and event location at the breakpoints of a
     piecewise-linear law (:func:`pwl_rkn.pwl_rkn_chunk`).  ``locate = False`` (tests only) takes
     the steps whole with the true law at every stage.  ``event_counts(state)`` →
-    (crossings located, largest |w − b| at one before it was set)."""
+    (crossings located, largest |w − b| at one before it was set, steps taken unlocated)."""
 
     locate = True
 
@@ -119,7 +119,7 @@ class PwlRknStepper(RknStepper):
         nw = 2 * s + 6  # the window of 2R + 1 bonds, R = s + 2, and u_0
         L = chain.L
         ev = (np.zeros(L, np.int64), np.zeros((2, L)), np.zeros(L), np.zeros((s + 3, nw)),
-              np.zeros((5, nw)), np.zeros(2), bool(self.locate))  # fmt: skip
+              np.zeros((5, nw)), np.zeros(3), bool(self.locate))  # fmt: skip
         return (pair, qv, ev), work, h
 
     def advance(self, state, y, t, stop, h, limit, ctl, chain, work, obs):
@@ -130,9 +130,9 @@ class PwlRknStepper(RknStepper):
         return out
 
     @staticmethod
-    def event_counts(state) -> tuple[int, float]:
+    def event_counts(state) -> tuple[int, float, int]:
         evs = state[2][5]
-        return int(evs[0]), float(evs[1])
+        return int(evs[0]), float(evs[1]), int(evs[2])
 
 
 class YoshidaStepper:
