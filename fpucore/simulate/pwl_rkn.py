@@ -26,7 +26,7 @@ rkn.rkn_chunk`):
   sets the cost: a chain whose waves make K crossings per unit time takes ≳ K steps per unit
   time.  Measured (benchmarks/bench_pwl_simulate.py): the degenerate trilinear Riemann run at the
   paper's size (L = 3600, t = 300) locates 90 681 crossings in 104 597 steps — 30× the cubic
-  run's steps, 130× its CPU time (87.7 s against 0.68 s), with the energy drift at 5e-14.
+  run's steps, 130–160× its CPU time (87.7 s against 0.68 s), with the energy drift at 5e-14.
   Splitting one trial step at all its crossings in order instead would save the repeated trials
   but not the sub-steps (each crossing changes the linear system for the whole rest of the step,
   so every later piece must be re-integrated from it), i.e. at most the factor ~2 of the trials;
