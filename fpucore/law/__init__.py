@@ -14,7 +14,7 @@ handle ``(law_id, params)`` that the Numba kernels in :mod:`.kernels` take.
     ·  piecewise (continuous piecewise-linear laws, the soft–hard–soft trilinear family)
 """
 
-from .base import HardeningSofteningLaw, interval_note, require_law, require_smooth_dynamics
+from .base import HardeningSofteningLaw, interval_note, require_law
 from .cubic import CubicLaw
 from .expression import law_from_expression
 from .kernels import (
@@ -37,7 +37,6 @@ __all__ = [
     "expression_of",
     "HardeningSofteningLaw",
     "require_law",
-    "require_smooth_dynamics",
     "interval_note",
     "CubicLaw",
     "PolynomialLaw",

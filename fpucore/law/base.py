@@ -89,24 +89,3 @@ def require_law(law: object, name: str = "law") -> HardeningSofteningLaw:
             name, type(law).__name__, "a force law such as fpucore.CubicLaw(a=-1, b=10)"
         )
     return law
-
-
-def require_smooth_dynamics(law: HardeningSofteningLaw, route: str) -> HardeningSofteningLaw:
-    """Refuse a law with corners (a piecewise-linear law's breakpoints) on a route whose
-    integrator does not locate the crossings yet (the chain's simulation): its error estimates
-    assume the method's order, which a corner crossed inside a step lowers (to ~2.5 for DOP853,
-    measured in tests/wave/test_wave_period_events.py), so its digits would be claimed, not
-    earned.  The period map, its tangent (discrete waves) and the Floquet monodromy locate the
-    crossings (:mod:`fpucore.wave.period_events`)."""
-    corners = getattr(law, "breakpoints", ())
-    if corners:
-        raise ParameterError(
-            "law",
-            str(law),
-            "a smooth law (cubic, polynomial or expression)",
-            f"{route} of a piecewise-linear law need event location at its corners "
-            f"{tuple(round(c, 12) for c in corners)}, which simulations do not have yet; "
-            "its discrete waves and Floquet spectra (event-located period map), QC quantities "
-            "(fpucore.qc) and compact waves (fpucore.wave.compact) are exact",
-        )
-    return law

@@ -2,6 +2,7 @@
 
 layout (state vector, end conditions, status codes)  →  observer (events, probes, guard)
 →  kernels (first-order RHS, DOP853/DOPRI5, Yoshida)  and  rkn (RKN12/RKN8 steppers)
+(pwl_rkn: the RKN steppers with event location at a piecewise-linear law's breakpoints)
 →  steppers (the METHODS table)  →  config (validation, memory and work estimates before
 allocating, output schedule)  →  messages (status text)  →  tracking (fronts and pulses in
 space–time)  →  engine (run_chain: the loop)  →  result (SimulationResult)

@@ -15,8 +15,8 @@ from scipy.optimize import brentq
 
 from fpucore.budget import fmt_bytes, require_memory, require_time_budget
 from fpucore.errors import ParameterError, require_finite, require_in, require_int
-from fpucore.law import HardeningSofteningLaw, require_law, require_smooth_dynamics
-from fpucore.simulate.steppers import H_OMEGA_AT_1E10, METHODS, STEPPERS
+from fpucore.law import HardeningSofteningLaw, require_law
+from fpucore.simulate.steppers import H_OMEGA_AT_1E10, METHODS, PWL_STEPPERS, STEPPERS
 
 BOUNDARIES = ("fixed_particles", "fixed_strain", "free")
 GUARDS = ("convex", "bounded")
@@ -72,6 +72,8 @@ def restoring_interval(law: HardeningSofteningLaw) -> tuple[float, float]:
     strain that passes them runs away.  Cubic a = −1, b = 10: (5 − √26, 5 + √26).  For a smooth
     law, clipped to its represented interval (``law.interval``: its kernels return NaN beyond)."""
     law = require_law(law)
+    if getattr(law, "breakpoints", ()):  # PL: moduli >= 0, f nondecreasing, Φ convex everywhere
+        return (-math.inf, math.inf)
     out = []
     for edge, sgn in ((law.beta, 1.0), (law.alpha, -1.0)):
         step = max(abs(edge), 1e-3)
@@ -116,10 +118,11 @@ class RunConfig:
     time_budget_s: float | None
     memory_bytes: float
     work: dict
+    pwl: bool = False  # a piecewise-linear law: event location at its breakpoints
 
     @property
     def stepper(self):
-        return STEPPERS[self.method]
+        return PWL_STEPPERS[self.method] if self.pwl else STEPPERS[self.method]
 
 
 def _probe_sites(probes, L: int) -> np.ndarray:
@@ -245,12 +248,18 @@ def configure(
     """Validate every option of a run of L sites to ``t_end`` and estimate its memory (refused
     above the budget, ParameterError naming the argument whose size dominates) and work, before
     anything is allocated.  ``n_extra``: full-resolution profiles requested at extra times."""
-    require_smooth_dynamics(require_law(law), "simulations")
+    pwl = bool(getattr(require_law(law), "breakpoints", ()))
     t_end = require_positive("t_end", t_end, 1e7)
     if boundary not in BOUNDARIES:
         raise ParameterError("boundary", boundary, " | ".join(BOUNDARIES))
     if method not in STEPPERS:
         raise ParameterError("method", method, " | ".join(METHODS))
+    if pwl and method not in PWL_STEPPERS:
+        raise ParameterError(
+            "method", method, " | ".join(PWL_STEPPERS),
+            "a piecewise-linear law is integrated with event location at its breakpoints, "
+            "implemented for the RKN pairs",
+        )  # fmt: skip
     rtol = require_finite("rtol", rtol)
     if not (1e-14 <= rtol <= 1e-2):
         raise ParameterError("rtol", rtol, "[1e-14, 1e-2]")
@@ -288,7 +297,7 @@ def configure(
     return RunConfig(
         L, t_end, boundary, method, rtol, atol, None if STEPPERS[method].adaptive else dt,
         n_snapshots, max_sites_out, probe_idx, n_probe_t, late_fraction, n_track, max_steps,
-        estimate_error, track, n_events, guard, time_budget_s, total, work,
+        estimate_error, track, n_events, guard, time_budget_s, total, work, pwl,
     )  # fmt: skip
 
 

@@ -284,7 +284,10 @@ def run_chain(
         probe_t, probe_out = probe_t[pk], probe_out[:, pk]
 
     waves = []
-    if cfg.track and st == "ok":
+    if cfg.track and st == "ok" and deadline.expired():  # tracking would run past the budget
+        msg += ("; wave tracking skipped: the time budget ran out as the run reached t_end "
+                "(raise time_budget_s, CLI: --time-budget)")  # fmt: skip
+    elif cfg.track and st == "ok":
         waves = tracking.track(
             law,
             sch.t_trk,
@@ -333,6 +336,11 @@ def run_chain(
         "memory_estimate_bytes": cfg.memory_bytes,
         "time_budget_s": cfg.time_budget_s,
     }
+    if cfg.pwl:  # event location at the breakpoints (fpucore.simulate.pwl_rkn)
+        n_cross, resid, n_tan = stepper.event_counts(state)
+        res["details"].update(breakpoint_crossings=n_cross, location_residual=resid,
+                              unlocated_tangencies=n_tan,
+                              event_location=bool(stepper.locate))  # fmt: skip
     internals = dict(
         ext_t=sch.t_extra,
         ext_w=ext_w,

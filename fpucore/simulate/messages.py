@@ -71,10 +71,12 @@ def _msg_budget(o: Outcome, cfg: RunConfig, deadline: Deadline) -> str:
 
 
 def _msg_time(o: Outcome, cfg: RunConfig, deadline: Deadline) -> str:
-    est = cfg.work["seconds"]
+    est = f"~{cfg.work['seconds']:.3g} s"
+    if cfg.pwl:  # each located breakpoint crossing ends a step: not in the estimate
+        est = f"{est} before the steps its breakpoint crossings add"
     return deadline.message(
         f"at t = {o.t:.6g} of t_end = {cfg.t_end:.6g} ({o.n_steps} steps; the whole run was "
-        f"estimated at ~{est:.3g} s); the result holds the times reached",
+        f"estimated at {est}); the result holds the times reached",
         "raise time_budget_s (CLI: --time-budget), or shorten t_end / L",
     )
 

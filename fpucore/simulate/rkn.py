@@ -80,7 +80,7 @@ def rkn_to_y(q, qd, L, y):
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
-def _rkn_err(q, q1, qd, qd1, e, ed, r, rd, rtol, atol):
+def rkn_err(q, q1, qd, qd1, e, ed, r, rd, rtol, atol):
     """Σ (e/sc)² + (ė/sċ)² with sc = atol + rtol·max(|q|, |q₁|), likewise sċ; r, rd : work.
 
     Two passes so that both vectorise: the element-wise ratios (error_model="numpy" drops the
@@ -94,11 +94,11 @@ def _rkn_err(q, q1, qd, qd1, e, ed, r, rd, rtol, atol):
         a = abs(qd[m])
         b = abs(qd1[m])
         rd[m] = ed[m] / (atol + rtol * (a if a >= b else b))
-    return _sumsq2(r, rd)
+    return sumsq2(r, rd)
 
 
 @njit(cache=True, nogil=True)
-def _sumsq2(a, b):
+def sumsq2(a, b):
     """Σ a² + b² with four independent accumulators."""
     nn = a.size
     s0 = s1 = s2 = s3 = 0.0
@@ -211,7 +211,7 @@ def rkn_chunk(q, t, t_stop, h, step_limit, pair, ctl, chain, work, obs):
             cf[k] = hh * EP[j]
         combo(zero, K, rws, cf, wcnt[3], ed)
         stats[2] += nst - 1 + (1 if fsal else 0)
-        e2 = _rkn_err(cur, nxt, K[iqd], K[iqd1], e, ed, W[5], W[6], rtol, atol)
+        e2 = rkn_err(cur, nxt, K[iqd], K[iqd1], e, ed, W[5], W[6], rtol, atol)
         err = math.sqrt(e2 / (2 * nn))
         if not math.isfinite(err):
             h = 0.2 * hh
@@ -239,7 +239,7 @@ def rkn_chunk(q, t, t_stop, h, step_limit, pair, ctl, chain, work, obs):
             iqd1 = k
             t = t_stop if clamped else t + hh
             stats[0] += 1
-            stats[3] += math.sqrt(_sumsq2(e, ed) / (2 * nn))  # RMS of the local error
+            stats[3] += math.sqrt(sumsq2(e, ed) / (2 * nn))  # RMS of the local error
             if err > stats[4]:
                 stats[4] = err
             if check_convex(cur, L, alpha, beta, bad):

@@ -78,6 +78,14 @@ from fpucore.simulate.result import SimulationResult
 __all__ = ["riemann", "gaussian"]
 
 
+def require_simulable(law) -> HardeningSofteningLaw:
+    """The law, refused if its f′ has no digits left (:func:`require_discrete`).  A PL law is
+    evaluated piece by piece from anchored values (one slope, no cancelling sum), so its
+    stiffness contrast — infinite for a zero-modulus regime — costs no digits."""
+    law = require_law(law)
+    return law if getattr(law, "breakpoints", ()) else require_discrete(law)
+
+
 @on_budget
 def riemann(
     law: HardeningSofteningLaw,
@@ -104,13 +112,17 @@ def riemann(
     stop_reason "time_budget" and the times it reached), ``memory_budget`` (bytes or "2GiB";
     default FPU_MEMORY_BUDGET or 25 % of RAM, see :mod:`fpucore.budget`) and ``progress``
     (a callable receiving the fraction of t_end done)."""
-    law = require_discrete(require_law(law))  # before any option is looked at
+    law = require_simulable(law)  # before any option is looked at
     opts, run = split_options(kw)
     L = require_L(L)
     if L % 2:
         raise ParameterError("L", L, "an even integer", "the Riemann jump sits at n = L/2")
-    wl = law.require_convex("w_left", w_left)
-    wr = law.require_convex("w_right", w_right)
+    if getattr(law, "breakpoints", ()) and opts.get("guard") == "bounded":
+        # a PL law restores everywhere (moduli >= 0): e.g. the soundless zero-modulus regime
+        wl, wr = require_finite("w_left", w_left), require_finite("w_right", w_right)
+    else:
+        wl = law.require_convex("w_left", w_left)
+        wr = law.require_convex("w_right", w_right)
     thr = detection_threshold(threshold, abs(wl - wr))
     cfg = configure(
         law,
@@ -156,7 +168,7 @@ def gaussian(
     ``guard="bounded"`` (the paper's w_B = 1, A = 6 starts at w = 7 > β, and w_B = 6, A = −6
     reaches w ≈ 6.94 > β: both need guard="bounded", see docs/simulation.md).  ``threshold``
     (tracker detection threshold) default 2 % of |A|.  Further keywords as for :func:`riemann`."""
-    law = require_discrete(require_law(law))  # before any option is looked at
+    law = require_simulable(law)  # before any option is looked at
     opts, run = split_options(kw)
     L = require_L(L)
     wB = law.require_convex("w_B", w_B)

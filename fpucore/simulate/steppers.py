@@ -10,6 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from fpucore.simulate import kernels as ck
+from fpucore.simulate import pwl_rkn
 from fpucore.simulate import rkn as crk
 from fpucore.simulate.layout import Chain, ErkPair, RknPair, Work
 from fpucore.tableaux import rkn as rkn_tableaux
@@ -101,6 +102,39 @@ class RknStepper:
         return out
 
 
+class PwlRknStepper(RknStepper):
+    """The RKN pair with frozen regimes and event location at the breakpoints of a
+    piecewise-linear law (:func:`pwl_rkn.pwl_rkn_chunk`).  ``locate = False`` (tests only) takes
+    the steps whole with the true law at every stage.  ``event_counts(state)`` →
+    (crossings located, largest |w − b| at one before it was set, steps taken unlocated)."""
+
+    locate = True
+
+    def floats_per_site(self) -> float:
+        return super().floats_per_site() + 2.0  # frozen pieces, their ends, first stage out
+
+    def start(self, law, y: np.ndarray, chain: Chain, cfg):
+        (pair, qv), work, h = super().start(law, y, chain, cfg)
+        s = self.stages
+        nw = 2 * s + 6  # the window of 2R + 1 bonds, R = s + 2, and u_0
+        L = chain.L
+        ev = (np.zeros(L, np.int64), np.zeros((2, L)), np.zeros(L), np.zeros((s + 3, nw)),
+              np.zeros((5, nw)), np.zeros(3), bool(self.locate))  # fmt: skip
+        return (pair, qv, ev), work, h
+
+    def advance(self, state, y, t, stop, h, limit, ctl, chain, work, obs):
+        pair, qv, (pc, pb, cf, KW, WW, evs, locate) = state
+        out = pwl_rkn.pwl_rkn_chunk(qv, t, stop, h, limit, pair, ctl, chain, work, obs, pc,
+                                    pb, cf, KW, WW, evs, locate)  # fmt: skip
+        crk.rkn_to_y(qv, work.K[self.stages + 1], chain.L, y)
+        return out
+
+    @staticmethod
+    def event_counts(state) -> tuple[int, float, int]:
+        evs = state[2][5]
+        return int(evs[0]), float(evs[1]), int(evs[2])
+
+
 class YoshidaStepper:
     """4th-order Yoshida composition of velocity Verlet, fixed step dt
     (:func:`kernels.yoshida_chunk`)."""
@@ -133,6 +167,8 @@ STEPPERS: dict[str, ErkStepper | RknStepper | YoshidaStepper] = {
     "symplectic": YoshidaStepper(),
 }
 METHODS = tuple(STEPPERS)
+#: the methods of piecewise-linear laws: event location at the breakpoints (simulate.pwl_rkn)
+PWL_STEPPERS = {"rkn12": PwlRknStepper("rkn12"), "rkn8": PwlRknStepper("rkn8")}
 RKN_METHODS = tuple(m for m, s in STEPPERS.items() if isinstance(s, RknStepper))
 # h·ω_max of each adaptive method at rtol = 1e-10 on the paper's Riemann run (ω_max = 2 c_max,
 # the top of the chain's linear spectrum): 3458 / 8881 / 50 821 / 15 265 steps over t = 300

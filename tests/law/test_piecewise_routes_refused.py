@@ -1,6 +1,7 @@
-"""Piecewise-linear laws on routes whose integrators do not locate corner crossings yet (the
-simulation): refused with the reason, never answered with error bars that assume the method's
-full order; the routes that locate them answer."""
+"""Piecewise-linear laws on every route: the routes whose integrators locate the corner
+crossings answer (discrete waves, Floquet spectra, the RKN simulations, the QC closed forms);
+a simulation method that does not locate them is refused with the reason, never answered with
+error bars that assume the method's full order."""
 
 import numpy as np
 import pytest
@@ -12,17 +13,11 @@ from fpucore.floquet.monodromy import base_state
 LAW = F.TrilinearLaw(0.5, 1.5, 1.0, 4.0, 0.5)
 
 
-def test_simulation_is_refused_with_the_reason():
-    with pytest.raises(ParameterError, match="simulations of a piecewise-linear law"):
+def test_simulation_without_event_location_is_refused_with_the_reason():
+    with pytest.raises(ParameterError, match="event location at its breakpoints"):
         F.simulate.config.configure(LAW, 200, 1.0, "fixed_strain", "dop853", 1e-8)
-
-
-def test_the_refusal_names_only_the_routes_still_refused():
-    with pytest.raises(ParameterError) as e:
-        F.simulate.config.configure(LAW, 200, 1.0, "fixed_strain", "dop853", 1e-8)
-    msg = str(e.value)
-    assert "which simulations do not have yet" in msg
-    assert "discrete waves and Floquet spectra (event-located period map)" in msg
+    cfg = F.simulate.config.configure(LAW, 200, 1.0, "fixed_strain", "rkn12", 1e-8)
+    assert cfg.pwl and cfg.stepper.locate  # the RKN pairs locate the crossings
 
 
 def test_discrete_waves_and_floquet_are_answered():

@@ -223,3 +223,25 @@ def test_deadline():
     assert "time_budget_s=1e-09 s" in spent.message("at t = 1", "raise it")
     with pytest.raises(ParameterError):
         Deadline(-1.0)
+
+
+def test_wave_tracking_is_skipped_when_the_budget_ran_out_at_t_end(monkeypatch):
+    """Tracking runs after the last step, outside the stepping loop's budget checks: when the
+    budget is gone by then it is skipped (said in the message), not run past the budget."""
+    from fpucore.simulate import engine
+
+    done = []
+
+    class LateDeadline(Deadline):
+        def expired(self):  # expires exactly when the stepping has reached t_end
+            return bool(done)
+
+    orig = engine._finalize_events
+    monkeypatch.setattr(engine, "Deadline", LateDeadline)
+    monkeypatch.setattr(engine, "_finalize_events", lambda *a: (done.append(1), orig(*a)))
+    s = simulate.riemann(LAW, 4.6, 0.0, 600, 20.0, time_budget_s=100.0)
+    assert s.stop_reason == "ok" and s.waves == []
+    assert "wave tracking skipped" in s.message
+    done.clear()
+    monkeypatch.setattr(engine, "Deadline", Deadline)
+    assert simulate.riemann(LAW, 4.6, 0.0, 600, 20.0, time_budget_s=100.0).waves  # control
