@@ -338,7 +338,13 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
             now = time.perf_counter()
             since = self._unanswered_since if self._unanswered_since is not None else t0
             self._unanswered_since = None
-            self.wait.served(now - min(since, t0), now - t0)
+            parts = (now - min(since, t0), now - t0)
+            if building and self._served:
+                # a render while a tab is built reaches the browser inside the new models, where
+                # no change can be timed: the token changes on the next tick, after them
+                self._doc.add_next_tick_callback(lambda: self.wait.served(*parts))
+            else:
+                self.wait.served(*parts)
             self.code.value = self.python_code()
             self.download.disabled = False
             self.copy_btn.disabled = False
