@@ -148,7 +148,9 @@ class ExplorerState(param.Parameterized):
                         f"V = V_SK = {vsk:.10g} is the superkink itself: switch the mode to "
                         "'superkink' or move V into (c+, V_SK) or (V_SK, c-)."
                     )
-                qc.solitary(lw, self.w_plus, self.V)
+                # its refusals without its profile (near a sonic end a smooth law's profile and
+                # E_ren took ~0.8 s, and the sidebar asks this several times per law change)
+                qc.solitary_kind(lw, self.w_plus, self.V)
         except ParameterError as exc:
             return str(exc)
         return None
@@ -173,7 +175,7 @@ class ExplorerState(param.Parameterized):
             return "invalid"
         if self.mode == "superkink":
             return "superkink"
-        return qc.solitary(self.law(), self.w_plus, self.V).kind
+        return qc.solitary_kind(self.law(), self.w_plus, self.V)
 
     def set_typed_N(self, value) -> None:
         """N typed into the box beside the slider: an odd N goes to the even N below it and one
