@@ -35,6 +35,7 @@ from fpucore.law import PolynomialLaw, expression_of
 from fpucore.law.presets import PRESETS
 
 from . import compute
+from .law_presets import PRESET_OPTIONS, preset_of, preset_text
 from .state import A_RANGE, B_RANGE, ExplorerState
 from .views.untrusted import LiteralAlert, LiteralMarkdown, md_literal
 from .widgets import FloatSlider, Syncing, document_gone, put, user_action, widened
@@ -43,9 +44,6 @@ log = logging.getLogger("fpu-explorer")
 
 #: at most this many coefficient sliders (a law of higher degree is edited as text only)
 MAX_COEFF_SLIDERS = 8
-#: the chooser's presets: label → fpucore preset name ("" while the law is no preset)
-PRESET_OPTIONS = {"(choose a preset)": "", **{f"{n}: {p.description}": n
-                                              for n, p in PRESETS.items()}}  # fmt: skip
 
 HELP = """\
 **f(w) =** an expression in `w`: numbers, `+ - * / **`, parentheses and `exp`, `log`, `sqrt`,
@@ -179,14 +177,13 @@ class LawEditor(pn.viewable.Viewer):
     def _on_preset(self, event) -> None:
         if not event.new:
             return
-        p = PRESETS[event.new]
         if event.new == "cubic":  # the paper's cubic: closed forms, a and b sliders
             self.refusal.visible = False
             self.refused = ""
             self._law_wanted = ""
-            self._set(expression="", **p.constants_dict)
+            self._set(expression="", **PRESETS["cubic"].constants_dict)
             return
-        self.apply(compute.join_law(p.text, p.constants_dict))
+        self.apply(preset_text(event.new))  # built at the server's warm-up (app.warmup)
 
     @user_action
     def _on_const(self, name: str, value) -> None:
@@ -298,8 +295,7 @@ class LawEditor(pn.viewable.Viewer):
     def _preset_of(self, text: str) -> str:
         if not text:
             return "cubic" if (self.state.a, self.state.b) == (-1.0, 10.0) else ""
-        expr, _ = compute.split_law(text) if ";" in text else (text, {})
-        return next((n for n, p in PRESETS.items() if p.text == expr and n != "cubic"), "")
+        return preset_of(text)
 
     def _sync_constants(self) -> None:
         """One slider per named constant of the state's law (none for a law without)."""
