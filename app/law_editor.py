@@ -3,6 +3,8 @@ an expression — a polynomial with one slider per coefficient, or a smooth law 
 tanh, …) with named constants, ``w + b*w**2 - c*w**3*exp(w/d); b=10, c=1, d=50``, one slider
 per constant.
 
+* The trilinear preset (fpucore.law.TrilinearLaw) gets a slider for each of w1, w2, E1, E2, E3
+  (:mod:`app.law_trilinear`); a combination outside the class is refused with fpucore's reason.
 * A law outside the class is refused with its reason (:attr:`LawEditor.refused`) and never
   enters the state: the previous valid law stays on screen.
 
@@ -35,7 +37,8 @@ from fpucore.law import PolynomialLaw, expression_of
 from fpucore.law.presets import PRESETS
 
 from . import compute
-from .law_presets import PRESET_OPTIONS, preset_of, preset_text
+from .law_presets import HELP, PRESET_OPTIONS, preset_of, preset_text
+from .law_trilinear import TrilinearSliders
 from .state import A_RANGE, B_RANGE, ExplorerState
 from .views.untrusted import LiteralAlert, LiteralMarkdown, md_literal
 from .widgets import FloatSlider, Syncing, document_gone, put, user_action, widened
@@ -45,18 +48,6 @@ log = logging.getLogger("fpu-explorer")
 #: at most this many coefficient sliders (a law of higher degree is edited as text only)
 MAX_COEFF_SLIDERS = 8
 
-HELP = """\
-**f(w) =** an expression in `w`: numbers, `+ - * / **`, parentheses and `exp`, `log`, `sqrt`,
-`tanh`, `sinh`, `cosh`, `atan`; powers with integer or rational exponents (of positive
-arguments). Named constants go after a `;` as `name=value` pairs, e.g.
-`w + b*w**2 - c*w**3*exp(w/d); b=10, c=1, d=50`: each gets a slider. A polynomial is solved
-by exact polynomial routes, any other law through a piecewise Chebyshev representation on its
-represented interval (its error enters every error bar).
-
-The law must be in the paper's class (§2): f(0) = 0, f′(0) > 0, a convex interval (α, β) around
-0 with f′(α) = f′(β) = 0 (α may be −∞) and a single inflection w\\* in it (f″ from + to −).
-A law outside it is refused with the reason and where it fails; the previous law stays.
-"""
 
 
 class LawEditor(pn.viewable.Viewer):
@@ -113,6 +104,7 @@ class LawEditor(pn.viewable.Viewer):
         )  # fmt: skip
         self.preset.param.watch(self._on_preset, "value")
         self.const_box = pn.Column(sizing_mode="stretch_width", css_classes=["law-constants"])
+        self.trilinear = TrilinearSliders(self._on_trilinear)
         self.const_sliders: dict = {}
         self._const_anchor: tuple | None = None  # (expression, names, values) the ranges follow
         self.refusal = LiteralAlert(
@@ -143,6 +135,7 @@ class LawEditor(pn.viewable.Viewer):
             self.law_text,
             self.coeff_box,
             self.const_box,
+            self.trilinear.box,
             self.refusal,
             self.help,
             sizing_mode="stretch_width",
@@ -194,6 +187,17 @@ class LawEditor(pn.viewable.Viewer):
         consts = {n: float(s.value) for n, s in self.const_sliders.items()}
         consts[name] = float(f"{float(value):.6g}")
         self.apply(compute.join_law(self._const_anchor[0], consts))
+
+    @user_action
+    def _on_trilinear(self, text: str) -> None:
+        """A trilinear slider moved: its law text (5 numbers, parse only) is built here at once
+        and applied, or refused with fpucore's reason while the previous law stays."""
+        try:
+            compute.trusted_expression_law(text)
+        except ParameterError:
+            pass  # remembered: _offer shows the refusal
+        self._law_wanted = text
+        self._offer(text)
 
     @user_action
     def _on_law_kind(self, event) -> None:
@@ -289,7 +293,8 @@ class LawEditor(pn.viewable.Viewer):
             self.law_text.visible = poly
             self.law_text.value = st.expression
             self._sync_constants()
-            self._sync_coefficients(poly and not self.const_box.visible)
+            pl = self.trilinear.sync(st.expression)
+            self._sync_coefficients(poly and not self.const_box.visible and not pl)
             self.preset.value = self._preset_of(st.expression)
 
     def _preset_of(self, text: str) -> str:

@@ -24,6 +24,25 @@ TRILINEAR_RANGES = {"w1": (0.05, 3.0), "w2": (0.1, 5.0), "E1": (0.0, 5.0), "E2":
                     "E3": (0.0, 5.0)}  # fmt: skip
 TRILINEAR_DESCRIPTION = "soft-hard-soft piecewise-linear (breakpoints w1 < w2, moduli E1, E2, E3)"
 
+#: the law editor's help: which laws are accepted
+HELP = """\
+**f(w) =** an expression in `w`: numbers, `+ - * / **`, parentheses and `exp`, `log`, `sqrt`,
+`tanh`, `sinh`, `cosh`, `atan`; powers with integer or rational exponents (of positive
+arguments). Named constants go after a `;` as `name=value` pairs, e.g.
+`w + b*w**2 - c*w**3*exp(w/d); b=10, c=1, d=50`: each gets a slider. A polynomial is solved
+by exact polynomial routes, any other law through a piecewise Chebyshev representation on its
+represented interval (its error enters every error bar).
+
+The law must be in the paper's class (§2): f(0) = 0, f′(0) > 0, a convex interval (α, β) around
+0 with f′(α) = f′(β) = 0 (α may be −∞) and a single inflection w\\* in it (f″ from + to −).
+A law outside it is refused with the reason and where it fails; the previous law stays.
+
+**Piecewise-linear:** `trilinear(w1=0.5, w2=1.5, E1=1, E2=4, E3=0.2)` (soft–hard–soft:
+0 < w1 < w2, E2 > E1 ≥ 0, E2 > E3 ≥ 0; the preset gives a slider each) or
+`piecewise(breakpoints=[b1, b2, ...], slopes=[s0, s1, ...])`, slopes rising to one hard regime
+then falling. Waves, Floquet spectra and simulations refuse them for now (fpucore says why).
+"""
+
 #: the chooser's presets: label → preset name ("" while the law is no preset)
 PRESET_OPTIONS = {
     "(choose a preset)": "",
