@@ -63,6 +63,7 @@ class ForceLawScene(BokehScene):
         self.r_pts[1].data["what"] = np.empty(0, dtype=object)
         self.r_pts[1].name = "force-special-points"  # read by the tests
         self.r_V[1].name = "force-rayleigh-V"  # read by the browser tests
+        self.r_f[1].name = "force-curve"
         # each special point named beside it; hovering gives its role and exact coordinates
         fig.add_layout(
             LabelSet(x="x", y="y", text="label", source=self.r_pts[1], x_offset=6,
