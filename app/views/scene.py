@@ -69,6 +69,9 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
     cheap = False
     #: the scene draws figures: "Download figure" (SVG, PNG) and "Download notebook"
     exports = True
+    #: "Copy as Python" stays off after a render (set by the page while a refused law is shown:
+    #: a render of the previous law that ends after the refusal must not turn it back on)
+    copy_blocked = False
 
     def __init__(self, state: ExplorerState, **params):
         super().__init__(**params)
@@ -325,7 +328,7 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
             self._write_status(info, t0)
             self.code.value = self.python_code()
             self.download.disabled = False
-            self.copy_btn.disabled = False
+            self.copy_btn.disabled = self.copy_blocked
             for w in self.exporters:
                 w.disabled = False
         except Exception as exc:
