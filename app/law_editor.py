@@ -39,6 +39,7 @@ from fpucore.law.presets import PRESETS
 from . import compute
 from .law_presets import HELP, PRESET_OPTIONS, preset_of, preset_text
 from .law_trilinear import TrilinearSliders
+from .slider_pool import SliderPool
 from .state import A_RANGE, B_RANGE, ExplorerState
 from .views.untrusted import LiteralAlert, LiteralMarkdown, md_literal
 from .widgets import FloatSlider, Syncing, document_gone, put, user_action, widened
@@ -97,13 +98,19 @@ class LawEditor(pn.viewable.Viewer):
             css_classes=["in-law"],
             sizing_mode="stretch_width",
         )
-        self.coeff_box = pn.Column(sizing_mode="stretch_width", css_classes=["law-coeffs"])
+        self._coeff_pool = SliderPool(self._on_pool_coeff, "law-coeff-sliders")
+        self._too_many = LiteralMarkdown("", visible=False)
+        self.coeff_box = pn.Column(
+            self._coeff_pool.box, self._too_many, sizing_mode="stretch_width",
+            css_classes=["law-coeffs"],
+        )  # fmt: skip
         self.preset = pn.widgets.Select(
             label="preset", options=PRESET_OPTIONS, value="", css_classes=["w-law-preset"],
             sizing_mode="stretch_width",
         )  # fmt: skip
         self.preset.param.watch(self._on_preset, "value")
-        self.const_box = pn.Column(sizing_mode="stretch_width", css_classes=["law-constants"])
+        self._const_pool = SliderPool(self._on_pool_const, "law-constants")
+        self.const_box = self._const_pool.box
         self.trilinear = TrilinearSliders(self._on_trilinear)
         self.const_sliders: dict = {}
         self._const_anchor: tuple | None = None  # (expression, names, values) the ranges follow
@@ -187,6 +194,16 @@ class LawEditor(pn.viewable.Viewer):
         consts = {n: float(s.value) for n, s in self.const_sliders.items()}
         consts[name] = float(f"{float(value):.6g}")
         self.apply(compute.join_law(self._const_anchor[0], consts))
+
+    def _on_pool_coeff(self, slider, value) -> None:
+        k = next((k for k, s in enumerate(self.coeff_sliders) if s is slider), None)
+        if k is not None:
+            self._on_coeff(k, value)
+
+    def _on_pool_const(self, slider, value) -> None:
+        name = next((n for n, s in self.const_sliders.items() if s is slider), None)
+        if name is not None:
+            self._on_const(name, value)
 
     @user_action
     def _on_trilinear(self, text: str) -> None:
@@ -315,20 +332,12 @@ class LawEditor(pn.viewable.Viewer):
         anchor = self._const_anchor
         if anchor is None or anchor[0] != expr or anchor[1] != tuple(consts):
             self._const_anchor = (expr, tuple(consts), dict(consts))
-            self.const_sliders = {}
-            for name, v in consts.items():
-                lo, hi = coeff_range(v)
-                sl = FloatSlider(
-                    label=name, start=lo, end=hi, step=(hi - lo) / 1000, value=v,
-                    css_classes=[f"w-const-{name}"], format="0.0[000]",
-                    sizing_mode="stretch_width", show_value=True,
-                )  # fmt: skip
-                sl.param.watch(lambda e, n=name: self._on_const(n, e.new), "value_throttled")
-                self.const_sliders[name] = sl
-            self.const_box.objects = list(self.const_sliders.values())
+            # the page's pooled sliders re-labelled, not new ones (app.slider_pool)
+            taken = self._const_pool.take(list(consts), [f"w-const-{n}" for n in consts])
+            self.const_sliders = dict(zip(consts, taken))
         for name, v in consts.items():
             lo, hi = coeff_range(self._const_anchor[2][name])
-            put(self.const_sliders[name], v, **widened(v, lo, hi))
+            put(self.const_sliders[name], v, step=(hi - lo) / 1000, **widened(v, lo, hi))
         self.const_box.visible = True
 
     def _sync_coefficients(self, poly: bool) -> None:
@@ -365,28 +374,20 @@ class LawEditor(pn.viewable.Viewer):
         self._coeff_anchor = tuple(coeffs)
         if len(coeffs) > MAX_COEFF_SLIDERS:
             self.coeff_sliders = []
-            self.coeff_box.objects = [
-                LiteralMarkdown(f"_degree {len(coeffs)} > {MAX_COEFF_SLIDERS}: edit the text_")
-            ]
-            return
-        sliders = []
-        for k, c in enumerate(coeffs):
-            lo, hi = coeff_range(c)
-            sl = FloatSlider(
-                label=f"c{k + 1} (w^{k + 1})" if k else "c1 (w) = f′(0)",
-                start=lo,
-                end=hi,
-                step=(hi - lo) / 1000,
-                value=c,
-                css_classes=[f"w-c{k + 1}"],
-                format="0.0[000]",
-                sizing_mode="stretch_width",
-                show_value=True,
+            self._coeff_pool.box.visible = False
+            self._too_many.param.update(
+                object=f"_degree {len(coeffs)} > {MAX_COEFF_SLIDERS}: edit the text_", visible=True
             )
-            sl.param.watch(lambda e, k=k: self._on_coeff(k, e.new), "value_throttled")
-            sliders.append(sl)
+            return
+        labels = [f"c{k + 1} (w^{k + 1})" if k else "c1 (w) = f′(0)" for k in range(len(coeffs))]
+        # the page's pooled sliders re-labelled, not new ones (app.slider_pool)
+        sliders = self._coeff_pool.take(labels, [f"w-c{k + 1}" for k in range(len(coeffs))])
+        for sl, c in zip(sliders, coeffs):  # (called in sync: the editor is muted)
+            lo, hi = coeff_range(c)
+            put(sl, c, start=lo, end=hi, step=(hi - lo) / 1000)
         self.coeff_sliders = sliders
-        self.coeff_box.objects = sliders
+        self._coeff_pool.box.visible = True
+        self._too_many.visible = False
 
 
 def coeff_range(c0: float) -> tuple[float, float]:
