@@ -270,6 +270,14 @@ class Explorer(pn.viewable.Viewer):
             self.ranges.object = ranges_markdown(self.state, self.state.summary())
             return
         names.discard("note")
+        if self.state.adjusting and not names & {"tab"}:
+            # the coupling's update inside another change's watchers (ExplorerState._tie runs
+            # first): that change's call here follows and syncs and renders once for both —
+            # a law change rendered the force law twice
+            for s in self.scenes:
+                if names & set(s.depends):
+                    s.stale = True
+            return
         if names - {"tab"}:
             self._sync_widgets()
             for s in self.scenes:

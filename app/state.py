@@ -205,6 +205,12 @@ class ExplorerState(param.Parameterized):
         finally:
             self._tying = False
 
+    @property
+    def adjusting(self) -> bool:
+        """True while the coupling updates the state inside another change's watchers (a new
+        law's w₊ and V, superkink mode's V = V_SK): that change's own watchers follow."""
+        return self._tying
+
     def _tie(self, *events):
         if self._tying:
             return

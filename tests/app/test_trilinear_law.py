@@ -49,6 +49,7 @@ def ex():
 def drawn_force(ex, values):
     """The force scene rendered: its curve and special points against the closed form."""
     sc = ex.active_scene()
+    assert sc.wait_idle(120)  # the render a change requested: none still running below
     sc.refresh()
     assert sc.last_message is None, sc.last_message
     x, y = (np.asarray(sc.r_f[1].data[k], float) for k in ("x", "y"))
