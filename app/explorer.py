@@ -193,7 +193,7 @@ class Explorer(pn.viewable.Viewer):
         """A law refused by the law editor never entered the state: the sidebar shows the
         state's law again (not "checking …"), and "Copy as Python" is off while it is shown."""
         for s in self.scenes:
-            s.copy_btn.disabled = bool(event.new)
+            s.copy_blocked = s.copy_btn.disabled = bool(event.new)
         self._sync_widgets()
 
     def url_law_checked(self, text: str, outcome) -> None:
@@ -270,6 +270,14 @@ class Explorer(pn.viewable.Viewer):
             self.ranges.object = ranges_markdown(self.state, self.state.summary())
             return
         names.discard("note")
+        if self.state.adjusting and not names & {"tab"}:
+            # the coupling's update inside another change's watchers (ExplorerState._tie runs
+            # first): that change's call here follows and syncs and renders once for both —
+            # a law change rendered the force law twice
+            for s in self.scenes:
+                if names & set(s.depends):
+                    s.stale = True
+            return
         if names - {"tab"}:
             self._sync_widgets()
             for s in self.scenes:
@@ -303,6 +311,7 @@ class Explorer(pn.viewable.Viewer):
             i, cls = next((i, c) for i, c in enumerate(SCENES) if c.key == key)
             with set_curdoc(self._doc):
                 sc = cls(self.state)
+                sc.copy_blocked = bool(self.law_editor.refused)
                 self.by_key[key] = sc
                 objects = list(self.tabs.objects)
                 objects[i] = sc.panel

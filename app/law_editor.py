@@ -3,6 +3,8 @@ an expression — a polynomial with one slider per coefficient, or a smooth law 
 tanh, …) with named constants, ``w + b*w**2 - c*w**3*exp(w/d); b=10, c=1, d=50``, one slider
 per constant.
 
+* The trilinear preset (fpucore.law.TrilinearLaw) gets a slider for each of w1, w2, E1, E2, E3
+  (:mod:`app.law_trilinear`); a combination outside the class is refused with fpucore's reason.
 * A law outside the class is refused with its reason (:attr:`LawEditor.refused`) and never
   enters the state: the previous valid law stays on screen.
 
@@ -35,6 +37,9 @@ from fpucore.law import PolynomialLaw, expression_of
 from fpucore.law.presets import PRESETS
 
 from . import compute
+from .law_presets import HELP, PRESET_OPTIONS, preset_of, preset_text
+from .law_trilinear import TrilinearSliders
+from .slider_pool import SliderPool
 from .state import A_RANGE, B_RANGE, ExplorerState
 from .views.untrusted import LiteralAlert, LiteralMarkdown, md_literal
 from .widgets import FloatSlider, Syncing, document_gone, put, user_action, widened
@@ -43,22 +48,7 @@ log = logging.getLogger("fpu-explorer")
 
 #: at most this many coefficient sliders (a law of higher degree is edited as text only)
 MAX_COEFF_SLIDERS = 8
-#: the chooser's presets: label → fpucore preset name ("" while the law is no preset)
-PRESET_OPTIONS = {"(choose a preset)": "", **{f"{n}: {p.description}": n
-                                              for n, p in PRESETS.items()}}  # fmt: skip
 
-HELP = """\
-**f(w) =** an expression in `w`: numbers, `+ - * / **`, parentheses and `exp`, `log`, `sqrt`,
-`tanh`, `sinh`, `cosh`, `atan`; powers with integer or rational exponents (of positive
-arguments). Named constants go after a `;` as `name=value` pairs, e.g.
-`w + b*w**2 - c*w**3*exp(w/d); b=10, c=1, d=50`: each gets a slider. A polynomial is solved
-by exact polynomial routes, any other law through a piecewise Chebyshev representation on its
-represented interval (its error enters every error bar).
-
-The law must be in the paper's class (§2): f(0) = 0, f′(0) > 0, a convex interval (α, β) around
-0 with f′(α) = f′(β) = 0 (α may be −∞) and a single inflection w\\* in it (f″ from + to −).
-A law outside it is refused with the reason and where it fails; the previous law stays.
-"""
 
 
 class LawEditor(pn.viewable.Viewer):
@@ -108,13 +98,20 @@ class LawEditor(pn.viewable.Viewer):
             css_classes=["in-law"],
             sizing_mode="stretch_width",
         )
-        self.coeff_box = pn.Column(sizing_mode="stretch_width", css_classes=["law-coeffs"])
+        self._coeff_pool = SliderPool(self._on_pool_coeff, "law-coeff-sliders")
+        self._too_many = LiteralMarkdown("", visible=False)
+        self.coeff_box = pn.Column(
+            self._coeff_pool.box, self._too_many, sizing_mode="stretch_width",
+            css_classes=["law-coeffs"],
+        )  # fmt: skip
         self.preset = pn.widgets.Select(
             label="preset", options=PRESET_OPTIONS, value="", css_classes=["w-law-preset"],
             sizing_mode="stretch_width",
         )  # fmt: skip
         self.preset.param.watch(self._on_preset, "value")
-        self.const_box = pn.Column(sizing_mode="stretch_width", css_classes=["law-constants"])
+        self._const_pool = SliderPool(self._on_pool_const, "law-constants")
+        self.const_box = self._const_pool.box
+        self.trilinear = TrilinearSliders(self._on_trilinear)
         self.const_sliders: dict = {}
         self._const_anchor: tuple | None = None  # (expression, names, values) the ranges follow
         self.refusal = LiteralAlert(
@@ -145,6 +142,7 @@ class LawEditor(pn.viewable.Viewer):
             self.law_text,
             self.coeff_box,
             self.const_box,
+            self.trilinear.box,
             self.refusal,
             self.help,
             sizing_mode="stretch_width",
@@ -179,14 +177,13 @@ class LawEditor(pn.viewable.Viewer):
     def _on_preset(self, event) -> None:
         if not event.new:
             return
-        p = PRESETS[event.new]
         if event.new == "cubic":  # the paper's cubic: closed forms, a and b sliders
             self.refusal.visible = False
             self.refused = ""
             self._law_wanted = ""
-            self._set(expression="", **p.constants_dict)
+            self._set(expression="", **PRESETS["cubic"].constants_dict)
             return
-        self.apply(compute.join_law(p.text, p.constants_dict))
+        self.apply(preset_text(event.new))  # built at the server's warm-up (app.warmup)
 
     @user_action
     def _on_const(self, name: str, value) -> None:
@@ -197,6 +194,27 @@ class LawEditor(pn.viewable.Viewer):
         consts = {n: float(s.value) for n, s in self.const_sliders.items()}
         consts[name] = float(f"{float(value):.6g}")
         self.apply(compute.join_law(self._const_anchor[0], consts))
+
+    def _on_pool_coeff(self, slider, value) -> None:
+        k = next((k for k, s in enumerate(self.coeff_sliders) if s is slider), None)
+        if k is not None:
+            self._on_coeff(k, value)
+
+    def _on_pool_const(self, slider, value) -> None:
+        name = next((n for n, s in self.const_sliders.items() if s is slider), None)
+        if name is not None:
+            self._on_const(name, value)
+
+    @user_action
+    def _on_trilinear(self, text: str) -> None:
+        """A trilinear slider moved: its law text (5 numbers, parse only) is built here at once
+        and applied, or refused with fpucore's reason while the previous law stays."""
+        try:
+            compute.trusted_expression_law(text)
+        except ParameterError:
+            pass  # remembered: _offer shows the refusal
+        self._law_wanted = text
+        self._offer(text)
 
     @user_action
     def _on_law_kind(self, event) -> None:
@@ -292,14 +310,14 @@ class LawEditor(pn.viewable.Viewer):
             self.law_text.visible = poly
             self.law_text.value = st.expression
             self._sync_constants()
-            self._sync_coefficients(poly and not self.const_box.visible)
+            pl = self.trilinear.sync(st.expression)
+            self._sync_coefficients(poly and not self.const_box.visible and not pl)
             self.preset.value = self._preset_of(st.expression)
 
     def _preset_of(self, text: str) -> str:
         if not text:
             return "cubic" if (self.state.a, self.state.b) == (-1.0, 10.0) else ""
-        expr, _ = compute.split_law(text) if ";" in text else (text, {})
-        return next((n for n, p in PRESETS.items() if p.text == expr and n != "cubic"), "")
+        return preset_of(text)
 
     def _sync_constants(self) -> None:
         """One slider per named constant of the state's law (none for a law without)."""
@@ -314,20 +332,12 @@ class LawEditor(pn.viewable.Viewer):
         anchor = self._const_anchor
         if anchor is None or anchor[0] != expr or anchor[1] != tuple(consts):
             self._const_anchor = (expr, tuple(consts), dict(consts))
-            self.const_sliders = {}
-            for name, v in consts.items():
-                lo, hi = coeff_range(v)
-                sl = FloatSlider(
-                    label=name, start=lo, end=hi, step=(hi - lo) / 1000, value=v,
-                    css_classes=[f"w-const-{name}"], format="0.0[000]",
-                    sizing_mode="stretch_width", show_value=True,
-                )  # fmt: skip
-                sl.param.watch(lambda e, n=name: self._on_const(n, e.new), "value_throttled")
-                self.const_sliders[name] = sl
-            self.const_box.objects = list(self.const_sliders.values())
+            # the page's pooled sliders re-labelled, not new ones (app.slider_pool)
+            taken = self._const_pool.take(list(consts), [f"w-const-{n}" for n in consts])
+            self.const_sliders = dict(zip(consts, taken))
         for name, v in consts.items():
             lo, hi = coeff_range(self._const_anchor[2][name])
-            put(self.const_sliders[name], v, **widened(v, lo, hi))
+            put(self.const_sliders[name], v, step=(hi - lo) / 1000, **widened(v, lo, hi))
         self.const_box.visible = True
 
     def _sync_coefficients(self, poly: bool) -> None:
@@ -364,28 +374,20 @@ class LawEditor(pn.viewable.Viewer):
         self._coeff_anchor = tuple(coeffs)
         if len(coeffs) > MAX_COEFF_SLIDERS:
             self.coeff_sliders = []
-            self.coeff_box.objects = [
-                LiteralMarkdown(f"_degree {len(coeffs)} > {MAX_COEFF_SLIDERS}: edit the text_")
-            ]
-            return
-        sliders = []
-        for k, c in enumerate(coeffs):
-            lo, hi = coeff_range(c)
-            sl = FloatSlider(
-                label=f"c{k + 1} (w^{k + 1})" if k else "c1 (w) = f′(0)",
-                start=lo,
-                end=hi,
-                step=(hi - lo) / 1000,
-                value=c,
-                css_classes=[f"w-c{k + 1}"],
-                format="0.0[000]",
-                sizing_mode="stretch_width",
-                show_value=True,
+            self._coeff_pool.box.visible = False
+            self._too_many.param.update(
+                object=f"_degree {len(coeffs)} > {MAX_COEFF_SLIDERS}: edit the text_", visible=True
             )
-            sl.param.watch(lambda e, k=k: self._on_coeff(k, e.new), "value_throttled")
-            sliders.append(sl)
+            return
+        labels = [f"c{k + 1} (w^{k + 1})" if k else "c1 (w) = f′(0)" for k in range(len(coeffs))]
+        # the page's pooled sliders re-labelled, not new ones (app.slider_pool)
+        sliders = self._coeff_pool.take(labels, [f"w-c{k + 1}" for k in range(len(coeffs))])
+        for sl, c in zip(sliders, coeffs):  # (called in sync: the editor is muted)
+            lo, hi = coeff_range(c)
+            put(sl, c, start=lo, end=hi, step=(hi - lo) / 1000)
         self.coeff_sliders = sliders
-        self.coeff_box.objects = sliders
+        self._coeff_pool.box.visible = True
+        self._too_many.visible = False
 
 
 def coeff_range(c0: float) -> tuple[float, float]:

@@ -148,7 +148,9 @@ class ExplorerState(param.Parameterized):
                         f"V = V_SK = {vsk:.10g} is the superkink itself: switch the mode to "
                         "'superkink' or move V into (c+, V_SK) or (V_SK, c-)."
                     )
-                qc.solitary(lw, self.w_plus, self.V)
+                # its refusals without its profile (near a sonic end a smooth law's profile and
+                # E_ren took ~0.8 s, and the sidebar asks this several times per law change)
+                qc.solitary_kind(lw, self.w_plus, self.V)
         except ParameterError as exc:
             return str(exc)
         return None
@@ -160,11 +162,14 @@ class ExplorerState(param.Parameterized):
             lw = self.law()
             lo, ws, hi = self.w_plus_range()
             out.update(alpha=lw.alpha, w_star=ws, beta=lw.beta, w_lo=lo, w_hi=hi)
+            if (hard := getattr(lw, "hard_regime", None)) is not None:
+                out["hard"] = hard  # a piecewise-linear law: [w₁, w₂] in place of w*
             cp, vsk, cm = self.speeds()
             out.update(c_plus=cp, V_SK=vsk, c_minus=cm)
-            out["V_lo"], out["V_hi"] = qc.superkink_velocity_bounds(self.law())
         except ParameterError:
-            pass
+            return out
+        with contextlib.suppress(ParameterError):  # refused for piecewise-linear laws (fpucore)
+            out["V_lo"], out["V_hi"] = qc.superkink_velocity_bounds(self.law())
         return out
 
     def kind(self) -> str:
@@ -173,7 +178,7 @@ class ExplorerState(param.Parameterized):
             return "invalid"
         if self.mode == "superkink":
             return "superkink"
-        return qc.solitary(self.law(), self.w_plus, self.V).kind
+        return qc.solitary_kind(self.law(), self.w_plus, self.V)
 
     def set_typed_N(self, value) -> None:
         """N typed into the box beside the slider: an odd N goes to the even N below it and one
@@ -199,6 +204,12 @@ class ExplorerState(param.Parameterized):
             yield
         finally:
             self._tying = False
+
+    @property
+    def adjusting(self) -> bool:
+        """True while the coupling updates the state inside another change's watchers (a new
+        law's w₊ and V, superkink mode's V = V_SK): that change's own watchers follow."""
+        return self._tying
 
     def _tie(self, *events):
         if self._tying:
@@ -227,8 +238,9 @@ class ExplorerState(param.Parameterized):
             return  # an invalid law: problem() explains it
         moved = []
         new: dict = {}
-        if not (lo < self.w_plus < hi) or abs(self.w_plus - ws) <= 1e-9 * max(1.0, abs(ws)):
-            new["w_plus"] = lo + 0.5 * (ws - lo)
+        at_w_star = abs(self.w_plus - ws) <= 1e-9 * max(1.0, abs(ws))
+        if not (lo < self.w_plus < hi) or at_w_star or self._in_hard_regime(self.w_plus):
+            new["w_plus"] = self._lower_middle(lo, ws)
             moved.append(f"w₊ from {self.w_plus:.8g} to {new['w_plus']:.8g}")
         wp = new.get("w_plus", self.w_plus)
         if self.mode == "solitary":
@@ -244,6 +256,21 @@ class ExplorerState(param.Parameterized):
         with self._untied():
             self.param.update(**new)
         self.note = "new law: " + " and ".join(moved) + " (outside the new law's ranges)"
+
+    def _in_hard_regime(self, w_plus: float) -> bool:
+        """A piecewise-linear law's hard regime [w₁, w₂] (its w*: no wave from there)."""
+        hard = getattr(self.law(), "hard_regime", None)
+        return hard is not None and hard[0] <= w_plus <= hard[1]
+
+    def _lower_middle(self, lo: float, ws: float) -> float:
+        """The w₊ a new law starts from: the middle of its lower branch (lo, w*); for a
+        piecewise-linear law the middle of its soft regime's part (max(lo, 0), w₁) (its
+        lower branch's window (lo, w*) reaches far below 0 (α = −∞) and contains [w₁, w*])."""
+        hard = getattr(self.law(), "hard_regime", None)
+        if hard is None:
+            return lo + 0.5 * (ws - lo)
+        a = max(lo, 0.0) if hard[0] > 0.0 else lo
+        return a + 0.5 * (hard[0] - a)
 
     def _back_to_solitary(self) -> None:
         """Superkink → solitary: V = V_SK is no solitary wave.  Return to the solitary V used

@@ -31,6 +31,7 @@ from fpucore.warm import warm_all  # noqa: E402
 from . import compute  # noqa: E402
 from .content_policy import install_content_security_policy  # noqa: E402
 from .explorer import Explorer  # noqa: E402
+from .law_presets import preset_texts  # noqa: E402
 from .resources import serve_locally  # noqa: E402
 from .scene_registry import WARM_SCENES  # noqa: E402
 
@@ -54,6 +55,15 @@ def _warm_background() -> None:
         os.setpriority(os.PRIO_PROCESS, p.pid, 19)
     except OSError as exc:
         log.warning("background JIT warm-up not started: %s", exc)
+
+
+def request_preset_laws() -> list[str]:
+    """Every preset's law (app.law_presets) requested from the law worker (never waited for
+    here); returns their texts."""
+    texts = preset_texts()
+    for text in texts:
+        compute.request_law(text)
+    return texts
 
 
 def warm(verbose: bool = True, scenes: str | None = None) -> dict[str, float]:
@@ -81,8 +91,10 @@ def warm(verbose: bool = True, scenes: str | None = None) -> dict[str, float]:
     # ~10 s of the wait for /liveness); a heavy job submitted meanwhile queues behind their
     # warm-up.  Then the lazy routes (fpucore.warm.LAZY) compile on one core.
     threading.Thread(target=_warm_background, name="fpu-warm-workers", daemon=True).start()
-    # the law worker starts and imports SymPy now, not at the first typed law or law link
+    # the law worker starts and imports SymPy now, not at the first typed law or law link; then
+    # it builds every preset's law (0.04-0.5 s each), so a preset chosen is applied at once
     compute.request_law(WARM_LAW)
+    request_preset_laws()
 
     explorer = Explorer()
     for scene in explorer.scenes:

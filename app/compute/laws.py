@@ -24,7 +24,14 @@ from concurrent.futures import Future
 import numpy as np
 
 from fpucore.errors import ParameterError
-from fpucore.law import CubicLaw, HardeningSofteningLaw, PolynomialLaw, law_from_expression
+from fpucore.law import (
+    CubicLaw,
+    HardeningSofteningLaw,
+    PiecewiseLinearLaw,
+    PolynomialLaw,
+    TrilinearLaw,
+    law_from_expression,
+)
 from fpucore.law.smooth import SmoothLaw
 from fpucore.parallel import Executor
 
@@ -302,4 +309,6 @@ def law_key(lw: HardeningSofteningLaw) -> tuple:
         return ("poly", *(exact(c) for c in lw.coeffs))
     if isinstance(lw, SmoothLaw):
         return ("smooth", lw.text, *((n, exact(v)) for n, v in lw.constants))
-    raise ParameterError("law", lw, "a CubicLaw, PolynomialLaw or SmoothLaw")
+    if isinstance(lw, (TrilinearLaw, PiecewiseLinearLaw)):  # PL: breakpoints and slopes
+        return ("pl", tuple(exact(b) for b in lw.breakpoints), tuple(exact(s) for s in lw.slopes))
+    raise ParameterError("law", lw, "a CubicLaw, PolynomialLaw, SmoothLaw or piecewise-linear law")

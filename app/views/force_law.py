@@ -63,6 +63,7 @@ class ForceLawScene(BokehScene):
         self.r_pts[1].data["what"] = np.empty(0, dtype=object)
         self.r_pts[1].name = "force-special-points"  # read by the tests
         self.r_V[1].name = "force-rayleigh-V"  # read by the browser tests
+        self.r_f[1].name = "force-curve"
         # each special point named beside it; hovering gives its role and exact coordinates
         fig.add_layout(
             LabelSet(x="x", y="y", text="label", source=self.r_pts[1], x_offset=6,
@@ -120,10 +121,16 @@ class ForceLawScene(BokehScene):
         law_key = compute.law_key(lw)
         wp_key = law_key + (exact(sk.w_plus),)
 
-        # alpha = −inf (a law hardening for every w < 0): the w₊ window's end instead
-        left = alpha if np.isfinite(alpha) else s.w_plus_range()[0]
-        span = beta - left
-        xa, xb = left - 0.06 * span, beta + 0.06 * span
+        corners = getattr(lw, "breakpoints", None)  # a piecewise-linear law's corners
+        if corners is not None:  # α, β often infinite: the corners and the states in view
+            near = [*corners, 0.0, sk.w_plus, sk.w_minus, *(x for x in (alpha, beta)
+                                                             if np.isfinite(x))]  # fmt: skip
+            left, right = min(near), max(near)
+        else:  # alpha = −inf (a law hardening for every w < 0): the w₊ window's end instead
+            left = alpha if np.isfinite(alpha) else s.w_plus_range()[0]
+            right = beta
+        span = right - left
+        xa, xb = left - 0.06 * span, right + 0.06 * span
         rep = lw.interval if isinstance(lw, SmoothLaw) else None
         if rep is not None:  # f only where it is represented, the whole interval in view
             err = lw.representation_error
@@ -135,6 +142,8 @@ class ForceLawScene(BokehScene):
             w = np.linspace(rep[0], rep[1], 801)
         else:
             w = np.linspace(xa, xb, 801)
+        if corners is not None:  # each corner sampled exactly: drawn sharp, not cut
+            w = np.union1d(w, [c for c in corners if xa <= c <= xb])
         fw = lw.f(w)
         up.data(self.r_f[1], law_key, x=w, y=fw)
         wp, wm = sk.w_plus, sk.w_minus
@@ -159,6 +168,17 @@ class ForceLawScene(BokehScene):
             f"superkink construction for w₊ = {fmt_num(wp)}: w₋ = {fmt_num(wm)}, "
             f"V_SK = {fmt_num(sk.V)}"
         )
+
+        if corners is not None:
+            slopes = lw.slopes
+            names = ("w₁", "w₂") if len(corners) == 2 else tuple(f"b{k + 1}" for k in
+                                                                 range(len(corners)))  # fmt: skip
+            for k, (c, name) in enumerate(zip(corners, names)):
+                pts["w"].append(c)
+                pts["f"].append(float(lw.f(c)))
+                pts["label"].append(name)
+                pts["what"].append(f"corner: slope {slopes[k]:.6g} → {slopes[k + 1]:.6g}")
+            shown += "; corners at " + ", ".join(fmt_num(c) for c in corners)
 
         solitary = s.mode == "solitary"
         problem = s.problem() if solitary else None
@@ -207,9 +227,10 @@ class ForceLawScene(BokehScene):
         ymin, ymax = float(np.min(fw)), float(np.max(fw))
         pad = 0.08 * (ymax - ymin)
         for sp, lab, x0, text in zip(self.spans, self.labels, (ws, alpha, beta), ("w*", "α", "β")):
-            x0 = float(x0) if np.isfinite(x0) else float(w[0])  # alpha = −inf: at the edge
-            up.set(sp, location=x0)
-            up.set(lab, x=x0, y=ymax + 0.5 * pad, text=text if x0 != w[0] else "α = −∞ ←")
+            if not np.isfinite(x0):  # α = −∞ / β = +∞: at the edge, said so
+                x0, text = (float(w[0]), "α = −∞ ←") if x0 < 0 else (float(w[-1]), "β = +∞ →")
+            up.set(sp, location=float(x0))
+            up.set(lab, x=float(x0), y=ymax + 0.5 * pad, text=text)
         up.set(self.rep_box, visible=rep is not None)
         up.set(self.rep_label, visible=rep is not None)
         if rep is not None:

@@ -140,7 +140,11 @@ def ranges_markdown(st: ExplorerState, s: dict) -> str:
             f"w₊ ∈ ({s['w_lo']:.5g}, {s['w_hi']:.5g}) (where w₋ stays inside (α, β) = "
             f"({s['alpha']:.5g}, {s['beta']:.5g}))"
         )
-    lines = [f"{where}, **w\\* = {s['w_star']:.6g}** excluded"]
+    if "hard" in s:  # a piecewise-linear law: no wave from its hard regime
+        lines = [f"{where}, the hard regime **[w₁, w₂] = [{s['hard'][0]:.6g}, "
+                 f"{s['hard'][1]:.6g}]** excluded"]  # fmt: skip
+    else:
+        lines = [f"{where}, **w\\* = {s['w_star']:.6g}** excluded"]
     if "V_SK" in s:
         lines.append(
             "solitary-wave velocities (tensile or compressive): "
@@ -148,7 +152,8 @@ def ranges_markdown(st: ExplorerState, s: dict) -> str:
             f"(V_SK, c₋) = ({s['V_SK']:.6g}, {s['c_minus']:.6g})"
         )
         lines.append(f"**V_SK = {s['V_SK']:.10g}** (superkink)")
-        lines.append(f"superkink V bounds ({s['V_lo']:.6g}, {s['V_hi']:.6g})")
+        if "V_lo" in s:  # (not for a piecewise-linear law: fpucore refuses them for now)
+            lines.append(f"superkink V bounds ({s['V_lo']:.6g}, {s['V_hi']:.6g})")
     kind = st.kind()
     lines.append(f"current: **{kind}**" if kind != "invalid" else f"⚠ {md_literal(st.problem())}")
     if st.note:

@@ -70,6 +70,9 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
     cheap = False
     #: the scene draws figures: "Download figure" (SVG, PNG) and "Download notebook"
     exports = True
+    #: "Copy as Python" stays off after a render (set by the page while a refused law is shown:
+    #: a render of the previous law that ends after the refusal must not turn it back on)
+    copy_blocked = False
 
     def __init__(self, state: ExplorerState, **params):
         super().__init__(**params)
@@ -347,7 +350,7 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
                 self.wait.served(*parts)
             self.code.value = self.python_code()
             self.download.disabled = False
-            self.copy_btn.disabled = False
+            self.copy_btn.disabled = self.copy_blocked
             for w in self.exporters:
                 w.disabled = False
         except Exception as exc:

@@ -159,3 +159,12 @@ def solitary(law: HardeningSofteningLaw, w_plus: float, V: float) -> cf.QCSolita
     if is_closed_form(law):
         return cf.solitary(law, w_plus, V)
     return gen.solitary(law, w_plus, V)
+
+
+def solitary_kind(law: HardeningSofteningLaw, w_plus: float, V: float) -> str:
+    """``solitary(law, w_plus, V).kind`` ("tensile" or "compressive") with the same refusals,
+    without the profile and E_ren^QC of the general route (which near a sonic end cost up to a
+    second for a smooth law): for a sidebar's or a scene's "is this a wave, and which"."""
+    if _pl(law) or is_closed_form(law):
+        return solitary(law, w_plus, V).kind  # closed forms: the whole wave is cheap
+    return gen.solitary_kind(law, w_plus, V)

@@ -50,7 +50,7 @@ determined by a level set of nearly cancelling terms only to ≈ 64·eps·κ, κ
 
 from fpucore.qc.closed_forms import first_integral
 from fpucore.qc.general_rayleigh import rayleigh_roots, w_S
-from fpucore.qc.general_solitary import QCSolitaryGeneral, solitary
+from fpucore.qc.general_solitary import QCSolitaryGeneral, solitary, solitary_kind
 from fpucore.qc.general_speeds import (
     QCSpeeds,
     solitary_intervals,
@@ -67,5 +67,5 @@ __all__ = [
     "QCSpeeds", "QCSuperkinkGeneral", "QCSolitaryGeneral", "speeds", "sound_speeds",
     "w_minus_from_w_plus", "w_minus_sonic", "rayleigh_roots", "w_S", "solitary_intervals",
     "superkink_w_plus_range", "superkink_velocity_bounds", "superkink_from_w_plus",
-    "superkink_from_V", "solitary", "first_integral",
+    "superkink_from_V", "solitary", "solitary_kind", "first_integral",
 ]  # fmt: skip

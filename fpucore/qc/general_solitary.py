@@ -97,15 +97,10 @@ def _sw_g(law, wB: float, wM: float, V2: float):
     return g
 
 
-def solitary(
-    law: HardeningSofteningLaw, w_plus: float, V: float, check: bool = True
-) -> QCSolitaryGeneral:
-    """QC solitary wave for the state w₊ ahead of the associated superkink, velocity V (eq. wB):
-    V ∈ (c₊, V_SK) → w_B = w₊; V ∈ (V_SK, c₋) → w_B = w_S(V).  ``check=False`` skips the
-    first-integral check on the profile (a third of the cost; families need only E and w_M):
-    ``first_integral_residual`` is then NaN."""
-    t0 = time.perf_counter()
-    V = require_V(V)
+def _bracket(law: HardeningSofteningLaw, w_plus: float, V: float):
+    """The checks of :func:`solitary` before any profile work (its refusals, word for word):
+    (speeds, interval, w_B, its error, w_near, the other saddle, w_far's error, J(w)); w_M is
+    the root of J in (w_near, other), so the wave's side of w_B is that of ``other``."""
     sp = speeds(law, w_plus)
     w_plus, cp, vsk, cm = sp.w_plus, sp.c_plus, sp.V_SK, sp.c_minus
     valid = f"{fmt_interval(cp, vsk)} or {fmt_interval(vsk, cm)}"
@@ -124,6 +119,31 @@ def solitary(
     Jw = lambda w: scalar_J(law, wB, w - wB, V2)  # noqa: E731
     if not (Jw(w_near) < 0 < Jw(other)):
         raise ParameterError("V", V, valid, "too close to an end of the interval to resolve")
+    return sp, interval, wB, wB_err, w_near, other, far_err, Jw
+
+
+def solitary_kind(law: HardeningSofteningLaw, w_plus: float, V: float) -> str:
+    """"tensile" or "compressive": the :attr:`~fpucore.qc.QCSolitary.kind` of
+    ``solitary(law, w_plus, V)`` and the same refusals, without its profile, energy and check
+    (near a sonic end those cost up to a second for a smooth law; this costs a few root
+    evaluations).  w_M lies in the bracket (w_near, other), on ``other``'s side of w_B."""
+    V = require_V(V)
+    _, _, wB, _, _, other, _, _ = _bracket(law, w_plus, V)
+    return "tensile" if other > wB else "compressive"
+
+
+def solitary(
+    law: HardeningSofteningLaw, w_plus: float, V: float, check: bool = True
+) -> QCSolitaryGeneral:
+    """QC solitary wave for the state w₊ ahead of the associated superkink, velocity V (eq. wB):
+    V ∈ (c₊, V_SK) → w_B = w₊; V ∈ (V_SK, c₋) → w_B = w_S(V).  ``check=False`` skips the
+    first-integral check on the profile (a third of the cost; families need only E and w_M):
+    ``first_integral_residual`` is then NaN."""
+    t0 = time.perf_counter()
+    V = require_V(V)
+    sp, interval, wB, wB_err, w_near, other, far_err, Jw = _bracket(law, w_plus, V)
+    w_plus, cp, vsk, cm = sp.w_plus, sp.c_plus, sp.V_SK, sp.c_minus
+    V2 = V * V
     wM, wM_err = bracketed_root(Jw, w_near, other, noisy=is_smooth(law))
     if wB_err > 0:  # w_B = w_S carries its root error into w_M: G_B(w_M; w_B) = 0 gives
         # dw_M/dw_B = −(V² − f′(w_B))(w_M − w_B)/h_B(w_M), h_B = f − f(w_B) − V²(· − w_B)

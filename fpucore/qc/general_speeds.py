@@ -110,8 +110,11 @@ def w_minus_sonic(law: HardeningSofteningLaw, w_plus: float, with_error: bool = 
     return (x, err) if with_error else x
 
 
+@functools.lru_cache(maxsize=256)  # laws are frozen and hashable: asked many times per state
 def speeds(law: HardeningSofteningLaw, w_plus: float) -> QCSpeeds:
-    """All speeds for the state w₊ ahead, with error bars; c₊ < V_SK < c₋ for w₊ ≠ w*."""
+    """All speeds for the state w₊ ahead, with error bars; c₊ < V_SK < c₋ for w₊ ≠ w*.
+    Memoised per (law, w₊): sound_speeds, solitary_intervals, solitary and solitary_kind of one
+    state share one computation (``elapsed_s`` is that computation's)."""
     t0 = time.perf_counter()
     w_plus = require_w_plus(law, w_plus)
     wm, wm_err = w_minus_from_w_plus(law, w_plus)

@@ -221,12 +221,18 @@ class PLSolitary(Result):
     arcs: tuple = field(default=(), repr=False, compare=False)
 
     ERROR_FIELDS: ClassVar = ("first_integral_residual", "energy_error")
-    DERIVED: ClassVar = ("amplitude", "converged", "status", "message")
+    DERIVED: ClassVar = ("amplitude", "width", "converged", "status", "message")
     EXCLUDE: ClassVar = ("law", "arcs")
 
     @property
     def amplitude(self) -> float:
         return abs(self.w_M - self.w_B)
+
+    @property
+    def width(self) -> float:
+        """1/γ, the tails' decay length (lattice units), as the cubic's (the phase plane and
+        the explorer's profiles size their windows by it)."""
+        return 1.0 / self.gamma
 
     def profile(self, xi):
         """w(ξ) (even in ξ), vectorised."""
@@ -339,12 +345,17 @@ class PLSuperkink(EqualAreaChecked):
     arcs_minus: tuple = field(default=(), repr=False, compare=False)
 
     ERROR_FIELDS: ClassVar = ("driving_force", "rayleigh_residual")
-    DERIVED: ClassVar = ("amplitude", "w_center", "converged", "status", "message")
+    DERIVED: ClassVar = ("amplitude", "width", "w_center", "converged", "status", "message")
     EXCLUDE: ClassVar = ("law", "arcs_plus", "arcs_minus")
 
     @property
     def amplitude(self) -> float:
         return abs(self.w_minus - self.w_plus)
+
+    @property
+    def width(self) -> float:
+        """1/p, the decay length ahead (lattice units), as the cubic's."""
+        return 1.0 / self.p
 
     @property
     def w_center(self) -> float:
