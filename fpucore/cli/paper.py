@@ -134,7 +134,8 @@ def run(args) -> int:
     bar.close()
     n = sum(len(r.comparisons) for r in results)
     ok = sum(r.n_agree for r in results)
-    summary = (f"{len(results)}/{len(labels)} figures, {ok} of {n} printed numbers agree, "
+    what = "printed numbers" if args.family == "paper" else "rows (closed forms, second methods)"
+    summary = (f"{len(results)}/{len(labels)} figures, {ok} of {n} {what} agree, "
                f"{wall:.1f} s")  # fmt: skip
     # every file atomically (fpucore/cli/common.py: output_file): a full disk leaves no partial
     # file; the computed figures stay in the cache, so a rerun only writes
