@@ -31,7 +31,7 @@ _F = [
     ("tri_flattops", "waves", fw.fig_tri_flattops, 25.0,
      "Solitary waves near the kink limit, w₊ = 0.3: discrete (points, N = 64) and QC (curves) at "
      "V_SK ∓ ΔV — flat tops (kink–antikink bundles) whose plateau tends to w₋."),
-    ("tri_compact", "waves", fw.fig_tri_compact, 1.0,
+    ("tri_compact", "waves", fw.fig_tri_compact, 25.0,
      "The degenerate law E₁ = 0: compact discrete solitary waves on w_B = 0.2 for 0 < V < V_max; "
      "(a) amplitude against V, explicit form (curve) and solver (points); (b) profiles."),
     ("tri_floquet", "Floquet", fw.fig_tri_floquet, 5.0,
