@@ -157,19 +157,32 @@ ASYM_E3 = (0.0, 0.5, 2.0)  # E₃ of the checked rows: zero modulus, E₃ < E₁
 
 
 def fig_tri_existence(reduced: bool):
-    """Existence diagram: (a) c₊, V_SK, c₋ against w₊ (fpucore.qc.diagram.existence_diagram,
-    both branches); (b) the same at w₊ = 0.3 against the asymmetry E₃ of the softer regime after
-    the hard one (E₃ = E₁ = 1: equal soft moduli).  Solitary waves exist for c₊ < V < V_SK and
-    V_SK < V < c₋; superkinks bifurcate at w₊ → w₁ with V_SK → √E₂ (fpucore.qc.piecewise)."""
+    """Existence diagram: (a) c₊, V_SK, c₋ against w₊ on both branches (w₊ < w₁ and w₂ < w₊ <
+    the upper branch's end; fpucore.qc's PL closed forms); (b) the same at w₊ = 0.3 against the
+    asymmetry E₃ of the softer regime after the hard one (E₃ = E₁ = 1: equal soft moduli).
+    Solitary waves exist for c₊ < V < V_SK and V_SK < V < c₋; superkinks bifurcate at w₊ → w₁
+    with V_SK → √E₂ (fpucore.qc.piecewise)."""
     clock = Clock()
-    d = qc.diagram.existence_diagram(LAW, n=80 if reduced else 400)
-    a_ser = (
-        series("V_SK (superkink limit)", d.w_plus, d.V_SK),
-        series("c₊ (sonic)", d.w_plus, d.c_plus, "dashed"),
-        series("c₋ (sonic)", d.w_plus, d.c_minus, "dashed"),
+    # each branch by the PL closed forms (qc.sound_speeds); qc.diagram.existence_diagram samples
+    # the general quadrature route for non-cubic laws, whose V_SK is off by up to 4% here
+    n = 60 if reduced else 300
+    hi = qc.superkink_w_plus_range(LAW, "upper")[1]
+    a_ser: list = []
+    for name, grid in (
+        ("lower", np.linspace(-6.0, W1, n + 1)[:-1]),
+        ("upper", np.linspace(W2, hi, n + 1)[1:-1]),
+    ):
+        sp = np.array([qc.sound_speeds(LAW, float(w)) for w in grid])
+        first = name == "lower"
+        a_ser += [
+            series("V_SK (superkink limit)" if first else "", grid, sp[:, 1]),
+            series("c₊ (sonic)" if first else "", grid, sp[:, 0], "dashed"),
+            series("c₋ (sonic)" if first else "", grid, sp[:, 2], "dashed"),
+        ]
+    a_ser += [
         series("hard regime [w₁, w₂]", [W1], [0.0], "vline"),
         series("", [W2], [0.0], "vline"),
-    )
+    ]
     # w₊ = 0.3 has a partner while E₃ < 3.5 (w₊ > w₁ − (E₂ − E₃)(w₂ − w₁)/(E₃ − E₁))
     e3 = np.linspace(0.0, 3.4, 18 if reduced else 69)
     sp = [qc.sound_speeds(TrilinearLaw(W1, W2, E1, E2, float(e)), W_PLUS) for e in e3]
@@ -178,7 +191,7 @@ def fig_tri_existence(reduced: bool):
         for i, (name, style) in enumerate((("c₊", "dashed"), ("V_SK", "line"), ("c₋", "dashed")))
     )
     panels = (
-        Panel("(a) velocities of solitary waves against w₊", "w₊", "V", a_ser),
+        Panel("(a) velocities of solitary waves against w₊", "w₊", "V", tuple(a_ser)),
         Panel(f"(b) against the asymmetry E₃ at w₊ = {W_PLUS:g}", "E₃", "V", b_ser),
     )
     t = clock.s
@@ -217,5 +230,5 @@ def fig_tri_existence(reduced: bool):
                 source=f"qc.superkink_from_w_plus(E3={e:g} law, 0.3)",
             )
         )
-    params = {"E3": tuple(e3.tolist()), "w_plus": W_PLUS, "n": len(d.w_plus)}
+    params = {"E3": tuple(e3.tolist()), "w_plus": W_PLUS, "n": n}
     return panels, comps, params, ""
