@@ -185,9 +185,9 @@ def fig_tri_existence(reduced: bool):
     ]
     # w₊ = 0.3 has a partner while E₃ < 3.5 (w₊ > w₁ − (E₂ − E₃)(w₂ − w₁)/(E₃ − E₁))
     e3 = np.linspace(0.0, 3.4, 18 if reduced else 69)
-    sp = [qc.sound_speeds(TrilinearLaw(W1, W2, E1, E2, float(e)), W_PLUS) for e in e3]
+    sp_e3 = [qc.sound_speeds(TrilinearLaw(W1, W2, E1, E2, float(e)), W_PLUS) for e in e3]
     b_ser = tuple(
-        series(name, e3, [s[i] for s in sp], style)
+        series(name, e3, [s[i] for s in sp_e3], style)
         for i, (name, style) in enumerate((("c₊", "dashed"), ("V_SK", "line"), ("c₋", "dashed")))
     )
     panels = (
