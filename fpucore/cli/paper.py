@@ -7,6 +7,8 @@
     fpu paper --out report.html                        # all figures + comparison table, offline
     fpu paper --table docs/paper_comparison.md         # the comparison table (Markdown + .json)
     fpu paper --thumbnails app/assets/figures          # <label>.png, 400 px wide, per figure
+    fpu paper --family trilinear --list                # the trilinear family's figures
+    fpu paper --family trilinear --figure tri_compact --out tri_compact.html
 
 The explorer's committed copies (package data of the explorer, read by its Paper tab):
     fpu paper --table docs/paper_comparison.md --table-json app/assets/paper_comparison.json \
@@ -30,6 +32,9 @@ from fpucore.errors import ParameterError
 def register(sub) -> None:
     p = sub.add_parser("paper", help="the paper's figures: compute, compare, export")
     p.add_argument("--list", action="store_true", help="list the figures and exit")
+    p.add_argument("--family", default="paper",
+                   help="paper (the paper's figures, default) or trilinear (the soft-hard-soft "
+                        "piecewise-linear family's figures)")  # fmt: skip
     p.add_argument("--figure", action="append", default=None, metavar="LABEL",
                    help="a figure's LaTeX label (repeatable; default: all)")  # fmt: skip
     p.add_argument("--out", default=None,
@@ -51,10 +56,17 @@ def register(sub) -> None:
 
 def _check(args) -> list[str]:
     from fpucore.paper import plot  # heavy: Numba
-    from fpucore.paper.registry import LABELS, figure  # heavy: Numba
+    from fpucore.paper.report import family  # heavy: Numba
 
+    reg = family(args.family)
     formats = (*plot.FORMATS, ".ipynb")
-    labels = list(LABELS) if not args.figure else [figure(lab).label for lab in args.figure]
+    labels = list(reg.LABELS) if not args.figure else [reg.figure(lab).label for lab in args.figure]
+    if args.family != "paper" and args.out is not None and args.out.lower().endswith(".ipynb"):
+        why = f"notebooks hold the paper's figures, not --family {args.family}"
+        raise ParameterError("--out", args.out, "an .html, .svg or .png file", why)
+    if args.family != "paper" and (args.table is not None or args.thumbnails is not None):
+        why = "the table and thumbnails are the paper's (the explorer's copies)"
+        raise ParameterError("--family", args.family, "paper with --table or --thumbnails", why)
     if args.out is not None and Path(args.out).suffix.lower() not in formats:
         raise ParameterError("--out", args.out, "a file ending in " + ", ".join(formats))
     if args.out is not None and args.out.lower().endswith(".ipynb") and len(labels) != 1:
@@ -82,9 +94,10 @@ def run(args) -> int:
     from tqdm import tqdm  # heavy: tqdm
 
     from fpucore.paper import notebook, plot  # heavy: Numba
-    from fpucore.paper.registry import FIGURES, LABELS  # heavy: Numba
-    from fpucore.paper.report import compute_many  # heavy: Numba
+    from fpucore.paper.report import compute_many, family  # heavy: Numba
 
+    reg = family(args.family)
+    FIGURES, LABELS = reg.FIGURES, reg.LABELS
     if args.list:
         if args.json:
             rows = [{"label": lab, "number": FIGURES[lab].number, "section": FIGURES[lab].section,
@@ -117,11 +130,12 @@ def run(args) -> int:
 
     results, missing, wall = compute_many(labels, reduced=args.reduced, use_cache=not args.no_cache,
                                           workers=args.workers, time_budget_s=args.time_budget,
-                                          progress=progress)  # fmt: skip
+                                          progress=progress, family_name=args.family)  # fmt: skip
     bar.close()
     n = sum(len(r.comparisons) for r in results)
     ok = sum(r.n_agree for r in results)
-    summary = (f"{len(results)}/{len(labels)} figures, {ok} of {n} printed numbers agree, "
+    what = "printed numbers" if args.family == "paper" else "rows (closed forms, second methods)"
+    summary = (f"{len(results)}/{len(labels)} figures, {ok} of {n} {what} agree, "
                f"{wall:.1f} s")  # fmt: skip
     # every file atomically (fpucore/cli/common.py: output_file): a full disk leaves no partial
     # file; the computed figures stay in the cache, so a rerun only writes
@@ -132,7 +146,9 @@ def run(args) -> int:
                 plot.save(results[0], tmp)  # .svg / .png: the figure alone
             else:  # HTML: the figure(s) with caption, notes and the comparison table
                 title = (f"Fig. {FIGURES[labels[0]].number} ({labels[0]}) — fpu-explorer"
-                         if len(labels) == 1 else "The paper, figure by figure — fpu-explorer")
+                         if len(labels) == 1 else "The paper, figure by figure — fpu-explorer"
+                         if args.family == "paper" else
+                         "The trilinear family, figure by figure — fpu-explorer")
                 plot.report_html(results, FIGURES, tmp, title, summary)
         print(f"wrote {args.out}", file=people)
     if args.table is not None:

@@ -16,9 +16,12 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 
 from fpucore.errors import ParameterError
+from fpucore.paper import registry, registry_trilinear
 from fpucore.paper.figure import FigureResult
-from fpucore.paper.registry import FIGURES, LABELS, figure
 from fpucore.parallel import Executor
+
+# the figure families: the paper's figures, and the trilinear family's (a second registry)
+FAMILIES = {"paper": registry, "trilinear": registry_trilinear}
 
 PKG = Path(__file__).resolve().parents[1]
 
@@ -62,10 +65,27 @@ def store(r: FigureResult, version: str) -> None:
     tmp.replace(p)  # atomic: a concurrent reader never sees half a file
 
 
-def compute_job(item: tuple[str, bool]) -> FigureResult:
-    """One figure (module-level: picklable for the pool)."""
-    label, reduced = item
-    return FIGURES[label].compute(reduced)
+def family(name: str):
+    """The registry module of a figure family ("paper" or "trilinear"): its FIGURES, LABELS and
+    figure(label); a ParameterError naming the families otherwise."""
+    if not isinstance(name, str) or name not in FAMILIES:
+        raise ParameterError("family", name, "one of " + ", ".join(FAMILIES))
+    return FAMILIES[name]
+
+
+def entry(label: str):
+    """The registry entry of ``label`` in whichever family holds it (labels are unique across
+    families: the trilinear ones start with ``tri_``)."""
+    for reg in FAMILIES.values():
+        if label in reg.FIGURES:
+            return reg.FIGURES[label]
+    return registry.figure(label)  # the paper's error, naming its labels
+
+
+def compute_job(item: tuple) -> FigureResult:
+    """One figure (module-level: picklable for the pool): (label, reduced[, family])."""
+    label, reduced, fam = (*item, "paper")[:3]
+    return family(fam).FIGURES[label].compute(reduced)
 
 
 def compute_many(
@@ -75,15 +95,19 @@ def compute_many(
     workers: int | None = None,
     time_budget_s: float = 3600.0,
     progress: Callable[[int, int, str], None] | None = None,
+    family_name: str = "paper",
 ) -> tuple[list[FigureResult], list[str], float]:
     """Figures ``labels`` (default all 17) in paper order: (results, labels not computed within
     ``time_budget_s`` or failed — with why, wall time s).  Cached figures are read, the others
     computed in a process pool of ``workers`` (default all cores; 1: in this process), the most
     expensive first.  The budget is checked between figures (a running one is not interrupted).
+    ``family_name``: "paper" (default) or "trilinear" (fpucore.paper.registry_trilinear).
     """
-    labels = list(LABELS if labels is None else labels)
+    reg = family(family_name)
+    FIGURES = reg.FIGURES
+    labels = list(reg.LABELS if labels is None else labels)
     for lab in labels:
-        figure(lab)
+        reg.figure(lab)
     if not (isinstance(time_budget_s, (int, float)) and time_budget_s > 0):
         raise ParameterError("time_budget_s", time_budget_s, "> 0 seconds")
     t0 = time.perf_counter()
@@ -114,7 +138,7 @@ def compute_many(
             progress(count, total, lab)
         return time.perf_counter() - t0 <= time_budget_s
 
-    items = [(lab, reduced) for lab in todo]
+    items = [(lab, reduced, family_name) for lab in todo]
     if todo and workers == 1:  # this process, one figure after the other
         for item in items:
             try:
@@ -150,7 +174,7 @@ def markdown_table(results: Sequence[FigureResult], missing: Sequence[str] = ())
         "|---|---|---|---|---|---|---|---|",
     ]
     for r in results:
-        fig = FIGURES[r.label]
+        fig = entry(r.label)
         for c in r.comparisons:
             verdict = "agrees" if c.agrees else "**disagrees**"
             lines.append(
