@@ -27,7 +27,7 @@ import time
 from collections.abc import Callable
 
 from fpucore import floquet, simulate, wave
-from fpucore.law import CubicLaw, ddforce, dforce, force
+from fpucore.law import CubicLaw, TrilinearLaw, ddforce, dforce, force
 
 
 def _law_kernels(law) -> None:
@@ -60,8 +60,6 @@ def _floquet_structured(law) -> None:
 def _wave_pwl(law) -> None:
     # piecewise-linear laws: the event-located period map (base, with stored sub-steps) and the
     # tangent on it, through one superkink and its spectrum (the law argument is the cubic's)
-    from fpucore.law import TrilinearLaw
-
     pl = TrilinearLaw(0.5, 1.5, 1.0, 4.0, 0.2)
     floquet.spectrum(wave.solve_superkink(pl, 1.6, N=64), finite_size=False)
 

@@ -145,10 +145,13 @@ def run(args) -> int:
             if len(labels) == 1 and results and not args.out.lower().endswith(".html"):
                 plot.save(results[0], tmp)  # .svg / .png: the figure alone
             else:  # HTML: the figure(s) with caption, notes and the comparison table
-                title = (f"Fig. {FIGURES[labels[0]].number} ({labels[0]}) — fpu-explorer"
-                         if len(labels) == 1 else "The paper, figure by figure — fpu-explorer"
-                         if args.family == "paper" else
-                         "The trilinear family, figure by figure — fpu-explorer")
+                title = (
+                    f"Fig. {FIGURES[labels[0]].number} ({labels[0]}) — fpu-explorer"
+                    if len(labels) == 1
+                    else "The paper, figure by figure — fpu-explorer"
+                    if args.family == "paper"
+                    else "The trilinear family, figure by figure — fpu-explorer"
+                )
                 plot.report_html(results, FIGURES, tmp, title, summary)
         print(f"wrote {args.out}", file=people)
     if args.table is not None:

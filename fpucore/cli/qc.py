@@ -76,13 +76,14 @@ def run(args) -> int:
 
 
 def _consts(out: dict) -> str:
-    """"  with b=10, d=50" for a smooth law's named constants and its representation."""
+    """ "  with b=10, d=50" for a smooth law's named constants and its representation."""
     c = out.get("constants")
     if c is None:
         return ""
     lo, hi = out["represented_interval"]
     e = out["representation_error"]
     head = ("  with " + ", ".join(f"{k}={v:g}" for k, v in c.items())) if c else ""
-    return (f"{head}\n         represented on [{lo:.6g}, {hi:.6g}]: |f - f_rep| <= {e['f']:.2g}, "
-            f"|f' - f'_rep| <= {e['df']:.2g}, |f'' - f''_rep| <= {e['ddf']:.2g}")
-
+    return (
+        f"{head}\n         represented on [{lo:.6g}, {hi:.6g}]: |f - f_rep| <= {e['f']:.2g}, "
+        f"|f' - f'_rep| <= {e['df']:.2g}, |f'' - f''_rep| <= {e['ddf']:.2g}"
+    )

@@ -143,8 +143,11 @@ class SmoothLaw(HardeningSofteningLaw):
         return (_restore, (state,))
 
     def _refuse(self, reason: str):
-        shown = self.text if not self.constants else (
-            f"{self.text}; " + ", ".join(f"{n}={v:g}" for n, v in self.constants))
+        shown = (
+            self.text
+            if not self.constants
+            else (f"{self.text}; " + ", ".join(f"{n}={v:g}" for n, v in self.constants))
+        )
         raise ParameterError("expression", abbreviate(shown, 120), VALID, reason)
 
     def _check(self, fl, lg, mp, diag_df, diag_f):

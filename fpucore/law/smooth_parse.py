@@ -54,8 +54,11 @@ def refuse(text: str, reason: str, name: str = "expression"):
 def check_constant_name(name) -> str:
     """A constant's name: an identifier of ≤ 32 characters, not w, a function, pi/E or a Python
     keyword."""
-    if not isinstance(name, str) or not NAME_RE.match(name) or keyword.iskeyword(name) or (
-        name in ("w",) + FUNCS + CONSTS
+    if (
+        not isinstance(name, str)
+        or not NAME_RE.match(name)
+        or keyword.iskeyword(name)
+        or (name in ("w",) + FUNCS + CONSTS)
     ):
         raise ParameterError(
             "constants", name, "names of letters, digits and _ (a letter first, <= 32 characters) "
@@ -69,7 +72,6 @@ def check_constant_value(name: str, value) -> float:
     ok = isinstance(value, int | float) and not isinstance(value, bool)
     if not ok:
         try:
-
             ok = isinstance(value, np.integer | np.floating)
         except ImportError:  # pragma: no cover
             ok = False

@@ -123,7 +123,7 @@ def _bracket(law: HardeningSofteningLaw, w_plus: float, V: float):
 
 
 def solitary_kind(law: HardeningSofteningLaw, w_plus: float, V: float) -> str:
-    """"tensile" or "compressive": the :attr:`~fpucore.qc.QCSolitary.kind` of
+    """ "tensile" or "compressive": the :attr:`~fpucore.qc.QCSolitary.kind` of
     ``solitary(law, w_plus, V)`` and the same refusals, without its profile, energy and check
     (near a sonic end those cost up to a second for a smooth law; this costs a few root
     evaluations).  w_M lies in the bracket (w_near, other), on ``other``'s side of w_B."""

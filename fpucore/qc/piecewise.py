@@ -45,6 +45,7 @@ from dataclasses import dataclass
 from typing import ClassVar
 
 import numpy as np
+from scipy.optimize import brentq
 
 from fpucore.errors import ParameterError, fmt_interval, require_finite
 from fpucore.result import Result, status_of
@@ -204,7 +205,6 @@ class PLSpeeds(EqualAreaChecked):
     DERIVED: ClassVar = ("converged", "status", "message")
 
 
-
 def speeds(law, w_plus: float) -> PLSpeeds:
     t0 = time.perf_counter()
     w_plus = require_state(law, w_plus)
@@ -290,8 +290,6 @@ def w_plus_of_V(law, V: float, branch: str = "lower") -> float:
     V_SK(w₊) = V (V_SK² exact on each piece, module docstring; monotone on a branch, checked
     in tests/qc/test_qc_piecewise_velocity.py), bracketed between the hard regime's edge and
     the far end, solved by Brent's method to the last bit of w₊."""
-    from scipy.optimize import brentq
-
     V = require_finite("V", V)
     vlo, vhi = superkink_velocity_bounds(law, branch)
     if not (vlo < V < vhi):

@@ -379,7 +379,6 @@ class PLSuperkink(EqualAreaChecked):
         return out
 
 
-
 def superkink(law, w_plus: float) -> PLSuperkink:
     """QC superkink with the state w₊ ahead (eqs. Rline, zero_G, TW_QC_gen3)."""
     t0 = time.perf_counter()

@@ -67,7 +67,7 @@ def _energy_terms(law, y: np.ndarray, L: int, bc: str, fL: float, fR: float):
     return float(math.fsum(terms)), scale
 
 
-def _finalize_events(y, L, thr, obs: Observer) -> None:
+def finalize_events(y, L, thr, obs: Observer) -> None:
     """Confirm the pending extremum candidate of every site if the strain has since moved away
     from it by more than the prominence threshold (otherwise a wave that passed a site shortly
     before the end, with no later opposite extremum, would be missed)."""
@@ -250,7 +250,7 @@ def run_chain(
             break
 
     st = _STATUS.get(status, "failed")
-    _finalize_events(y, L, thr_ev, obs)
+    finalize_events(y, L, thr_ev, obs)
     done = np.isfinite(energy)
     dE = np.abs(energy[done] - H0)
     drift_abs = float(dE.max()) if dE.size else 0.0

@@ -221,6 +221,7 @@ def earliest(w, w1, L, pb):
             best, bn, bb = fr, n, b
     return best, bn, bb
 
+
 @njit(cache=True, nogil=True)
 def _outside(Y, L, pb, c, cfirst):
     """cfirst[n] = min(cfirst[n], c) for the bonds whose stage value Y[n] left the frozen piece
@@ -288,6 +289,7 @@ def _snap(w1, L, pb, bn, bb, evs):
             evs[1] = abs(x - b)
         evs[0] += 1
         w1[n] = b
+
 
 @njit(cache=True, nogil=True)
 def _probe(win, hh, cur, bn, b, w0, R, Lw, pair, pat, K, KW, WW, rows, L, law_id, p, pc, pb,
@@ -406,8 +408,38 @@ def pwl_rkn_chunk(q, t, t_stop, h, step_limit, pair, ctl, chain, work, obs, pc, 
             if flo == 0.0:  # started on b (a located crossing) and went back: an inside point
                 th = 0.5
                 for _h in range(60):
-                    ft = _probe(win, th * hh, cur, bn, b, w0, R, Lw, pair, pat, K, KW, WW, rows, L,
-                                law_id, p, pc, pb, cfirst, bc, fL, fR, g, gw, Y, nxt, e, ed, zero)
+                    ft = _probe(
+                        win,
+                        th * hh,
+                        cur,
+                        bn,
+                        b,
+                        w0,
+                        R,
+                        Lw,
+                        pair,
+                        pat,
+                        K,
+                        KW,
+                        WW,
+                        rows,
+                        L,
+                        law_id,
+                        p,
+                        pc,
+                        pb,
+                        cfirst,
+                        bc,
+                        fL,
+                        fR,
+                        g,
+                        gw,
+                        Y,
+                        nxt,
+                        e,
+                        ed,
+                        zero,
+                    )
                     if ft != 0.0 and (ft < 0.0) != (fhi < 0.0):
                         lo, flo = th, ft
                         break
@@ -427,8 +459,38 @@ def pwl_rkn_chunk(q, t, t_stop, h, step_limit, pair, ctl, chain, work, obs, pc, 
                 th = lo - flo * (hi - lo) / (fhi - flo)
             side = 0
             for _it in range(100):  # Illinois on θ
-                ft = _probe(win, th * hh, cur, bn, b, w0, R, Lw, pair, pat, K, KW, WW, rows, L,
-                            law_id, p, pc, pb, cfirst, bc, fL, fR, g, gw, Y, nxt, e, ed, zero)
+                ft = _probe(
+                    win,
+                    th * hh,
+                    cur,
+                    bn,
+                    b,
+                    w0,
+                    R,
+                    Lw,
+                    pair,
+                    pat,
+                    K,
+                    KW,
+                    WW,
+                    rows,
+                    L,
+                    law_id,
+                    p,
+                    pc,
+                    pb,
+                    cfirst,
+                    bc,
+                    fL,
+                    fR,
+                    g,
+                    gw,
+                    Y,
+                    nxt,
+                    e,
+                    ed,
+                    zero,
+                )
                 if ft == 0.0 or hi - lo <= 4e-16:
                     break
                 if (ft < 0.0) == (flo < 0.0):

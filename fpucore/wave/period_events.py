@@ -36,7 +36,7 @@ from numba import njit
 from fpucore import law as _law
 from fpucore.errors import ParameterError, require_finite
 from fpucore.tableaux.rk import DOP853, Tableau
-from fpucore.wave.period_map import check_m, check_state
+from fpucore.wave.period_checks import check_m, check_state
 
 
 @njit(cache=True, nogil=True)

@@ -53,6 +53,8 @@ from numba import njit, prange
 from fpucore import law as _law
 from fpucore.errors import ParameterError, require_finite
 from fpucore.tableaux.rk import DOP853, Tableau
+from fpucore.wave.period_checks import check_m, check_state
+from fpucore.wave.period_events import integrate_events
 
 
 # --------------------------------------------------------------------------- kernels
@@ -207,22 +209,6 @@ class PeriodResult:
         return self.hs if self.hs is not None else np.full(self.m, self.T / self.m)
 
 
-def check_state(w0, wd0) -> tuple[np.ndarray, np.ndarray]:
-    w0 = np.ascontiguousarray(w0, dtype=np.float64)
-    wd0 = np.ascontiguousarray(wd0, dtype=np.float64)
-    if w0.ndim != 1 or w0.shape != wd0.shape or w0.size < 2:
-        raise ParameterError("w0/wd0", (w0.shape, wd0.shape), "two 1-D arrays of equal size >= 2")
-    if not (np.all(np.isfinite(w0)) and np.all(np.isfinite(wd0))):
-        raise ParameterError("w0/wd0", "non-finite entries", "finite arrays")
-    return w0, wd0
-
-
-def check_m(m) -> int:
-    if not (isinstance(m, (int, np.integer)) and 1 <= m <= 100_000):
-        raise ParameterError("m", m, "an integer in [1, 100000]", "number of RK steps per period")
-    return int(m)
-
-
 def integrate(
     law,
     w0,
@@ -249,8 +235,6 @@ def integrate(
     if events is None:
         events = bool(getattr(law, "breakpoints", ()))
     if events:
-        from fpucore.wave.period_events import integrate_events  # imports this module
-
         e = integrate_events(law, w0, wd0, T, m, w_left, w_right, periodic, True, tableau,
                              store_df)  # fmt: skip
         return PeriodResult(e.w, e.wd, e.dfs, e.T, e.m, tableau, e.hs, e.crossings,

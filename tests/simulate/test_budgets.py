@@ -236,9 +236,9 @@ def test_wave_tracking_is_skipped_when_the_budget_ran_out_at_t_end(monkeypatch):
         def expired(self):  # expires exactly when the stepping has reached t_end
             return bool(done)
 
-    orig = engine._finalize_events
+    orig = engine.finalize_events
     monkeypatch.setattr(engine, "Deadline", LateDeadline)
-    monkeypatch.setattr(engine, "_finalize_events", lambda *a: (done.append(1), orig(*a)))
+    monkeypatch.setattr(engine, "finalize_events", lambda *a: (done.append(1), orig(*a)))
     s = simulate.riemann(LAW, 4.6, 0.0, 600, 20.0, time_budget_s=100.0)
     assert s.stop_reason == "ok" and s.waves == []
     assert "wave tracking skipped" in s.message
