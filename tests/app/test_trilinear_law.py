@@ -127,10 +127,10 @@ def test_the_phase_plane_and_the_diagram_draw_it():
 
 
 @pytest.mark.parametrize("key", ["profiles", "floquet", "simulation"])
-def test_the_dynamic_scenes_refuse_it_with_a_message(key):
-    """Discrete waves, Floquet spectra and simulations of piecewise-linear laws are refused by
-    fpucore for now: the scene shows that reason as its message — never a failure.  (Once
-    fpucore computes them, the scene shows the result instead.)"""
+def test_the_dynamic_scenes_compute_it_or_say_why(key):
+    """Discrete waves, Floquet spectra and simulations of piecewise-linear laws are computed with
+    located crossings; where fpucore refuses (a method without event location) the scene shows
+    that reason as its message — never a failure."""
     st = state()
     sc = Explorer(st).scene(key)
     if key == "simulation":
