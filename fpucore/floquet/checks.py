@@ -41,7 +41,7 @@ def quartet_symmetry_error(mu: np.ndarray) -> tuple[float, float]:
     -------
     tuple of (float, float)
         (reciprocal_error, conjugate_error): maxima over the set of the two mismatches
-        (dimensionless; 0 for an empty set).
+        (dimensionless).
     """
     mu = np.asarray(mu, dtype=complex)
     pts = np.column_stack([mu.real, mu.imag])
