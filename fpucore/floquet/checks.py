@@ -32,7 +32,16 @@ def quartet_symmetry_error(mu: np.ndarray) -> tuple[float, float]:
     partner is itself, so a multiplier pushed off the circle by δ with no partner contributes 2δ:
     this is exactly the error bar of |μ| − 1 for elliptic multipliers.
 
-    Returns (reciprocal_error, conjugate_error): maxima over the set of the two mismatches.
+    Parameters
+    ----------
+    mu : array_like, shape (M,)
+        Multipliers (complex; e.g. M = 2N of a chain of N sites).
+
+    Returns
+    -------
+    tuple of (float, float)
+        (reciprocal_error, conjugate_error): maxima over the set of the two mismatches
+        (dimensionless).
     """
     mu = np.asarray(mu, dtype=complex)
     pts = np.column_stack([mu.real, mu.imag])
@@ -59,6 +68,27 @@ def phonon_gap(law: HardeningSofteningLaw, w_bg: float, V: float, N: int) -> flo
 
     Homogeneous state, periodic ring of N sites: μ = exp(i(k ± ω(k)T)), k = 2πj/N, j ≠ 0,
     ω = 2√f′(w_bg)|sin(k/2)|, T = 1/V.  The trivial cluster at 1 must be well inside this.
+
+    Parameters
+    ----------
+    law : HardeningSofteningLaw
+        The spring law f(w).
+    w_bg : float
+        Background strain.
+    V : float
+        Wave velocity, sites per unit time (period T = 1/V), in [1e-150, 1e150].
+    N : int
+        Sites of the ring, in [2, 10⁶].
+
+    Returns
+    -------
+    float
+        min |μ − 1| over j = 1 … N−1 and both signs (dimensionless).
+
+    Raises
+    ------
+    ParameterError
+        When ``law``, ``w_bg``, ``V`` or ``N`` is invalid.
     """
     law, w_bg = require_law(law), require_finite("w_bg", w_bg)
     V, N = require_velocity(V), require_int("N", N, 2, RING_MAX)
@@ -81,6 +111,28 @@ def homogeneous_multipliers(law: HardeningSofteningLaw, w0: float, V: float, N: 
     f′(w0) < 0 (outside the convex interval): ω = ±iσ, σ = 2√(−f′)|sin(k/2)|, so
     μ = e^{ik} e^{±σT}: a genuine instability, largest at k = π, |μ| = e^{2√(−f′)/V} for every
     even N (growth rate 2√(−f′(w0)) per unit time, independent of the chain length).
+
+    Parameters
+    ----------
+    law : HardeningSofteningLaw
+        The spring law f(w).
+    w0 : float
+        The constant strain; f′(w0) must not be 0.
+    V : float
+        Wave velocity, sites per unit time (period T = 1/V), in [1e-150, 1e150].
+    N : int
+        Sites of the ring, in [2, 10⁶].
+
+    Returns
+    -------
+    ndarray, shape (2N,), complex
+        μ = e^{i(k + ωT)} for j = 0 … N−1, then μ = e^{i(k − ωT)} (or e^{ik ± σT} when
+        f′(w0) < 0).
+
+    Raises
+    ------
+    ParameterError
+        When ``law``, ``w0``, ``V`` or ``N`` is invalid, or f′(w0) = 0 (degenerate state).
     """
     law, w0 = require_law(law), require_finite("w0", w0)
     V, N = require_velocity(V), require_int("N", N, 2, RING_MAX)

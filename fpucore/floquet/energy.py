@@ -194,6 +194,35 @@ def energy_criterion(
     (then V_values, N, tol are not used).  Neither: only the QC family is examined.
     N, tol : as in :func:`fpucore.wave.solve_solitary`.  qc_samples : QC grid per interval
     (0: skip the QC family).
+
+    Parameters
+    ----------
+    law : HardeningSofteningLaw
+        The spring law f(w).
+    w_plus : float
+        Strain w₊ ahead of the associated superkink (selects the solitary family).
+    V_values : array_like, shape (n,), or None
+        Wave velocities of the discrete family, sites per unit time.
+    N : int or None
+        Number of sites of each discrete wave; None: automatic.
+    tol : float
+        Relative tolerance of each wave solve.
+    family : Family or None
+        An already computed solitary family (overrides V_values, N, tol).
+    qc_samples : int
+        QC grid points per velocity interval: 0 or an integer in [5, 100000].
+
+    Returns
+    -------
+    EnergyCriterion
+        Discrete and QC samples of E_ren(V), the located extrema with their errors (V in sites
+        per unit time), ``stability_may_change``, run time and ``message``.
+
+    Raises
+    ------
+    ParameterError
+        When ``w_plus``, ``qc_samples`` or ``V_values`` is invalid, or a wave of the family
+        cannot be set up.
     """
     t0 = time.perf_counter()
     w_plus = require_finite("w_plus", w_plus)
@@ -248,7 +277,40 @@ def criterion_from_samples(
     converged : (n,) arrays, any order (non-converged or non-finite samples are ignored).
     qc_samples : QC grid per interval, 0 to skip the QC family (then only the samples count).
     Costs only the parabola fits plus, with qc_samples > 0, the QC grid (cubic: ~1 ms for both
-    intervals, ~8 ms with an extremum to refine; other laws ~15 ms per sample)."""
+    intervals, ~8 ms with an extremum to refine; other laws ~15 ms per sample).
+
+    Parameters
+    ----------
+    law : HardeningSofteningLaw
+        The spring law f(w).
+    w_plus : float
+        Strain w₊ of the solitary family.
+    V : array_like, shape (n,)
+        Wave velocities, sites per unit time.
+    energy : array_like, shape (n,)
+        E_ren^D at each V (eq. Eren_D), nondimensional energy.
+    energy_error : array_like, shape (n,)
+        Error bars of ``energy``.
+    converged : array_like of bool, shape (n,)
+        Whether each wave converged.
+    qc_samples : int
+        QC grid points per velocity interval: 0 or an integer in [5, 100000].
+    family : Family or None
+        The family the samples came from, kept on the result.
+    t0 : float or None
+        ``time.perf_counter()`` at the start of the work (for ``elapsed_s``); None: now.
+
+    Returns
+    -------
+    EnergyCriterion
+        The samples, the located extrema (discrete and QC) with their errors, and the verdict.
+
+    Raises
+    ------
+    ParameterError
+        When ``w_plus`` or ``qc_samples`` is invalid, w₊ has no solitary family, or the sample
+        arrays are not 1-D of one length n.
+    """
     t0 = time.perf_counter() if t0 is None else t0
     w_plus = require_finite("w_plus", w_plus)
     (a, b), (c, d) = qc.solitary_intervals(law, w_plus)
@@ -333,7 +395,32 @@ def stability_changes(
     an oscillatory instability (a complex quartet needs no extremum) or a finite-size effect
     the window did not resolve (paper §6: the spurious oscillatory instabilities), to be
     checked at a larger N.  Returns a list of
-    :class:`StabilityChange`, in order of V."""
+    :class:`StabilityChange`, in order of V.
+
+    Parameters
+    ----------
+    law : HardeningSofteningLaw
+        The spring law f(w).
+    w_plus : float
+        Strain w₊ of the solitary family.
+    V : array_like, shape (n,)
+        Velocities of the sweep's rows, sites per unit time.
+    classification : sequence of str, length n
+        Floquet class of each row (one of :data:`CLASSES`; others are ignored).
+    criterion : EnergyCriterion
+        The energy criterion of the same family (:func:`energy_criterion`).
+
+    Returns
+    -------
+    list of StabilityChange
+        Changes across the stable/unstable line, in order of V, per velocity interval.
+
+    Raises
+    ------
+    ParameterError
+        When ``w_plus`` is not finite, ``classification`` does not have one class per velocity,
+        or w₊ has no solitary family.
+    """
     w_plus = require_finite("w_plus", w_plus)
     V = np.atleast_1d(np.asarray(V, dtype=float))
     cls = np.array([str(c) for c in classification])
@@ -359,7 +446,18 @@ def stability_changes(
 
 
 def changes_summary(changes: list[StabilityChange]) -> str:
-    """The cross-check of a sweep against the energy criterion in one line (plain text)."""
+    """The cross-check of a sweep against the energy criterion in one line (plain text).
+
+    Parameters
+    ----------
+    changes : list of StabilityChange
+        The changes found by :func:`stability_changes`.
+
+    Returns
+    -------
+    str
+        One sentence: no change, or how many changes lie at an extremum of E_ren (with their V).
+    """
     k = len(changes)
     if k == 0:
         return ("No change between stable and unstable along the sweep: consistent with the "

@@ -105,7 +105,25 @@ SENTENCE_CHARS = 640
 def chain_lengths(N: int, n_min: int = N_MIN) -> list[int]:
     """The shorter even chain lengths of the window: WINDOW − 1 lengths evenly spaced in
     [max(N/2, n_min), N), ascending; [] when the window would be narrower than [3N/4, N] or hold
-    fewer than MIN_POINTS − 1 distinct lengths (N too short for the test)."""
+    fewer than MIN_POINTS − 1 distinct lengths (N too short for the test).
+
+    Parameters
+    ----------
+    N : int
+        Sites of the full chain, in [2, 10⁷].
+    n_min : int
+        Shortest chain length allowed, in [2, 10⁷] (default N_MIN).
+
+    Returns
+    -------
+    list of int
+        The shorter even chain lengths (sites), ascending; possibly empty.
+
+    Raises
+    ------
+    ParameterError
+        When ``N`` or ``n_min`` is out of range.
+    """
     N, n_min = require_int("N", N, 2, 10**7), require_int("n_min", n_min, 2, 10**7)
     lo = max(0.5 * N, float(n_min + (n_min % 2)))
     if lo > 0.75 * N:

@@ -163,7 +163,25 @@ def base_state(r):
 
 
 def default_steps(law: HardeningSofteningLaw, V: float) -> int:
-    """RK steps per period with h·ω_max ≤ 0.12 for ω_max = 2 c_max (the top linear frequency)."""
+    """RK steps per period with h·ω_max ≤ 0.12 for ω_max = 2 c_max (the top linear frequency).
+
+    Parameters
+    ----------
+    law : HardeningSofteningLaw
+        The spring law (its largest sound speed c_max, sites per unit time).
+    V : float
+        Wave velocity, sites per unit time (period T = 1/V), in [1e-150, 1e150].
+
+    Returns
+    -------
+    int
+        The step count m per period (step h = T/m, time units).
+
+    Raises
+    ------
+    ParameterError
+        When ``law`` or ``V`` is invalid.
+    """
     law, V = require_law(law), require_velocity(V)
     return pm.rk_steps_for(V, law.c_max, hw=_HW_DEFAULT)
 
@@ -176,6 +194,27 @@ def monodromy(r: WaveResult, m: int | None = None) -> Monodromy:
     eq. fixedBCs (DOP853, m steps, f′ stored at every stage); the perturbation columns use the
     paper's periodic BCs (index wrap) on windows of ±K sites, K chosen so that the neglected part
     of each column is below 1e-18; then rows are shifted.  Cost O(N·K·m), all in Numba.
+
+    Parameters
+    ----------
+    r : WaveResult or HomogeneousState
+        The base state: law, V (sites per unit time), N sites (even, in [4, MAX_N]), w and
+        wdot of shape (N,), boundary strains w_left, w_right.
+    m : int or None
+        RK steps per period, in [2, 20000]; None: :func:`default_steps`.
+
+    Returns
+    -------
+    Monodromy
+        ``matrix`` (2N, 2N) float64, T = 1/V, m, K (window half-width, sites), truncation and
+        elapsed_s (wall time, s).
+
+    Raises
+    ------
+    ParameterError
+        When an attribute of ``r`` is missing or invalid (N odd, < 4 or > MAX_N; V outside
+        [c_max/1000, 1000 c_max]; non-finite entries; perturbations growing by more than e^200
+        per period), or ``m`` is out of range.
     """
     t0 = time.perf_counter()
     law, w, wd, V, N, wl, wr = base_state(r)
@@ -211,6 +250,27 @@ def multipliers_of(mat: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray, flo
     the 2×2 quotient block [[1, T], [0, 1]] (Σy, Σẏ); mu_rest come from one dense LAPACK dgeev
     call on the (2N−2)-block.  conservation_defect is the largest coupling of the sum rows to the
     rest (exactly 0 for an exact ring integration; round-off level here).
+
+    Parameters
+    ----------
+    mat : ndarray, shape (2N, 2N)
+        The shifted monodromy 𝓜 (``Monodromy.matrix``), finite.
+    n : int
+        N, the number of sites (half the matrix order).
+
+    Returns
+    -------
+    mu_rest : ndarray, shape (2N−2,), complex
+        Multipliers of the deflated block.
+    mu_sums : ndarray, shape (2,), complex
+        Multipliers of the conserved sums Σy, Σẏ (both ≈ 1).
+    conservation_defect : float
+        Largest coupling of the sum rows to the rest (dimensionless).
+
+    Raises
+    ------
+    ParameterError
+        When ``mat`` is not a finite square (2N, 2N) matrix or ``n`` is not N.
     """
     mat = np.asarray(mat)
     if mat.ndim != 2 or mat.shape[0] != mat.shape[1] or mat.shape[0] % 2:

@@ -52,7 +52,22 @@ def reversor_of(law: HardeningSofteningLaw, w: np.ndarray, wd: np.ndarray) -> in
     only through g = f′(w) and its rate h = f″(w) ẇ, so the test is g_i = g_{c−i} and
     h_i = −h_{c−i} to 1e-7 relative (a solitary wave: w even, ẇ odd; a cubic superkink: w odd
     about w*, ẇ even, f″ odd about w*).  Found by circular autocorrelation (FFT), then checked
-    entry by entry; the matrix route re-checks it on 𝓜 itself (‖G‖ + ‖F‖)."""
+    entry by entry; the matrix route re-checks it on 𝓜 itself (‖G‖ + ‖F‖).
+
+    Parameters
+    ----------
+    law : HardeningSofteningLaw
+        The spring law f(w) (f′ and f″ are evaluated).
+    w : array_like, shape (N,)
+        Strains of the base wave at t = 0.
+    wd : array_like, shape (N,)
+        Strain rates ẇ of the base wave at t = 0, per unit time.
+
+    Returns
+    -------
+    int or None
+        The centre c (a site index in [0, N)), or None when the base state has no reversor.
+    """
     w = np.asarray(w, dtype=float)
     g = np.asarray(law.df(w), dtype=float)
     h = np.asarray(law.ddf(w), dtype=float) * np.asarray(wd, dtype=float)

@@ -70,7 +70,24 @@ def restoring_interval(law: HardeningSofteningLaw) -> tuple[float, float]:
     """The zeros of f adjacent to 0, (w_lo, w_hi) ⊃ (α, β): inside, f(w) has the sign of w (the
     spring resists); beyond them the potential Φ decreases without bound for the cubic law, so a
     strain that passes them runs away.  Cubic a = −1, b = 10: (5 − √26, 5 + √26).  For a smooth
-    law, clipped to its represented interval (``law.interval``: its kernels return NaN beyond)."""
+    law, clipped to its represented interval (``law.interval``: its kernels return NaN beyond).
+
+    Parameters
+    ----------
+    law : HardeningSofteningLaw
+        The spring law f(w).
+
+    Returns
+    -------
+    tuple of (float, float)
+        (w_lo, w_hi), strain units (±inf where f has no zero beyond the edge, and for a
+        piecewise-linear law).
+
+    Raises
+    ------
+    ParameterError
+        When ``law`` is not a law.
+    """
     law = require_law(law)
     if getattr(law, "breakpoints", ()):  # PL: moduli >= 0, f nondecreasing, Φ convex everywhere
         return (-math.inf, math.inf)
@@ -164,7 +181,32 @@ def memory_estimate(
     4 crossings), the tracking window (n_track full profiles, twice), extra full profiles, the
     initial data and temporaries (checked against tracemalloc in tests/simulate/test_budgets.py);
     "n_snapshots": the output field (n_snapshots × sites kept, and its copy when a stopped run
-    is trimmed); "n_probe_t": the probe series ((probes + 1) × n_probe_t, twice)."""
+    is trimmed); "n_probe_t": the probe series ((probes + 1) × n_probe_t, twice).
+
+    Parameters
+    ----------
+    L : int
+        Number of sites.
+    method : str
+        Integrator, one of :data:`fpucore.simulate.METHODS` (not validated here).
+    n_snapshots, n_sites_out : int
+        Stored field times and sites kept per snapshot.
+    n_probes, n_probe_t : int
+        Number of probes and times of each probe series.
+    n_track : int
+        Profiles of the tracking window.
+    n_extra : int
+        Full-resolution profiles at extra times.
+    n_events : int
+        Events stored per site.
+    estimate_error : bool
+        Whether a fixed-step method runs its step-doubling companion (doubles its state).
+
+    Returns
+    -------
+    dict of str to (float, str)
+        {"L", "n_snapshots", "n_probe_t"}: (bytes, what sets them).
+    """
     st = STEPPERS[method]
     per_site = st.floats_per_site()
     if not st.adaptive and estimate_error:  # the step-doubling companion run
@@ -198,7 +240,37 @@ def work_estimate(
     t_end/dt plus one shortened step per output stop (``n_stops``; + half as many for the
     step-doubling companion); adaptive: t_end·ω_max/(h·ω) with the measured h·ω of
     :data:`H_OMEGA_AT_1E10` scaled as rtol^(1/(q+1)) (a factor ~3 either way: the data, not only
-    the law, set the step)."""
+    the law, set the step).
+
+    Parameters
+    ----------
+    law : HardeningSofteningLaw
+        The spring law (its largest sound speed c_max, sites per unit time).
+    L : int
+        Number of sites, in [1, 10¹²].
+    t_end : float
+        Final time (time units), in (0, 1e7].
+    method : str
+        Integrator, one of :data:`fpucore.simulate.METHODS`.
+    rtol : float
+        Relative tolerance of an adaptive method, in [1e-16, 1].
+    dt : float or None
+        Step (time units) of a fixed-step method, in (0, 1e3].
+    estimate_error : bool
+        Whether a fixed-step method runs its step-doubling companion.
+    n_stops : int
+        Output stops (each shortens one fixed step).
+
+    Returns
+    -------
+    dict
+        {"steps": float, "site_evals": float, "seconds": float (wall seconds, rough)}.
+
+    Raises
+    ------
+    ParameterError
+        When ``law``, ``method``, ``L``, ``t_end``, ``rtol`` or ``dt`` is invalid.
+    """
     law = require_law(law)
     if method not in STEPPERS:
         raise ParameterError("method", method, " | ".join(METHODS))

@@ -41,7 +41,29 @@ def extreme_blocks(snapshots: ArrayLike, sites: ArrayLike, max_columns: int = 10
     """Reduce ``snapshots`` (n_t, n_sites) at the 1-based, equally spaced ``sites`` (n_sites,)
     to at most ``max_columns`` columns: if n_sites > max_columns, blocks of
     ⌈n_sites / (max_columns // 2)⌉ consecutive sites, each drawn as its minimum and its maximum
-    at each time (fields: :class:`Blocks`).  The image's maximum and minimum are the field's."""
+    at each time (fields: :class:`Blocks`).  The image's maximum and minimum are the field's.
+
+    Parameters
+    ----------
+    snapshots : array_like, shape (n_t, n_sites)
+        Strain field w at n_t times.
+    sites : array_like, shape (n_sites,)
+        1-based, equally spaced site numbers of the columns.
+    max_columns : int
+        Largest number of columns of the image, >= 2.
+
+    Returns
+    -------
+    Blocks
+        ``image`` of shape (n_t, n_columns), n_columns <= max_columns, with its placement in
+        sites (x0, width) and the block size.
+
+    Raises
+    ------
+    ParameterError
+        When ``snapshots`` is not 2-D with ``sites`` of shape (n_sites,), n_sites >= 1, or
+        ``max_columns`` is not an integer >= 2.
+    """
     z = np.asarray(snapshots, dtype=float)
     n = np.asarray(sites, dtype=float)
     if z.ndim != 2 or n.shape != (z.shape[1],) or n.size == 0:

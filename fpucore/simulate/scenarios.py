@@ -111,7 +111,54 @@ def riemann(
     guard, ``time_budget_s`` (wall seconds; None = no limit: past it the run stops with
     stop_reason "time_budget" and the times it reached), ``memory_budget`` (bytes or "2GiB";
     default FPU_MEMORY_BUDGET or 25 % of RAM, see :mod:`fpucore.budget`) and ``progress``
-    (a callable receiving the fraction of t_end done)."""
+    (a callable receiving the fraction of t_end done).
+
+    Parameters
+    ----------
+    law : HardeningSofteningLaw
+        The spring law f(w).
+    w_left, w_right : float
+        Strains left (n ≤ L/2) and right (n > L/2) of the jump, in the convex interval (α, β)
+        (a piecewise-linear law with ``guard="bounded"``: any finite strain).
+    L : int
+        Number of sites (springs) n = 1 … L, even, in [16, MAX_L].
+    t_end : float
+        Final time (time units), in (0, 1e7].
+    method : str
+        Integrator, one of :data:`fpucore.simulate.METHODS` (a piecewise-linear law: the RKN
+        pairs only).
+    rtol : float
+        Relative tolerance, in [1e-14, 1e-2].
+    boundary : str
+        End condition, one of :data:`fpucore.simulate.BOUNDARIES`.
+    n_snapshots : int
+        Stored field times, in [2, 100000].
+    max_sites_out : int
+        Sites kept per stored snapshot, in [2, 10⁷] (every k-th site beyond).
+    probes : sequence of int
+        Site numbers in [1, L] whose strain is recorded as a time series.
+    n_probe_t : int
+        Times of each probe series, in [2, 10⁷].
+    threshold : float or None
+        Detection threshold of the wave tracker, strain units.
+    **kw
+        The further keywords listed above.
+
+    Returns
+    -------
+    SimulationResult
+        Snapshots of shape (n_snapshots, sites kept), probe series, tracked waves (speeds in
+        sites per unit time), conservation and error estimates, stop_reason, run time and
+        ``details``.
+
+    Raises
+    ------
+    ParameterError
+        When the law, a strain, ``L``, ``t_end`` or an option is out of range, or the run would
+        exceed its memory budget.
+    TypeError
+        For an unknown keyword.
+    """
     law = require_simulable(law)  # before any option is looked at
     opts, run = split_options(kw)
     L = require_L(L)
@@ -167,7 +214,55 @@ def gaussian(
     n = 1…L.  w_B must lie in the convex interval (α, β); w_B + A in it too unless
     ``guard="bounded"`` (the paper's w_B = 1, A = 6 starts at w = 7 > β, and w_B = 6, A = −6
     reaches w ≈ 6.94 > β: both need guard="bounded", see docs/simulation.md).  ``threshold``
-    (tracker detection threshold) default 2 % of |A|.  Further keywords as for :func:`riemann`."""
+    (tracker detection threshold) default 2 % of |A|.  Further keywords as for :func:`riemann`.
+
+    Parameters
+    ----------
+    law : HardeningSofteningLaw
+        The spring law f(w).
+    w_B : float
+        Background strain, in the convex interval (α, β).
+    A : float
+        Amplitude (strain); w_B + A must lie in :func:`restoring_interval`.
+    L : int
+        Number of sites (springs) n = 1 … L, in [16, MAX_L].
+    t_end : float
+        Final time (time units), in (0, 1e7].
+    method : str
+        Integrator, one of :data:`fpucore.simulate.METHODS` (a piecewise-linear law: the RKN
+        pairs only).
+    rtol : float
+        Relative tolerance, in [1e-14, 1e-2].
+    boundary : str
+        End condition, one of :data:`fpucore.simulate.BOUNDARIES`.
+    n_snapshots : int
+        Stored field times, in [2, 100000].
+    max_sites_out : int
+        Sites kept per stored snapshot, in [2, 10⁷] (every k-th site beyond).
+    probes : sequence of int
+        Site numbers in [1, L] whose strain is recorded as a time series.
+    n_probe_t : int
+        Times of each probe series, in [2, 10⁷].
+    threshold : float or None
+        Detection threshold of the wave tracker, strain units.
+    **kw
+        The further keywords of :func:`riemann`.
+
+    Returns
+    -------
+    SimulationResult
+        Snapshots of shape (n_snapshots, sites kept), probe series, tracked waves (speeds in
+        sites per unit time), conservation and error estimates, stop_reason, run time and
+        ``details``.
+
+    Raises
+    ------
+    ParameterError
+        When the law, a strain, ``L``, ``t_end`` or an option is out of range, or the run would
+        exceed its memory budget.
+    TypeError
+        For an unknown keyword.
+    """
     law = require_simulable(law)  # before any option is looked at
     opts, run = split_options(kw)
     L = require_L(L)

@@ -51,7 +51,26 @@ def whole_periods(t_end: float, T: float) -> tuple[int, float]:
     """(K, t_K): the number K of whole periods T in t_end and their time t_K = K·T ≤ t_end up to
     rounding.  t_end = K/V computed in floating point can fall an ulp short of K·(1/V) (for ~9 %
     of velocities): such a t_end counts as K periods, and t_K (≤ t_end (1 + 1e-12)) is taken at
-    t_end by the output schedule (:func:`fpucore.simulate.config.output_schedule`)."""
+    t_end by the output schedule (:func:`fpucore.simulate.config.output_schedule`).
+
+    Parameters
+    ----------
+    t_end : float
+        Final time (time units), >= 0 and at most 1e15 periods.
+    T : float
+        Period (time units), > 0.
+
+    Returns
+    -------
+    tuple of (int, float)
+        K whole periods and t_K = K·T (time units).
+
+    Raises
+    ------
+    ParameterError
+        When ``T`` is not a finite positive number, or ``t_end`` is negative, non-finite or
+        more than 1e15 periods.
+    """
     t_end, T = require_finite("t_end", t_end), require_finite("T", T)
     if not T > 0.0:
         raise ParameterError("T", T, "a period T > 0", "there are no whole periods of length 0")
@@ -93,6 +112,51 @@ def seeded(
     t_k = t_0 + k/V exactly for a traveling wave, eq. period), velocity_error, phase_error_max
     (max_k |t_k − t_0 − k/V|), periods, shape_error (max_n |w_{n+K}(KT) − w_n(0)|, K whole periods,
     :func:`whole_periods`).  Further keywords as for :func:`fpucore.simulate.scenarios.riemann`.
+
+    Parameters
+    ----------
+    r : WaveResult
+        A converged traveling wave: N sites in [8, MAX_L], ``w`` and ``wdot`` of shape (N,),
+        V > 0 in sites per unit time.
+    L : int or None
+        Number of sites of the chain, in [16, MAX_L] and at least N + ⌈V t_end⌉ + 2·margin;
+        None: that minimum.
+    t_end : float or None
+        Final time (time units), in (0, 1e7]; None: 50 periods T = 1/V.
+    method : str
+        Integrator, one of :data:`fpucore.simulate.METHODS`.
+    rtol : float
+        Relative tolerance, in [1e-14, 1e-2].
+    boundary : str
+        End condition, one of :data:`fpucore.simulate.BOUNDARIES`.
+    n_snapshots : int
+        Stored field times, in [2, 100000].
+    max_sites_out : int
+        Sites kept per stored snapshot, in [2, 10⁷].
+    probes : sequence of int
+        Site numbers in [1, L] whose strain is recorded as a time series.
+    n_probe_t : int
+        Times of each probe series, in [2, 10⁷].
+    threshold : float or None
+        Detection threshold of the wave tracker, strain units.
+    margin : int
+        Sites between the chain's left end and the wave's first site, in [10, MAX_L].
+    **kw
+        Further keywords of :func:`fpucore.simulate.scenarios.riemann`.
+
+    Returns
+    -------
+    SimulationResult
+        The run, with the check against the wave in ``details`` (velocities in sites per unit
+        time, phase errors in time units, shape_error in strain units).
+
+    Raises
+    ------
+    ParameterError
+        When ``r`` is not a converged finite wave with V > 0, or ``L``, ``t_end``, ``margin``
+        or an option is out of range.
+    TypeError
+        For an unknown keyword.
     """
     opts, run = split_options(kw)
     _require_wave(r)

@@ -157,6 +157,22 @@ def particle_velocities(w: np.ndarray, wdot: np.ndarray, V: float, w_left: float
     paper's renormalisation (−½V² w_B², eqs. Eren_QC, Eren_D) assumes.  Hence
     v_{−N/2−1} = −V w_left; the other end then returns v_{N/2−1} ≈ −V w_right up to the tail
     error (checked in tests).
+
+    Parameters
+    ----------
+    w : ndarray, shape (N,)
+        Strains w_n(0) of the wave, n = −N/2 … N/2−1 (``WaveResult.w``).
+    wdot : ndarray, shape (N,)
+        Strain rates ẇ_n(0), per unit time (``WaveResult.wdot``).
+    V : float
+        Wave velocity, sites per unit time.
+    w_left : float
+        Boundary strain w_{−N/2−1} (far field behind the wave, w₋ or w_B).
+
+    Returns
+    -------
+    ndarray, shape (N+1,)
+        Particle velocities v_n(0), n = −N/2−1 … N/2−1, normalised by v_{−N/2−1} = −V w_left.
     """
     v = np.empty(w.size + 1)
     v[0] = -V * w_left
@@ -176,7 +192,28 @@ def renormalized_energy(
     """E_ren^D (eq. Eren_D): Σ_n {½v_n² + ½(Φ(w_n) + Φ(w_{n+1})) − Φ(w_B) − ½V²w_B²} over the
     particles n = −N/2−1 … N/2−1 (particle n sits between springs w_n and w_{n+1}), summed
     relative to the background with the far field beyond the chain added
-    (:func:`fpucore.wave.bounds.energy`; solitary waves, w_left = w_right = w_B)."""
+    (:func:`fpucore.wave.bounds.energy`; solitary waves, w_left = w_right = w_B).
+
+    Parameters
+    ----------
+    law : HardeningSofteningLaw
+        The spring law f(w), with potential Φ.
+    w : array_like, shape (N,)
+        Strains w_n(0) of the wave.
+    wdot : array_like, shape (N,)
+        Strain rates ẇ_n(0), per unit time.
+    V : float
+        Wave velocity, sites per unit time.
+    w_left, w_right : float
+        Boundary strains (equal to w_B for a solitary wave; ``w_right`` is not used by the sum).
+    w_B : float
+        Background strain the energy is measured against.
+
+    Returns
+    -------
+    float
+        E_ren^D, nondimensional energy (eq. Eren_D).
+    """
     return wb.energy(law, np.asarray(w, float), np.asarray(wdot, float), V, w_B)[0]
 
 
@@ -328,6 +365,42 @@ def solve_superkink(
     Non-convergence returns converged=False with the reason in ``message``.
     time_budget_s : CPU seconds of the solving thread (:func:`fpucore.budget.work_clock`), so
     that a busy machine takes longer but computes the same wave.
+
+    Parameters
+    ----------
+    law : HardeningSofteningLaw
+        The spring law f(w) = a w³ + b w² + w (or another hardening–softening law).
+    V : float
+        Wave velocity, sites per unit time, inside the superkink interval (eq. V_bounds_cubic).
+    branch : {"lower", "upper"}
+        Which superkink of the pair at V.
+    N : int or None
+        Number of sites (even, in [N_MIN, N_MAX] of :mod:`fpucore.wave.tails` and wide enough
+        for the tails); None chooses N from the wave's width.
+    tol : float
+        Relative tolerance in [1e-15, 1e-3], relative to the strain scale s (see above).
+    jacobian : {"exact", "fd"}
+        Exact banded Jacobian from the tangent flow, or the paper's finite differences.
+    max_iter : int
+        Newton iterations, in [1, 1000].
+    time_budget_s : float
+        CPU seconds of the solving thread, in (0, 1e9].
+    predictor : callable or None
+        ``predictor(N) -> x0``, an initial interleaved state (w_n, ẇ_n) of shape (2N,); None
+        uses the QC profile.
+
+    Returns
+    -------
+    WaveResult
+        The wave on N sites (``w``, ``wdot`` of shape (N,), period T = 1/V in time units), its
+        error bounds, run time, ``converged`` and ``message``.
+
+    Raises
+    ------
+    ParameterError
+        When ``law``, ``V``, ``branch``, ``N``, ``tol``, ``jacobian``, ``max_iter``,
+        ``time_budget_s`` or ``predictor`` is out of range (V also when the wave is too wide
+        for N_MAX sites).
     """
     tol, time_budget_s = _check_common(law, tol, jacobian, max_iter, time_budget_s, predictor)
     spec = superkink_spec(law, require_finite("V", V), branch)
@@ -351,6 +424,40 @@ def solve_solitary(
     V in (c₊, V_SK) (background w_B = w₊) or (V_SK, c₋) (w_B = w_S(V), eq. wB); pinning
     ẇ_1(T) = 0 puts the extremum at n = 0; boundary strains w_left = w_right = w_B.
     tol is relative to the strain scale, as in :func:`solve_superkink`.
+
+    Parameters
+    ----------
+    law : HardeningSofteningLaw
+        The spring law f(w).
+    w_plus : float
+        Strain w₊ ahead of the associated superkink (selects the family).
+    V : float
+        Wave velocity, sites per unit time, in (c₊, V_SK) ∪ (V_SK, c₋).
+    N : int or None
+        Number of sites (even, in [N_MIN, N_MAX], wide enough for the tails); None: automatic.
+    tol : float
+        Relative tolerance in [1e-15, 1e-3], relative to the strain scale.
+    jacobian : {"exact", "fd"}
+        Exact banded Jacobian, or the paper's finite differences.
+    max_iter : int
+        Newton iterations, in [1, 1000].
+    time_budget_s : float
+        CPU seconds of the solving thread, in (0, 1e9].
+    predictor : callable or None
+        ``predictor(N) -> x0``, an initial interleaved state (w_n, ẇ_n) of shape (2N,); None
+        uses the QC profile.
+
+    Returns
+    -------
+    WaveResult
+        The wave on N sites (``w``, ``wdot`` of shape (N,)), its error bounds, run time,
+        ``converged`` and ``message``.
+
+    Raises
+    ------
+    ParameterError
+        When ``law``, ``w_plus``, ``V``, ``N``, ``tol``, ``jacobian``, ``max_iter``,
+        ``time_budget_s`` or ``predictor`` is out of range.
     """
     tol, time_budget_s = _check_common(law, tol, jacobian, max_iter, time_budget_s, predictor)
     spec = solitary_spec(law, require_finite("w_plus", w_plus), require_finite("V", V))
@@ -358,6 +465,16 @@ def solve_solitary(
 
 
 def warm(law: HardeningSofteningLaw) -> None:
-    """Compile/load every jitted route used here (for ``fpucore.warm``): one small superkink."""
+    """Compile/load every jitted route used here (for ``fpucore.warm``): one small superkink.
+
+    Parameters
+    ----------
+    law : HardeningSofteningLaw
+        The law whose superkink at the middle of its velocity interval is solved on N = 64 sites.
+
+    Returns
+    -------
+    None
+    """
     lo, hi = qc.superkink_velocity_bounds(law)
     solve_superkink(law, 0.5 * (lo + hi), N=64)

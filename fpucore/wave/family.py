@@ -82,7 +82,35 @@ def superkink_family(
     progress: Callable[[int, int, WaveResult], None] | None = None,
 ) -> Family:
     """Discrete superkinks at each V (continuation with the QC-shift predictor).  Sort V_values
-    so neighbours are close; each point is solved independently if its predictor fails."""
+    so neighbours are close; each point is solved independently if its predictor fails.
+
+    Parameters
+    ----------
+    law : HardeningSofteningLaw
+        The spring law f(w).
+    V_values : array_like, shape (n_V,)
+        Wave velocities, sites per unit time, each in the superkink interval.
+    branch : {"lower", "upper"}
+        Which superkink branch.
+    N : int or None
+        Number of sites for every wave; None: automatic per wave.
+    tol : float
+        Relative tolerance of each solve, as in :func:`fpucore.wave.solve_superkink`.
+    progress : callable or None
+        ``progress(i, n_V, result)`` after each wave (i counts from 1).
+
+    Returns
+    -------
+    Family
+        The n_V results and their arrays of shape (n_V,) (V, converged, amplitude, energy,
+        residual, qc_max_deviation) and the run time.
+
+    Raises
+    ------
+    ParameterError
+        When ``V_values`` is not a non-empty 1-D array of finite velocities, or any V or
+        ``branch`` is invalid (checked before any solve).
+    """
 
     V = require_V_values(V_values)
     specs = [superkink_spec(law, float(v), branch) for v in V]  # validates every V first
@@ -101,7 +129,34 @@ def solitary_family(
     tol: float = 1e-12,
     progress: Callable[[int, int, WaveResult], None] | None = None,
 ) -> Family:
-    """Discrete solitary waves for state w₊ at each V in (c₊, V_SK) ∪ (V_SK, c₋)."""
+    """Discrete solitary waves for state w₊ at each V in (c₊, V_SK) ∪ (V_SK, c₋).
+
+    Parameters
+    ----------
+    law : HardeningSofteningLaw
+        The spring law f(w).
+    w_plus : float
+        Strain w₊ ahead of the associated superkink.
+    V_values : array_like, shape (n_V,)
+        Wave velocities, sites per unit time.
+    N : int or None
+        Number of sites for every wave; None: automatic per wave.
+    tol : float
+        Relative tolerance of each solve, as in :func:`fpucore.wave.solve_solitary`.
+    progress : callable or None
+        ``progress(i, n_V, result)`` after each wave (i counts from 1).
+
+    Returns
+    -------
+    Family
+        The n_V results, their arrays of shape (n_V,) and the run time.
+
+    Raises
+    ------
+    ParameterError
+        When ``V_values`` is not a non-empty 1-D array of finite velocities, or ``w_plus`` or
+        any V is invalid (checked before any solve).
+    """
 
     V = require_V_values(V_values)
     specs = [solitary_spec(law, w_plus, float(v)) for v in V]

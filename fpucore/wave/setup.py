@@ -43,7 +43,23 @@ FLOOR_FACTOR = 4.0  # accept residuals / step-doubling errors up to this × the 
 
 def strain_scale(w_left: float, w_right: float) -> float:
     """s = max(1, |w_left|, |w_right|): the round-off of eq. nonlin_system grows with |w|, so
-    every tolerance of a solve is relative to s (:class:`Tolerances`)."""
+    every tolerance of a solve is relative to s (:class:`Tolerances`).
+
+    Parameters
+    ----------
+    w_left, w_right : float
+        Boundary strains of the wave.
+
+    Returns
+    -------
+    float
+        The strain scale s >= 1.
+
+    Raises
+    ------
+    ParameterError
+        When ``w_left`` or ``w_right`` is not finite.
+    """
     return max(1.0, abs(require_finite("w_left", w_left)), abs(require_finite("w_right", w_right)))
 
 
@@ -278,7 +294,30 @@ class Spec:
 
 def spec_of(law: HardeningSofteningLaw, kind: str, row: Any, V: float) -> Spec:
     """The wave of ``kind`` at velocity V on the family ``row`` (the branch of a superkink, w₊
-    of a solitary wave).  Raises ParameterError outside the existence region."""
+    of a solitary wave).  Raises ParameterError outside the existence region.
+
+    Parameters
+    ----------
+    law : HardeningSofteningLaw
+        The spring law f(w).
+    kind : str
+        ``"superkink"``; any other value gives a solitary wave.
+    row : str or float
+        The branch (``"lower"``/``"upper"``) of a superkink, or the strain w₊ of a solitary wave.
+    V : float
+        Wave velocity, sites per unit time.
+
+    Returns
+    -------
+    Spec
+        The wave's specification (law, V, boundary strains, pinning, QC predictor).
+
+    Raises
+    ------
+    ParameterError
+        Outside the existence region (V, branch or w₊ invalid), or for a law refused by the
+        discrete solver.
+    """
     if kind == "superkink":
         return superkink_spec(law, V, row)
     return solitary_spec(law, row, V)
@@ -286,7 +325,27 @@ def spec_of(law: HardeningSofteningLaw, kind: str, row: Any, V: float) -> Spec:
 
 def superkink_spec(law: HardeningSofteningLaw, V: float, branch: str) -> Spec:
     """The superkink of ``branch`` at V: w_left = w₋, w_right = w₊ (eq. wpm_cubic for the
-    cubic), pinned at the QC profile's centre."""
+    cubic), pinned at the QC profile's centre.
+
+    Parameters
+    ----------
+    law : HardeningSofteningLaw
+        The spring law f(w).
+    V : float
+        Wave velocity, sites per unit time, in the superkink interval (eq. V_bounds_cubic).
+    branch : {"lower", "upper"}
+        Which superkink of the pair at V.
+
+    Returns
+    -------
+    Spec
+        Pinned by w(0) = w_center (w* for the cubic, (w₊ + w₋)/2 for a general law).
+
+    Raises
+    ------
+    ParameterError
+        When ``law``, ``V`` or ``branch`` is invalid.
+    """
     require_discrete(require_law(law))  # a law whose f' has no digits left is refused first
     sk = qc.superkink_from_V(law, V, branch)  # validates V and branch
     return Spec(
@@ -306,14 +365,49 @@ def superkink_spec(law: HardeningSofteningLaw, V: float, branch: str) -> Spec:
 
 def solitary_spec(law: HardeningSofteningLaw, w_plus: float, V: float) -> Spec:
     """The solitary wave for w₊ at V: w_left = w_right = w_B (w₊ below V_SK, w_S(V) above:
-    eq. wB), pinned by ẇ_1(T) = 0 (the extremum at n = 0)."""
+    eq. wB), pinned by ẇ_1(T) = 0 (the extremum at n = 0).
+
+    Parameters
+    ----------
+    law : HardeningSofteningLaw
+        The spring law f(w).
+    w_plus : float
+        Strain w₊ ahead of the associated superkink.
+    V : float
+        Wave velocity, sites per unit time, in (c₊, V_SK) ∪ (V_SK, c₋).
+
+    Returns
+    -------
+    Spec
+        The solitary wave's specification (w_left = w_right = w_B).
+
+    Raises
+    ------
+    ParameterError
+        When ``law``, ``w_plus`` or ``V`` is invalid.
+    """
     require_discrete(require_law(law))
     sw = qc.solitary(law, w_plus, V)  # validates w_plus and V
     return Spec(law, sw.kind, sw.V, sw.w_B, sw.w_B, sw.w_plus, "wd", 0.0, sw, sw.amplitude, None)
 
 
 def resize(x: np.ndarray, N_old: int, N_new: int, w_left: float, w_right: float) -> np.ndarray:
-    """Re-centre an interleaved state on a chain of N_new sites (pad with the tail states)."""
+    """Re-centre an interleaved state on a chain of N_new sites (pad with the tail states).
+
+    Parameters
+    ----------
+    x : ndarray, shape (2 N_old,)
+        Interleaved state (w_n, ẇ_n) on N_old sites, n = −N_old/2 … N_old/2−1.
+    N_old, N_new : int
+        Site counts of ``x`` and of the result.
+    w_left, w_right : float
+        Strains given to new sites left (n < 0) and right (n >= 0) of the old chain; their ẇ is 0.
+
+    Returns
+    -------
+    ndarray, shape (2 N_new,)
+        The interleaved state on N_new sites, aligned on site n = 0.
+    """
     n_new = np.arange(N_new) - N_new // 2
     y = np.empty(2 * N_new)
     y[0::2] = np.where(n_new < 0, w_left, w_right)
