@@ -50,7 +50,6 @@ log = logging.getLogger("fpu-explorer")
 MAX_COEFF_SLIDERS = 8
 
 
-
 class LawEditor(pn.viewable.Viewer):
     """Law selector: cubic (a, b sliders) or an expression with its coefficient sliders."""
 

@@ -8,6 +8,7 @@ one-line message on stderr, and an output that could not be written after the wo
 
 from __future__ import annotations
 
+import _thread
 import importlib
 import os
 import signal
@@ -64,7 +65,44 @@ def build_parser() -> Parser:
     return parser
 
 
+class SwallowedInterrupts:
+    """Ctrl-C that lands inside a C callback (Numba writing its cache through ctypes) raises
+    KeyboardInterrupt there, and Python only prints it ("Exception ignored …") and goes on: the
+    command would run to its end and exit 0.  While installed, such an interrupt is raised
+    again 10 ms later (from a timer thread, so it surfaces in Python code), and ``seen``
+    remembers it for a command that still returns normally."""
+
+    def __init__(self) -> None:
+        self.seen = False
+        self._previous = sys.unraisablehook
+
+    def __enter__(self) -> SwallowedInterrupts:
+        sys.unraisablehook = self._hook
+        return self
+
+    def __exit__(self, *exc) -> None:
+        sys.unraisablehook = self._previous
+
+    def _hook(self, unraisable) -> None:
+        if isinstance(unraisable.exc_value, KeyboardInterrupt):
+            self.seen = True
+            # raised again from another thread a moment later, once the callback has returned
+            # (raised in this hook, it would be ignored again)
+            threading.Timer(0.01, _thread.interrupt_main).start()
+            return
+        self._previous(unraisable)
+
+
 def main(argv: list[str] | None = None) -> int:
+    with SwallowedInterrupts() as swallowed:
+        code = _main(argv)
+    if swallowed.seen and code != 130:
+        sys.stderr.write("fpu: interrupted\n")
+        return 130
+    return code
+
+
+def _main(argv: list[str] | None) -> int:
     try:
         args = build_parser().parse_args(argv)  # --help exits here: no NumPy/Numba imported
         if getattr(args, "light", False):  # fpu serve: the work is another process's

@@ -60,9 +60,7 @@ def drawn_force(ex, values):
         seg = (x >= lo) & (x <= hi)
         np.testing.assert_allclose(np.diff(y[seg]) / np.diff(x[seg]), E, rtol=1e-9)
     pts = sc.r_pts[1].data
-    corners = {
-        lab: (float(px), float(py)) for lab, px, py in zip(pts["label"], pts["x"], pts["y"])
-    }
+    corners = {lab: (float(px), float(py)) for lab, px, py in zip(pts["label"], pts["x"], pts["y"])}
     assert corners["w₁"] == pytest.approx((w1, float(f_ref(w1, **values))), rel=1e-14)
     assert corners["w₂"] == pytest.approx((w2, float(f_ref(w2, **values))), rel=1e-14)
     return sc

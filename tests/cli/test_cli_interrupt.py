@@ -106,3 +106,48 @@ def test_ctrl_c_while_the_package_imports_exits_130_with_one_line():
         assert p.returncode == 130, (p.returncode, err)
         assert err.strip().splitlines() == ["fpu: interrupted"], err
     assert interrupted, "every run finished before the signal"
+
+
+def _swallowing_callback():
+    """A C callback (as Numba's cache writer, called through ctypes) in which Ctrl-C lands:
+    Python prints the KeyboardInterrupt as "Exception ignored" and returns from the call."""
+    import ctypes
+
+    def cb():
+        raise KeyboardInterrupt
+
+    return ctypes.CFUNCTYPE(None)(cb)
+
+
+def test_ctrl_c_swallowed_by_a_c_callback_still_interrupts(monkeypatch, capsys):
+    """The CI run of the sweep test above: SIGINT arrived while Numba wrote its cache, the
+    interrupt was swallowed and the sweep ran to its end with exit 0.  Now the interrupt is
+    raised again at once: one line, exit 130."""
+    from fpucore.cli import dispatch
+
+    ran_on = []
+
+    def command(args):
+        _swallowing_callback()()
+        time.sleep(5)  # the interrupt surfaces within the sleep
+        ran_on.append(1)  # never reached
+        return 0
+
+    def parser():
+        class P:
+            def parse_args(self, argv):
+                class A:
+                    light = True
+                    func = staticmethod(command)
+
+                return A()
+
+        return P()
+
+    monkeypatch.setattr(dispatch, "build_parser", parser)
+    assert dispatch.main([]) == 130
+    assert capsys.readouterr().err.strip().splitlines() == ["fpu: interrupted"]
+    assert not ran_on
+    import sys
+
+    assert sys.unraisablehook is not None  # restored (pytest's own, or Python's)

@@ -69,7 +69,10 @@ def test_energy_and_profile_against_40_digit_quadrature(name, side):
         assert abs(sw.w_B - float(wB)) <= sw.w_B_error + eps * max(1, abs(float(wB)))
         assert abs(sw.w_M - float(wM)) <= sw.w_M_error + eps * max(1, abs(float(wM)))
         assert abs(sw.energy - float(E)) <= sw.energy_error + eps * abs(float(E)), (
-            sw.energy, float(E), sw.energy_error)
+            sw.energy,
+            float(E),
+            sw.energy_error,
+        )
         assert sw.energy_error <= 1e-8 * abs(float(E))  # and the bar is not vacuous
         # the profile at the ξ where the exact wave has strain w (from the crest to the tail)
         for t in (0.02, 0.3, 0.7, 0.98):
