@@ -136,8 +136,13 @@ def _sw_grid(w_plus: float, reduced: bool):
     s = np.linspace(0.1, 1.0, n) ** 2
     below = v_sk - (v_sk - c_plus) * 0.95 * s[::-1]
     above = v_sk + (c_minus - v_sk) * 0.95 * s
-    # the velocities next to V_SK where the paper's maxima are reached (tests/paper)
+    # the velocities next to V_SK where the paper's maxima are reached (tests/paper); in full
+    # the flat tops V_SK ∓ 1e-6 too, which the explorer offers (its V box reaches them): the
+    # row's maximum covers them (measured at N = 500: max|μ| 1.000936 at w₊ = 6, 1.000505 at
+    # w₊ = 1, under the printed bounds; at w₊ = 6 it was 1.001925 at N = 250: finite-size)
     near = {1.0: [5.38], 6.0: [5.21]}[w_plus]
+    if not reduced:
+        near = [*near, v_sk - 1e-6, v_sk + 1e-6]
     return np.union1d(np.concatenate([below, above]), near), v_sk
 
 
