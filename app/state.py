@@ -37,8 +37,7 @@ A_RANGE = (-5.0, -0.1)
 B_RANGE = (1.0, 20.0)
 N_RANGE = (64, 4000)
 TOL_OPTIONS = (1e-4, 1e-6, 1e-8, 1e-10, 1e-12, 1e-13)
-#: longest URL value read (a 5000-digit value is refused before any conversion); a law's
-#: expression may be longer, but is bounded too
+#: longest URL value read (a 5000-digit value is refused before any conversion; a law: below)
 MAX_URL_VALUE = 40
 MAX_URL_LAW = 200
 #: longest wait of a page build for the URL's law (the server's event loop waits meanwhile)
@@ -51,8 +50,7 @@ URL_ATTRS = {"law": "expression", "hold": "held", "fig": "figure", "sim": "simul
              "run": "sim_shown"}  # fmt: skip
 #: curves held at once (Hold on Wave profiles and Phase plane; the oldest goes first)
 MAX_HELD = 6
-#: longest ``hold`` value read: MAX_HELD entries of two exact floats each, with room to spare
-MAX_URL_HOLD = 400
+MAX_URL_HOLD = 400  #: longest ``hold`` value: MAX_HELD entries of two exact floats, and room
 #: the state parameters a URL holds, in URL_PARAMS order
 STATE_PARAMS = tuple(URL_ATTRS.get(n, n) for n in URL_PARAMS)
 #: the state parameters a paper figure sets: a change of one of them leaves the figure
@@ -107,10 +105,9 @@ class ExplorerState(param.Parameterized):
         return compute.law_key(self.law())
 
     def w_plus_range(self) -> tuple[float, float, float]:
-        """(lo, w*, hi): w_plus ranges over (lo, hi) without w*, where superkinks of the lower
-        and upper branch exist — (alpha, beta) for the cubic (eq. cubic_more); for another law
-        the equal-area partner w₋ must stay inside (alpha, beta).  An infinite end (alpha = −∞)
-        is replaced by a finite window, as in fpucore.qc.diagram.existence_diagram."""
+        """(lo, w*, hi): w_plus ranges over (lo, hi) without w*, where superkinks of either
+        branch exist ((alpha, beta) for the cubic, eq. cubic_more; else w₋ stays in (alpha,
+        beta)); an infinite end gets a finite window, as in qc.diagram.existence_diagram."""
         lw = self.law()
         lo = qc.superkink_w_plus_range(lw, "lower")[0]
         hi = qc.superkink_w_plus_range(lw, "upper")[1]
@@ -148,8 +145,7 @@ class ExplorerState(param.Parameterized):
                         f"V = V_SK = {vsk:.10g} is the superkink itself: switch the mode to "
                         "'superkink' or move V into (c+, V_SK) or (V_SK, c-)."
                     )
-                # its refusals without its profile (near a sonic end a smooth law's profile and
-                # E_ren took ~0.8 s, and the sidebar asks this several times per law change)
+                # its refusals without its profile (near a sonic end a profile took ~0.8 s)
                 qc.solitary_kind(lw, self.w_plus, self.V)
         except ParameterError as exc:
             return str(exc)
@@ -168,7 +164,7 @@ class ExplorerState(param.Parameterized):
             out.update(c_plus=cp, V_SK=vsk, c_minus=cm)
         except ParameterError:
             return out
-        with contextlib.suppress(ParameterError):  # refused for piecewise-linear laws (fpucore)
+        with contextlib.suppress(ParameterError):
             out["V_lo"], out["V_hi"] = qc.superkink_velocity_bounds(self.law())
         return out
 
@@ -207,8 +203,7 @@ class ExplorerState(param.Parameterized):
 
     @property
     def adjusting(self) -> bool:
-        """True while the coupling updates the state inside another change's watchers (a new
-        law's w₊ and V, superkink mode's V = V_SK): that change's own watchers follow."""
+        """True while the coupling updates the state inside another change's watchers."""
         return self._tying
 
     def _tie(self, *events):
@@ -263,9 +258,8 @@ class ExplorerState(param.Parameterized):
         return hard is not None and hard[0] <= w_plus <= hard[1]
 
     def _lower_middle(self, lo: float, ws: float) -> float:
-        """The w₊ a new law starts from: the middle of its lower branch (lo, w*); for a
-        piecewise-linear law the middle of its soft regime's part (max(lo, 0), w₁) (its
-        lower branch's window (lo, w*) reaches far below 0 (α = −∞) and contains [w₁, w*])."""
+        """A new law's w₊: the middle of its lower branch (lo, w*); for a piecewise-linear law
+        that of its soft regime's part (max(lo, 0), w₁) ((lo, w*) contains [w₁, w*])."""
         hard = getattr(self.law(), "hard_regime", None)
         if hard is None:
             return lo + 0.5 * (ws - lo)

@@ -31,7 +31,14 @@ from ..compute import Computed
 from ..data_dir import hide_server_paths
 from ..state import N_RANGE
 from ..url_state import resolve_atlas_store
-from .bokeh_scene import BokehScene, Updates, add_points, finite_extent, new_figure
+from .bokeh_scene import (
+    BokehScene,
+    Updates,
+    add_legend,
+    add_points,
+    finite_extent,
+    new_figure,
+)
 from .formatting import as_csv
 from .python_code import python_preamble
 from .report import Info, SceneMessage
@@ -89,9 +96,12 @@ class AtlasScene(BokehScene):
                                  sizing_mode="stretch_width", height=self.plot_height)  # fmt: skip
         self.sk_points = {}
         for branch, colour in BRANCH_COLOURS.items():
-            r, src = add_points(self.fig_sk, "circle", 8, color=colour, legend_label=branch)
+            r, src = add_points(self.fig_sk, "circle", 8, color=colour)
             src.name = f"atlas-superkink-{branch}"
             self.sk_points[branch] = (r, src)
+        add_legend(
+            self.fig_sk, "below", [(f"{b} branch", [r]) for b, (r, _) in self.sk_points.items()]
+        )
         self.fig_sk.visible = False
         self.fig_sk.on_event(Tap, lambda ev: self.pick_superkink(ev.x, ev.y))
         return column(fig, self.fig_sk, sizing_mode="stretch_width")
