@@ -1,18 +1,11 @@
 """The explorer's single state owner: parameters, slider ranges and validity.
 
-``ExplorerState`` holds what a link must reproduce (the law: cubic a, b or an expression; w_plus,
-V, mode, tab, N, tol; the held curves; the paper figure the view was opened from) and derives
-from fpucore's QC functions (closed forms for the cubic, the numerical §3 theory for any other
-law) the ranges the sliders may take:
-
-* w_plus: where superkinks (and so both solitary intervals) exist — (alpha, beta) for the cubic,
-  the union of both branches' w_plus ranges otherwise — with the degenerate point w* excluded;
-* V (solitary mode): (c_+, V_SK) ∪ (V_SK, c_-) (eq. wB), V_SK marked;
-* V (superkink mode): V = V_SK(w_plus) (eq. cubic_cond2), within eq. V_bounds_cubic.
-
-Parameters are deliberately unbounded (a URL may carry anything); ``problem()`` says in one
-sentence what is wrong with the current combination, and views show that sentence instead of
-a plot.  In superkink mode V and w_plus are tied: moving one moves the other along the branch.
+``ExplorerState`` holds what a link must reproduce (law, w_plus, V, mode, tab, N, tol, held
+curves, the paper figure) and derives from fpucore's QC functions the sliders' ranges: w_plus
+where superkinks exist (w* excluded); V in (c_+, V_SK) ∪ (V_SK, c_-) (eq. wB), or V = V_SK(w_plus)
+in superkink mode (eq. cubic_cond2), where moving one moves the other along the branch.
+Parameters are unbounded (a URL may carry anything): ``problem()`` says in one sentence what is
+wrong, and views show that sentence instead of a plot.
 """
 
 from __future__ import annotations
@@ -87,6 +80,7 @@ class ExplorerState(param.Parameterized):
         #: sync the sidebar one at a time (app.widgets.user_action, Syncing)
         self.lock = threading.RLock()
         self._tying = False
+        self._in_tie = False
         self._showing_figure = False
         self._solitary_V = self.V if self.mode == "solitary" else None
         self.param.watch(self._tie, ["w_plus", "V", "mode", "a", "b", "expression"])
@@ -101,8 +95,7 @@ class ExplorerState(param.Parameterized):
         return compute.make_law(self.a, self.b, self.expression)
 
     def law_key(self) -> tuple:
-        """The exact cache-key form of the law (app.compute.law_key)."""
-        return compute.law_key(self.law())
+        return compute.law_key(self.law())  # the exact cache-key form of the law
 
     def w_plus_range(self) -> tuple[float, float, float]:
         """(lo, w*, hi): w_plus ranges over (lo, hi) without w*, where superkinks of either
@@ -204,11 +197,18 @@ class ExplorerState(param.Parameterized):
     @property
     def adjusting(self) -> bool:
         """True while the coupling updates the state inside another change's watchers."""
-        return self._tying
+        return self._in_tie
 
     def _tie(self, *events):
         if self._tying:
             return
+        self._in_tie = True
+        try:
+            self._tie_events(events)
+        finally:
+            self._in_tie = False
+
+    def _tie_events(self, events) -> None:
         names = {e.name for e in events}
         self.note = ""
         if "expression" in names and not names & {"w_plus", "V"}:
