@@ -141,7 +141,7 @@ def riemann(
         Times of each probe series, in [2, 10⁷].
     threshold : float or None
         Detection threshold of the wave tracker, strain units.
-    **kw
+    ``**kw``
         The further keywords listed above.
 
     Returns
@@ -245,7 +245,7 @@ def gaussian(
         Times of each probe series, in [2, 10⁷].
     threshold : float or None
         Detection threshold of the wave tracker, strain units.
-    **kw
+    ``**kw``
         The further keywords of :func:`riemann`.
 
     Returns

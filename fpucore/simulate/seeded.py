@@ -141,7 +141,7 @@ def seeded(
         Detection threshold of the wave tracker, strain units.
     margin : int
         Sites between the chain's left end and the wave's first site, in [10, MAX_L].
-    **kw
+    ``**kw``
         Further keywords of :func:`fpucore.simulate.scenarios.riemann`.
 
     Returns

@@ -37,7 +37,7 @@ def documented_parameters(doc: str | None) -> list[str]:
     names: list[str] = []
     for line in (m.group(1) if m else "").splitlines():
         if line and not line.startswith(" "):
-            names += [x.strip().lstrip("*") for x in line.split(" : ")[0].split(",")]
+            names += [x.strip().strip("`").lstrip("*") for x in line.split(" : ")[0].split(",")]
     return names
 
 
