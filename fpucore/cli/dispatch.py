@@ -75,6 +75,7 @@ class SwallowedInterrupts:
     def __init__(self) -> None:
         self.seen = False
         self._previous = sys.unraisablehook
+        self._timers: list[threading.Timer] = []
 
     def __enter__(self) -> SwallowedInterrupts:
         sys.unraisablehook = self._hook
@@ -82,13 +83,18 @@ class SwallowedInterrupts:
 
     def __exit__(self, *exc) -> None:
         sys.unraisablehook = self._previous
+        for timer in self._timers:  # the command has ended: nothing left to interrupt
+            timer.cancel()
 
     def _hook(self, unraisable) -> None:
         if isinstance(unraisable.exc_value, KeyboardInterrupt):
             self.seen = True
             # raised again from another thread a moment later, once the callback has returned
             # (raised in this hook, it would be ignored again)
-            threading.Timer(0.01, _thread.interrupt_main).start()
+            timer = threading.Timer(0.01, _thread.interrupt_main)
+            timer.daemon = True
+            self._timers.append(timer)
+            timer.start()
             return
         self._previous(unraisable)
 
