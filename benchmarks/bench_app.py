@@ -25,11 +25,8 @@ from __future__ import annotations
 import argparse
 import os
 import statistics
-import subprocess
-import sys
 import threading
 import time
-import urllib.request
 from pathlib import Path
 
 from bokeh.document import Document
@@ -211,31 +208,12 @@ def bench_browser_law_change(url: str, b, rounds: int) -> None:
 
 def bench_browser(loads: int, concurrent: bool = False, n: int = 9, laws: int = 0) -> None:
     """Time from navigation to the first scene's completed render, warm server cache."""
-    import socket
-
     from playwright.sync_api import sync_playwright
 
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        port = s.getsockname()[1]
-    env = dict(os.environ, NUMBA_CACHE_DIR=os.environ.get("NUMBA_CACHE_DIR", ".numba_cache"))
-    env.setdefault("FPU_WARM_SCENES", "force,phase")  # the page opens on the force law
-    # fpu serve: panel serve app/main.py with the warm-up (app/warm.py) and the guards
-    cmd = [sys.executable, "-m", "fpucore", "serve", "--port", str(port), "--address", "127.0.0.1"]
-    proc = subprocess.Popen(
-        cmd, cwd=ROOT, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL
-    )
-    url = f"http://127.0.0.1:{port}"
-    try:
-        t_end = time.monotonic() + 300
-        while True:
-            try:
-                with urllib.request.urlopen(url + "/liveness", timeout=2):
-                    break
-            except OSError:
-                if time.monotonic() > t_end or proc.poll() is not None:
-                    raise RuntimeError("panel serve did not start") from None
-                time.sleep(0.2)
+    from benchmarks.served import served_app
+
+    # fpu serve with the warm-up (app/warm.py) and the guards; the page opens on the force law
+    with served_app(FPU_WARM_SCENES="force,phase") as url:
         print(f"Page interactive (navigation → force scene rendered), {loads} loads, warm cache")
         with sync_playwright() as p:
             b = p.chromium.launch(
@@ -259,9 +237,6 @@ def bench_browser(loads: int, concurrent: bool = False, n: int = 9, laws: int = 
             if laws:
                 bench_browser_law_change(url, b, laws)
             b.close()
-    finally:
-        proc.terminate()
-        proc.wait(15)
 
 
 def main(argv: list[str] | None = None) -> int:

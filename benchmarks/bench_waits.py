@@ -15,15 +15,11 @@ import argparse
 import multiprocessing as mp
 import os
 import re
-import socket
 import statistics
-import subprocess
-import sys
 import time
-import urllib.request
-from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
+from benchmarks.served import served_app
+
 FIGURES = ("stabSK", "stabSW", "SWdyn", "Riemann1")
 
 
@@ -108,35 +104,16 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--hogs", type=int, default=0, help="busy processes beside the server")
     ap.add_argument("--rounds", type=int, default=1, help="repetitions of every action")
     args = ap.parse_args(argv)
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        port = s.getsockname()[1]
-    env = dict(os.environ, NUMBA_CACHE_DIR=os.environ.get("NUMBA_CACHE_DIR", ".numba_cache"))
-    cmd = [sys.executable, "-m", "fpucore", "serve", "--port", str(port), "--address", "127.0.0.1"]
-    proc = subprocess.Popen(
-        cmd, cwd=ROOT, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL
-    )
     hogs = [mp.Process(target=spin, daemon=True) for _ in range(args.hogs)]
-    url = f"http://127.0.0.1:{port}"
-    try:
-        t_end = time.monotonic() + 300
-        while True:
-            try:
-                with urllib.request.urlopen(url + "/liveness", timeout=2):
-                    break
-            except OSError:
-                if time.monotonic() > t_end or proc.poll() is not None:
-                    raise RuntimeError("fpu serve did not start") from None
-                time.sleep(0.2)
+    with served_app() as url:
         for h in hogs:
             h.start()
-        print(f"{args.hogs} busy process(es) beside the server; load {os.getloadavg()[0]:.1f}")
-        run(url, args.rounds)
-    finally:
-        for h in hogs:
-            h.terminate()
-        proc.terminate()
-        proc.wait(15)
+        try:
+            print(f"{args.hogs} busy process(es) beside the server; load {os.getloadavg()[0]:.1f}")
+            run(url, args.rounds)
+        finally:
+            for h in hogs:
+                h.terminate()
     return 0
 
 
