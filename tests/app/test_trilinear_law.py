@@ -139,3 +139,52 @@ def test_the_dynamic_scenes_compute_it_or_say_why(key):
         assert "piecewise-linear" in msg and "computation failed" not in msg, msg
         assert "Traceback" not in msg
         assert sc.alert.visible and "piecewise-linear" in sc.alert.object
+
+
+def equal_area_superkink(w_plus: float, **values) -> tuple[float, float]:
+    """(w₋, V) of the QC superkink from w₊, solved here by a second route: the chord's
+    equal-area condition ∫ f dw = ½ (f(w₊) + f(w₋)) (w₋ − w₊), integrated by adaptive
+    quadrature split at the corners, then V² = (f(w₋) − f(w₊)) / (w₋ − w₊) (Rayleigh line)."""
+    from scipy.integrate import quad
+    from scipy.optimize import brentq
+
+    def f(w):
+        return float(f_ref(w, **values))
+
+    def gap(wm):
+        area = quad(f, w_plus, wm, points=[values["w1"], values["w2"]], epsabs=1e-14)[0]
+        return area - 0.5 * (f(w_plus) + f(wm)) * (wm - w_plus)
+
+    grid = np.linspace(values["w2"], 20.0, 2000)  # w₋ lies in the third (soft) regime
+    g = np.array([gap(x) for x in grid])
+    (i,) = np.flatnonzero(np.sign(g[:-1]) != np.sign(g[1:]))[:1]
+    wm = brentq(gap, grid[i], grid[i + 1], xtol=1e-15)
+    return wm, float(np.sqrt((f(wm) - f(w_plus)) / (wm - w_plus)))
+
+
+def test_superkink_mode_follows_the_equal_area_superkink_and_computes_it():
+    """Superkink mode with the trilinear preset: V is tied to V_SK(w₊) (checked against the
+    equal-area construction solved in the test), the profiles scene shows the discrete superkink
+    with its exact amplitude |w₋ − w₊|, and the Floquet scene gives its spectrum and a verdict."""
+    st = state()
+    st.param.update(N=64, w_plus=0.25)
+    st.mode = "superkink"
+    wm, V = equal_area_superkink(0.25, **TRILINEAR_DEFAULTS)
+    assert st.V == pytest.approx(V, rel=1e-11)
+    ex = Explorer(st)
+    prof = ex.scene("profiles")
+    prof.refresh()
+    assert prof.wait_idle(600)
+    prof.refresh()
+    assert prof.last_message is None, prof.last_message
+    shown = prof.last_info.shown
+    assert shown.startswith("superkink")
+    amp = float(shown.split("|w₋ − w₊| = ")[1].split()[0])
+    assert amp == pytest.approx(wm - 0.25, rel=1e-5)
+    assert "exact by construction" in shown
+    flo = ex.scene("floquet")
+    flo.refresh()
+    assert flo.wait_idle(600)
+    flo.refresh()
+    assert flo.last_message is None, flo.last_message
+    assert "superkink wave" in flo.last_info.shown and "max |μ| = " in flo.last_info.shown
