@@ -103,8 +103,12 @@ def _whole_bytes(name: str, text, n: float, valid: str) -> int:
     if not math.isfinite(n):
         raise ParameterError(name, text, valid, "the size overflows")
     if n < 1.0:
-        raise ParameterError(name, text, valid, f"{n:g} bytes: less than one byte (a share is "
-                             "written with %, e.g. 50%)")  # fmt: skip
+        raise ParameterError(
+            name,
+            text,
+            valid,
+            f"{n:g} bytes: less than one byte (a share is written with %, e.g. 50%)",
+        )
     return int(n)
 
 

@@ -74,10 +74,13 @@ def _field_value(value: Any, arrays: bool) -> tuple[bool, Any]:
         return True, [v.as_dict() for v in value]
     if hasattr(value, "constants_dict") and hasattr(value, "representation_error"):  # smooth law
         err = value.representation_error
-        return True, {"law": value.describe(), "text": value.text,
-                      "constants": value.constants_dict,
-                      "represented_interval": list(value.interval),
-                      "representation_error": [err.f, err.df, err.ddf]}  # fmt: skip
+        return True, {
+            "law": value.describe(),
+            "text": value.text,
+            "constants": value.constants_dict,
+            "represented_interval": list(value.interval),
+            "representation_error": [err.f, err.df, err.ddf],
+        }
     if hasattr(value, "law_id") and hasattr(value, "params"):  # a force law
         return True, {"law": value.describe(), "params": np.asarray(value.params).tolist()}
     if callable(value):

@@ -38,9 +38,11 @@ class Estimate:
 
     def line(self) -> str:
         todo = "" if self.n_todo == self.n_points else f", {self.n_todo} to do"
-        return (f"{self.n_points} points{todo}; estimate {self.per_point_s:.3g} s per point "
-                f"(timed on {PROBE_POINTS} cold points) x {self.n_todo} / {self.workers} worker"
-                f"{'s' if self.workers != 1 else ''} = about {duration(self.seconds)}")  # fmt: skip
+        return (
+            f"{self.n_points} points{todo}; estimate {self.per_point_s:.3g} s per point "
+            f"(timed on {PROBE_POINTS} cold points) x {self.n_todo} / {self.workers} worker"
+            f"{'s' if self.workers != 1 else ''} = about {duration(self.seconds)}"
+        )
 
 
 def duration(s: float) -> str:
@@ -70,8 +72,9 @@ def measure(grid: Grid, done: np.ndarray, task: ChunkTask, workers: int) -> Esti
             solve_chunk(replace(task.at(grid, i, j, j + 1), continuation=False))
             per_point = time.perf_counter() - t
     w = max(1, int(workers))
-    return Estimate(grid.size, n_todo, w, per_point, n_todo * per_point / w,
-                    time.perf_counter() - t0)  # fmt: skip
+    return Estimate(
+        grid.size, n_todo, w, per_point, n_todo * per_point / w, time.perf_counter() - t0
+    )
 
 
 def require_within(est: Estimate, time_budget_s: float | None) -> None:

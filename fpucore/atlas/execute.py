@@ -74,8 +74,12 @@ class Pool:
         if backend == "process" and n_chunks == 1 and self.automatic:
             backend = "inline"
         n = None if self.workers is None else min(self.workers, n_chunks)
-        return Executor(backend, workers=n, address=self.address,
-                        caller_runs=self.caller_runs and backend == "process")  # fmt: skip
+        return Executor(
+            backend,
+            workers=n,
+            address=self.address,
+            caller_runs=self.caller_runs and backend == "process",
+        )
 
 
 @dataclass(frozen=True)
@@ -102,8 +106,15 @@ class Outcome:
     message: str
 
 
-def execute(task: ChunkTask, grid: Grid, table: Table, writer: Writer | None,
-            executor: Executor | None, pool: Pool, hooks: Hooks) -> Outcome:  # fmt: skip
+def execute(
+    task: ChunkTask,
+    grid: Grid,
+    table: Table,
+    writer: Writer | None,
+    executor: Executor | None,
+    pool: Pool,
+    hooks: Hooks,
+) -> Outcome:
     """Submit the chunks of ``grid`` not done in ``table`` (each ``task.at(...)``), gather and
     store them.  executor : the caller's (kept running), else one started from ``pool`` (and
     shut down at the end)."""
@@ -166,8 +177,10 @@ def execute(task: ChunkTask, grid: Grid, table: Table, writer: Writer | None,
         while waiting or jobs:
             if budget is not None and time.perf_counter() - hooks.t0 > budget:
                 stopped = True
-                msg = (f"time budget {budget:g} s exhausted: "
-                       f"{len(waiting) + len(jobs)} chunks not done")  # fmt: skip
+                msg = (
+                    f"time budget {budget:g} s exhausted: "
+                    f"{len(waiting) + len(jobs)} chunks not done"
+                )
                 break
             if waiting:
                 submit(waiting.popleft())

@@ -50,8 +50,11 @@ class Grid:
     def chunks(self) -> list[tuple[int, int, int]]:
         """(row index, first V index, end V index) of every chunk, in grid order."""
         n = self.V.size
-        return [(i, j, min(j + self.chunk, n)) for i in range(len(self.rows))
-                for j in range(0, n, self.chunk)]  # fmt: skip
+        return [
+            (i, j, min(j + self.chunk, n))
+            for i in range(len(self.rows))
+            for j in range(0, n, self.chunk)
+        ]
 
 
 def parse_values(
@@ -79,8 +82,9 @@ def parse_values(
             else:
                 raise ValueError
         except ValueError:
-            raise ParameterError(name, s, "LO:HI:K, a number" + (" or a count K" if allow_count
-                                 else "")) from None  # fmt: skip
+            raise ParameterError(
+                name, s, "LO:HI:K, a number" + (" or a count K" if allow_count else "")
+            ) from None
     if vals.size == 0 or not np.all(np.isfinite(vals)):
         raise ParameterError(name, spec, "finite values")
     return vals
@@ -131,8 +135,9 @@ def make_grid(
         lo, hi = velocity_span(law, kind, row_vals)
         v = np.linspace(lo, hi, v + 2)[1:-1]
     if np.any(v <= 0):
-        raise ParameterError("V", list(v), "velocities V > 0",
-                             "waves with -V are mirror images of those with V")  # fmt: skip
+        raise ParameterError(
+            "V", list(v), "velocities V > 0", "waves with -V are mirror images of those with V"
+        )
     if len(row_vals) * v.size > MAX_POINTS:
         raise ParameterError("grid", f"{len(row_vals)} x {v.size}", f"<= {MAX_POINTS} points")
     if chunk is None:

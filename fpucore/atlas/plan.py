@@ -68,12 +68,18 @@ def plan_workers(backend: str, workers, n_chunks: int, address, force: bool):
     if backend == "external":  # an Executor the caller made: its processes exist already
         return workers, ()
     if backend == "inline":
-        note = () if workers in (None, 1) else (f"workers={workers} ignored: the inline "
-                                                 "backend computes in this process",)  # fmt: skip
+        note = (
+            ()
+            if workers in (None, 1)
+            else (f"workers={workers} ignored: the inline backend computes in this process",)
+        )
         return 1, note
     if address is not None:
-        note = () if workers is None else (f"workers={workers} ignored: the scheduler's own "
-                                           "workers compute",)  # fmt: skip
+        note = (
+            ()
+            if workers is None
+            else (f"workers={workers} ignored: the scheduler's own workers compute",)
+        )
         return None, note
     n_cores = cores()
     if workers is None:
@@ -83,20 +89,25 @@ def plan_workers(backend: str, workers, n_chunks: int, address, force: bool):
         raise ParameterError("workers", workers, f"[1, {MAX_WORKERS}]")
     if force:
         n = min(workers, n_chunks)
-        return n, () if n == workers else (f"workers={workers} capped at {n}: the grid has "
-                                           f"{n_chunks} chunks",)  # fmt: skip
+        return n, () if n == workers else (
+            f"workers={workers} capped at {n}: the grid has {n_chunks} chunks",
+        )
     if workers > OVERSUBSCRIBE_MAX * n_cores:
         raise ParameterError(
-            "workers", workers, f"[1, {OVERSUBSCRIBE_MAX * n_cores}] ({OVERSUBSCRIBE_MAX} x the "
+            "workers",
+            workers,
+            f"[1, {OVERSUBSCRIBE_MAX * n_cores}] ({OVERSUBSCRIBE_MAX} x the "
             f"{n_cores} cores; used: at most {n_cores})",
             "more processes than cores only queue for them; force_workers=True "
             "(--force-workers) runs them anyway",
-        )  # fmt: skip
+        )
     n = min(workers, n_cores, n_chunks)
     if n == workers:
         return n, ()
-    return n, (f"workers={workers} capped at {n} = min(cores {n_cores}, chunks {n_chunks}); "
-               "force_workers=True (--force-workers) runs more processes than cores",)  # fmt: skip
+    return n, (
+        f"workers={workers} capped at {n} = min(cores {n_cores}, chunks {n_chunks}); "
+        "force_workers=True (--force-workers) runs more processes than cores",
+    )
 
 
 def worker_bytes(N: int | None, floquet: bool) -> float:
@@ -107,8 +118,16 @@ def worker_bytes(N: int | None, floquet: bool) -> float:
     return WORKER_BYTES + SPECTRUM_MATRICES * 8.0 * (2 * n) ** 2
 
 
-def plan(grid: Grid, backend: str, workers, address, force_workers: bool, N: int | None,
-         floquet: bool, memory_budget=None) -> Plan:  # fmt: skip
+def plan(
+    grid: Grid,
+    backend: str,
+    workers,
+    address,
+    force_workers: bool,
+    N: int | None,
+    floquet: bool,
+    memory_budget=None,
+) -> Plan:
     """Workers and memory of a run, refused (ParameterError naming ``grid`` or ``workers``, with
     the estimate and the budget) if the memory estimate exceeds the budget.  backend : "process"
     | "dask" | "inline", or "external" for an Executor the caller made (``workers`` = its
@@ -120,12 +139,19 @@ def plan(grid: Grid, backend: str, workers, address, force_workers: bool, N: int
     if backend == "inline" and floquet:  # the spectrum's matrices live in this process
         per_worker = worker_bytes(N, True) - WORKER_BYTES
     pool = (n or 0) * per_worker
-    detail = (f"table {fmt_bytes(table)} ({grid.size} points x {POINT_BYTES} B x "
-              f"{PARENT_FACTOR:g} + {fmt_bytes(PARENT_BASE)}) + {n or 0} workers x "
-              f"{fmt_bytes(per_worker)}")  # fmt: skip
+    detail = (
+        f"table {fmt_bytes(table)} ({grid.size} points x {POINT_BYTES} B x "
+        f"{PARENT_FACTOR:g} + {fmt_bytes(PARENT_BASE)}) + {n or 0} workers x "
+        f"{fmt_bytes(per_worker)}"
+    )
     if pool > table:
         require_memory("workers", table + pool, detail, value=n, budget=memory_budget)
     else:
-        require_memory("grid", table + pool, detail, value=f"{grid.shape[0]} x {grid.shape[1]}",
-                       budget=memory_budget)  # fmt: skip
+        require_memory(
+            "grid",
+            table + pool,
+            detail,
+            value=f"{grid.shape[0]} x {grid.shape[1]}",
+            budget=memory_budget,
+        )
     return Plan(n, notes, table + pool, table, detail)

@@ -92,8 +92,13 @@ class ChunkTask:
 
     def at(self, grid: Grid, i: int, j0: int, j1: int) -> ChunkTask:
         """This task for the chunk of row ``i``, columns ``j0:j1`` of ``grid``."""
-        return replace(self, row=grid.rows[i], V=tuple(float(v) for v in grid.V[j0:j1]),
-                       row_index=int(i), start=int(j0))  # fmt: skip
+        return replace(
+            self,
+            row=grid.rows[i],
+            V=tuple(float(v) for v in grid.V[j0:j1]),
+            row_index=int(i),
+            start=int(j0),
+        )
 
 
 class Column(NamedTuple):
@@ -203,8 +208,9 @@ def add_floquet(rec: dict[str, Any], fr: FloquetResult) -> None:
         rec["status"], rec["message"] = "not_converged", f"spectrum: {fr.message}"[:MESSAGE_CHARS]
 
 
-def solve_point(sp: Spec, N: int | None, tol: float,
-                prev: tuple[WaveResult, Spec] | None) -> WaveResult:  # fmt: skip
+def solve_point(
+    sp: Spec, N: int | None, tol: float, prev: tuple[WaveResult, Spec] | None
+) -> WaveResult:
     """The wave ``sp`` describes — from prev = (wave, spec) by the QC-shift predictor when both
     lie on the same velocity interval, else (or if that fails) from the QC guess
     (:func:`fpucore.wave.continuation.solve_from_neighbour`)."""

@@ -68,8 +68,12 @@ class AtlasData:
     def w_plus(self) -> np.ndarray:
         """The rows' w₊ (a solitary atlas; a superkink atlas has branches instead)."""
         if self.kind != "solitary":
-            raise ParameterError("kind", self.kind, "'solitary' (an atlas over (w₊, V))",
-                                 "a superkink atlas is over V only")  # fmt: skip
+            raise ParameterError(
+                "kind",
+                self.kind,
+                "'solitary' (an atlas over (w₊, V))",
+                "a superkink atlas is over V only",
+            )
         return self.rows
 
     @property
@@ -92,8 +96,9 @@ def atlas_data(ds: xr.Dataset, path: str | os.PathLike | None = None) -> AtlasDa
     name, where = ("dataset", "the Dataset") if path is None else ("path", str(path))
     row_dim = next((d for d in ROW_DIMS if d in ds.dims), None)
     if row_dim is None or "V" not in ds.dims:
-        raise ParameterError(name, where, STORE, f"{where} has dimensions {tuple(ds.dims)}, "
-                             "not (w_plus | branch, V)")  # fmt: skip
+        raise ParameterError(
+            name, where, STORE, f"{where} has dimensions {tuple(ds.dims)}, not (w_plus | branch, V)"
+        )
     missing = [k for k in [*FIELDS, "done"] if k not in ds.data_vars]
     if missing:
         raise ParameterError(name, where, STORE, f"{where} has no {', '.join(missing)}")
@@ -136,6 +141,7 @@ def open_atlas(path: str | os.PathLike) -> AtlasData:
     try:
         ds = xarray_module().open_zarr(p, consolidated=False).load()
     except Exception as exc:  # noqa: BLE001  (whatever xarray or zarr raise: unreadable)
-        raise ParameterError("path", str(path), STORE,
-                             f"cannot read {p}: {type(exc).__name__}: {exc}") from None  # fmt: skip
+        raise ParameterError(
+            "path", str(path), STORE, f"cannot read {p}: {type(exc).__name__}: {exc}"
+        ) from None
     return atlas_data(ds, p)

@@ -109,10 +109,15 @@ def check_args(N, tol, time_budget_s, m=None, **flags) -> None:
         raise ParameterError("N", N, f"an even integer in [8, {MAX_N}] or None (automatic)")
     require_tol(tol)
     require_time_budget(time_budget_s)
-    if m is not None and not (isinstance(m, (int, np.integer)) and not isinstance(m, bool)
-                              and 2 <= m <= MAX_STEPS):  # fmt: skip
-        raise ParameterError("m", m, f"an integer in [2, {MAX_STEPS}] or None (automatic)",
-                             "RK steps per period of the Floquet integration")  # fmt: skip
+    if m is not None and not (
+        isinstance(m, (int, np.integer)) and not isinstance(m, bool) and 2 <= m <= MAX_STEPS
+    ):
+        raise ParameterError(
+            "m",
+            m,
+            f"an integer in [2, {MAX_STEPS}] or None (automatic)",
+            "RK steps per period of the Floquet integration",
+        )
     for name, value in flags.items():
         if not isinstance(value, (bool, np.bool_)):
             raise ParameterError(name, value, "True | False")
@@ -182,8 +187,17 @@ def run(
     t0 = time.perf_counter()
     if not isinstance(law, HardeningSofteningLaw):
         raise ParameterError("law", law, "a force law (CubicLaw, PolynomialLaw, ...)")
-    check_args(N, tol, time_budget_s, m, floquet=floquet, finite_size=finite_size,
-               continuation=continuation, resume=resume, caller_runs=caller_runs)  # fmt: skip
+    check_args(
+        N,
+        tol,
+        time_budget_s,
+        m,
+        floquet=floquet,
+        finite_size=finite_size,
+        continuation=continuation,
+        resume=resume,
+        caller_runs=caller_runs,
+    )
     if floquet_method not in METHODS:
         raise ParameterError("floquet_method", floquet_method, " | ".join(map(repr, METHODS)))
     if backend not in BACKENDS:
@@ -198,17 +212,24 @@ def run(
     else:
         p = plan(grid, backend, workers, address, force_workers, N, floquet, memory_budget)
     # the one task every chunk is computed from (its row and V set per chunk)
-    task = ChunkTask(law, grid.kind, N=None if N is None else int(N), tol=float(tol),
-                     floquet=FloquetOptions(bool(floquet), bool(finite_size), floquet_method,
-                                            None if m is None else int(m)),
-                     continuation=bool(continuation))  # fmt: skip
+    task = ChunkTask(
+        law,
+        grid.kind,
+        N=None if N is None else int(N),
+        tol=float(tol),
+        floquet=FloquetOptions(
+            bool(floquet), bool(finite_size), floquet_method, None if m is None else int(m)
+        ),
+        continuation=bool(continuation),
+    )
     attrs = identity_attrs(grid, task)
     path = None
     if out is not None:
         path = check_out(out)
         if path.exists() and not resume:
-            raise ParameterError("out", str(out), "a new path, or resume=True (--resume)",
-                                 "the store exists")  # fmt: skip
+            raise ParameterError(
+                "out", str(out), "a new path, or resume=True (--resume)", "the store exists"
+            )
     notes = list(p.notes)
     if address is not None:  # last check before the store: a bounded connect and handshake
         ident = check_scheduler(address, name="address")
@@ -238,8 +259,9 @@ def run(
                 create(path, table.ds, grid.chunk)
             writer = Writer(path)
         pool = Pool(backend, p.workers, workers is None, address, caller_runs)
-        res = execute(task, grid, table, writer, executor, pool,
-                      Hooks(progress, on_points, time_budget_s, t0))  # fmt: skip
+        res = execute(
+            task, grid, table, writer, executor, pool, Hooks(progress, on_points, time_budget_s, t0)
+        )
         if writer is not None:
             writer.touch()
     finally:
@@ -253,17 +275,30 @@ def run(
     maxf = lambda a: float(np.nanmax(a[ok])) if ok.any() and np.isfinite(a[ok]).any() else math.nan  # noqa: E731
     summary = ", ".join(f"{v} {k}" for k, v in counts.items() if v) or "nothing"
     return AtlasResult(
-        kind=grid.kind, shape=grid.shape, path=None if path is None else str(path),
-        dataset=table.ds, n_points=grid.size, n_ok=counts["ok"],
-        n_not_converged=counts["not_converged"], n_no_wave=counts["no_wave"],
-        n_failed=counts["failed"], n_pending=n_pending, n_computed=res.n_computed,
-        n_loaded=n_loaded, max_residual=maxf(c["residual"]),
-        max_modulus_error=maxf(c["max_modulus_error"]), backend=res.backend, workers=res.workers,
+        kind=grid.kind,
+        shape=grid.shape,
+        path=None if path is None else str(path),
+        dataset=table.ds,
+        n_points=grid.size,
+        n_ok=counts["ok"],
+        n_not_converged=counts["not_converged"],
+        n_no_wave=counts["no_wave"],
+        n_failed=counts["failed"],
+        n_pending=n_pending,
+        n_computed=res.n_computed,
+        n_loaded=n_loaded,
+        max_residual=maxf(c["residual"]),
+        max_modulus_error=maxf(c["max_modulus_error"]),
+        backend=res.backend,
+        workers=res.workers,
         points_per_s=res.n_computed / elapsed if elapsed > 0 else math.nan,
-        converged=n_pending == 0 and counts["failed"] == 0, stopped=res.stopped,
+        converged=n_pending == 0 and counts["failed"] == 0,
+        stopped=res.stopped,
         message=res.message or f"{grid.size} points: {summary} ({n_loaded} from the store)",
-        elapsed_s=elapsed, notes=tuple(notes), memory_estimate_bytes=p.memory_bytes,
-    )  # fmt: skip
+        elapsed_s=elapsed,
+        notes=tuple(notes),
+        memory_estimate_bytes=p.memory_bytes,
+    )
 
 
 def _stored_done(path, grid: Grid, attrs: dict, resume: bool) -> np.ndarray:

@@ -61,8 +61,20 @@ def zarr_module():
 
 
 # attributes that must match for a store to be resumed
-IDENTITY = ("kind", "law", "params", "N", "tol", "floquet", "finite_size", "floquet_method", "m",
-            "chunk", "continuation", "fpucore_source")  # fmt: skip
+IDENTITY = (
+    "kind",
+    "law",
+    "params",
+    "N",
+    "tol",
+    "floquet",
+    "finite_size",
+    "floquet_method",
+    "m",
+    "chunk",
+    "continuation",
+    "fpucore_source",
+)
 
 
 def fpucore_version() -> str:
@@ -77,19 +89,24 @@ def check_out(path: str | os.PathLike) -> Path:
     must exist and take a new entry (tried: ``os.access`` says yes for root on ``/proc``)."""
     p = Path(path)
     if not p.parent.is_dir():
-        raise ParameterError("out", str(path), "a path in an existing directory",
-                             f"{p.parent} does not exist")  # fmt: skip
+        raise ParameterError(
+            "out", str(path), "a path in an existing directory", f"{p.parent} does not exist"
+        )
     if p.exists() and not p.is_dir():
-        raise ParameterError("out", str(path), "a Zarr store (a directory) or a new path",
-                             "it is a file")  # fmt: skip
+        raise ParameterError(
+            "out", str(path), "a Zarr store (a directory) or a new path", "it is a file"
+        )
     if not os.access(p.parent, os.W_OK):
         raise ParameterError("out", str(path), "a writable location")
     try:  # the store, its ".creating" twin and its ".lock" are all made in the parent
         os.rmdir(tempfile.mkdtemp(prefix=f".{p.name}.", suffix=".probe", dir=p.parent))
     except OSError as exc:
-        raise ParameterError("out", str(path), "a writable location",
-                             f"cannot create anything in {p.parent}: {exc.strerror or exc}"
-                             ) from None  # fmt: skip
+        raise ParameterError(
+            "out",
+            str(path),
+            "a writable location",
+            f"cannot create anything in {p.parent}: {exc.strerror or exc}",
+        ) from None
     return p
 
 
@@ -105,8 +122,12 @@ class StoreLock:
             if self._acquire(path):
                 break
         else:  # pragma: no cover (100 releases in a row between our open and our lock)
-            raise ParameterError("out", str(path), "a store no other sweep is writing",
-                                 "its lock file keeps being replaced")  # fmt: skip
+            raise ParameterError(
+                "out",
+                str(path),
+                "a store no other sweep is writing",
+                "its lock file keeps being replaced",
+            )
         os.ftruncate(self._fd, 0)
         os.pwrite(self._fd, f"pid {os.getpid()} on {socket.gethostname()}".encode(), 0)
 
@@ -115,16 +136,23 @@ class StoreLock:
         try:
             fd = os.open(self.path, os.O_RDWR | os.O_CREAT, 0o644)
         except OSError as exc:
-            raise ParameterError("out", str(path), "a writable location",
-                                 f"cannot create {self.path.name}: {exc.strerror or exc}"
-                                 ) from None  # fmt: skip
+            raise ParameterError(
+                "out",
+                str(path),
+                "a writable location",
+                f"cannot create {self.path.name}: {exc.strerror or exc}",
+            ) from None
         try:
             fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except BlockingIOError:
             holder = os.pread(fd, 200, 0).decode(errors="replace").strip()
             os.close(fd)
-            raise ParameterError("out", str(path), "a store no other sweep is writing",
-                                 f"locked by {holder or 'another process'}") from None  # fmt: skip
+            raise ParameterError(
+                "out",
+                str(path),
+                "a store no other sweep is writing",
+                f"locked by {holder or 'another process'}",
+            ) from None
         try:
             same = os.stat(self.path).st_ino == os.fstat(fd).st_ino
         except FileNotFoundError:
@@ -167,13 +195,20 @@ def identity_attrs(grid: Grid, task: ChunkTask) -> dict:
     law: Any = task.law  # every concrete law describes itself (describe())
     fl = task.floquet
     attrs = {
-        "kind": grid.kind, "law": law.describe(), "params": [float(x) for x in law.params],
-        "N": -1 if task.N is None else int(task.N), "tol": float(task.tol),
-        "floquet": int(bool(fl.enabled)), "finite_size": int(bool(fl.finite_size)),
-        "floquet_method": str(fl.method), "m": -1 if fl.m is None else int(fl.m),
-        "chunk": int(grid.chunk), "continuation": int(bool(task.continuation)),
-        "fpucore_source": source_hash(), "fpucore_version": fpucore_version(),
-    }  # fmt: skip
+        "kind": grid.kind,
+        "law": law.describe(),
+        "params": [float(x) for x in law.params],
+        "N": -1 if task.N is None else int(task.N),
+        "tol": float(task.tol),
+        "floquet": int(bool(fl.enabled)),
+        "finite_size": int(bool(fl.finite_size)),
+        "floquet_method": str(fl.method),
+        "m": -1 if fl.m is None else int(fl.m),
+        "chunk": int(grid.chunk),
+        "continuation": int(bool(task.continuation)),
+        "fpucore_source": source_hash(),
+        "fpucore_version": fpucore_version(),
+    }
     if isinstance(law, CubicLaw):
         attrs["a"], attrs["b"] = float(law.a), float(law.b)
     return attrs
@@ -193,14 +228,20 @@ def create(path: Path, ds: xr.Dataset, chunk: int) -> None:
     os.rename(tmp, path)
 
 
-RESUME_ADVICE = ("move it aside (or delete it) and run again without --resume (resume=False), "
-                 "or choose a new --out")  # fmt: skip
+RESUME_ADVICE = (
+    "move it aside (or delete it) and run again without --resume (resume=False), "
+    "or choose a new --out"
+)
 
 
 def damaged(path: Path, what: str) -> ParameterError:
     """The refusal of a store whose skeleton (metadata, attributes, coordinates) is broken."""
-    return ParameterError("out", str(path), "an intact atlas store to resume",
-                          f"the store is damaged: {what}; {RESUME_ADVICE}")  # fmt: skip
+    return ParameterError(
+        "out",
+        str(path),
+        "an intact atlas store to resume",
+        f"the store is damaged: {what}; {RESUME_ADVICE}",
+    )
 
 
 def open_existing(path: Path, grid: Grid, attrs: dict):
@@ -217,8 +258,9 @@ def open_existing(path: Path, grid: Grid, attrs: dict):
     diff = [k for k in IDENTITY if jsonable(stored.get(k)) != jsonable(attrs[k])]
     if diff:
         what = ", ".join(f"{k}: stored {stored.get(k)!r} vs {attrs[k]!r}" for k in diff)
-        raise ParameterError("out", str(path), "a store of the same grid and parameters to "
-                             "resume", what)  # fmt: skip
+        raise ParameterError(
+            "out", str(path), "a store of the same grid and parameters to resume", what
+        )
     names = [*FIELDS, "done", grid.row_dim, "V"]
     with warnings.catch_warnings():  # zarr warns of each directory without metadata: said below
         warnings.simplefilter("ignore")
@@ -234,12 +276,17 @@ def open_existing(path: Path, grid: Grid, attrs: dict):
     except Exception as exc:  # noqa: BLE001
         raise damaged(path, f"a coordinate is unreadable ({type(exc).__name__}: {exc})") from None
     same_grid = (
-        len(rows) == len(grid.rows) and np.array_equal(np.asarray(V), grid.V)
+        len(rows) == len(grid.rows)
+        and np.array_equal(np.asarray(V), grid.V)
         and [str(x) for x in rows] == [str(x) for x in skeleton_rows(grid)]
-    )  # fmt: skip
+    )
     if not same_grid:
-        raise ParameterError("out", str(path), "a store of the same grid and parameters to "
-                             "resume", "the grid differs")  # fmt: skip
+        raise ParameterError(
+            "out",
+            str(path),
+            "a store of the same grid and parameters to resume",
+            "the grid differs",
+        )
     return group
 
 

@@ -72,8 +72,17 @@ def cache_dir() -> Path:
     return Path(root) / "floquet"
 
 
-def cache_key(law, kind: str, V_values, N: int, w_plus, branch: str, m, tol: float,
-              method: str = DEFAULT_METHOD) -> dict:  # fmt: skip
+def cache_key(
+    law,
+    kind: str,
+    V_values,
+    N: int,
+    w_plus,
+    branch: str,
+    m,
+    tol: float,
+    method: str = DEFAULT_METHOD,
+) -> dict:
     """The inputs and the code that determine a sweep's rows (see module doc)."""
     return {
         "method": method,
@@ -186,8 +195,9 @@ def _row(V: float, N: int, rec: dict) -> dict:
     return row
 
 
-def check_sweep_args(law, kind, V_values, w_plus, N, branch, m, tol, time_budget_s,
-                     method=DEFAULT_METHOD):  # fmt: skip
+def check_sweep_args(
+    law, kind, V_values, w_plus, N, branch, m, tol, time_budget_s, method=DEFAULT_METHOD
+):
     """Validate a sweep's arguments before anything is computed (tol=0, N=10**6 and
     time_budget_s=-1 used to return NaN rows).  Returns (w_plus, Vs, N, m, tol, time_budget_s)."""
     require_law(law)
@@ -277,10 +287,22 @@ def sweep(
         if count[0] == 0:
             count[0] = done  # rows already in the cache store
 
-    kw = dict(rows=[row], V=Vs, N=int(N), tol=tol, floquet=True, floquet_method=method, m=m,
-              chunk=CHUNK,
-              executor=executor, workers=workers, progress=first, on_points=on_points,
-              time_budget_s=time_budget_s, caller_runs=True)  # fmt: skip
+    kw = dict(
+        rows=[row],
+        V=Vs,
+        N=int(N),
+        tol=tol,
+        floquet=True,
+        floquet_method=method,
+        m=m,
+        chunk=CHUNK,
+        executor=executor,
+        workers=workers,
+        progress=first,
+        on_points=on_points,
+        time_budget_s=time_budget_s,
+        caller_runs=True,
+    )
     res = None
     if use_cache:
         path = cache_path(cache_key(law, kind, Vs, N, w_plus, branch, m, tol, method))
@@ -302,8 +324,11 @@ def sweep(
     for j in range(n):
         if rows[j] is None:
             done = recs["done"][j]
-            rec = {k: v[j] for k, v in recs.items()} if done else empty_record(
-                "", res.message or "not computed")  # fmt: skip
+            rec = (
+                {k: v[j] for k, v in recs.items()}
+                if done
+                else empty_record("", res.message or "not computed")
+            )
             rows[j] = _row(Vs[j], N, rec)
     if bar is not None and hasattr(bar, "close"):
         bar.close()  # type: ignore[union-attr]

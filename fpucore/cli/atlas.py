@@ -29,21 +29,24 @@ def register(sub) -> None:
     p = sub.add_parser("atlas", help="sweeps over the existence region, stored in Zarr")
     asub = p.add_subparsers(dest="atlas_kind", required=True, parser_class=type(p))
     for kind in ("solitary", "superkink"):
-        q = asub.add_parser(kind, help=f"{kind} atlas over " + ("(w+, V)" if kind == "solitary"
-                                                                 else "V"))  # fmt: skip
+        q = asub.add_parser(
+            kind, help=f"{kind} atlas over " + ("(w+, V)" if kind == "solitary" else "V")
+        )
         add_law_args(q)
         if kind == "solitary":
             q.add_argument("--w-plus", required=True, help="LO:HI:K or one value (state ahead)")
         else:
             q.add_argument("--branch", choices=("lower", "upper", "both"), default="lower")
-        q.add_argument("--V", default="40", help="K (spanning the existence intervals) or "
-                       "LO:HI:K (default 40)")  # fmt: skip
+        q.add_argument(
+            "--V", default="40", help="K (spanning the existence intervals) or LO:HI:K (default 40)"
+        )
         q.add_argument("--N", type=int, default=None, help="chain size (default: automatic)")
         q.add_argument("--tol", type=float, default=1e-12, help="Newton residual tolerance")
         q.add_argument("--floquet", action="store_true", help="also the Floquet spectra")
         q.add_argument("--m", type=int, default=None, help="RK steps per period (Floquet)")
-        q.add_argument("--method", choices=FLOQUET_METHODS, default=DEFAULT_FLOQUET_METHOD,
-                       help=METHOD_HELP)  # fmt: skip
+        q.add_argument(
+            "--method", choices=FLOQUET_METHODS, default=DEFAULT_FLOQUET_METHOD, help=METHOD_HELP
+        )
         q.add_argument(
             "--no-finite-size",
             action="store_true",
@@ -61,16 +64,31 @@ def register(sub) -> None:
             default=None,
             help="process pool (default), dask (LocalCluster unless --scheduler)",
         )
-        q.add_argument("--workers", type=int, default=None,
-                       help="worker processes (default and cap: min(cores, chunks))")  # fmt: skip
-        q.add_argument("--force-workers", action="store_true",
-                       help="run --workers processes even above the cores")  # fmt: skip
-        q.add_argument("--memory-budget", default=None,
-                       help="memory the table and workers may take (e.g. 4GiB, 50%%; default "
-                       "FPU_MEMORY_BUDGET or 25%% of RAM)")  # fmt: skip
-        q.add_argument("--time-budget", type=float, default=None, metavar="S",
-                       help="refuse a grid estimated above S seconds (two points are timed "
-                       "first); stop after S seconds")  # fmt: skip
+        q.add_argument(
+            "--workers",
+            type=int,
+            default=None,
+            help="worker processes (default and cap: min(cores, chunks))",
+        )
+        q.add_argument(
+            "--force-workers",
+            action="store_true",
+            help="run --workers processes even above the cores",
+        )
+        q.add_argument(
+            "--memory-budget",
+            default=None,
+            help="memory the table and workers may take (e.g. 4GiB, 50%%; default "
+            "FPU_MEMORY_BUDGET or 25%% of RAM)",
+        )
+        q.add_argument(
+            "--time-budget",
+            type=float,
+            default=None,
+            metavar="S",
+            help="refuse a grid estimated above S seconds (two points are timed "
+            "first); stop after S seconds",
+        )
         q.add_argument("--no-progress", action="store_true", help="no progress bar")
         q.add_argument("--json", action="store_true", help="print the summary as JSON")
         q.set_defaults(func=run, kind=kind, threads=1)  # the parent only orchestrates
@@ -88,8 +106,11 @@ def run(args) -> int:
     if args.scheduler is not None and args.backend not in (None, "dask"):
         raise ParameterError("backend", args.backend, "dask (or none) with --scheduler")
     backend = args.backend or ("dask" if args.scheduler else "process")
-    rows = args.w_plus if args.kind == "solitary" else (
-        ["lower", "upper"] if args.branch == "both" else [args.branch])  # fmt: skip
+    rows = (
+        args.w_plus
+        if args.kind == "solitary"
+        else (["lower", "upper"] if args.branch == "both" else [args.branch])
+    )
     apply_thread_policy(1)
     bar = None
 
@@ -102,21 +123,43 @@ def run(args) -> int:
         if args.no_progress or args.json:
             return
         if bar is None:
-            bar = tqdm(total=total, initial=done, unit="pt", desc=f"atlas {args.kind}",
-                       file=sys.stderr, dynamic_ncols=True)  # fmt: skip
+            bar = tqdm(
+                total=total,
+                initial=done,
+                unit="pt",
+                desc=f"atlas {args.kind}",
+                file=sys.stderr,
+                dynamic_ncols=True,
+            )
         bar.update(done - bar.n)
         bar.set_postfix(failed=failed, refresh=True)
 
     try:
         res = atlas.run(
-            law, args.kind, rows=rows, V=args.V, N=args.N, tol=args.tol, floquet=args.floquet,
-            finite_size=not args.no_finite_size, floquet_method=args.method, m=args.m,
+            law,
+            args.kind,
+            rows=rows,
+            V=args.V,
+            N=args.N,
+            tol=args.tol,
+            floquet=args.floquet,
+            finite_size=not args.no_finite_size,
+            floquet_method=args.method,
+            m=args.m,
             chunk=args.chunk,
-            continuation=not args.no_continuation, out=args.out,
-            resume=args.resume, backend=backend, workers=args.workers, address=args.scheduler,
-            progress=progress, time_budget_s=args.time_budget, force_workers=args.force_workers,
-            memory_budget=args.memory_budget, note=say, estimate=True,
-        )  # fmt: skip
+            continuation=not args.no_continuation,
+            out=args.out,
+            resume=args.resume,
+            backend=backend,
+            workers=args.workers,
+            address=args.scheduler,
+            progress=progress,
+            time_budget_s=args.time_budget,
+            force_workers=args.force_workers,
+            memory_budget=args.memory_budget,
+            note=say,
+            estimate=True,
+        )
     except ParameterError as exc:
         if exc.name == "address":  # the API's name of what this command calls --scheduler
             raise ParameterError("scheduler", exc.value, exc.valid, exc.reason) from None
@@ -124,15 +167,19 @@ def run(args) -> int:
     except KeyboardInterrupt:
         if bar is not None:
             bar.close()
-        sys.stderr.write(f"fpu: interrupted; the store keeps what was done: resume with "
-                         f"--resume --out {args.out}\n")  # fmt: skip
+        sys.stderr.write(
+            f"fpu: interrupted; the store keeps what was done: resume with "
+            f"--resume --out {args.out}\n"
+        )
         return 130
     except OSError as exc:  # disk full, quota, permission lost while the store is written
         if bar is not None:
             bar.close()
-        raise OutputError(f"could not write the store --out {args.out}: "
-                          f"{exc.strerror or exc}; it keeps every chunk written before: make room "
-                          f"and resume with --resume --out {args.out}") from None  # fmt: skip
+        raise OutputError(
+            f"could not write the store --out {args.out}: "
+            f"{exc.strerror or exc}; it keeps every chunk written before: make room "
+            f"and resume with --resume --out {args.out}"
+        ) from None
     if bar is not None:
         bar.close()
     d = res.as_dict()
@@ -140,17 +187,25 @@ def run(args) -> int:
         print_json(d)
     else:
         print(f"atlas {res.kind} {res.shape[0]} x {res.shape[1]} -> {res.path}")
-        print(f"points   {res.n_ok} ok, {res.n_not_converged} not converged, {res.n_no_wave} no "
-              f"wave, {res.n_failed} failed, {res.n_pending} pending")  # fmt: skip
-        print(f"errors   max residual {res.max_residual:.2g}, max |mu| error "
-              f"{res.max_modulus_error:.2g}")  # fmt: skip
+        print(
+            f"points   {res.n_ok} ok, {res.n_not_converged} not converged, {res.n_no_wave} no "
+            f"wave, {res.n_failed} failed, {res.n_pending} pending"
+        )
+        print(
+            f"errors   max residual {res.max_residual:.2g}, max |mu| error "
+            f"{res.max_modulus_error:.2g}"
+        )
         if res.n_computed:
-            print(f"run      {res.n_computed} computed, {res.n_loaded} from the store, "
-                  f"{res.elapsed_s:.1f} s, {res.points_per_s:.3g} points/s on {res.workers} "
-                  f"{res.backend} workers")  # fmt: skip
+            print(
+                f"run      {res.n_computed} computed, {res.n_loaded} from the store, "
+                f"{res.elapsed_s:.1f} s, {res.points_per_s:.3g} points/s on {res.workers} "
+                f"{res.backend} workers"
+            )
         else:  # --resume of a finished store: no pool was started, there is no rate to give
-            print(f"run      nothing left to compute: all {res.n_loaded} points from the store "
-                  f"({res.elapsed_s:.1f} s)")  # fmt: skip
+            print(
+                f"run      nothing left to compute: all {res.n_loaded} points from the store "
+                f"({res.elapsed_s:.1f} s)"
+            )
         if res.stopped:
             print(f"stopped  {res.message}")
     return 0 if res.n_failed == 0 else 1

@@ -14,5 +14,9 @@ BOUNDARIES = ("fixed_particles", "fixed_strain", "free")  # fpucore.simulate.BOU
 GUARDS = ("convex", "bounded")  # fpucore.simulate.GUARDS
 # fpucore.warm.LAZY: the kernel groups `fpu warm --essential` leaves to the server
 LAZY_WARM = (
-    "floquet-structured", "wave-pwl", "simulate", "simulate-dopri5", "simulate-symplectic",
-)  # fmt: skip
+    "floquet-structured",
+    "wave-pwl",
+    "simulate",
+    "simulate-dopri5",
+    "simulate-symplectic",
+)

@@ -113,8 +113,9 @@ def check_out_path(path: str, name: str = "--out", store: bool = False) -> None:
     if os.path.isdir(target) and not store:
         raise ParameterError(name, path, "a file path", "it is a directory")
     if not os.path.isdir(parent):
-        raise ParameterError(name, path, "a file in an existing directory",
-                             f"directory {parent} does not exist")  # fmt: skip
+        raise ParameterError(
+            name, path, "a file in an existing directory", f"directory {parent} does not exist"
+        )
     if os.path.exists(target) and not os.access(target, os.W_OK):
         raise ParameterError(name, path, "a writable file", "permission denied")
     why = _probe_dir(parent)
@@ -182,8 +183,10 @@ def _remove(path: str) -> None:
 def _output_error(name: str, path, exc: OSError, kept: str) -> OutputError:
     what = exc.strerror or str(exc)
     tail = f"; {kept}" if kept else ""
-    return OutputError(f"could not write {name} {os.fspath(path)}: {what} (nothing written there, "
-                       f"no partial file left){tail}")  # fmt: skip
+    return OutputError(
+        f"could not write {name} {os.fspath(path)}: {what} (nothing written there, "
+        f"no partial file left){tail}"
+    )
 
 
 LAW_HELP = (
@@ -205,8 +208,7 @@ def add_law_args(p: argparse.ArgumentParser) -> None:
     p.add_argument("--a", type=float, default=None, help="cubic coefficient a < 0 (default -1)")
     p.add_argument("--b", type=float, default=None, help="quadratic coefficient b > 0 (default 10)")
     p.add_argument("--law", default=None, metavar="EXPR", help=LAW_HELP)
-    p.add_argument("--const", action="append", default=None, metavar="NAME=VALUE",
-                   help=CONST_HELP)  # fmt: skip
+    p.add_argument("--const", action="append", default=None, metavar="NAME=VALUE", help=CONST_HELP)
 
 
 def law_from_args(args) -> HardeningSofteningLaw:
@@ -219,13 +221,16 @@ def law_from_args(args) -> HardeningSofteningLaw:
         if a is not None or b is not None:
             given = " ".join(f"--{n} {v:g}" for n, v in (("a", a), ("b", b)) if v is not None)
             raise ParameterError(
-                "--law", args.law, "either --law EXPR or the cubic's --a/--b, not both",
+                "--law",
+                args.law,
+                "either --law EXPR or the cubic's --a/--b, not both",
                 f"{given} given too; write the cubic into the law (a*w**3 + b*w**2 + w)",
-            )  # fmt: skip
+            )
         return law_from_expression(args.law, _constants_of(getattr(args, "const", None)))
     if getattr(args, "const", None):
-        raise ParameterError("--const", args.const[0], "constants of a --law EXPR",
-                             "--const needs --law")  # fmt: skip
+        raise ParameterError(
+            "--const", args.const[0], "constants of a --law EXPR", "--const needs --law"
+        )
     return CubicLaw(DEFAULT_A if a is None else a, DEFAULT_B if b is None else b)
 
 
@@ -256,13 +261,19 @@ def law_fields(law: HardeningSofteningLaw) -> dict:
         return {"a": law.a, "b": law.b, "law": law.describe()}
     if hasattr(law, "breakpoints"):  # piecewise-linear
         pl = cast("PiecewiseLinearLaw", law)
-        return {"law": pl.expression, "breakpoints": list(pl.breakpoints),
-                "slopes": list(pl.slopes)}  # fmt: skip
+        return {
+            "law": pl.expression,
+            "breakpoints": list(pl.breakpoints),
+            "slopes": list(pl.slopes),
+        }
     if hasattr(law, "coeffs"):
         poly = cast("PolynomialLaw", law)
         return {"law": poly.expression, "coeffs": list(poly.coeffs)}
     sm = cast("SmoothLaw", law)
     err = sm.representation_error
-    return {"law": sm.expression, "constants": sm.constants_dict,
-            "represented_interval": list(sm.interval),
-            "representation_error": {"f": err.f, "df": err.df, "ddf": err.ddf}}  # fmt: skip
+    return {
+        "law": sm.expression,
+        "constants": sm.constants_dict,
+        "represented_interval": list(sm.interval),
+        "representation_error": {"f": err.f, "df": err.df, "ddf": err.ddf},
+    }

@@ -22,8 +22,13 @@ from fpucore.errors import MissingExtra, ParameterError
 
 COMMANDS = (qc, warm, wave, floquet, simulate, atlas, paper, serve)
 # what every computing command needs (the old eager ``import fpucore``): loaded after parsing
-STACK = ("fpucore.parallel.threads", "fpucore.qc", "fpucore.wave", "fpucore.floquet",
-         "fpucore.simulate")  # fmt: skip
+STACK = (
+    "fpucore.parallel.threads",
+    "fpucore.qc",
+    "fpucore.wave",
+    "fpucore.floquet",
+    "fpucore.simulate",
+)
 
 
 def _interrupted(signum, frame):  # pragma: no cover (subprocess tests)

@@ -44,8 +44,9 @@ def register(sub) -> None:
             help="skip the finite-size test (spectra on 5 shorter rings in [N/2, N]); an excess "
             "is then undetermined",
         )
-        q.add_argument("--method", choices=FLOQUET_METHODS, default=DEFAULT_FLOQUET_METHOD,
-                       help=METHOD_HELP)  # fmt: skip
+        q.add_argument(
+            "--method", choices=FLOQUET_METHODS, default=DEFAULT_FLOQUET_METHOD, help=METHOD_HELP
+        )
         q.add_argument("--json", action="store_true", help="print one JSON object")
         q.set_defaults(func=run_one, kind=name)
 
@@ -60,8 +61,9 @@ def register(sub) -> None:
     s.add_argument("--n", type=int, default=12, help="number of velocities in [V-min, V-max]")
     s.add_argument("--N", type=int, nargs="+", default=[500], help="chain size(s), one sweep each")
     s.add_argument("--out", default=None, help="write the table to this .csv or .json file")
-    s.add_argument("--method", choices=FLOQUET_METHODS, default=DEFAULT_FLOQUET_METHOD,
-                   help=METHOD_HELP)  # fmt: skip
+    s.add_argument(
+        "--method", choices=FLOQUET_METHODS, default=DEFAULT_FLOQUET_METHOD, help=METHOD_HELP
+    )
     s.add_argument("--no-cache", action="store_true", help="ignore and do not write the cache")
     s.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
     s.add_argument("--json", action="store_true", help="print the table as one JSON object")
@@ -90,8 +92,9 @@ def run_one(args) -> int:
     law = law_from_args(args)
     r = _wave(args, law)
     if not r.converged:
-        raise ParameterError("V", args.V, "a velocity where the discrete wave converges",
-                             f"wave solver: {r.message}")  # fmt: skip
+        raise ParameterError(
+            "V", args.V, "a velocity where the discrete wave converges", f"wave solver: {r.message}"
+        )
     fr = floquet.spectrum(r, m=args.m, finite_size=not args.no_finite_size, method=args.method)
     d = fr.as_dict()
     d["elapsed_s"] = fr.elapsed_s + r.elapsed_s
@@ -100,32 +103,46 @@ def run_one(args) -> int:
         print_json(d)
         return 0
     w = fr.wave
-    print(f"{w.get('kind', args.kind)} V={fr.V:.10g} N={fr.N} (wave residual "
-          f"{w.get('residual', float('nan')):.1e}, {r.elapsed_s:.2f} s)")  # fmt: skip
+    print(
+        f"{w.get('kind', args.kind)} V={fr.V:.10g} N={fr.N} (wave residual "
+        f"{w.get('residual', float('nan')):.1e}, {r.elapsed_s:.2f} s)"
+    )
     print(f"max |mu|                 = {fr.max_modulus:.12f}")
-    print(f"max |mu| away from mu=1  = {fr.max_modulus_away_from_1:.12f}   "
-          f"(|mu|-1 = {fr.excess:.3e})")  # fmt: skip
-    print(f"error bar                = {fr.error:.1e}  (quartet symmetry {fr.symmetry_error:.1e},"
-          f" integrator {fr.integrator_error:.1e}; route {fr.route}, "
-          f"eig {fr.eig_s:.3f} s)")  # fmt: skip
-    print(f"trivial cluster at 1     : {fr.n_trivial} multipliers, split {fr.trivial_split:.1e} "
-          f"(radius {fr.trivial_radius:.0e}, phonon gap {fr.phonon_gap:.1e})")  # fmt: skip
+    print(
+        f"max |mu| away from mu=1  = {fr.max_modulus_away_from_1:.12f}   (|mu|-1 = {fr.excess:.3e})"
+    )
+    print(
+        f"error bar                = {fr.error:.1e}  (quartet symmetry {fr.symmetry_error:.1e},"
+        f" integrator {fr.integrator_error:.1e}; route {fr.route}, "
+        f"eig {fr.eig_s:.3f} s)"
+    )
+    print(
+        f"trivial cluster at 1     : {fr.n_trivial} multipliers, split {fr.trivial_split:.1e} "
+        f"(radius {fr.trivial_radius:.0e}, phonon gap {fr.phonon_gap:.1e})"
+    )
     dec = fr.decision
     k = fr.n_unstable
-    print(f"classification           : {dec.classification} - {dec.headline} "
-          f"({k} multiplier{'' if k == 1 else 's'} beyond error)")  # fmt: skip
+    print(
+        f"classification           : {dec.classification} - {dec.headline} "
+        f"({k} multiplier{'' if k == 1 else 's'} beyond error)"
+    )
     if fr.finite_size_N.size > 1:
-        pts = ", ".join(f"N={n}: {e:.3e}" for n, e in zip(fr.finite_size_N, fr.finite_size_excess,
-                                                            strict=True))  # fmt: skip
+        pts = ", ".join(
+            f"N={n}: {e:.3e}" for n, e in zip(fr.finite_size_N, fr.finite_size_excess, strict=True)
+        )
         print(f"finite-size window       : max|mu|-1 at {pts} ({fr.finite_size_s:.2f} s)")
     print(f"verdict                  : {dec.sentence}")
     for g in fr.quartets()[:5]:
         mu = g[0]
-        print(f"  {'quartet' if len(g) == 4 else 'real pair'}: |mu| = {abs(mu):.10f}, "
-              f"arg mu = {np.angle(mu):+.6f}, partners |mu| = "
-              + ", ".join(f"{abs(x):.10f}" for x in g[1:]))  # fmt: skip
-    print(f"time: monodromy {fr.monodromy_s:.3f} s, step-doubling check {fr.check_s:.3f} s, "
-          f"eig {fr.eig_s:.3f} s, total {fr.elapsed_s:.2f} s")  # fmt: skip
+        print(
+            f"  {'quartet' if len(g) == 4 else 'real pair'}: |mu| = {abs(mu):.10f}, "
+            f"arg mu = {np.angle(mu):+.6f}, partners |mu| = "
+            + ", ".join(f"{abs(x):.10f}" for x in g[1:])
+        )
+    print(
+        f"time: monodromy {fr.monodromy_s:.3f} s, step-doubling check {fr.check_s:.3f} s, "
+        f"eig {fr.eig_s:.3f} s, total {fr.elapsed_s:.2f} s"
+    )
     if not fr.converged:
         print(f"warning: {fr.message}", file=sys.stderr)
     return 0
@@ -155,16 +172,31 @@ def run_sweep(args) -> int:
         prog = None if (args.no_progress or args.json) else True
         if prog and len(args.N) > 1:
             sys.stderr.write(f"N = {N}\n")
-        sw = atlas.sweep(law, args.kind, Vs, w_plus=args.w_plus, N=N, progress=prog,
-                         branch=args.branch, use_cache=not args.no_cache,
-                         method=args.method)  # fmt: skip
+        sw = atlas.sweep(
+            law,
+            args.kind,
+            Vs,
+            w_plus=args.w_plus,
+            N=N,
+            progress=prog,
+            branch=args.branch,
+            use_cache=not args.no_cache,
+            method=args.method,
+        )
         tables.append(sw)
-    obj = {"kind": args.kind, **law_fields(law), "w_plus": args.w_plus,
-           "sweeps": [t.as_dict(arrays=False) for t in tables],
-           "elapsed_s": sum(t.elapsed_s for t in tables)}  # fmt: skip
+    obj = {
+        "kind": args.kind,
+        **law_fields(law),
+        "w_plus": args.w_plus,
+        "sweeps": [t.as_dict(arrays=False) for t in tables],
+        "elapsed_s": sum(t.elapsed_s for t in tables),
+    }
     if args.out:  # atomically: a full disk leaves no partial table (fpucore/cli/common.py)
-        kept = "the sweep's points are in the cache: rerun to write the table" if (
-            not args.no_cache) else "the sweep was not cached (--no-cache)"  # fmt: skip
+        kept = (
+            "the sweep's points are in the cache: rerun to write the table"
+            if (not args.no_cache)
+            else "the sweep was not cached (--no-cache)"
+        )
         with output_file(args.out, "--out", kept) as tmp, open(tmp, "w") as fh:
             if args.out.endswith(".json"):
                 json.dump(jsonable(obj), fh)
@@ -177,8 +209,10 @@ def run_sweep(args) -> int:
     if args.json:
         print_json(obj)
         return 0
-    print(f"{'N':>5} {'V':>12} {'max|mu|-1':>11} {'away-1':>11} {'error':>9} {'unst':>4}  "
-          f"{'class':<12}  decision")  # fmt: skip
+    print(
+        f"{'N':>5} {'V':>12} {'max|mu|-1':>11} {'away-1':>11} {'error':>9} {'unst':>4}  "
+        f"{'class':<12}  decision"
+    )
     for t in tables:
         for row, c in zip(t.rows, t.cached, strict=True):
             mm, ma = row["max_modulus"], row["max_modulus_away_from_1"]
@@ -192,9 +226,11 @@ def run_sweep(args) -> int:
                 or row["verdict"]
                 or (f"{row['status'] or 'not computed'}: {row['message']}")
             )  # no spectrum: why
-            print(f"{t.N:>5} {row['V']:>12.8g} {f(mm):>11} {f(ma):>11} {e:>9} "
-                  f"{max(row['n_unstable'], 0):>4}  {cls:<12}  {said}"
-                  f"{tag}")  # fmt: skip
+            print(
+                f"{t.N:>5} {row['V']:>12.8g} {f(mm):>11} {f(ma):>11} {e:>9} "
+                f"{max(row['n_unstable'], 0):>4}  {cls:<12}  {said}"
+                f"{tag}"
+            )
         missing = sum(r["status"] == "" for r in t.rows)
         if missing or t.cached.any():  # a partial or cached table says so
             print(f"{t.N:>5} {t.message}" + (f" ({missing} not computed)" if missing else ""))
@@ -211,8 +247,9 @@ def _energy_line(law, t) -> str:
     from fpucore import floquet  # heavy: Numba
 
     try:
-        ec = floquet.criterion_from_samples(law, t.w_plus, t.V, t.energy, t.energy_error,
-                                            t.floquet_converged)  # fmt: skip
+        ec = floquet.criterion_from_samples(
+            law, t.w_plus, t.V, t.energy, t.energy_error, t.floquet_converged
+        )
         ch = floquet.stability_changes(law, t.w_plus, t.V, t.classification, ec)
     except ParameterError as exc:
         return f"not evaluated ({exc})"

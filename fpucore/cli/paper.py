@@ -32,24 +32,50 @@ from fpucore.errors import ParameterError
 def register(sub) -> None:
     p = sub.add_parser("paper", help="the paper's figures: compute, compare, export")
     p.add_argument("--list", action="store_true", help="list the figures and exit")
-    p.add_argument("--family", default="paper",
-                   help="paper (the paper's figures, default) or trilinear (the soft-hard-soft "
-                        "piecewise-linear family's figures)")  # fmt: skip
-    p.add_argument("--figure", action="append", default=None, metavar="LABEL",
-                   help="a figure's LaTeX label (repeatable; default: all)")  # fmt: skip
-    p.add_argument("--out", default=None,
-                   help="one figure: .html/.svg/.png; several or all: the HTML report")  # fmt: skip
-    p.add_argument("--table", default=None, metavar="FILE.md",
-                   help="write the comparison table (Markdown, and .json beside it)")  # fmt: skip
-    p.add_argument("--table-json", default=None, metavar="FILE.json",
-                   help="where --table writes its JSON (default: beside the .md)")  # fmt: skip
-    p.add_argument("--thumbnails", default=None, metavar="DIR",
-                   help="write each figure's thumbnail DIR/<label>.png (400 px wide)")  # fmt: skip
+    p.add_argument(
+        "--family",
+        default="paper",
+        help="paper (the paper's figures, default) or trilinear (the soft-hard-soft "
+        "piecewise-linear family's figures)",
+    )
+    p.add_argument(
+        "--figure",
+        action="append",
+        default=None,
+        metavar="LABEL",
+        help="a figure's LaTeX label (repeatable; default: all)",
+    )
+    p.add_argument(
+        "--out", default=None, help="one figure: .html/.svg/.png; several or all: the HTML report"
+    )
+    p.add_argument(
+        "--table",
+        default=None,
+        metavar="FILE.md",
+        help="write the comparison table (Markdown, and .json beside it)",
+    )
+    p.add_argument(
+        "--table-json",
+        default=None,
+        metavar="FILE.json",
+        help="where --table writes its JSON (default: beside the .md)",
+    )
+    p.add_argument(
+        "--thumbnails",
+        default=None,
+        metavar="DIR",
+        help="write each figure's thumbnail DIR/<label>.png (400 px wide)",
+    )
     p.add_argument("--reduced", action="store_true", help="smaller grids / fewer velocities")
     p.add_argument("--no-cache", action="store_true", help="recompute cached figures")
     p.add_argument("--workers", type=int, default=None, help="processes (default: all cores)")
-    p.add_argument("--time-budget", type=float, default=3600.0, metavar="S",
-                   help="stop starting figures after S seconds (default 3600)")  # fmt: skip
+    p.add_argument(
+        "--time-budget",
+        type=float,
+        default=3600.0,
+        metavar="S",
+        help="stop starting figures after S seconds (default 3600)",
+    )
     p.add_argument("--json", action="store_true", help="print the comparisons as JSON")
     p.set_defaults(func=run)
 
@@ -100,8 +126,15 @@ def run(args) -> int:
     FIGURES, LABELS = reg.FIGURES, reg.LABELS
     if args.list:
         if args.json:
-            rows = [{"label": lab, "number": FIGURES[lab].number, "section": FIGURES[lab].section,
-                     "caption": FIGURES[lab].caption} for lab in LABELS]  # fmt: skip
+            rows = [
+                {
+                    "label": lab,
+                    "number": FIGURES[lab].number,
+                    "section": FIGURES[lab].section,
+                    "caption": FIGURES[lab].caption,
+                }
+                for lab in LABELS
+            ]
             print_json({"figures": rows})
             return 0
         for lab in LABELS:
@@ -128,15 +161,20 @@ def run(args) -> int:
         bar.set_postfix_str(label)
         bar.refresh()
 
-    results, missing, wall = compute_many(labels, reduced=args.reduced, use_cache=not args.no_cache,
-                                          workers=args.workers, time_budget_s=args.time_budget,
-                                          progress=progress, family_name=args.family)  # fmt: skip
+    results, missing, wall = compute_many(
+        labels,
+        reduced=args.reduced,
+        use_cache=not args.no_cache,
+        workers=args.workers,
+        time_budget_s=args.time_budget,
+        progress=progress,
+        family_name=args.family,
+    )
     bar.close()
     n = sum(len(r.comparisons) for r in results)
     ok = sum(r.n_agree for r in results)
     what = "printed numbers" if args.family == "paper" else "rows (closed forms, second methods)"
-    summary = (f"{len(results)}/{len(labels)} figures, {ok} of {n} {what} agree, "
-               f"{wall:.1f} s")  # fmt: skip
+    summary = f"{len(results)}/{len(labels)} figures, {ok} of {n} {what} agree, {wall:.1f} s"
     # every file atomically (fpucore/cli/common.py: output_file): a full disk leaves no partial
     # file; the computed figures stay in the cache, so a rerun only writes
     kept = "the computed figures are cached: rerun to write" if not args.no_cache else ""
@@ -165,21 +203,26 @@ def run(args) -> int:
     if args.thumbnails is not None:
         for k, r in enumerate(results):
             target = Path(args.thumbnails) / f"{r.label}.png"
-            with output_file(target, "--thumbnails", f"{k} of {len(results)} thumbnails were "
-                             "written before this one") as tmp:  # fmt: skip
+            with output_file(
+                target,
+                "--thumbnails",
+                f"{k} of {len(results)} thumbnails were written before this one",
+            ) as tmp:
                 plot.thumbnail(r, tmp)
         print(f"wrote {len(results)} thumbnails in {args.thumbnails}", file=people)
     if args.json:
-        print_json({"figures": [r.as_dict() for r in results], "missing": missing,
-                    "elapsed_s": wall})  # fmt: skip
+        print_json(
+            {"figures": [r.as_dict() for r in results], "missing": missing, "elapsed_s": wall}
+        )
     print(summary, file=people)
     for m in missing:
         print(f"not computed: {m}", file=sys.stderr)
     return 0
 
 
-def _table_doc(results, missing, reduced: bool, thumbnails: str | None = None,
-               table_json: str | None = None) -> str:  # fmt: skip
+def _table_doc(
+    results, missing, reduced: bool, thumbnails: str | None = None, table_json: str | None = None
+) -> str:
     from fpucore.paper.report import markdown_table  # heavy: Numba
 
     head = (
@@ -225,7 +268,7 @@ def table_json(results, missing, reduced: bool) -> str:
                             "why",
                             "elapsed_s",
                         )
-                    }  # fmt: skip
+                    }
                     for c in r.comparisons
                 ],
             }

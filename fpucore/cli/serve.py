@@ -32,8 +32,13 @@ def register(sub) -> None:
     p = sub.add_parser("serve", help="serve the explorer (needs the app extra)")
     p.add_argument("--port", type=int, default=5006, help="port (default 5006)")
     p.add_argument("--address", default="0.0.0.0", help="address to listen on (default 0.0.0.0)")
-    p.add_argument("--num-procs", type=int, default=1, metavar="N",
-                   help="server processes (default 1; each warms its own JIT)")  # fmt: skip
+    p.add_argument(
+        "--num-procs",
+        type=int,
+        default=1,
+        metavar="N",
+        help="server processes (default 1; each warms its own JIT)",
+    )
     p.set_defaults(func=run, light=True)  # no NumPy/Numba in this process: Panel's does the work
 
 
@@ -54,10 +59,21 @@ def command(port: int, address: str, num_procs: int, explorer: Path) -> list[str
     Panel's single-process path otherwise, as ``make serve`` always ran)."""
     procs = ["--num-procs", str(num_procs)] if num_procs > 1 else []
     return [
-        sys.executable, "-m", "panel", "serve", str(explorer / "main.py"),
-        "--port", str(port), "--address", address, *PANEL_FLAGS, *procs,
-        "--setup", str(explorer / "warm.py"), "--warm",
-    ]  # fmt: skip
+        sys.executable,
+        "-m",
+        "panel",
+        "serve",
+        str(explorer / "main.py"),
+        "--port",
+        str(port),
+        "--address",
+        address,
+        *PANEL_FLAGS,
+        *procs,
+        "--setup",
+        str(explorer / "warm.py"),
+        "--warm",
+    ]
 
 
 def run(args) -> int:

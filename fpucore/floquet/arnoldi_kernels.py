@@ -178,9 +178,7 @@ def hessenberg_t_times(HT: np.ndarray, k: int, a: np.ndarray, c: np.ndarray, dst
 
 
 @njit(cache=True, nogil=True)
-def dcgs2_steps(
-    bands, d0, n, V, HT, GT, C, u, w, z, wz, t1, t2, t3, t4, k0, tol, tol_j, scal
-):  # fmt: skip
+def dcgs2_steps(bands, d0, n, V, HT, GT, C, u, w, z, wz, t1, t2, t3, t4, k0, tol, tol_j, scal):
     """Steps k0, k0+1, … of the isotropic Arnoldi process on W (structured_kernels.w_apply).
 
     State on entry: V[:k0] final (orthonormal, isotropic); u the tentative k0-th vector (the

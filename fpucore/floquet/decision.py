@@ -103,8 +103,9 @@ class Decision:
         }[self.classification]
 
     def _pts(self) -> str:
-        return ", ".join(f"{n}: {x:.2e}" for n, x in zip(self.points_N, self.points_excess,
-                                                        strict=True))  # fmt: skip
+        return ", ".join(
+            f"{n}: {x:.2e}" for n, x in zip(self.points_N, self.points_excess, strict=True)
+        )
 
     def fit_words(self, pm: str = "+/-") -> str:
         """The envelope exponent "p = 0.99 +/- 0.0031", only when it has an error bar smaller
@@ -117,8 +118,10 @@ class Decision:
     def _fall(self) -> str:
         """The measured fall of the excess: from its largest value to the value at N."""
         k = list(self.points_N).index(self.peak_N) if self.peak_N in self.points_N else 0
-        return (f"from {self.points_excess[k]:.2e} at N = {self.peak_N} to {self.excess:.2e} at "
-                f"N = {self.N}, {_pct(self.drop)} lower")  # fmt: skip
+        return (
+            f"from {self.points_excess[k]:.2e} at N = {self.peak_N} to {self.excess:.2e} at "
+            f"N = {self.N}, {_pct(self.drop)} lower"
+        )
 
     def _why_not_decays(self) -> str:
         """Why an excess that is not converged is not called a decaying resonance either."""
@@ -126,23 +129,29 @@ class Decision:
             return "nor decays (it is largest on the longest ring)"
         if not self.drop >= self.drop_needed:
             got, needed = _pct_apart(self.drop, self.drop_needed)
-            return (f"nor decays like a resonance of the ring (it falls {got} from its largest "
-                    f"value at N = {self.peak_N}, short of the {needed} required)")  # fmt: skip
+            return (
+                f"nor decays like a resonance of the ring (it falls {got} from its largest "
+                f"value at N = {self.peak_N}, short of the {needed} required)"
+            )
         fall = f"it falls {_pct(self.drop)} from its largest value at N = {self.peak_N}"
         fit = self.fit_words()
         env0 = self.envelope_N[0] if self.envelope_N else self.N
         if env0 > math.sqrt(self.points_N[0] * self.N):
             if env0 == self.peak_N:  # every shorter ring has a smaller excess
-                return (f"nor decays like a resonance of the ring (its largest value is at "
-                        f"N = {env0}, late in the window, and it falls {_pct(self.drop)} only "
-                        "after it: no trend over the window)")  # fmt: skip
+                return (
+                    f"nor decays like a resonance of the ring (its largest value is at "
+                    f"N = {env0}, late in the window, and it falls {_pct(self.drop)} only "
+                    "after it: no trend over the window)"
+                )
             return (
                 f"nor decays like a resonance of the ring ({fall}, but only after "
                 f"N = {env0}: the fall spans only the last rings of the window)"
             )
-        return (f"nor decays like a resonance of the ring ({fall}, but its upper envelope "
-                + (f"falls as N^-p with {fit} < {DECAY_P}" if fit else "has no steady slope")
-                + ")")  # fmt: skip
+        return (
+            f"nor decays like a resonance of the ring ({fall}, but its upper envelope "
+            + (f"falls as N^-p with {fit} < {DECAY_P}" if fit else "has no steady slope")
+            + ")"
+        )
 
     @property
     def evidence(self) -> str:
@@ -158,74 +167,100 @@ class Decision:
         ex, n = self.excess, self.N
         out = f"{ex:.2e} at N = {n}"
         if self.classification == "stable":
-            return (f"stable: every multiplier lies on the unit circle within the error bar "
-                    f"(max|mu|-1 = {ex:.1e} <= {self.error:.1e})")  # fmt: skip
+            return (
+                f"stable: every multiplier lies on the unit circle within the error bar "
+                f"(max|mu|-1 = {ex:.1e} <= {self.error:.1e})"
+            )
         if self.reason == "absent":
             gone = ", ".join(str(k) for k in self.absent_N)
-            return (f"finite-size artefact: multipliers leave the unit circle by {out}, but lie "
-                    f"on it within the error bar at N = {gone} (max|mu|-1 at N = {self._pts()}) "
-                    "- a resonance of the finite ring that comes and goes with N; a mode of the "
-                    "wave would be present on every ring of the window")  # fmt: skip
+            return (
+                f"finite-size artefact: multipliers leave the unit circle by {out}, but lie "
+                f"on it within the error bar at N = {gone} (max|mu|-1 at N = {self._pts()}) "
+                "- a resonance of the finite ring that comes and goes with N; a mode of the "
+                "wave would be present on every ring of the window"
+            )
         if self.reason == "dips":
             low = min(self.points_excess)
             at = ", ".join(str(k) for k in self.dip_N)
-            return (f"finite-size artefact: multipliers leave the unit circle by {out}, but the "
-                    f"excess falls to less than half its neighbours at N = {at} (max|mu|-1 at "
-                    f"N = {self._pts()}) - a resonance of the finite ring that comes and goes "
-                    "with N; the largest |mu| of a mode of the wave would not dip, so any "
-                    f"instability of the wave itself is below {low:.2e}")  # fmt: skip
+            return (
+                f"finite-size artefact: multipliers leave the unit circle by {out}, but the "
+                f"excess falls to less than half its neighbours at N = {at} (max|mu|-1 at "
+                f"N = {self._pts()}) - a resonance of the finite ring that comes and goes "
+                "with N; the largest |mu| of a mode of the wave would not dip, so any "
+                f"instability of the wave itself is below {low:.2e}"
+            )
         if self.reason == "decays":
             fit = self.fit_words()
-            return (f"finite-size artefact: multipliers leave the unit circle by {out}, and the "
-                    f"excess decays as the ring grows ({self._fall()}"
-                    + (f"; upper envelope ~ N^-p, {fit}" if fit else "")
-                    + f"; max|mu|-1 at N = {self._pts()}) - the ~1/N splitting of colliding "
-                    "phonon multipliers of the finite ring, not an instability of the wave"
-                    )  # fmt: skip
+            return (
+                f"finite-size artefact: multipliers leave the unit circle by {out}, and the "
+                f"excess decays as the ring grows ({self._fall()}"
+                + (f"; upper envelope ~ N^-p, {fit}" if fit else "")
+                + f"; max|mu|-1 at N = {self._pts()}) - the ~1/N splitting of colliding "
+                "phonon multipliers of the finite ring, not an instability of the wave"
+            )
         if self.classification == "unstable":
-            return (f"unstable: multipliers leave the unit circle by {out} (growth rate "
-                    f"{self.growth_rate:.3g} per unit time) and the excess stays within "
-                    f"{_pct(self.spread)} on every ring from N = {self.points_N[0]} to "
-                    f"{n} (max|mu|-1 at N = {self._pts()})")  # fmt: skip
+            return (
+                f"unstable: multipliers leave the unit circle by {out} (growth rate "
+                f"{self.growth_rate:.3g} per unit time) and the excess stays within "
+                f"{_pct(self.spread)} on every ring from N = {self.points_N[0]} to "
+                f"{n} (max|mu|-1 at N = {self._pts()})"
+            )
         if self.reason == "unresolved":
-            return (f"not determined at N = {n}: multipliers leave the unit circle by {out} on "
-                    f"every ring of the window (max|mu|-1 at N = {self._pts()}), but the excess "
-                    f"has neither converged (it changes by {_pct(self.spread)} across the "
-                    f"window; a mode of the wave by at most {_pct(CONVERGED_SPREAD)}) "
-                    f"{self._why_not_decays()}; {self.next_step}")  # fmt: skip
+            return (
+                f"not determined at N = {n}: multipliers leave the unit circle by {out} on "
+                f"every ring of the window (max|mu|-1 at N = {self._pts()}), but the excess "
+                f"has neither converged (it changes by {_pct(self.spread)} across the "
+                f"window; a mode of the wave by at most {_pct(CONVERGED_SPREAD)}) "
+                f"{self._why_not_decays()}; {self.next_step}"
+            )
         if self.reason == "missing_rings":
             gone = ", ".join(str(k) for k in self.missing_N)
-            return (f"not determined at N = {n}: multipliers leave the unit circle by {out} and "
-                    f"the excess stays within {_pct(self.spread)} on the rings computed "
-                    f"(max|mu|-1 at N = {self._pts()}), but the ring(s) N = {gone} of the "
-                    f"window could not be computed ({_cut(self.not_run)}); {self.next_step}"
-                    )  # fmt: skip
+            return (
+                f"not determined at N = {n}: multipliers leave the unit circle by {out} and "
+                f"the excess stays within {_pct(self.spread)} on the rings computed "
+                f"(max|mu|-1 at N = {self._pts()}), but the ring(s) N = {gone} of the "
+                f"window could not be computed ({_cut(self.not_run)}); {self.next_step}"
+            )
         if len(self.points_N) > 1:  # the test ran on too few rings: say which, and why
-            return (f"not determined at N = {n}: multipliers leave the unit circle by {out}, but "
-                    f"the finite-size test has only {len(self.points_N)} chain lengths "
-                    f"(max|mu|-1 at N = {self._pts()}; {_cut(self.not_run)}), too few to "
-                    f"decide; {self.next_step}")  # fmt: skip
-        return (f"not determined at N = {n}: multipliers leave the unit circle by {out}, and the "
-                f"finite-size test was not run ({_cut(self.not_run)}); {self.next_step}"
-                )  # fmt: skip
+            return (
+                f"not determined at N = {n}: multipliers leave the unit circle by {out}, but "
+                f"the finite-size test has only {len(self.points_N)} chain lengths "
+                f"(max|mu|-1 at N = {self._pts()}; {_cut(self.not_run)}), too few to "
+                f"decide; {self.next_step}"
+            )
+        return (
+            f"not determined at N = {n}: multipliers leave the unit circle by {out}, and the "
+            f"finite-size test was not run ({_cut(self.not_run)}); {self.next_step}"
+        )
 
     def as_dict(self) -> dict:
         """JSON-ready: every field, the headline and the sentence."""
         d = dataclasses.asdict(self)
-        d.update(headline=self.headline, sentence=self.sentence,
-                 points_N=[int(x) for x in self.points_N],
-                 points_excess=[float(x) for x in self.points_excess],
-                 points_error=[float(x) for x in self.points_error],
-                 absent_N=[int(x) for x in self.absent_N],
-                 dip_N=[int(x) for x in self.dip_N],
-                 envelope_N=[int(x) for x in self.envelope_N],
-                 missing_N=[int(x) for x in self.missing_N])  # fmt: skip
-        return {k: (None if isinstance(v, float) and not math.isfinite(v) else v)
-                for k, v in d.items()}  # fmt: skip
+        d.update(
+            headline=self.headline,
+            sentence=self.sentence,
+            points_N=[int(x) for x in self.points_N],
+            points_excess=[float(x) for x in self.points_excess],
+            points_error=[float(x) for x in self.points_error],
+            absent_N=[int(x) for x in self.absent_N],
+            dip_N=[int(x) for x in self.dip_N],
+            envelope_N=[int(x) for x in self.envelope_N],
+            missing_N=[int(x) for x in self.missing_N],
+        )
+        return {
+            k: (None if isinstance(v, float) and not math.isfinite(v) else v) for k, v in d.items()
+        }
 
 
-def decide(N: np.ndarray, e: np.ndarray, err: np.ndarray, growth_rate: float, not_run: str = "",
-           n_min: int = N_MIN, missing_N=()) -> tuple[Decision, dict]:  # fmt: skip
+def decide(
+    N: np.ndarray,
+    e: np.ndarray,
+    err: np.ndarray,
+    growth_rate: float,
+    not_run: str = "",
+    n_min: int = N_MIN,
+    missing_N=(),
+) -> tuple[Decision, dict]:
     """The decision record from the window's points (requested N last after sorting) and the
     raw fit dict of :func:`classify`.  not_run : why the window is incomplete ("" when every
     length was computed; "finite_size=False" when the test was switched off); n_min : the
@@ -242,22 +277,38 @@ def decide(N: np.ndarray, e: np.ndarray, err: np.ndarray, growth_rate: float, no
         if not_run == "finite_size=False":
             step = "run the finite-size test (finite_size=True) to decide"
         elif why == "few_lengths" and n < min_window_N(n_min):
-            step = (f"compute at N >= {min_window_N(n_min)} (the test needs rings in [N/2, N] "
-                    f"of at least {max(n_min, N_MIN)} sites)")  # fmt: skip
+            step = (
+                f"compute at N >= {min_window_N(n_min)} (the test needs rings in [N/2, N] "
+                f"of at least {max(n_min, N_MIN)} sites)"
+            )
         else:
-            step = (f"compute at N >= {2 * n} (a ring resonance's envelope halves when N "
-                    "doubles, an instability's growth stays)")  # fmt: skip
+            step = (
+                f"compute at N >= {2 * n} (a ring resonance's envelope halves when N "
+                "doubles, an instability's growth stays)"
+            )
     if why == "few_lengths" and not not_run:
         not_run = f"only {len(N)} chain lengths"
     d = Decision(
-        classification=cls, reason=why, N=n, excess=float(e[-1]), error=float(err[-1]),
-        growth_rate=float(growth_rate), points_N=tuple(int(x) for x in N),
-        points_excess=tuple(float(x) for x in e), points_error=tuple(float(x) for x in err),
-        p=fit["p"], p_error=fit["p_error"], spread=fit["spread"],
-        absent_N=tuple(fit["absent_N"]), dip_N=tuple(fit["dip_N"]),
+        classification=cls,
+        reason=why,
+        N=n,
+        excess=float(e[-1]),
+        error=float(err[-1]),
+        growth_rate=float(growth_rate),
+        points_N=tuple(int(x) for x in N),
+        points_excess=tuple(float(x) for x in e),
+        points_error=tuple(float(x) for x in err),
+        p=fit["p"],
+        p_error=fit["p_error"],
+        spread=fit["spread"],
+        absent_N=tuple(fit["absent_N"]),
+        dip_N=tuple(fit["dip_N"]),
         not_run=not_run if cls == "undetermined" else "",
-        next_step=step, envelope_N=tuple(int(x) for x in fit["envelope_N"]),
-        peak_N=int(fit["peak_N"]), drop=float(fit["drop"]), drop_needed=float(fit["drop_needed"]),
+        next_step=step,
+        envelope_N=tuple(int(x) for x in fit["envelope_N"]),
+        peak_N=int(fit["peak_N"]),
+        drop=float(fit["drop"]),
+        drop_needed=float(fit["drop_needed"]),
         missing_N=tuple(int(x) for x in missing_N),
-    )  # fmt: skip
+    )
     return d, fit

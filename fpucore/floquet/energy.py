@@ -159,9 +159,12 @@ def _qc_interval(law, w_plus: float, lo: float, hi: float, n: int):
         j = int(np.clip(np.searchsorted(V, v0), 1, V.size - 1))
         a, b = float(V[max(j - 2, 0)]), float(V[min(j + 1, V.size - 1)])
         sgn = 1.0 if kind == "min" else -1.0
-        res = minimize_scalar(lambda v, s=sgn: s * qc.solitary(law, w_plus, v).energy,
-                              bounds=(a, b), method="bounded",
-                              options={"xatol": 1e-12 * b})  # fmt: skip
+        res = minimize_scalar(
+            lambda v, s=sgn: s * qc.solitary(law, w_plus, v).energy,
+            bounds=(a, b),
+            method="bounded",
+            options={"xatol": 1e-12 * b},
+        )
         h = 1e-3 * (b - a)
         es = [qc.solitary(law, w_plus, float(res.x) + k * h).energy for k in (-1, 0, 1)]
         e2 = (es[0] - 2 * es[1] + es[2]) / (h * h)
@@ -331,8 +334,10 @@ def criterion_from_samples(
     in_range = [x for x in qext if V.size and V.min() <= x[0] <= V.max()]
     may = bool(ext or (in_range if V.size else qext))
     n_bad = int(np.count_nonzero(~ok))
-    msg = (f"{len(ext)} extremum(s) of the discrete E_ren, {len(qext)} of E_ren^QC; "
-           f"{n_bad} wave(s) not converged")  # fmt: skip
+    msg = (
+        f"{len(ext)} extremum(s) of the discrete E_ren, {len(qext)} of E_ren^QC; "
+        f"{n_bad} wave(s) not converged"
+    )
     col = lambda xs, k: np.array([x[k] for x in xs], dtype=float)  # noqa: E731
     cat = lambda xs: np.concatenate(xs) if xs else np.zeros(0)  # noqa: E731
     return EnergyCriterion(
@@ -427,8 +432,10 @@ def stability_changes(
     if cls.size != V.size:
         raise ParameterError("classification", cls.size, f"one class per velocity ({V.size})")
     marks = [(v, dv) for v, dv in zip(criterion.extrema_V, criterion.extrema_V_error)]
-    marks += [(v, dv + QC_DISCRETE_ALLOWANCE * abs(v))
-              for v, dv in zip(criterion.qc_extrema_V, criterion.qc_extrema_V_error)]  # fmt: skip
+    marks += [
+        (v, dv + QC_DISCRETE_ALLOWANCE * abs(v))
+        for v, dv in zip(criterion.qc_extrema_V, criterion.qc_extrema_V_error)
+    ]
     out = []
     for lo, hi in qc.solitary_intervals(law, w_plus):
         # an undetermined velocity has no class to change from or to
@@ -440,8 +447,11 @@ def stability_changes(
                 continue
             near = [x for x, dx in marks if v[i] - dx <= x <= v[i + 1] + dx]
             x0 = float(near[0]) if near else math.nan
-            out.append(StabilityChange(float(v[i]), float(v[i + 1]), str(c[i]), str(c[i + 1]),
-                                       bool(near), x0))  # fmt: skip
+            out.append(
+                StabilityChange(
+                    float(v[i]), float(v[i + 1]), str(c[i]), str(c[i + 1]), bool(near), x0
+                )
+            )
     return out
 
 
@@ -460,8 +470,10 @@ def changes_summary(changes: list[StabilityChange]) -> str:
     """
     k = len(changes)
     if k == 0:
-        return ("No change between stable and unstable along the sweep: consistent with the "
-                "energy criterion.")  # fmt: skip
+        return (
+            "No change between stable and unstable along the sweep: consistent with the "
+            "energy criterion."
+        )
     at = [c for c in changes if c.explained]
     what = f"{k} change{'s' if k > 1 else ''} of class across the stable/unstable line"
     # an "unstable" row has passed the window test (present on every ring, converged), so an
@@ -475,6 +487,7 @@ def changes_summary(changes: list[StabilityChange]) -> str:
         return f"{what}, none at an extremum of E_ren: {other}."
     where = ", ".join(f"{c.extremum_V:.6g}" for c in at)
     rest = k - len(at)
-    return (f"{what}, {len(at)} at an extremum of E_ren (V = {where}): consistent with a change "
-            "of stability there" + (f"; {rest} elsewhere: {other}." if rest else ".")
-            )  # fmt: skip
+    return (
+        f"{what}, {len(at)} at an extremum of E_ren (V = {where}): consistent with a change "
+        "of stability there" + (f"; {rest} elsewhere: {other}." if rest else ".")
+    )

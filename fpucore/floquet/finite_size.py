@@ -258,10 +258,24 @@ def classify(N: np.ndarray, e: np.ndarray, err: np.ndarray) -> dict:
     e = np.asarray(e, float)
     err = np.asarray(err, float)
     nan = math.nan
-    out = {"p": nan, "p_error": nan, "C": nan, "e_inf": nan, "e_inf_error": nan, "spread": nan,
-           "absent_N": [], "dip_N": [], "envelope_N": [], "shrinks": False, "intermittent": False,
-           "checked": N.size >= MIN_POINTS, "peak_N": int(N[-1]), "drop": 0.0,
-           "drop_needed": nan, "envelope_early": False}  # fmt: skip
+    out = {
+        "p": nan,
+        "p_error": nan,
+        "C": nan,
+        "e_inf": nan,
+        "e_inf_error": nan,
+        "spread": nan,
+        "absent_N": [],
+        "dip_N": [],
+        "envelope_N": [],
+        "shrinks": False,
+        "intermittent": False,
+        "checked": N.size >= MIN_POINTS,
+        "peak_N": int(N[-1]),
+        "drop": 0.0,
+        "drop_needed": nan,
+        "envelope_early": False,
+    }
     if not e[-1] > err[-1]:
         out["classification"], out["reason"] = "stable", "within_error"
         return out
@@ -279,8 +293,7 @@ def classify(N: np.ndarray, e: np.ndarray, err: np.ndarray) -> dict:
             out["C"] = float(np.exp(ly.mean() + out["p"] * np.log(N[hull]).mean()))
     # a dip: between larger excesses on both sides the excess falls below half of them; the max
     # of a converged mode of the wave (plus any resonance above it) cannot fall below the mode
-    dips = [k for k in range(1, N.size - 1)
-            if e[k] < DIP * min(e[:k].max(), e[k + 1 :].max())]  # fmt: skip
+    dips = [k for k in range(1, N.size - 1) if e[k] < DIP * min(e[:k].max(), e[k + 1 :].max())]
     out["dip_N"] = [int(N[k]) for k in dips]
     out["intermittent"] = bool(out["absent_N"] or dips)
     out["checked"] = bool(out["checked"] or out["intermittent"])  # conclusive at any count

@@ -90,9 +90,11 @@ def _attr(r, name: str, convert):
         x = getattr(r, name)
     except AttributeError:
         raise ParameterError(
-            "r", type(r).__name__, "a wave result with law, V, w, wdot, w_left, w_right",
+            "r",
+            type(r).__name__,
+            "a wave result with law, V, w, wdot, w_left, w_right",
             f"no attribute {name!r}",
-        ) from None  # fmt: skip
+        ) from None
     if isinstance(x, (str, bytes, bool, np.bool_)):
         raise ParameterError(f"r.{name}", x, "real numbers")
     try:
@@ -123,14 +125,17 @@ def base_state(r):
     wl, wr = _attr(r, "w_left", float), _attr(r, "w_right", float)
     N = w.size
     if N > MAX_N:
-        raise ParameterError("N", N, f"N <= {MAX_N}",
-                             "the dense eigenvalue call costs O(N^3) time")  # fmt: skip
+        raise ParameterError("N", N, f"N <= {MAX_N}", "the dense eigenvalue call costs O(N^3) time")
     if N < 4 or N % 2 or wd.shape != w.shape:
         raise ParameterError("N", N, "an even number >= 4 with w, wdot of equal length")
     c = law.c_max
     if not (math.isfinite(V) and c / V_SPAN <= V <= c * V_SPAN):
-        raise ParameterError("V", V, f"[{c / V_SPAN:.6g}, {c * V_SPAN:.6g}]",
-                             f"velocities within a factor {V_SPAN:g} of c_max")  # fmt: skip
+        raise ParameterError(
+            "V",
+            V,
+            f"[{c / V_SPAN:.6g}, {c * V_SPAN:.6g}]",
+            f"velocities within a factor {V_SPAN:g} of c_max",
+        )
     for name, x in (("r.w", w), ("r.wdot", wd), ("r.w_left/r.w_right", np.array([wl, wr]))):
         if not np.all(np.isfinite(x)):
             raise ParameterError(name, "non-finite entries", "finite real numbers")
@@ -142,23 +147,33 @@ def base_state(r):
     for name, x in (("r.w", w), ("r.w_left/r.w_right", np.array([wl, wr]))):
         if iv and np.any((x < iv[0]) | (x > iv[1])):
             bad = float(x[(x < iv[0]) | (x > iv[1])][0])
-            raise ParameterError(name, bad, f"[{iv[0]:.10g}, {iv[1]:.10g}]",
-                                 "the state left the represented interval of the smooth law "
-                                 "(its kernels are not defined beyond it)")  # fmt: skip
+            raise ParameterError(
+                name,
+                bad,
+                f"[{iv[0]:.10g}, {iv[1]:.10g}]",
+                "the state left the represented interval of the smooth law "
+                "(its kernels are not defined beyond it)",
+            )
     for name, x in (("r.w", w), ("r.w_left/r.w_right", np.array([wl, wr]))):
         with np.errstate(over="ignore", invalid="ignore"):
             growth = 2.0 * np.sqrt(np.maximum(-law.df(x), 0.0)) / V
             bad = ~np.isfinite(law.f(x)) | ~(growth <= GROWTH_MAX)
         if np.any(bad):
             raise ParameterError(
-                name, float(x[bad][0]), f"strains with 2 sqrt(-f'(w))/V <= {GROWTH_MAX:g}",
+                name,
+                float(x[bad][0]),
+                f"strains with 2 sqrt(-f'(w))/V <= {GROWTH_MAX:g}",
                 "a perturbation would grow by more than exp(200) in one period",
-            )  # fmt: skip
+            )
     # |ẇ| of a traveling wave is V |w′| <= V x (strain range): far beyond it is no wave
     wd_max = V_SPAN * V * (float(np.ptp(np.concatenate([w, [wl, wr]]))) + law.beta - law.alpha)
     if np.any(np.abs(wd) > wd_max):
-        raise ParameterError("r.wdot", float(np.max(np.abs(wd))), f"|wdot| <= {wd_max:.6g}",
-                             "strain rates of a traveling wave are V |w'|")  # fmt: skip
+        raise ParameterError(
+            "r.wdot",
+            float(np.max(np.abs(wd))),
+            f"|wdot| <= {wd_max:.6g}",
+            "strain rates of a traveling wave are V |w'|",
+        )
     return law, w, wd, V, N, wl, wr
 
 
@@ -230,9 +245,14 @@ def monodromy(r: WaveResult, m: int | None = None) -> Monodromy:
     mat = np.zeros((2 * N, 2 * N))
     scatter_shifted(out, cols, N, k_eff, mat)
     return Monodromy(
-        mat, N, 1.0 / V, int(m), int(k_eff), float(edge.max(initial=0.0)),
+        mat,
+        N,
+        1.0 / V,
+        int(m),
+        int(k_eff),
+        float(edge.max(initial=0.0)),
         time.perf_counter() - t0,
-    )  # fmt: skip
+    )
 
 
 def _householder(n: int) -> tuple[np.ndarray, float]:

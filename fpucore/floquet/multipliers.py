@@ -149,9 +149,23 @@ class FloquetResult(Result):
 
 
 def _wave_summary(r) -> dict:
-    keys = ("kind", "V", "N", "w_left", "w_right", "residual", "dropped_residual", "converged",
-            "iterations", "amplitude", "energy", "integrator_error", "tail_error", "elapsed_s",
-            "message")  # fmt: skip
+    keys = (
+        "kind",
+        "V",
+        "N",
+        "w_left",
+        "w_right",
+        "residual",
+        "dropped_residual",
+        "converged",
+        "iterations",
+        "amplitude",
+        "energy",
+        "integrator_error",
+        "tail_error",
+        "elapsed_s",
+        "message",
+    )
     out = {k: getattr(r, k) for k in keys if hasattr(r, k)}
     if hasattr(r, "w_plus"):
         out["w_plus"] = r.w_plus
@@ -161,9 +175,14 @@ def _wave_summary(r) -> dict:
 Points = list[tuple[int, float, float]]  # (N, max|μ| − 1, its error bar) per ring
 
 
-def finite_size_window(base: BaseWave, excess: float, error: float, integrator_error: float,
-                       finite_size: bool, report: Callable[[str, float], None]
-                       ) -> tuple[Points, str, list[int]]:  # fmt: skip
+def finite_size_window(
+    base: BaseWave,
+    excess: float,
+    error: float,
+    integrator_error: float,
+    finite_size: bool,
+    report: Callable[[str, float], None],
+) -> tuple[Points, str, list[int]]:
     """The excess max|μ| − 1 ± error at N and, when it exceeds its bar and ``finite_size``, on the
     window of shorter rings in [N/2, N] (structured route, shortest first, stopping once an
     absent excess or a dip has decided it: :mod:`fpucore.floquet.finite_size`).  Returns (the

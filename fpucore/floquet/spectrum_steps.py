@@ -157,8 +157,14 @@ def _background_states(base: BaseWave) -> list[float]:
     return [float(base.w[0]), float(base.w[-1])]
 
 
-def error_bars(base: BaseWave, eig: Eigen, mono: Monodromy, integrator_error: float,
-               method: str, trivial_radius: float | None) -> ErrorBars:  # fmt: skip
+def error_bars(
+    base: BaseWave,
+    eig: Eigen,
+    mono: Monodromy,
+    integrator_error: float,
+    method: str,
+    trivial_radius: float | None,
+) -> ErrorBars:
     """The error bar max(quartet symmetry, integrator error, round-off floor 64 ε ‖𝓜‖₁; the
     structured route's λ bound), the trivial cluster (radius ``trivial_radius``, default
     min(phonon_gap / 10, max(1e-6, 100 √ε)), ε = max(error bar, residual)) and the multipliers
@@ -189,8 +195,21 @@ def error_bars(base: BaseWave, eig: Eigen, mono: Monodromy, integrator_error: fl
         error = float(err_away[int(np.argmax(np.abs(away)))])
     unstable = away[np.abs(away) - 1.0 > err_away]
     unstable = unstable[np.argsort(-np.abs(unstable))]
-    return ErrorBars(mu, sym, conj, error, gap, split_scale, trivial_radius, trivial, away,
-                     float(np.abs(mu).max()), max_away, max_away - 1.0, unstable)  # fmt: skip
+    return ErrorBars(
+        mu,
+        sym,
+        conj,
+        error,
+        gap,
+        split_scale,
+        trivial_radius,
+        trivial,
+        away,
+        float(np.abs(mu).max()),
+        max_away,
+        max_away - 1.0,
+        unstable,
+    )
 
 
 def convergence(base: BaseWave, mono: Monodromy, bars: ErrorBars) -> tuple[bool, list[str]]:

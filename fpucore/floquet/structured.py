@@ -230,19 +230,32 @@ def structured_multipliers(
     mat = np.asarray(mat, dtype=float)
     if mat.shape != (2 * N, 2 * N) or not np.all(np.isfinite(mat)):
         raise ParameterError(
-            "mat", f"<array {mat.shape}>",
+            "mat",
+            f"<array {mat.shape}>",
             f"a finite (2n, 2n) = ({2 * N}, {2 * N}) matrix (the shifted monodromy of n sites)",
-        )  # fmt: skip
+        )
     m = N - 1
     mu_sums, defect = sums_and_defect(mat, N)
-    info: dict = {"route": "arnoldi", "reversor": None, "band_s": 0.0, "reduce_s": 0.0,
-                  "arnoldi_s": 0.0, "G_norm": math.nan, "irreversibility": math.nan,
-                  "restarts": 0, "width": 0}  # fmt: skip
+    info: dict = {
+        "route": "arnoldi",
+        "reversor": None,
+        "band_s": 0.0,
+        "reduce_s": 0.0,
+        "arnoldi_s": 0.0,
+        "G_norm": math.nan,
+        "irreversibility": math.nan,
+        "restarts": 0,
+        "width": 0,
+    }
     if reversor is not None and (
         isinstance(reversor, (bool, np.bool_)) or not isinstance(reversor, (int, np.integer))
     ):
-        raise ParameterError("reversor", reversor, "None or an integer site index",
-                             "the centre c of the reflection i -> c - i (reversor_of)")  # fmt: skip
+        raise ParameterError(
+            "reversor",
+            reversor,
+            "None or an integer site index",
+            "the centre c of the reflection i -> c - i (reversor_of)",
+        )
     rev = reversible_lambdas(mat, N, reversor) if reversor is not None else None
     if rev is not None:
         lam, lam_err_k, rinfo = rev
@@ -259,9 +272,15 @@ def structured_multipliers(
         t4 = time.perf_counter()
         eta = symplectic_defect(bands, d0, N)
         lam_err_k = np.full(lam.size, g_norm + (64.0 * np.finfo(float).eps + eta) * hnorm)
-        info.update(G_norm=g_norm, symplectic_defect=eta, restarts=restarts,
-                    width=int(bands.shape[1]), band_s=t2 - t1, arnoldi_s=t3 - t2,
-                    eig_s=t4 - t3)  # fmt: skip
+        info.update(
+            G_norm=g_norm,
+            symplectic_defect=eta,
+            restarts=restarts,
+            width=int(bands.shape[1]),
+            band_s=t2 - t1,
+            arnoldi_s=t3 - t2,
+            eig_s=t4 - t3,
+        )
     mu = mu_from_lambda(lam)
     err2 = np.concatenate([lam_err_k, lam_err_k])  # mu_from_lambda's order: big roots, then small
     sep = np.abs(mu - 1.0 / mu)

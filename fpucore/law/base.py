@@ -78,8 +78,10 @@ def interval_note(law: object) -> str:
     iv = getattr(law, "interval", None)
     if not iv:
         return ""
-    return (f"; a strain may have left the represented interval [{iv[0]:.6g}, {iv[1]:.6g}] of "
-            "the smooth law (its kernels return NaN outside)")  # fmt: skip
+    return (
+        f"; a strain may have left the represented interval [{iv[0]:.6g}, {iv[1]:.6g}] of "
+        "the smooth law (its kernels return NaN outside)"
+    )
 
 
 def require_law(law: object, name: str = "law") -> HardeningSofteningLaw:

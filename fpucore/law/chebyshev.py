@@ -70,9 +70,11 @@ class RepresentationError:
 
     def __str__(self) -> str:
         lo, hi = self.interval
-        return (f"|f - f_rep| <= {self.f:.2g}, |f' - f'_rep| <= {self.df:.2g}, "
-                f"|f'' - f''_rep| <= {self.ddf:.2g} on [{lo:.6g}, {hi:.6g}] ({self.panels} "
-                f"panels of degree {NCOEF - 1})")  # fmt: skip
+        return (
+            f"|f - f_rep| <= {self.f:.2g}, |f' - f'_rep| <= {self.df:.2g}, "
+            f"|f'' - f''_rep| <= {self.ddf:.2g} on [{lo:.6g}, {hi:.6g}] ({self.panels} "
+            f"panels of degree {NCOEF - 1})"
+        )
 
 
 @functools.cache
@@ -178,8 +180,10 @@ def first_level(ddf, lo: float, hi: float) -> int:
 
 
 def unresolved_reason(npan: int, lo: float, hi: float, rel: float) -> str:
-    return (f"the law varies on a scale below 1/{npan * NCOEF} of [{lo:.6g}, {hi:.6g}] "
-            f"(relative error {rel:.2g} with {npan} panels): too steep to represent")  # fmt: skip
+    return (
+        f"the law varies on a scale below 1/{npan * NCOEF} of [{lo:.6g}, {hi:.6g}] "
+        f"(relative error {rel:.2g} with {npan} panels): too steep to represent"
+    )
 
 
 def build(long_fns, mp_fns, lo: float, hi: float, start: int = MIN_PANELS) -> Representation:
@@ -235,8 +239,17 @@ def build(long_fns, mp_fns, lo: float, hi: float, start: int = MIN_PANELS) -> Re
         [np.array([lo, hi, npan, NCOEF, npan / (hi - lo), 0.0, 0.0, 0.0])]
         + [c.ravel() for c in coef]
     )
-    err = RepresentationError(errs[0], errs[1], errs[2], (float(lo), float(hi)),
-                              cast("tuple[float, float, float]", tuple(scales)), npan, int(P.size),
-                              N_MP, MP_DIGITS)  # fmt: skip
-    return Representation(params, cast("tuple[np.ndarray, np.ndarray, np.ndarray]", tuple(coef)),
-                          err)  # fmt: skip
+    err = RepresentationError(
+        errs[0],
+        errs[1],
+        errs[2],
+        (float(lo), float(hi)),
+        cast("tuple[float, float, float]", tuple(scales)),
+        npan,
+        int(P.size),
+        N_MP,
+        MP_DIGITS,
+    )
+    return Representation(
+        params, cast("tuple[np.ndarray, np.ndarray, np.ndarray]", tuple(coef)), err
+    )

@@ -74,9 +74,11 @@ def law_from_expression(
         unused = [n for n, _ in consts if f"({dict(consts)[n]!r})" not in text]
         if unused:
             raise ParameterError(
-                "constants", ", ".join(unused), "names that appear in the expression",
+                "constants",
+                ", ".join(unused),
+                "names that appear in the expression",
                 f"the constant(s) {', '.join(unused)} do not appear in {abbreviate(expression)}",
-            )  # fmt: skip
+            )
     try:
         return polynomial_law_from_expression(text)
     except ParameterError as exc:
@@ -128,9 +130,11 @@ def polynomial_law_from_expression(expression: str) -> PolynomialLaw:
         raise ParameterError("expression", expression, _VALID, "empty expression")
     if len(expression) > MAX_LENGTH:
         raise ParameterError(
-            "expression", abbreviate(expression), _VALID,
+            "expression",
+            abbreviate(expression),
+            _VALID,
             f"{len(expression)} characters exceed the maximum {MAX_LENGTH}",
-        )  # fmt: skip
+        )
     # one line, single spaces: a leading space or a line break is not Python indentation here
     text = " ".join(expression.split())
     try:
@@ -149,9 +153,11 @@ def polynomial_law_from_expression(expression: str) -> PolynomialLaw:
         if t.type == tokenize.NAME:
             if t.string != "w" and t.string not in _FUNCS + _CONSTS:
                 raise ParameterError(
-                    "expression", expression, _VALID,
+                    "expression",
+                    expression,
+                    _VALID,
                     f"unknown name '{t.string}': the only variable allowed is w",
-                )  # fmt: skip
+                )
             continue
         if t.type == tokenize.OP and t.string in _OPS:
             continue
@@ -228,7 +234,9 @@ def polynomial_law_from_expression(expression: str) -> PolynomialLaw:
         raise ParameterError("expression", expression, _VALID, "the expression is zero")
     if coeffs[0] != 0.0:
         raise ParameterError(
-            "expression", expression, _VALID,
+            "expression",
+            expression,
+            _VALID,
             f"constant term {coeffs[0]:g}: f(0) must be 0 (the unstrained spring carries no force)",
-        )  # fmt: skip
+        )
     return PolynomialLaw(tuple(coeffs[1:]))

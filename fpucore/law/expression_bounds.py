@@ -134,9 +134,16 @@ class _Screen:
                 val = node.val + rhs.val if op == "+" else node.val - rhs.val
             hasw = node.hasw or rhs.hasw
             node = self.check(
-                Node(max(node.deg, rhs.deg), val, node.digits + rhs.digits,
-                     f"{node.text}{op}{rhs.text}", min(node.lo, rhs.lo), hasw, not hasw)
-            )  # fmt: skip
+                Node(
+                    max(node.deg, rhs.deg),
+                    val,
+                    node.digits + rhs.digits,
+                    f"{node.text}{op}{rhs.text}",
+                    min(node.lo, rhs.lo),
+                    hasw,
+                    not hasw,
+                )
+            )
         return node
 
     # term := factor (('*'|'/') factor | factor)*   (juxtaposition = SymPy's implicit product)
@@ -163,9 +170,16 @@ class _Screen:
                     )
                 deg, lo = node.deg - rhs.lo, node.lo - rhs.deg
             node = self.check(
-                Node(deg, _product_val(node.val, rhs.val, op), node.digits + rhs.digits, text,
-                     lo, node.hasw or rhs.hasw, node.mono and rhs.mono)
-            )  # fmt: skip
+                Node(
+                    deg,
+                    _product_val(node.val, rhs.val, op),
+                    node.digits + rhs.digits,
+                    text,
+                    lo,
+                    node.hasw or rhs.hasw,
+                    node.mono and rhs.mono,
+                )
+            )
 
     # factor := ('+'|'-') factor | power
     def factor(self) -> Node:
@@ -175,8 +189,9 @@ class _Screen:
             inner = self.factor()
             self.depth -= 1
             val = None if inner.val is None else (-inner.val if op == "-" else inner.val)
-            return Node(inner.deg, val, inner.digits, op + inner.text, inner.lo, inner.hasw,
-                        inner.mono)  # fmt: skip
+            return Node(
+                inner.deg, val, inner.digits, op + inner.text, inner.lo, inner.hasw, inner.mono
+            )
         return self.power()
 
     # power := atom (('**'|'^') factor)?   (right-associative; the exponent may carry a sign)
@@ -211,18 +226,23 @@ class _Screen:
                     "depending on w"
                 )
             deg, lo = (base.deg * e, base.lo * e) if e >= 0 else (base.lo * e, base.deg * e)
-            return self.check(Node(deg, None, base.digits * max(abs(e), 1), text, lo, True,
-                                   base.mono))  # fmt: skip
+            return self.check(
+                Node(deg, None, base.digits * max(abs(e), 1), text, lo, True, base.mono)
+            )
         val = None
         b = base.val
         if b is not None and b != 0.0 and abs(b) != 1.0:  # its size first: the real cause
             lg = e * math.log10(abs(b))
             if lg > LOG10_MAX:
-                self.refuse(f"the number {abbreviate(text, 40)} (about 10^{lg:.3g}) exceeds the "
-                            "float range (|x| <= 1.8e308)")  # fmt: skip
+                self.refuse(
+                    f"the number {abbreviate(text, 40)} (about 10^{lg:.3g}) exceeds the "
+                    "float range (|x| <= 1.8e308)"
+                )
             if lg < LOG10_MIN:
-                self.refuse(f"the number {abbreviate(text, 40)} (about 10^{lg:.3g}) is below the "
-                            "float range (|x| >= 4.9e-324)")  # fmt: skip
+                self.refuse(
+                    f"the number {abbreviate(text, 40)} (about 10^{lg:.3g}) is below the "
+                    "float range (|x| >= 4.9e-324)"
+                )
         if abs(e) > MAX_EXPONENT:  # a base near 1: its exact value would still be huge
             self.refuse(
                 f"the exponent {e:.10g} of {abbreviate(text, 40)} exceeds the maximum "
@@ -269,8 +289,15 @@ class _Screen:
             inner = self.sum_()
             self.depth -= 1
             self.expect_close()
-            return Node(inner.deg, inner.val, inner.digits, f"({inner.text})", inner.lo,
-                        inner.hasw, inner.mono)  # fmt: skip
+            return Node(
+                inner.deg,
+                inner.val,
+                inner.digits,
+                f"({inner.text})",
+                inner.lo,
+                inner.hasw,
+                inner.mono,
+            )
         self.refuse(f"could not parse: unexpected '{t.string}'")
 
     def expect_close(self):
@@ -288,8 +315,10 @@ def parse_number(text: str, refuse: Callable[[str], NoReturn]) -> Node:
     integer's exact size is the decimal digits of its value, whatever its base."""
     chars = sum(ch.isalnum() for ch in text)  # digits of any base (and the 0x/0o/0b prefix)
     if chars > MAX_LITERAL_DIGITS:
-        refuse(f"the literal {abbreviate(text, 24)} has {chars} digits (at most "
-               f"{MAX_LITERAL_DIGITS}: beyond the float range)")  # fmt: skip
+        refuse(
+            f"the literal {abbreviate(text, 24)} has {chars} digits (at most "
+            f"{MAX_LITERAL_DIGITS}: beyond the float range)"
+        )
     clean = text.replace("_", "")
     exact = not any(ch in clean.lower() for ch in ".e") or clean.lower().startswith("0x")
     try:
@@ -305,8 +334,10 @@ def parse_number(text: str, refuse: Callable[[str], NoReturn]) -> Node:
     except ValueError:
         refuse(f"could not parse the number {abbreviate(text, 24)}")
     if not math.isfinite(val):
-        refuse(f"the literal {abbreviate(text, 24)} exceeds the float range (|x| <= 1.8e308): "
-               "non-finite in double precision")  # fmt: skip
+        refuse(
+            f"the literal {abbreviate(text, 24)} exceeds the float range (|x| <= 1.8e308): "
+            "non-finite in double precision"
+        )
     # decimal digits of the value: 0x + 255 f's is 1 token but 308 digits of SymPy's exact work
     digits = math.floor(n.bit_length() * math.log10(2)) + 1 if exact else 0.0  # type: ignore[union-attr]
     return Node(0.0, val, float(digits), text)
@@ -316,9 +347,19 @@ def _function(name: str, x: float | None) -> float | None:
     """A function of a constant, in float (None when not real); OverflowError → inf (refused)."""
     if x is None:
         return None
-    fn = {"sin": math.sin, "cos": math.cos, "tan": math.tan, "exp": math.exp, "sinh": math.sinh,
-          "cosh": math.cosh, "tanh": math.tanh, "abs": abs, "Abs": abs,
-          "log": math.log, "sqrt": math.sqrt}[name]  # fmt: skip
+    fn = {
+        "sin": math.sin,
+        "cos": math.cos,
+        "tan": math.tan,
+        "exp": math.exp,
+        "sinh": math.sinh,
+        "cosh": math.cosh,
+        "tanh": math.tanh,
+        "abs": abs,
+        "Abs": abs,
+        "log": math.log,
+        "sqrt": math.sqrt,
+    }[name]
     try:
         return float(fn(x))  # type: ignore[operator]
     except OverflowError:

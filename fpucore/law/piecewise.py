@@ -172,9 +172,11 @@ class _PiecewiseTables(HardeningSofteningLaw):
         w = require_finite(name, w)
         if not (self.alpha < w < self.beta):
             raise ParameterError(
-                name, w, f"(alpha, beta) = ({self.alpha:.10g}, {self.beta:.10g})",
+                name,
+                w,
+                f"(alpha, beta) = ({self.alpha:.10g}, {self.beta:.10g})",
                 "strain must lie where f'(w) > 0 (outside the zero-modulus regime)",
-            )  # fmt: skip
+            )
         return w
 
     def describe(self) -> str:
@@ -186,54 +188,68 @@ class _PiecewiseTables(HardeningSofteningLaw):
         for k in range(1, m):
             if not b[k] > b[k - 1]:
                 raise ParameterError(
-                    bname, tuple(float(x) for x in b), "strictly increasing breakpoints",
+                    bname,
+                    tuple(float(x) for x in b),
+                    "strictly increasing breakpoints",
                     f"breakpoint {k + 1} ({b[k]:.10g}) is not above breakpoint {k} "
                     f"({b[k - 1]:.10g})",
-                )  # fmt: skip
+                )
         for k, sk in enumerate(s):
             if sk < 0:
                 raise ParameterError(
-                    sname(k), float(sk), "a modulus >= 0",
+                    sname(k),
+                    float(sk),
+                    "a modulus >= 0",
                     "a negative modulus makes the potential non-convex (phase transitions are "
                     "outside the hardening-softening class)",
-                )  # fmt: skip
+                )
             if sk != 0 and not COEFF_RANGE[0] <= sk <= COEFF_RANGE[1]:
                 raise ParameterError(
-                    sname(k), float(sk), f"0 or [{COEFF_RANGE[0]:g}, {COEFF_RANGE[1]:g}]",
+                    sname(k),
+                    float(sk),
+                    f"0 or [{COEFF_RANGE[0]:g}, {COEFF_RANGE[1]:g}]",
                     "outside this range the closed forms overflow or underflow",
-                )  # fmt: skip
+                )
         h = int(np.argmax(s))
         for k in range(1, m + 1):
             up = k <= h
             if (s[k] > s[k - 1]) != up or s[k] == s[k - 1]:
                 raise ParameterError(
-                    sname(k), float(s[k]),
+                    sname(k),
+                    float(s[k]),
                     f"{'>' if up else '<'} {sname(k - 1)} = {s[k - 1]:.10g}",
                     "the slopes must strictly increase to one maximum (hard) regime and then "
                     "strictly decrease: f convex then concave (hardening then softening)",
-                )  # fmt: skip
+                )
         if h == 0 or h == m:
             raise ParameterError(
-                sname(h), float(s[h]), "a maximum slope on a bounded (middle) regime",
-                "the stiffest regime is unbounded: " + (
-                    "no hardening" if h == 0 else "no softening"
-                ) + ", so no superkink exists",
-            )  # fmt: skip
+                sname(h),
+                float(s[h]),
+                "a maximum slope on a bounded (middle) regime",
+                "the stiffest regime is unbounded: "
+                + ("no hardening" if h == 0 else "no softening")
+                + ", so no superkink exists",
+            )
         if not b[h - 1] > 0:
             raise ParameterError(
-                bname, tuple(float(x) for x in b), f"the hard regime starting above 0 (it "
-                f"starts at {b[h - 1]:.10g})", "the origin must lie in a soft regime before the "
+                bname,
+                tuple(float(x) for x in b),
+                f"the hard regime starting above 0 (it starts at {b[h - 1]:.10g})",
+                "the origin must lie in a soft regime before the "
                 "hard one (the paper's 0 < w*: hardening at w = 0)",
-            )  # fmt: skip
+            )
         if np.any(b == 0.0):
             raise ParameterError(
-                bname, tuple(float(x) for x in b), "breakpoints != 0",
+                bname,
+                tuple(float(x) for x in b),
+                "breakpoints != 0",
                 "the origin must lie inside a regime, where f'(0) is defined",
-            )  # fmt: skip
+            )
         W = float(np.max(np.abs(b)))
         w_star = 0.5 * (b[h - 1] + b[h])
-        require_computable(bname, tuple(float(x) for x in b), -W, W, w_star, float(s[h]),
-                           "the largest slope")  # fmt: skip
+        require_computable(
+            bname, tuple(float(x) for x in b), -W, W, w_star, float(s[h]), "the largest slope"
+        )
 
 
 @dataclass(frozen=True)
@@ -255,9 +271,11 @@ class PiecewiseLinearLaw(_PiecewiseTables):
         s = _seq("slopes", self.slopes, 1, MAX_PIECES + 1)
         if s.size != b.size + 1:
             raise ParameterError(
-                "slopes", tuple(s.tolist()), f"{b.size + 1} slopes (one more than the "
-                f"{b.size} breakpoints)", "one modulus per regime",
-            )  # fmt: skip
+                "slopes",
+                tuple(s.tolist()),
+                f"{b.size + 1} slopes (one more than the {b.size} breakpoints)",
+                "one modulus per regime",
+            )
         self._validate_common(b, s, "breakpoints", lambda k: f"slopes[{k}]")
         object.__setattr__(self, "breakpoints", tuple(b.tolist()))
         object.__setattr__(self, "slopes", tuple(s.tolist()))
@@ -304,26 +322,35 @@ class TrilinearLaw(_PiecewiseTables):
         w1, w2, E1, E2, E3 = (vals[n] for n in ("w1", "w2", "E1", "E2", "E3"))
         if not w1 > 0:
             raise ParameterError(
-                "w1", w1, "w1 > 0", "the origin lies inside the first (soft) regime: f(w) = E1 w "
+                "w1",
+                w1,
+                "w1 > 0",
+                "the origin lies inside the first (soft) regime: f(w) = E1 w "
                 "for w <= w1, f'(0) = E1 (the paper's 0 < w*)",
-            )  # fmt: skip
+            )
         if not w2 > w1:
             raise ParameterError("w2", w2, f"w2 > w1 = {w1:.10g}", "breakpoints must increase")
         for n, v in (("E1", E1), ("E3", E3)):
             if v < 0:
                 raise ParameterError(
-                    n, v, "E >= 0", "a negative modulus makes the potential non-convex (phase "
+                    n,
+                    v,
+                    "E >= 0",
+                    "a negative modulus makes the potential non-convex (phase "
                     "transitions are outside the hardening-softening class)",
-                )  # fmt: skip
+                )
         if not E2 > max(E1, E3):
             which, v = ("E1", E1) if E1 >= E3 else ("E3", E3)
             raise ParameterError(
-                "E2", E2, f"E2 > max(E1, E3) = {v:.10g}",
+                "E2",
+                E2,
+                f"E2 > max(E1, E3) = {v:.10g}",
                 f"the middle regime must be the hard one (stiffer than {which}): soft-hard-soft",
-            )  # fmt: skip
+            )
         names = ("E1", "E2", "E3")
-        self._validate_common(np.array([w1, w2]), np.array([E1, E2, E3]), "(w1, w2)",
-                              lambda k: names[k])  # fmt: skip
+        self._validate_common(
+            np.array([w1, w2]), np.array([E1, E2, E3]), "(w1, w2)", lambda k: names[k]
+        )
         self._build(np.array([w1, w2]), np.array([E1, E2, E3]))
 
     @property

@@ -41,9 +41,11 @@ def _number(node, text: str) -> float:
     ):
         return float(node.value)
     raise ParameterError(
-        "expression", text, _TEXT_VALID,
+        "expression",
+        text,
+        _TEXT_VALID,
         f"only numbers are allowed as values, got {ast.dump(node)[:60]}",
-    )  # fmt: skip
+    )
 
 
 def law_from_piecewise_text(text: str) -> TrilinearLaw | PiecewiseLinearLaw:
@@ -82,11 +84,13 @@ def law_from_piecewise_text(text: str) -> TrilinearLaw | PiecewiseLinearLaw:
     if set(kw) != set(want):
         missing, extra = sorted(set(want) - set(kw)), sorted(set(kw) - set(want))
         raise ParameterError(
-            "expression", text, _TEXT_VALID,
+            "expression",
+            text,
+            _TEXT_VALID,
             f"{kind} takes exactly {', '.join(want)}"
             + (f"; missing {', '.join(missing)}" if missing else "")
             + (f"; unknown {', '.join(extra)}" if extra else ""),
-        )  # fmt: skip
+        )
     if kind == "trilinear":
         for n in want:
             if isinstance(kw[n], tuple):

@@ -175,16 +175,20 @@ class PolynomialLaw(HardeningSofteningLaw):
             c.pop()
         if len(c) > MAX_DEGREE:
             raise ParameterError(
-                "coeffs", f"degree {len(c)}", f"degree <= {MAX_DEGREE}",
+                "coeffs",
+                f"degree {len(c)}",
+                f"degree <= {MAX_DEGREE}",
                 "higher degrees lose accuracy in the monomial basis (benchmarks/law_degree.py)",
-            )  # fmt: skip
+            )
         for k, ck in enumerate(c, start=1):
             require_coefficient(f"c_{k}", ck)
         if len(c) < 2:
             raise ParameterError(
-                "coeffs", tuple(raw), "degree >= 2 (at least c_1, c_2)",
+                "coeffs",
+                tuple(raw),
+                "degree >= 2 (at least c_1, c_2)",
                 "a linear law has no hardening or softening",
-            )  # fmt: skip
+            )
         arr = np.array(c, dtype=float)
         set_ = object.__setattr__
         set_(self, "coeffs", tuple(c))
@@ -192,19 +196,24 @@ class PolynomialLaw(HardeningSofteningLaw):
         set_(self, "law_id", _FAST_IDS.get(arr.size, LAW_POLY))
         if not c[0] > 0:
             raise ParameterError(
-                "c_1", c[0], "c_1 = f'(0) > 0", "f'(0) must be positive: the unstrained chain "
+                "c_1",
+                c[0],
+                "c_1 = f'(0) > 0",
+                "f'(0) must be positive: the unstrained chain "
                 "must be stable (0 inside the convex interval (alpha, beta))",
-            )  # fmt: skip
+            )
         dc = np.arange(1, arr.size + 1) * arr  # f′ ascending: Σ k c_k w^(k−1)
         ddc = np.arange(1, dc.size) * dc[1:]  # f″ ascending
         pos = real_roots(dc, 0.0, math.inf)
         neg = real_roots(dc, -math.inf, 0.0)
         if not pos:
             raise ParameterError(
-                "coeffs", self.coeffs, "a law whose f' vanishes at some beta > 0",
+                "coeffs",
+                self.coeffs,
+                "a law whose f' vanishes at some beta > 0",
                 "no softening: f'(w) > 0 for every w > 0, so the convex interval has no upper end "
                 "beta and no superkink exists (eq. zero_G needs the concave branch)",
-            )  # fmt: skip
+            )
         beta, beta_err = pos[0]
         alpha, alpha_err = neg[-1] if neg else (-math.inf, 0.0)
         set_(self, "alpha", alpha)
@@ -228,34 +237,44 @@ class PolynomialLaw(HardeningSofteningLaw):
         if len(zs) == 0:
             what = "hardening only (f'' > 0)" if signs[0] > 0 else "softening only (f'' < 0)"
             raise ParameterError(
-                "coeffs", self.coeffs, f"exactly one inflection w* in {interval}",
+                "coeffs",
+                self.coeffs,
+                f"exactly one inflection w* in {interval}",
                 f"f'' has no zero in the convex interval: {what}; a hardening-softening law needs "
                 "f'' > 0 on (alpha, w*) and f'' < 0 on (w*, beta)",
-            )  # fmt: skip
+            )
         if len(zs) >= 2:
             where = ", ".join(f"{z:.10g}" for z, _ in zs)
             raise ParameterError(
-                "coeffs", self.coeffs, f"exactly one inflection w* in {interval}",
+                "coeffs",
+                self.coeffs,
+                f"exactly one inflection w* in {interval}",
                 f"f'' has {len(zs)} zeros in the convex interval (at w = {where}): two or more "
                 "inflections; the law must change from hardening to softening exactly once",
-            )  # fmt: skip
+            )
         (z, zerr), (s0, s1) = zs[0], signs
         if s0 == s1:
             raise ParameterError(
-                "coeffs", self.coeffs, f"exactly one inflection w* in {interval}",
+                "coeffs",
+                self.coeffs,
+                f"exactly one inflection w* in {interval}",
                 f"f'' touches zero at w = {z:.10g} without changing sign: no inflection",
-            )  # fmt: skip
+            )
         if s0 < 0:
             raise ParameterError(
-                "coeffs", self.coeffs, "f'' > 0 on (alpha, w*) and f'' < 0 on (w*, beta)",
+                "coeffs",
+                self.coeffs,
+                "f'' > 0 on (alpha, w*) and f'' < 0 on (w*, beta)",
                 f"f'' changes from - to + at w = {z:.10g}: softening-hardening, not "
                 "hardening-softening",
-            )  # fmt: skip
+            )
         if not z > 0:
             raise ParameterError(
-                "w_star", z, f"0 < w* < beta = {beta:.10g}",
+                "w_star",
+                z,
+                f"0 < w* < beta = {beta:.10g}",
                 "the inflection must lie at positive strain (hardening at w = 0, paper §2)",
-            )  # fmt: skip
+            )
         return z, zerr
 
     # ----- kernel handle

@@ -37,20 +37,38 @@ class Preset:
 PRESETS = {
     p.name: p
     for p in (
-        Preset("cubic", "a*w**3 + b*w**2 + w", (("a", -1.0), ("b", 10.0)),
-               "the paper's cubic (eq. cubic), closed forms"),
-        Preset("quartic", "w + b*w**2 + a*w**3 + e*w**4", (("a", -1.0), ("b", 10.0), ("e", -0.01)),
-               "a quartic polynomial"),
-        Preset("exponential", "w + b*w**2 - c*w**3*exp(w/d)",
-               (("b", 10.0), ("c", 1.0), ("d", 50.0)),
-               "tissue-like: stiffening b w^2 cut off by an exponential damage term"),
-        Preset("tanh", "w + k*(tanh((w - m)/s) + tanh(m/s)) - c*w**3",
-               (("c", 0.1), ("k", 1.0), ("m", 1.0), ("s", 0.3)),
-               "fibres recruited around w = m over a width s, then cubic softening"),
-        Preset("rational", "w*(1 + b*w)/(1 + c*w**2)", (("b", 1.0), ("c", 0.1)),
-               "rational: hardening b w, saturation f -> b/c"),
+        Preset(
+            "cubic",
+            "a*w**3 + b*w**2 + w",
+            (("a", -1.0), ("b", 10.0)),
+            "the paper's cubic (eq. cubic), closed forms",
+        ),
+        Preset(
+            "quartic",
+            "w + b*w**2 + a*w**3 + e*w**4",
+            (("a", -1.0), ("b", 10.0), ("e", -0.01)),
+            "a quartic polynomial",
+        ),
+        Preset(
+            "exponential",
+            "w + b*w**2 - c*w**3*exp(w/d)",
+            (("b", 10.0), ("c", 1.0), ("d", 50.0)),
+            "tissue-like: stiffening b w^2 cut off by an exponential damage term",
+        ),
+        Preset(
+            "tanh",
+            "w + k*(tanh((w - m)/s) + tanh(m/s)) - c*w**3",
+            (("c", 0.1), ("k", 1.0), ("m", 1.0), ("s", 0.3)),
+            "fibres recruited around w = m over a width s, then cubic softening",
+        ),
+        Preset(
+            "rational",
+            "w*(1 + b*w)/(1 + c*w**2)",
+            (("b", 1.0), ("c", 0.1)),
+            "rational: hardening b w, saturation f -> b/c",
+        ),
     )
-}  # fmt: skip
+}
 
 
 def preset_law(name: str, **constants):

@@ -37,10 +37,12 @@ def require_coefficient(name: str, c: float) -> float:
     """A polynomial coefficient c_k: 0 or |c_k| within :data:`COEFF_RANGE`."""
     if c != 0.0 and not COEFF_RANGE[0] <= abs(c) <= COEFF_RANGE[1]:
         raise ParameterError(
-            name, c, f"0 or {COEFF_RANGE[0]:g} <= |{name}| <= {COEFF_RANGE[1]:g}",
+            name,
+            c,
+            f"0 or {COEFF_RANGE[0]:g} <= |{name}| <= {COEFF_RANGE[1]:g}",
             "outside this range the roots of f' and f'' (companion-matrix eigenvalues) and the "
             "closed forms overflow or underflow in double precision",
-        )  # fmt: skip
+        )
     return c
 
 
@@ -88,12 +90,13 @@ def require_discrete(law, name: str = "law"):
     if not W >= DISCRETE_W_MIN:
         what = getattr(law, "expression", None) or law.describe()
         raise ParameterError(
-            name, what,
+            name,
+            what,
             f"a law with strain scale W = max(|alpha|, beta) >= {DISCRETE_W_MIN:g} for discrete "
             f"waves and simulations (here W = {W:.3g}; scale the strain, w = lambda u)",
             "below it the discrete wave's error bounds are lost (the QC closed forms of "
             "fpucore.qc still apply)",
-        )  # fmt: skip
+        )
     if getattr(law, "breakpoints", ()):
         # a PL law's f′ is one stored slope, not a sum of large terms: no digits are lost at any
         # contrast, and a zero first modulus (c₁ = 0) is the degenerate case of compact waves

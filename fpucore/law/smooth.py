@@ -76,8 +76,9 @@ def checked_constants(constants) -> tuple[tuple[str, float], ...]:
         return ()
     if not hasattr(constants, "items"):
         raise ParameterError("constants", constants, "a mapping {name: value}, e.g. {'b': 10}")
-    return tuple(sorted((check_constant_name(k), check_constant_value(k, v))
-                        for k, v in constants.items()))  # fmt: skip
+    return tuple(
+        sorted((check_constant_name(k), check_constant_value(k, v)) for k, v in constants.items())
+    )
 
 
 @dataclass(frozen=True)
@@ -109,8 +110,9 @@ class SmoothLaw(HardeningSofteningLaw):
 
     def __post_init__(self):
         set_ = object.__setattr__
-        consts = checked_constants(dict(self.constants) if isinstance(self.constants, tuple)
-                            else self.constants)  # fmt: skip
+        consts = checked_constants(
+            dict(self.constants) if isinstance(self.constants, tuple) else self.constants
+        )
         set_(self, "constants", consts)
         set_(self, "law_id", LAW_CHEB)
         if not isinstance(self.text, str):
@@ -166,11 +168,12 @@ class SmoothLaw(HardeningSofteningLaw):
             except (ValueError, ZeroDivisionError, TypeError):
                 raise ClassFailure(f"f(0) is not defined: {diag_f(0.0)}") from None
         if not f0 <= 1e-25 * max(1.0, abs(d0)):
-            raise ClassFailure(f"f(0) = {f0:.6g} is not 0 (the unstrained spring carries no "
-                               "force)")  # fmt: skip
+            raise ClassFailure(f"f(0) = {f0:.6g} is not 0 (the unstrained spring carries no force)")
         if not d0 > 0:
-            raise ClassFailure(f"f'(0) = {d0:.6g} must be positive: the unstrained chain must be "
-                               "stable (0 inside the convex interval (alpha, beta))")  # fmt: skip
+            raise ClassFailure(
+                f"f'(0) = {d0:.6g} must be positive: the unstrained chain must be "
+                "stable (0 inside the convex interval (alpha, beta))"
+            )
         # the class is decided on float64 roots; only a law that passes pays for the 30-digit
         # polish and the representation (a refusal stays within ~10 ms of float64 scans)
         beta_root = convex_end(df, 1.0, diag_df)
@@ -187,8 +190,9 @@ class SmoothLaw(HardeningSofteningLaw):
         pv_bad = ~np.isfinite(pv) & (lo_probe > alpha)
         if np.any(pv_bad):
             x = float(lo_probe[pv_bad][0])
-            raise ClassFailure(f"f' is not finite at w = {x:.6g} inside the convex interval: "
-                               f"{diag_df(x)}")  # fmt: skip
+            raise ClassFailure(
+                f"f' is not finite at w = {x:.6g} inside the convex interval: {diag_df(x)}"
+            )
         lo, hi = self._domain(fl, *self._margins(alpha, beta), alpha, beta, diag_f)
         n_grid = 8 * cheb.MAX_PANELS
         w_star_root = inflection(ddf, alpha if math.isfinite(alpha) else lo, beta, n_grid)
@@ -235,10 +239,14 @@ class SmoothLaw(HardeningSofteningLaw):
         xb = r.x + side * 1e-6 * max(1.0, abs(r.x))
         with np.errstate(all="ignore"):
             if not math.isfinite(float(f(np.float64(xb)))):
-                raise ClassFailure(f"f is not a finite real number at w = {xb:.6g} inside the "
-                                   f"convex interval: {diag_f(xb)}")  # fmt: skip
-        raise ClassFailure(f"f' changes sign through a singularity at w = {r.x:.6g} (|f'| is "
-                           f"unbounded there), not through a zero: {diag_df(r.x)}")  # fmt: skip
+                raise ClassFailure(
+                    f"f is not a finite real number at w = {xb:.6g} inside the "
+                    f"convex interval: {diag_f(xb)}"
+                )
+        raise ClassFailure(
+            f"f' changes sign through a singularity at w = {r.x:.6g} (|f'| is "
+            f"unbounded there), not through a zero: {diag_df(r.x)}"
+        )
 
     @staticmethod
     def _margins(alpha: float, beta: float) -> tuple[float, float]:
@@ -263,8 +271,10 @@ class SmoothLaw(HardeningSofteningLaw):
             inside = bad[(bad >= alpha) & (bad <= beta)]
             if inside.size:
                 xb = float(inside[0])
-                raise ClassFailure(f"f is not a finite real number at w = {xb:.6g} inside the "
-                                   f"convex interval: {diag_f(xb)}")  # fmt: skip
+                raise ClassFailure(
+                    f"f is not a finite real number at w = {xb:.6g} inside the "
+                    f"convex interval: {diag_f(xb)}"
+                )
             above, below = bad[bad > beta], bad[bad < alpha]
             if above.size:
                 hi = beta + 0.5 * (above[0] - beta)
@@ -387,8 +397,19 @@ class SmoothLaw(HardeningSofteningLaw):
         return f"f(w) = {self.text}" + (f" with {tail}" if tail else "")
 
 
-_STATE = ("text", "constants", "alpha", "beta", "w_star", "alpha_error", "beta_error",
-          "w_star_error", "interval", "_rep", "_trees")  # fmt: skip
+_STATE = (
+    "text",
+    "constants",
+    "alpha",
+    "beta",
+    "w_star",
+    "alpha_error",
+    "beta_error",
+    "w_star_error",
+    "interval",
+    "_rep",
+    "_trees",
+)
 
 
 def _restore(state: dict) -> SmoothLaw:

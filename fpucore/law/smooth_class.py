@@ -40,8 +40,9 @@ def polish(mp_fn, mp_dfn, x: float, a: float, b: float) -> tuple[float, float]:
 
     try:
         with mpmath.workdps(30):
-            r = mpmath.findroot(lambda z: mp_fn(z), (mpmath.mpf(a), mpmath.mpf(b)),
-                                solver="anderson", verify=False)  # fmt: skip
+            r = mpmath.findroot(
+                lambda z: mp_fn(z), (mpmath.mpf(a), mpmath.mpf(b)), solver="anderson", verify=False
+            )
             r = float(r)
     except (ValueError, ZeroDivisionError, TypeError):
         return x, max(abs(b - a), 4 * EPS * abs(x))
@@ -91,8 +92,9 @@ def convex_end(df, sign: float, diagnose) -> Root | None:
     if not np.isfinite(v[j]):
         if sign < 0:
             return None  # decided by the caller against beta
-        raise ClassFailure(f"f' is not finite at w = {x[j]:.6g} before it vanishes: "
-                           f"{diagnose(x[j])}")  # fmt: skip
+        raise ClassFailure(
+            f"f' is not finite at w = {x[j]:.6g} before it vanishes: {diagnose(x[j])}"
+        )
     a = x[j - 1] if j > 0 else 0.0
     if v[j] == 0.0:
         return Root(float(x[j]), float(x[j]), float(x[j]))
@@ -119,14 +121,19 @@ def inflection(ddf, alpha: float, beta: float, n: int) -> Root:
             "f'' > 0 on (alpha, w*) and f'' < 0 on (w*, beta)"
         )
     if idx.size > 1:
-        raise ClassFailure(f"f'' changes sign {idx.size} times on {iv}: at w ~ {where}; the law "
-                           "must change from hardening to softening exactly once")  # fmt: skip
+        raise ClassFailure(
+            f"f'' changes sign {idx.size} times on {iv}: at w ~ {where}; the law "
+            "must change from hardening to softening exactly once"
+        )
     i = idx[0]
     if ss[i] < 0:
-        raise ClassFailure(f"f'' changes from - to + at w ~ {where}: softening-hardening, not "
-                           "hardening-softening")  # fmt: skip
+        raise ClassFailure(
+            f"f'' changes from - to + at w ~ {where}: softening-hardening, not hardening-softening"
+        )
     r = root(ddf, float(xs[i]), float(xs[i + 1]))
     if not r.x > 0:
-        raise ClassFailure(f"the inflection w* = {r.x:.10g} must lie at positive strain "
-                           "(hardening at w = 0, paper §2)")  # fmt: skip
+        raise ClassFailure(
+            f"the inflection w* = {r.x:.10g} must lie at positive strain "
+            "(hardening at w = 0, paper §2)"
+        )
     return r

@@ -21,8 +21,14 @@ class UnsupportedNode(ValueError):
     """A SymPy node outside the allow-list (e.g. Abs from sqrt(w**2))."""
 
 
-_FN_NAMES = {sp.exp: "exp", sp.log: "log", sp.tanh: "tanh", sp.sinh: "sinh", sp.cosh: "cosh",
-             sp.atan: "atan"}  # fmt: skip
+_FN_NAMES = {
+    sp.exp: "exp",
+    sp.log: "log",
+    sp.tanh: "tanh",
+    sp.sinh: "sinh",
+    sp.cosh: "cosh",
+    sp.atan: "atan",
+}
 
 
 def to_node(e, w) -> tuple:
@@ -86,16 +92,22 @@ def _reason(e, w, x: float, values: dict) -> tuple[float, str | None]:
             if b == 0.0 and k < 0:
                 return math.nan, f"division by zero in {txt}"
             if b < 0 and not float(k).is_integer():
-                return math.nan, (f"a fractional power of a negative number in {txt} (base "
-                                  f"{b:.6g})")  # fmt: skip
+                return math.nan, (
+                    f"a fractional power of a negative number in {txt} (base {b:.6g})"
+                )
             out = b**k
         elif e.func == sp.log:
             if vals[0] <= 0:
                 return math.nan, f"log of a non-positive number in {txt} (argument {vals[0]:.6g})"
             out = math.log(vals[0])
         else:
-            out = {sp.exp: math.exp, sp.tanh: math.tanh, sp.sinh: math.sinh, sp.cosh: math.cosh,
-                   sp.atan: math.atan}[e.func](vals[0])  # fmt: skip
+            out = {
+                sp.exp: math.exp,
+                sp.tanh: math.tanh,
+                sp.sinh: math.sinh,
+                sp.cosh: math.cosh,
+                sp.atan: math.atan,
+            }[e.func](vals[0])
     except OverflowError:
         return math.nan, f"overflow of {txt} (exceeds the float range)"
     except ZeroDivisionError:
@@ -120,8 +132,9 @@ def derivative(e, w):
         return None
     if e.is_Add:
         terms = [t for t in (derivative(a, w) for a in e.args) if t is not None]
-        return None if not terms else (terms[0] if len(terms) == 1 else
-                                       sp.Add(*terms, evaluate=False))  # fmt: skip
+        return (
+            None if not terms else (terms[0] if len(terms) == 1 else sp.Add(*terms, evaluate=False))
+        )
     if e.is_Mul:
         terms = []
         for i, a in enumerate(e.args):
@@ -129,8 +142,9 @@ def derivative(e, w):
             if da is not None:
                 rest = [b for j, b in enumerate(e.args) if j != i]
                 terms.append(sp.Mul(*rest, da, evaluate=False))
-        return None if not terms else (terms[0] if len(terms) == 1 else
-                                       sp.Add(*terms, evaluate=False))  # fmt: skip
+        return (
+            None if not terms else (terms[0] if len(terms) == 1 else sp.Add(*terms, evaluate=False))
+        )
     if e.is_Pow:
         b, x = e.args
         db = derivative(b, w)
@@ -148,15 +162,13 @@ def derivative(e, w):
     elif e.func == sp.log:
         outer = sp.Pow(u, -1, evaluate=False)
     elif e.func == sp.tanh:
-        outer = sp.Add(1, sp.Mul(-1, sp.Pow(e, 2, evaluate=False), evaluate=False),
-                       evaluate=False)  # fmt: skip
+        outer = sp.Add(1, sp.Mul(-1, sp.Pow(e, 2, evaluate=False), evaluate=False), evaluate=False)
     elif e.func == sp.sinh:
         outer = sp.cosh(u, evaluate=False)
     elif e.func == sp.cosh:
         outer = sp.sinh(u, evaluate=False)
     elif e.func == sp.atan:
-        outer = sp.Pow(sp.Add(1, sp.Pow(u, 2, evaluate=False), evaluate=False), -1,
-                       evaluate=False)  # fmt: skip
+        outer = sp.Pow(sp.Add(1, sp.Pow(u, 2, evaluate=False), evaluate=False), -1, evaluate=False)
     else:
         raise UnsupportedNode(f"{e.func.__name__} is not a smooth function of the allow-list")
     return sp.Mul(outer, du, evaluate=False)

@@ -61,9 +61,11 @@ def check_constant_name(name) -> str:
         or (name in ("w",) + FUNCS + CONSTS)
     ):
         raise ParameterError(
-            "constants", name, "names of letters, digits and _ (a letter first, <= 32 characters) "
+            "constants",
+            name,
+            "names of letters, digits and _ (a letter first, <= 32 characters) "
             f"other than w, pi, E and the functions {', '.join(FUNCS)}",
-        )  # fmt: skip
+        )
     return name
 
 
@@ -106,12 +108,16 @@ def _source(text: str, names: frozenset) -> str:
             elif t.string == "w" or t.string in CONSTS or t.string in names:
                 kind = "atom"
             elif t.string in ("sin", "cos", "tan", "abs", "Abs"):
-                refuse(text, f"the function '{t.string}' is not allowed (allowed: "
-                             f"{', '.join(FUNCS)})")  # fmt: skip
+                refuse(
+                    text, f"the function '{t.string}' is not allowed (allowed: {', '.join(FUNCS)})"
+                )
             else:
-                refuse(text, f"unknown name '{t.string}': the variable is w; give a named "
-                             "constant's value separately (constants={'name': value}, CLI: "
-                             "--const name=value)")  # fmt: skip
+                refuse(
+                    text,
+                    f"unknown name '{t.string}': the variable is w; give a named "
+                    "constant's value separately (constants={'name': value}, CLI: "
+                    "--const name=value)",
+                )
         elif t.type == tokenize.OP and t.string in _OPS:
             kind = "open" if t.string == "(" else ("close" if t.string == ")" else "op")
         else:
@@ -184,15 +190,18 @@ class _Walk:
         try:
             x = float(arg)
         except (TypeError, ValueError, OverflowError):
-            refuse(self.text, f"{fn}({abbreviate(str(arg), 30)}): the argument is not a finite "
-                              "real number")  # fmt: skip
+            refuse(
+                self.text,
+                f"{fn}({abbreviate(str(arg), 30)}): the argument is not a finite real number",
+            )
         if fn == "log" and not x > 0:
             refuse(self.text, f"log of a non-positive number: log({abbreviate(str(arg), 30)})")
         if fn == "sqrt" and not x >= 0:
             refuse(self.text, f"sqrt of a negative number: sqrt({abbreviate(str(arg), 30)})")
         if fn in ("exp", "sinh", "cosh") and abs(x) > 709.0:
-            refuse(self.text, f"overflow of {fn}({abbreviate(str(arg), 30)}) (exceeds the "
-                              "float range)")  # fmt: skip
+            refuse(
+                self.text, f"overflow of {fn}({abbreviate(str(arg), 30)}) (exceeds the float range)"
+            )
 
     def number(self, node):
         v = node.value
@@ -214,8 +223,11 @@ class _Walk:
     def power(self, a, b):
         sp = self.sp
         if b.has(self.w):
-            refuse(self.text, f"the exponent of ({abbreviate(str(a), 30)})**"
-                              f"({abbreviate(str(b), 30)}) depends on w")  # fmt: skip
+            refuse(
+                self.text,
+                f"the exponent of ({abbreviate(str(a), 30)})**"
+                f"({abbreviate(str(b), 30)}) depends on w",
+            )
         if b.free_symbols:  # an exponent with named constants: its value is checked on use
             return sp.Pow(a, b)
         try:
@@ -226,8 +238,11 @@ class _Walk:
             refuse(self.text, f"the exponent {abbreviate(str(b), 30)} is not finite")
         if a.has(self.w):
             if abs(e) > MAX_POWER:
-                refuse(self.text, f"the exponent {e:.10g} of an expression in w exceeds the "
-                                  f"maximum {MAX_POWER} in size")  # fmt: skip
+                refuse(
+                    self.text,
+                    f"the exponent {e:.10g} of an expression in w exceeds the "
+                    f"maximum {MAX_POWER} in size",
+                )
             if isinstance(b, sp.Rational) and b.q > MAX_DENOMINATOR:
                 refuse(self.text, f"the exponent {b} has a denominator above {MAX_DENOMINATOR}")
             if not isinstance(b, sp.Rational):
@@ -241,16 +256,23 @@ class _Walk:
         except (TypeError, ValueError, OverflowError):
             refuse(self.text, f"the number {abbreviate(str(a), 30)} is not a finite real number")
         if abs(e) > MAX_EXPONENT:
-            refuse(self.text, f"the exponent {e:.10g} of a number exceeds the maximum "
-                              f"{MAX_EXPONENT}")  # fmt: skip
+            refuse(
+                self.text, f"the exponent {e:.10g} of a number exceeds the maximum {MAX_EXPONENT}"
+            )
         if base != 0.0 and abs(base) != 1.0:
             lg = e * math.log10(abs(base))
             if not -330.0 < lg < 308.25:
-                refuse(self.text, f"the number {abbreviate(str(a), 20)}**{abbreviate(str(b), 20)} "
-                                  f"(about 10^{lg:.3g}) is outside the float range")  # fmt: skip
+                refuse(
+                    self.text,
+                    f"the number {abbreviate(str(a), 20)}**{abbreviate(str(b), 20)} "
+                    f"(about 10^{lg:.3g}) is outside the float range",
+                )
         if base < 0 and not float(e).is_integer():
-            refuse(self.text, f"the number ({abbreviate(str(a), 20)})**{abbreviate(str(b), 20)} "
-                              "is not real (a fractional power of a negative number)")  # fmt: skip
+            refuse(
+                self.text,
+                f"the number ({abbreviate(str(a), 20)})**{abbreviate(str(b), 20)} "
+                "is not real (a fractional power of a negative number)",
+            )
         if base == 0 and e <= 0:
             refuse(self.text, "0 raised to a power <= 0 is not finite")
         return sp.Pow(a, b)
@@ -285,6 +307,9 @@ def parse_smooth(text: str, names: frozenset):
         refuse(text, "the expression does not depend on w")
     unused = sorted(n for n, s in symbols.items() if not expr.has(s))
     if unused:
-        refuse(text, f"the constant(s) {', '.join(unused)} do not appear in the expression",
-               "constants")  # fmt: skip
+        refuse(
+            text,
+            f"the constant(s) {', '.join(unused)} do not appear in the expression",
+            "constants",
+        )
     return expr, w, symbols

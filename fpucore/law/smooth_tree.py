@@ -16,8 +16,14 @@ from __future__ import annotations
 
 import numpy as np
 
-_NP = {"exp": np.exp, "log": np.log, "tanh": np.tanh, "sinh": np.sinh, "cosh": np.cosh,
-       "atan": np.arctan}  # fmt: skip
+_NP = {
+    "exp": np.exp,
+    "log": np.log,
+    "tanh": np.tanh,
+    "sinh": np.sinh,
+    "cosh": np.cosh,
+    "atan": np.arctan,
+}
 
 
 def compile_node(node: tuple, values: dict, backend: str):
@@ -26,8 +32,14 @@ def compile_node(node: tuple, values: dict, backend: str):
     if mp:
         import mpmath
 
-        fns = {"exp": mpmath.exp, "log": mpmath.log, "tanh": mpmath.tanh, "sinh": mpmath.sinh,
-               "cosh": mpmath.cosh, "atan": mpmath.atan}  # fmt: skip
+        fns = {
+            "exp": mpmath.exp,
+            "log": mpmath.log,
+            "tanh": mpmath.tanh,
+            "sinh": mpmath.sinh,
+            "cosh": mpmath.cosh,
+            "atan": mpmath.atan,
+        }
         num = lambda p, q: mpmath.mpf(p) / q  # noqa: E731
         flt = mpmath.mpf
         const = mpmath.mpf

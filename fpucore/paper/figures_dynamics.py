@@ -14,8 +14,9 @@ from fpucore.paper.figure import Panel, series
 
 
 def _spacetime(tag: str, s, title: str) -> Panel:
-    return Panel(f"({tag}) {title}", "n", "t",
-                 (series("w_n(t)", s.sites, s.t, "image", z=s.snapshots),))  # fmt: skip
+    return Panel(
+        f"({tag}) {title}", "n", "t", (series("w_n(t)", s.sites, s.t, "image", z=s.snapshots),)
+    )
 
 
 def seeded_title(kind: str, V: float) -> str:
@@ -53,9 +54,17 @@ def _seeded(figure: str, tag: str, r, title: str):
     s = simulate.seeded(r)
     c = seeded_comparison(figure, s, title, s.elapsed_s + r.elapsed_s)
     if c is None:  # no velocity measured: the row says so (no finite value)
-        c = compare(figure, f"|V_measured − V| for {title}", "O(1e-8)", 1e-8, np.nan, np.nan,
-                    source=f"simulate.seeded({title})", elapsed_s=s.elapsed_s,
-                    kind="upper_bound")  # fmt: skip
+        c = compare(
+            figure,
+            f"|V_measured − V| for {title}",
+            "O(1e-8)",
+            1e-8,
+            np.nan,
+            np.nan,
+            source=f"simulate.seeded({title})",
+            elapsed_s=s.elapsed_s,
+            kind="upper_bound",
+        )
     return _spacetime(tag, s, title), c, s
 
 
@@ -79,8 +88,10 @@ def fig_stabSW(reduced: bool):
     panels, comps, notes = [], [], []
     for tag, V in zip("ab", STAB_SW_V):
         r = wave.solve_solitary(LAW, 6.0, V)
-        notes.append(f"V = {V!r}: wave converged={r.converged}, N = {r.N}, "
-                     f"profile_error {r.profile_error:.2g}")  # fmt: skip
+        notes.append(
+            f"V = {V!r}: wave converged={r.converged}, N = {r.N}, "
+            f"profile_error {r.profile_error:.2g}"
+        )
         if not r.converged:
             comps.append(
                 compare(
@@ -149,8 +160,14 @@ def fig_Riemann1(reduced: bool):
     """Fig. Riemann1: Riemann data w^l = 4.6, w^r = 0, L = 3600, t = 300: (a) the final strain;
     (c) w_100(t) with the superkink at the measured V; (d) w_200(t) with the solitary wave at the
     left DSW edge's V and w_B; (e) w_3000(t) with the one at the right edge."""
-    s = simulate.riemann(LAW, RIEMANN["w_left"], RIEMANN["w_right"], RIEMANN["L"],
-                         RIEMANN["t_end"], probes=RIEMANN["probes"])  # fmt: skip
+    s = simulate.riemann(
+        LAW,
+        RIEMANN["w_left"],
+        RIEMANN["w_right"],
+        RIEMANN["L"],
+        RIEMANN["t_end"],
+        probes=RIEMANN["probes"],
+    )
     by: dict = {}
     for w in s.waves:
         by.setdefault((w.kind, int(np.sign(w.velocity))), w)
@@ -197,9 +214,18 @@ def fig_Riemann1(reduced: bool):
     # Rline, zero_G: mirror image, 2w* − 4.6)
     exact = qc.superkink_from_w_plus(LAW, RIEMANN["w_left"]).w_minus  # type: ignore[arg-type]
     w_B = np.nan if left is None else left.background
-    comps.append(compare("Riemann1", "background w_B of the left DSW edge (state behind the "
-                         "superkink)", "2.0667", 2.0667, w_B, abs(w_B - exact),
-                         source=src + "[dsw_edge].background", elapsed_s=s.elapsed_s))  # fmt: skip
+    comps.append(
+        compare(
+            "Riemann1",
+            "background w_B of the left DSW edge (state behind the superkink)",
+            "2.0667",
+            2.0667,
+            w_B,
+            abs(w_B - exact),
+            source=src + "[dsw_edge].background",
+            elapsed_s=s.elapsed_s,
+        )
+    )
     # panels (c)-(e): tracked site against the computed wave at the measured V and w_B, in a
     # window of ±WINDOW_SITES / |V| around the wave's passage (as the paper's insets)
     for tag, k, w in zip("cde", RIEMANN["probes"], (sk, left, right)):  # type: ignore[call-overload]
@@ -222,8 +248,7 @@ def fig_Riemann1(reduced: bool):
                     if w.kind == "superkink"
                     else f"solitary wave, w_B = {w.background:.5g},"
                 )
-                ser.append(series(f"{name} V = {w.velocity:.5g}", tt[near], ww[near],
-                                  "dashed"))  # fmt: skip
+                ser.append(series(f"{name} V = {w.velocity:.5g}", tt[near], ww[near], "dashed"))
         ser.insert(0, series(f"w_{k}(t)", t[keep], w_k[keep]))
         panels.append(Panel(f"({tag}) site {k}", "t", f"w_{k}", tuple(ser)))
     notes = f"{len(s.waves)} tracked waves; energy drift {s.energy_drift:.2g}"
@@ -232,9 +257,14 @@ def fig_Riemann1(reduced: bool):
 
 SWDYN = (
     {"w_B": 1.0, "A": 6.0, "L": 2400, "t_end": 200.0, "printed": (("5.2494", 5.2494),)},
-    {"w_B": 6.0, "A": -6.0, "L": 3000, "t_end": 250.0,
-     "printed": (("3.811", 3.811), ("5.025", 5.025))},
-)  # fmt: skip
+    {
+        "w_B": 6.0,
+        "A": -6.0,
+        "L": 3000,
+        "t_end": 250.0,
+        "printed": (("3.811", 3.811), ("5.025", 5.025)),
+    },
+)
 
 
 def fig_SWdyn(reduced: bool):
@@ -243,10 +273,13 @@ def fig_SWdyn(reduced: bool):
     leave the convex interval (w = 7 > β): run with guard='bounded', reported in the notes."""
     panels, comps, notes = [], [], []
     for tag, case in zip("ab", SWDYN):
-        s = simulate.gaussian(LAW, case["w_B"], case["A"], case["L"], case["t_end"],
-                              guard="bounded")  # fmt: skip
-        src = f"simulate.gaussian(law, {case['w_B']:g}, {case['A']:g}, {case['L']}, " \
-              f"{case['t_end']:g}, guard='bounded').waves"  # fmt: skip
+        s = simulate.gaussian(
+            LAW, case["w_B"], case["A"], case["L"], case["t_end"], guard="bounded"
+        )
+        src = (
+            f"simulate.gaussian(law, {case['w_B']:g}, {case['A']:g}, {case['L']}, "
+            f"{case['t_end']:g}, guard='bounded').waves"
+        )
         panels.append(
             Panel(
                 f"({tag}) w_B = {case['w_B']:g}, A = {case['A']:g}",

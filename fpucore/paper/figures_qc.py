@@ -55,19 +55,44 @@ def fig_superkink(reduced: bool):
         ("w* (eq. cubic_more)", "b/(3|a|)", b / (3 * a), LAW.w_star, 8, "law.w_star"),
         ("α (eq. cubic_more)", "−(√(b²+3|a|)−b)/(3|a|)", alpha, LAW.alpha, 64, "law.alpha"),
         ("β (eq. cubic_more)", "(b+√(b²+3|a|))/(3|a|)", beta, LAW.beta, 64, "law.beta"),
-        ("w₋ˢ at w₊ = 1: (b − |a|w₊)/(2|a|)", "(b−|a|w₊)/(2|a|)", (b - a * W_PLUS) / (2 * a),
-         w_s, 8, "qc.w_minus_sonic(law, 1)"),
-    ]  # fmt: skip
+        (
+            "w₋ˢ at w₊ = 1: (b − |a|w₊)/(2|a|)",
+            "(b−|a|w₊)/(2|a|)",
+            (b - a * W_PLUS) / (2 * a),
+            w_s,
+            8,
+            "qc.w_minus_sonic(law, 1)",
+        ),
+    ]
     comps = [
-        compare("superkink", q, pr, ref, ours, roundoff(ref, ulps), source=f"{src}; {s}",
-                elapsed_s=t, rounding=0)
+        compare(
+            "superkink",
+            q,
+            pr,
+            ref,
+            ours,
+            roundoff(ref, ulps),
+            source=f"{src}; {s}",
+            elapsed_s=t,
+            rounding=0,
+        )
         for q, pr, ref, ours, ulps, s in rows
-    ]  # fmt: skip
+    ]
     # G is a difference of potentials ~Φ(w₋): its round-off scales with Φ(w₋), not with G = 0
-    comps.insert(3, compare("superkink", "driving force G at w₊ = 1 (eq. zero_G)", "0", 0.0,
-                            sk.driving_force, roundoff(LAW.phi(sk.w_minus), 64),
-                            source="qc.superkink_from_w_plus(law, 1).driving_force",
-                            elapsed_s=t, rounding=0))  # fmt: skip
+    comps.insert(
+        3,
+        compare(
+            "superkink",
+            "driving force G at w₊ = 1 (eq. zero_G)",
+            "0",
+            0.0,
+            sk.driving_force,
+            roundoff(LAW.phi(sk.w_minus), 64),
+            source="qc.superkink_from_w_plus(law, 1).driving_force",
+            elapsed_s=t,
+            rounding=0,
+        ),
+    )
     return panels, comps, {"a": LAW.a, "b": LAW.b, "w_plus": W_PLUS}, ""
 
 
@@ -214,13 +239,21 @@ def fig_SWamp_energy_QCcubic(reduced: bool):
     fam = qc.diagram.solitary_family(LAW, W_PLUS, n=60 if reduced else 160)
     vline = series("V_SK", [fam.V_SK], [0.0], "vline")
     panels = tuple(
-        Panel(title, "V", ylabel, (series(fam.kind_below, fam.V_below, below),
-                                   series(fam.kind_above, fam.V_above, above), vline))
+        Panel(
+            title,
+            "V",
+            ylabel,
+            (
+                series(fam.kind_below, fam.V_below, below),
+                series(fam.kind_above, fam.V_above, above),
+                vline,
+            ),
+        )
         for title, ylabel, below, above in (
             ("(a) amplitude", "w_amp", fam.amp_below, fam.amp_above),
             ("(b) renormalized energy", "E_ren^QC", fam.energy_below, fam.energy_above),
         )
-    )  # fmt: skip
+    )
     t = clock.s
     comps = caption_speeds("SWamp_energy_QCcubic", W_PLUS, keys=("V_SK", "c_plus", "c_minus"))
     comps.append(

@@ -117,15 +117,19 @@ def fig_Floquet_example(reduced: bool):
     t = clock.s
     # (quantity, printed, bound, ours, kind): the quartets leave the circle, mildly
     rows = [
-        ("max|μ| at V = 5.2 (multipliers leave the circle)", "> 1", 1.0,
-         fr.max_modulus_away_from_1, "lower_bound"),
+        (
+            "max|μ| at V = 5.2 (multipliers leave the circle)",
+            "> 1",
+            1.0,
+            fr.max_modulus_away_from_1,
+            "lower_bound",
+        ),
         ("max|μ| at V = 5.2", "< 1.005", 1.005, fr.max_modulus, "upper_bound"),
-    ]  # fmt: skip
+    ]
     comps = [
-        compare("Floquet_example", q, pr, bound, ours, fr.error, source=src, elapsed_s=t,
-                kind=kind)
+        compare("Floquet_example", q, pr, bound, ours, fr.error, source=src, elapsed_s=t, kind=kind)
         for q, pr, bound, ours, kind in rows
-    ]  # fmt: skip
+    ]
     notes = f"{int(out.sum())} multipliers with |μ| > 1 + error ({fr.error:.2g})"
     return panels, comps, {"V": 5.2, "N": N, "method": fr.method}, notes
 

@@ -46,8 +46,11 @@ def build(label: str, reduced: bool = False):
         nbformat.v4.new_code_cell(PRINT_CELL),
         nbformat.v4.new_code_cell("plot.plot(r)  # HoloViews (Bokeh); plot.save(r, 'fig.svg')"),
     ]
-    nb.metadata["kernelspec"] = {"name": "python3", "display_name": "Python 3",
-                                 "language": "python"}  # fmt: skip
+    nb.metadata["kernelspec"] = {
+        "name": "python3",
+        "display_name": "Python 3",
+        "language": "python",
+    }
     return nb
 
 

@@ -106,8 +106,10 @@ def panel_plot(p: Panel, backend: str = "bokeh"):
     size = {"width": 460, "height": 330} if backend == "bokeh" else {"fig_inches": (5, 3.6)}
     ov = ov.opts(title=p.title, **size)
     if isinstance(ov, hv.Overlay):
-        ov = ov.opts(legend_position="right" if backend == "bokeh" else "best",
-                     **({"show_legend": True} if backend == "bokeh" else {}))  # fmt: skip
+        ov = ov.opts(
+            legend_position="right" if backend == "bokeh" else "best",
+            **({"show_legend": True} if backend == "bokeh" else {}),
+        )
     return ov
 
 
@@ -131,8 +133,9 @@ def save(result: FigureResult, path: str | Path) -> Path:
     if backend == "bokeh":
         # Bokeh's file_html, not hv.save: hv.save's page (Panel's template) links its favicons
         # from cdn.holoviz.org — the page would not be self-contained
-        page = file_html(hv.render(obj, backend="bokeh"), resources=INLINE,
-                         title=f"Fig. {result.label}")  # fmt: skip
+        page = file_html(
+            hv.render(obj, backend="bokeh"), resources=INLINE, title=f"Fig. {result.label}"
+        )
         path.write_text(page, encoding="utf-8")
     else:
         hv.save(obj, str(path), backend="matplotlib", fmt=path.suffix[1:].lower())
@@ -176,8 +179,10 @@ def _table_html(results) -> str:
                 f"<td>{html.escape(c.printed)}</td><td>{c.ours:.10g}</td><td>{c.error:.2g}</td>"
                 f"<td>{c.verdict}</td><td>{html.escape(c.why)}</td><td>{c.elapsed_s:.2f}</td></tr>"
             )
-    head = ("<tr><th>figure</th><th>quantity</th><th>paper</th><th>fpu-explorer</th>"
-            "<th>error</th><th>verdict</th><th>why</th><th>time (s)</th></tr>")  # fmt: skip
+    head = (
+        "<tr><th>figure</th><th>quantity</th><th>paper</th><th>fpu-explorer</th>"
+        "<th>error</th><th>verdict</th><th>why</th><th>time (s)</th></tr>"
+    )
     return (
         "<style>table.cmp{border-collapse:collapse;font:13px sans-serif}"
         "table.cmp td,table.cmp th{border:1px solid #ccc;padding:2px 6px}"
@@ -191,8 +196,13 @@ def report_html(results, figures, path: str | Path, title: str, summary: str = "
     caption, notes and interactive plot (Bokeh, all resources inline)."""
     hv, INLINE, file_html, models = ui()
     _load(hv, "bokeh")
-    items = [models.Div(text=f"<h1>{html.escape(title)}</h1><p>{html.escape(summary)}</p>"
-                        + _table_html(results), width=1100)]  # fmt: skip
+    items = [
+        models.Div(
+            text=f"<h1>{html.escape(title)}</h1><p>{html.escape(summary)}</p>"
+            + _table_html(results),
+            width=1100,
+        )
+    ]
     for r in results:
         fig = figures[r.label]
         text = (

@@ -156,9 +156,11 @@ def compute_many(
         finally:
             ex.shutdown()
     if todo:
-        missing += [f"{lab}: not computed within the time budget ({time_budget_s:g} s)"
-                    for lab in todo if lab not in done and not any(
-                        m.startswith(lab + ":") for m in missing)]  # fmt: skip
+        missing += [
+            f"{lab}: not computed within the time budget ({time_budget_s:g} s)"
+            for lab in todo
+            if lab not in done and not any(m.startswith(lab + ":") for m in missing)
+        ]
     results = [done[lab] for lab in labels if lab in done]
     return results, missing, time.perf_counter() - t0
 

@@ -54,9 +54,12 @@ class DaskBackend:
         self.cluster = None
         if address is None:
             self.cluster = distributed.LocalCluster(
-                n_workers=workers, threads_per_worker=1, processes=True,
-                dashboard_address=None, silence_logs=logging.ERROR,
-            )  # fmt: skip
+                n_workers=workers,
+                threads_per_worker=1,
+                processes=True,
+                dashboard_address=None,
+                silence_logs=logging.ERROR,
+            )
             self.client = distributed.Client(self.cluster)
         else:
             self.client = distributed.Client(address, timeout=30)
@@ -86,8 +89,9 @@ class DaskBackend:
 
     def submit(self, fn, args: tuple, kwargs: dict, index: int = 0) -> Job:
         job = Job(index)
-        fut = self.client.submit(run_task, fn, args, kwargs, accepts_progress(fn), self.topic,
-                                 pure=False)  # fmt: skip
+        fut = self.client.submit(
+            run_task, fn, args, kwargs, accepts_progress(fn), self.topic, pure=False
+        )
         with self._lock:
             self._jobs[fut.key] = job  # type: ignore[index]
             self._futures[job] = fut

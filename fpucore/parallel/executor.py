@@ -76,20 +76,27 @@ class Executor:
     manager or call :meth:`shutdown`.
     """
 
-    def __init__(self, backend: str = "process", workers: int | None = None,
-                 address: str | None = None, caller_runs: bool = False):  # fmt: skip
+    def __init__(
+        self,
+        backend: str = "process",
+        workers: int | None = None,
+        address: str | None = None,
+        caller_runs: bool = False,
+    ):
         if backend not in BACKENDS:
             raise ParameterError("backend", backend, " | ".join(BACKENDS))
         if workers is not None and not (isinstance(workers, int) and 1 <= workers <= 4096):
             raise ParameterError("workers", workers, "an integer in [1, 4096] or None (all cores)")
         if address is not None and backend != "dask":
-            raise ParameterError("address", address, "None", "a scheduler address needs "
-                                 "backend='dask'")  # fmt: skip
+            raise ParameterError(
+                "address", address, "None", "a scheduler address needs backend='dask'"
+            )
         if address is not None and not (isinstance(address, str) and "://" in address):
             raise ParameterError("address", address, "a scheduler address 'tcp://host:port'")
         if not isinstance(caller_runs, bool) or (caller_runs and backend == "dask"):
-            raise ParameterError("caller_runs", caller_runs, "True | False (True: not with "
-                                 "backend='dask')")  # fmt: skip
+            raise ParameterError(
+                "caller_runs", caller_runs, "True | False (True: not with backend='dask')"
+            )
         self.backend = backend
         self.caller_runs = caller_runs and backend == "process"
         n = cores() if workers is None else workers

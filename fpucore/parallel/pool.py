@@ -101,8 +101,14 @@ class ProcessPool:
     waits for this process (a cancelled job waiting there has its worker replaced when it starts
     it)."""
 
-    def __init__(self, workers: int, n_threads: int = 1, start_method: str = START_METHOD,
-                 background_start: bool = False, lookahead: bool = False):  # fmt: skip
+    def __init__(
+        self,
+        workers: int,
+        n_threads: int = 1,
+        start_method: str = START_METHOD,
+        background_start: bool = False,
+        lookahead: bool = False,
+    ):
         self.n_workers, self.n_threads = int(workers), int(n_threads)
         self.start_method, self.lookahead = start_method, bool(lookahead)
         self._ctx = context(start_method)
@@ -312,8 +318,11 @@ class ProcessPool:
             return
         if w.job is not None:
             why = describe_exit(w.process.exitcode)
-            w.job.set_exception(WorkerDied(f"worker process {w.process.pid} died ({why}) "
-                                           f"while running job {w.job.index}"))  # fmt: skip
+            w.job.set_exception(
+                WorkerDied(
+                    f"worker process {w.process.pid} died ({why}) while running job {w.job.index}"
+                )
+            )
         self._replace(w)
 
     def _reap_cancelled(self) -> None:

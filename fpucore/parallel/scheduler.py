@@ -73,14 +73,17 @@ def _raw_handshake(host: str, port: int, deadline: float) -> None:
         try:
             (n,) = struct.unpack("<Q", _recv_exactly(sock, 8, deadline))
             if not 0 < n <= MAX_HANDSHAKE:
-                raise _Refused(f"not a Dask scheduler: its first message announces {n} bytes, "
-                               "not a Dask handshake")  # fmt: skip
+                raise _Refused(
+                    f"not a Dask scheduler: its first message announces {n} bytes, "
+                    "not a Dask handshake"
+                )
             _recv_exactly(sock, n, deadline)
         except TimeoutError:
             raise _Refused("not a Dask scheduler: no handshake within the timeout") from None
         except OSError as exc:
-            raise _Refused(f"not a Dask scheduler: {exc.strerror or exc} during the "
-                           "handshake") from None  # fmt: skip
+            raise _Refused(
+                f"not a Dask scheduler: {exc.strerror or exc} during the handshake"
+            ) from None
 
 
 async def _identity(address: str, deadline: float) -> dict:
@@ -138,11 +141,17 @@ def check_scheduler(address: str, timeout: float = PROBE_TIMEOUT, name: str = "s
         raise ParameterError(name, address, REACHABLE, outcome["reason"])
     ident = outcome["identity"]
     if ident.get("type") != "Scheduler":
-        raise ParameterError(name, address, REACHABLE,
-                             f"the server there is a Dask {ident.get('type', 'peer')!s}, "
-                             "not a scheduler")  # fmt: skip
+        raise ParameterError(
+            name,
+            address,
+            REACHABLE,
+            f"the server there is a Dask {ident.get('type', 'peer')!s}, not a scheduler",
+        )
     if not ident.get("n_workers"):
-        raise ParameterError(name, address, "a Dask scheduler with at least one worker",
-                             "it has no workers: start some first (dask worker ADDRESS)"
-                             )  # fmt: skip
+        raise ParameterError(
+            name,
+            address,
+            "a Dask scheduler with at least one worker",
+            "it has no workers: start some first (dask worker ADDRESS)",
+        )
     return ident

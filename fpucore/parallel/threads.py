@@ -107,8 +107,9 @@ def default_threads() -> int:
     except ValueError:
         n = 0
     if not 1 <= n <= MAX_THREADS:
-        raise ParameterError(ENV_VAR, raw, f"an integer in [1, {MAX_THREADS}] or 'all'",
-                             "environment variable")  # fmt: skip
+        raise ParameterError(
+            ENV_VAR, raw, f"an integer in [1, {MAX_THREADS}] or 'all'", "environment variable"
+        )
     return n
 
 

@@ -45,12 +45,32 @@ if TYPE_CHECKING:
     from fpucore.law.base import Strain
 
 __all__ = [
-    "EPS", "QC_CHECK", "V_SPAN", "W_SPAN", "WP_MAX", "c_max_squared", "cubic_law", "require_V",
-    "require_w_plus", "superkink_velocity_bounds", "sound_speeds", "sound_speed_plus",
-    "solitary_intervals", "w_minus_sonic", "rayleigh_roots", "w_S", "QCSuperkink",
-    "superkink_from_V", "superkink_from_w_plus", "solitary_closed_form", "QCSolitary",
-    "first_integral", "finite_array", "first_integral_residual", "solitary",
-]  # fmt: skip
+    "EPS",
+    "QC_CHECK",
+    "V_SPAN",
+    "W_SPAN",
+    "WP_MAX",
+    "c_max_squared",
+    "cubic_law",
+    "require_V",
+    "require_w_plus",
+    "superkink_velocity_bounds",
+    "sound_speeds",
+    "sound_speed_plus",
+    "solitary_intervals",
+    "w_minus_sonic",
+    "rayleigh_roots",
+    "w_S",
+    "QCSuperkink",
+    "superkink_from_V",
+    "superkink_from_w_plus",
+    "solitary_closed_form",
+    "QCSolitary",
+    "first_integral",
+    "finite_array",
+    "first_integral_residual",
+    "solitary",
+]
 
 V_SPAN = 1e3  # velocities of phase portraits / first integrals: V <= V_SPAN c_max
 W_SPAN = 10.0  # strains of a first integral within W_SPAN (β − α) of (α, β)
@@ -197,8 +217,12 @@ def solitary_closed_form(law: CubicLaw, w_B: Strain, V: Strain) -> tuple[Strain,
         raise ParameterError("V", float(V[V <= 0].flat[0]), "V > 0")
     out = (w_B <= law.alpha) | (w_B >= law.beta)
     if np.any(out):
-        raise ParameterError("w_B", float(w_B[out].flat[0]), fmt_interval(law.alpha, law.beta),
-                             "backgrounds lie in the convex interval (alpha, beta)")  # fmt: skip
+        raise ParameterError(
+            "w_B",
+            float(w_B[out].flat[0]),
+            fmt_interval(law.alpha, law.beta),
+            "backgrounds lie in the convex interval (alpha, beta)",
+        )
     A, B, C = law.a / 4.0, law.ddf(w_B) / 6.0, 0.5 * (law.df(w_B) - V * V)
     disc = B * B - 4.0 * A * C
     ok = (disc > 0) & (C < 0)
@@ -305,9 +329,11 @@ def first_integral(
         out = (x < lo) | (x > hi)
         if np.any(out):
             raise ParameterError(
-                name, float(x[out].flat[0]), fmt_interval(lo, hi, open_=False),
+                name,
+                float(x[out].flat[0]),
+                fmt_interval(lo, hi, open_=False),
                 f"strains within {W_SPAN:g} (beta - alpha) of the convex interval",
-            )  # fmt: skip
+            )
     vmax = V_SPAN * law.c_max
     if V > vmax:
         raise ParameterError("V", V, f"(0, {vmax:.10g}]", f"V <= {V_SPAN:g} c_max")
@@ -356,17 +382,29 @@ def solitary(law: HardeningSofteningLaw, w_plus: float, V: float) -> QCSolitary:
     else:
         raise ParameterError("V", V, valid, f"solitary-wave velocities for w_plus={w_plus:.10g}")
 
-    dM, dT, gamma, energy, energy_error, ok = (
-        float(x) for x in solitary_closed_form(law, w_B, V)
-    )  # fmt: skip
+    dM, dT, gamma, energy, energy_error, ok = (float(x) for x in solitary_closed_form(law, w_B, V))
     if not ok:  # cannot happen inside the intervals; guards round-off at their ends
         raise ParameterError("V", V, valid, "too close to an end of the interval to resolve")
 
     kind = "tensile" if dM > 0 else "compressive"
     sw = QCSolitary(
-        law, V, w_plus, w_B, w_B + dT, w_B + dM, gamma, kind, interval, vsk, cp, cm,
-        energy, energy_error, math.nan, 0.0,
-    )  # fmt: skip
+        law,
+        V,
+        w_plus,
+        w_B,
+        w_B + dT,
+        w_B + dM,
+        gamma,
+        kind,
+        interval,
+        vsk,
+        cp,
+        cm,
+        energy,
+        energy_error,
+        math.nan,
+        0.0,
+    )
     xi = _XI_CHECK / gamma  # one half of the (even) profile, out to 12 widths
     fi = first_integral_residual(law, sw.profile(xi), sw.dprofile(xi), w_B, V)
     return replace(sw, first_integral_residual=fi, elapsed_s=time.perf_counter() - t0)

@@ -145,9 +145,11 @@ def solitary_family(law: HardeningSofteningLaw, w_plus: float, n: int = 160) -> 
         ok &= (lo < Vs) & (Vs < hi) & np.isfinite(energy)  # drop points rounding onto an end
         if not np.any(ok):  # the interval (width ∝ (w₊ − w*)²) is below the rounding of V
             raise ParameterError(
-                "w_plus", w_plus, f"|w_plus - w*| resolvable around w* = {law.w_star:.10g}",
+                "w_plus",
+                w_plus,
+                f"|w_plus - w*| resolvable around w* = {law.w_star:.10g}",
                 f"the velocity interval ({lo!r}, {hi!r}) holds no resolvable velocity",
-            )  # fmt: skip
+            )
         kind = "tensile" if dM[ok][0] > 0 else "compressive"
         return Vs[ok], np.abs(dM[ok]), energy[ok], kind, float(np.max(err[ok]))
 
@@ -155,6 +157,19 @@ def solitary_family(law: HardeningSofteningLaw, w_plus: float, n: int = 160) -> 
     Va, aa, ea, ka, erra = run(vsk, cm, lambda Vs: qc.w_S(law, w_plus, Vs))
     sk = qc.superkink_from_w_plus(law, w_plus)
     return SolitaryFamily(
-        w_plus, Vb, ab, eb, kb, Va, aa, ea, ka, cp, vsk, cm, sk.amplitude, max(errb, erra),
+        w_plus,
+        Vb,
+        ab,
+        eb,
+        kb,
+        Va,
+        aa,
+        ea,
+        ka,
+        cp,
+        vsk,
+        cm,
+        sk.amplitude,
+        max(errb, erra),
         time.perf_counter() - t0,
-    )  # fmt: skip
+    )

@@ -74,8 +74,11 @@ def rayleigh_roots(law: HardeningSofteningLaw, w_plus: float, V: Strain) -> tupl
         w_plus = pl[0].require_state(law, w_plus)
         out = []
         for v in np.ravel(cf.finite_array("V", V)):
-            side = [x for x in pl[0].rayleigh_roots(law, w_plus, float(v))
-                    if (x > w_plus) == (w_plus < law.w_star)]  # fmt: skip
+            side = [
+                x
+                for x in pl[0].rayleigh_roots(law, w_plus, float(v))
+                if (x > w_plus) == (w_plus < law.w_star)
+            ]
             if len(side) < 2 or not v > 0:
                 cm = pl[0].c_minus_sonic(law, w_plus)[0]
                 raise ParameterError("V", float(v), f"(0, {cm:.10g})", "no centre and saddle")

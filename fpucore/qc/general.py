@@ -64,8 +64,21 @@ from fpucore.qc.general_speeds import (
 from fpucore.qc.general_superkink import QCSuperkinkGeneral, superkink_from_V, superkink_from_w_plus
 
 __all__ = [
-    "QCSpeeds", "QCSuperkinkGeneral", "QCSolitaryGeneral", "speeds", "sound_speeds",
-    "w_minus_from_w_plus", "w_minus_sonic", "rayleigh_roots", "w_S", "solitary_intervals",
-    "superkink_w_plus_range", "superkink_velocity_bounds", "superkink_from_w_plus",
-    "superkink_from_V", "solitary", "solitary_kind", "first_integral",
-]  # fmt: skip
+    "QCSpeeds",
+    "QCSuperkinkGeneral",
+    "QCSolitaryGeneral",
+    "speeds",
+    "sound_speeds",
+    "w_minus_from_w_plus",
+    "w_minus_sonic",
+    "rayleigh_roots",
+    "w_S",
+    "solitary_intervals",
+    "superkink_w_plus_range",
+    "superkink_velocity_bounds",
+    "superkink_from_w_plus",
+    "superkink_from_V",
+    "solitary",
+    "solitary_kind",
+    "first_integral",
+]

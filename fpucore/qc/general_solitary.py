@@ -52,8 +52,11 @@ class QCSolitaryGeneral(QCSolitary):
     table: object = field(default=None, repr=False, compare=False)  # ξ(u) table
 
     ERROR_FIELDS: ClassVar[tuple[str, ...]] = QCSolitary.ERROR_FIELDS + (
-        "w_B_error", "w_M_error", "V_SK_error", "xi_error",
-    )  # fmt: skip
+        "w_B_error",
+        "w_M_error",
+        "V_SK_error",
+        "xi_error",
+    )
     EXCLUDE: ClassVar[tuple[str, ...]] = QCSolitary.EXCLUDE + ("table",)
 
     @property
@@ -162,8 +165,11 @@ def solitary(
     # there R̃ ≈ ε + c u², so panels must resolve u ~ √ε
     eps_rel = max(abs(wM - other) / abs(dM), 1e-300)
     J_lev = int(min(60, max(0, math.ceil(-math.log2(0.05 * math.sqrt(eps_rel))))))
-    edges = np.unique(np.concatenate([[0.0], 2.0 ** -np.arange(J_lev, 0, -1.0),
-                                      np.arange(0.5, U_MAX + 0.25, 0.5)]))  # fmt: skip
+    edges = np.unique(
+        np.concatenate(
+            [[0.0], 2.0 ** -np.arange(J_lev, 0, -1.0), np.arange(0.5, U_MAX + 0.25, 0.5)]
+        )
+    )
     m = ProfileMap(g, scale, edges)
 
     # E_ren^QC = (V² w_B + f_B) ∫d dξ + V² ∫d² dξ over the whole line (even profile)
@@ -201,9 +207,28 @@ def solitary(
 
     kind = "tensile" if dM > 0 else "compressive"
     sw = QCSolitaryGeneral(
-        law, V, w_plus, wB, wT, wM, gamma, kind, interval, vsk, cp, cm, energy, energy_err,  # type: ignore[arg-type]
-        math.nan, 0.0, wB_err, wM_err, sp.V_SK_error, m.err, m,
-    )  # fmt: skip
+        law,
+        V,
+        w_plus,
+        wB,
+        wT,
+        wM,
+        gamma,
+        kind,
+        interval,
+        vsk,
+        cp,
+        cm,
+        energy,
+        energy_err,  # type: ignore[arg-type]
+        math.nan,
+        0.0,
+        wB_err,
+        wM_err,
+        sp.V_SK_error,
+        m.err,
+        m,
+    )
     xi = np.linspace(0.0, 12.0, 32) / gamma
     fi = first_integral_residual(law, sw.profile(xi), sw.dprofile(xi), wB, V) if check else math.nan
     # xi_error includes the inverse tables' error once a profile has been evaluated (check=True)

@@ -51,8 +51,12 @@ class QCSpeeds(Result):
     elapsed_s: float
 
     ERROR_FIELDS: ClassVar = (
-        "c_plus_error", "V_SK_error", "c_minus_error", "w_minus_error", "w_minus_sonic_error",
-    )  # fmt: skip
+        "c_plus_error",
+        "V_SK_error",
+        "c_minus_error",
+        "w_minus_error",
+        "w_minus_sonic_error",
+    )
     DERIVED: ClassVar = ("converged", "status", "message")
 
     @property
@@ -91,9 +95,11 @@ def w_minus_from_w_plus(law: HardeningSofteningLaw, w_plus: float) -> tuple[floa
     if r is None:
         lo, hi = superkink_w_plus_range(law, "lower" if w_plus < law.w_star else "upper")
         raise ParameterError(
-            "w_plus", w_plus, fmt_interval(lo, hi),
+            "w_plus",
+            w_plus,
+            fmt_interval(lo, hi),
             "the equal-area partner w- would leave the convex interval (alpha, beta): no superkink",
-        )  # fmt: skip
+        )
     return r
 
 
@@ -125,11 +131,19 @@ def speeds(law: HardeningSofteningLaw, w_plus: float) -> QCSpeeds:
     dV2 = abs(float(law.df(wm)) - V2) / abs(wm - w_plus) * wm_err  # ∂S/∂w₋ · δw₋
     cm = math.sqrt(float(law.df(ws)))
     return QCSpeeds(
-        w_plus, cp, V, cm, wm, ws,
-        4 * EPS * cp, dV2 / (2 * V) + 8 * EPS * V,
-        abs(float(law.ddf(ws))) * ws_err / (2 * cm) + 8 * EPS * cm, wm_err, ws_err,
+        w_plus,
+        cp,
+        V,
+        cm,
+        wm,
+        ws,
+        4 * EPS * cp,
+        dV2 / (2 * V) + 8 * EPS * V,
+        abs(float(law.ddf(ws))) * ws_err / (2 * cm) + 8 * EPS * cm,
+        wm_err,
+        ws_err,
         time.perf_counter() - t0,
-    )  # fmt: skip
+    )
 
 
 def sound_speeds(law: HardeningSofteningLaw, w_plus: float) -> tuple[float, float, float]:

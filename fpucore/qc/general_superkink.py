@@ -50,8 +50,11 @@ class QCSuperkinkGeneral(QCSuperkink):
     tables: tuple = field(default=(), repr=False, compare=False)  # (ξ ≥ 0, ξ < 0) ξ(s) tables
 
     ERROR_FIELDS: ClassVar[tuple[str, ...]] = QCSuperkink.ERROR_FIELDS + (
-        "V_error", "w_plus_error", "w_minus_error", "xi_error",
-    )  # fmt: skip
+        "V_error",
+        "w_plus_error",
+        "w_minus_error",
+        "xi_error",
+    )
     DERIVED: ClassVar[tuple[str, ...]] = QCSuperkink.DERIVED + ("symmetry_defect", "w_center")
     EXCLUDE: ClassVar[tuple[str, ...]] = ("law", "tables")
 
@@ -150,9 +153,22 @@ def _build_superkink(law, V, wp, wm, branch, t0, wp_err, wm_err, V_err):
     G_scale = abs(float(law.phi(wp))) + abs(float(law.phi(wm))) + rscale * abs(wp)
     lam = lambda w: math.sqrt(max(12.0 * (V2 - float(law.df(w))), 0.0)) / V  # noqa: E731
     return QCSuperkinkGeneral(
-        law, V, wp, wm, 0.5 * lam(wp), branch, ray, abs(G) / G_scale, time.perf_counter() - t0,
-        0.5 * lam(wm), V_err, wp_err, wm_err, max(pos.table_err(), neg.table_err()), (pos, neg),
-    )  # fmt: skip
+        law,
+        V,
+        wp,
+        wm,
+        0.5 * lam(wp),
+        branch,
+        ray,
+        abs(G) / G_scale,
+        time.perf_counter() - t0,
+        0.5 * lam(wm),
+        V_err,
+        wp_err,
+        wm_err,
+        max(pos.table_err(), neg.table_err()),
+        (pos, neg),
+    )
 
 
 def superkink_from_w_plus(law: HardeningSofteningLaw, w_plus: float) -> QCSuperkinkGeneral:
@@ -161,9 +177,16 @@ def superkink_from_w_plus(law: HardeningSofteningLaw, w_plus: float) -> QCSuperk
     sp = speeds(law, w_plus)
     branch = "lower" if sp.w_plus < law.w_star else "upper"
     return _build_superkink(
-        law, sp.V_SK, sp.w_plus, sp.w_minus, branch, t0, 4 * EPS * abs(sp.w_plus),
-        sp.w_minus_error, sp.V_SK_error,
-    )  # fmt: skip
+        law,
+        sp.V_SK,
+        sp.w_plus,
+        sp.w_minus,
+        branch,
+        t0,
+        4 * EPS * abs(sp.w_plus),
+        sp.w_minus_error,
+        sp.V_SK_error,
+    )
 
 
 def superkink_from_V(
@@ -188,6 +211,13 @@ def superkink_from_V(
     V2 = float(rayleigh_slope(law, wp, wm - wp))
     dwm = abs(V2 - float(law.df(wp))) / abs(V2 - float(law.df(wm)))  # |dw₋/dw₊| (implicit fn.)
     return _build_superkink(
-        law, math.sqrt(V2), wp, wm, branch, t0, wp_err, wm_err + dwm * wp_err,
+        law,
+        math.sqrt(V2),
+        wp,
+        wm,
+        branch,
+        t0,
+        wp_err,
+        wm_err + dwm * wp_err,
         abs(math.sqrt(V2) - V) + 8 * EPS * V,
-    )  # fmt: skip
+    )

@@ -71,9 +71,11 @@ def require_phase_V(law: HardeningSofteningLaw, V: float) -> float:
     c = law.c_max
     if not c / V_SPAN <= V <= c * V_SPAN:
         raise ParameterError(
-            "V", V, fmt_interval(c / V_SPAN, c * V_SPAN, open_=False),
+            "V",
+            V,
+            fmt_interval(c / V_SPAN, c * V_SPAN, open_=False),
             f"phase portraits within a factor {V_SPAN:g} of c_max = {c:.10g}",
-        )  # fmt: skip
+        )
     return V
 
 
@@ -173,9 +175,18 @@ def phase_plane(
         [float(np.max(np.abs(first_integral(law, o.w, o.wp, ref, V)))) for o in orbits] + [0.0]
     )
     return PhasePlane(
-        w_plus, V, w_grid, wp_grid, H, cps, levels, orbits, regime, res / span,
+        w_plus,
+        V,
+        w_grid,
+        wp_grid,
+        H,
+        cps,
+        levels,
+        orbits,
+        regime,
+        res / span,
         time.perf_counter() - t0,
-    )  # fmt: skip
+    )
 
 
 @dataclass(frozen=True)
@@ -277,6 +288,7 @@ def _level_residual(law, w, wp, w_ref, V, level) -> float:
     d = w - w_ref
     phi_w, phi_r, f_r = law.phi(w), float(law.phi(w_ref)), float(law.f(w_ref))
     H = V * V / 24.0 * wp * wp + phi_w - phi_r - f_r * d - 0.5 * V * V * d * d
-    scale = (np.abs(phi_w) + abs(phi_r) + np.abs(f_r * d) + V * V * (d * d + wp * wp / 24.0)
-             + abs(level))  # fmt: skip
+    scale = (
+        np.abs(phi_w) + abs(phi_r) + np.abs(f_r * d) + V * V * (d * d + wp * wp / 24.0) + abs(level)
+    )
     return float(np.max(np.abs(H - level) / (scale + 1e-300)))

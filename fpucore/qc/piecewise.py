@@ -81,10 +81,12 @@ def branch_of(law, w_plus: float) -> str:
     if w_plus > w2:
         return "upper"
     raise ParameterError(
-        "w_plus", w_plus, f"w_plus < {w1:.10g} or w_plus > {w2:.10g}",
+        "w_plus",
+        w_plus,
+        f"w_plus < {w1:.10g} or w_plus > {w2:.10g}",
         "a state in the hard regime [w1, w2] has no superkink or solitary wave (the PL analogue "
         "of w+ = w*: c+ = V_SK = c-)",
-    )  # fmt: skip
+    )
 
 
 def require_state(law, w_plus, name: str = "w_plus") -> float:
@@ -127,9 +129,11 @@ def w_minus(law, w_plus: float) -> float:
     if x is None:
         lo, hi = superkink_w_plus_range(law, branch_of(law, w_plus))
         raise ParameterError(
-            "w_plus", w_plus, fmt_interval(lo, hi),
+            "w_plus",
+            w_plus,
+            fmt_interval(lo, hi),
             "no equal-area partner: the final slope of H is >= 0 (the partner runs to infinity)",
-        )  # fmt: skip
+        )
     return x
 
 
@@ -215,9 +219,16 @@ def speeds(law, w_plus: float) -> PLSpeeds:
     G = float(law.phi(w_plus) - law.phi(wm)) - 0.5 * (w_plus - wm) * (fp + fm)
     scale = (abs(fp) + abs(fm) + math.sqrt(V2) ** 2 * abs(wm - w_plus)) * abs(wm - w_plus)
     return PLSpeeds(
-        w_plus, branch_of(law, w_plus), math.sqrt(float(law.df(w_plus))), math.sqrt(V2), cm,
-        wm, ws, abs(G) / scale, time.perf_counter() - t0,
-    )  # fmt: skip
+        w_plus,
+        branch_of(law, w_plus),
+        math.sqrt(float(law.df(w_plus))),
+        math.sqrt(V2),
+        cm,
+        wm,
+        ws,
+        abs(G) / scale,
+        time.perf_counter() - t0,
+    )
 
 
 def solitary_intervals(law, w_plus: float):

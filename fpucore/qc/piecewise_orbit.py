@@ -299,9 +299,11 @@ def solitary(law, w_plus: float, V: float) -> PLSolitary:
     sp = speeds(law, w_plus)
     if not (sp.c_plus < V < sp.c_minus) or V == sp.V_SK:
         raise ParameterError(
-            "V", V, f"{fmt_interval(sp.c_plus, sp.V_SK)} or {fmt_interval(sp.V_SK, sp.c_minus)}",
+            "V",
+            V,
+            f"{fmt_interval(sp.c_plus, sp.V_SK)} or {fmt_interval(sp.V_SK, sp.c_minus)}",
             "solitary waves exist between the sonic limits, V != V_SK",
-        )  # fmt: skip
+        )
     below = V < sp.V_SK
     wB = w_plus if below else w_S(law, w_plus, V)
     V2 = V * V
@@ -320,10 +322,25 @@ def solitary(law, w_plus: float, V: float) -> PLSolitary:
     )
     res = max(res, abs(_P(law, wB, V2, wM)) * 24.0 / V2 / qs)
     return PLSolitary(
-        law, V, w_plus, wB, wM, "tensile" if wM > wB else "compressive",
-        "below" if below else "above", sp.V_SK, sp.c_plus, sp.c_minus, energy, 2.0 * m1,
-        res, time.perf_counter() - t0, wT, gamma, energy_error, tuple(arcs),
-    )  # fmt: skip
+        law,
+        V,
+        w_plus,
+        wB,
+        wM,
+        "tensile" if wM > wB else "compressive",
+        "below" if below else "above",
+        sp.V_SK,
+        sp.c_plus,
+        sp.c_minus,
+        energy,
+        2.0 * m1,
+        res,
+        time.perf_counter() - t0,
+        wT,
+        gamma,
+        energy_error,
+        tuple(arcs),
+    )
 
 
 @dataclass(frozen=True)
@@ -391,9 +408,19 @@ def superkink(law, w_plus: float) -> PLSuperkink:
     fp, fm = float(law.f(sp.w_plus)), float(law.f(sp.w_minus))
     rr = abs(fp - fm - V2 * (sp.w_plus - sp.w_minus)) / max(abs(fp) + abs(fm), EPS)
     return PLSuperkink(
-        law, sp.V_SK, sp.w_plus, sp.w_minus, sp.branch, sp.driving_force,
-        time.perf_counter() - t0, half(sp.w_plus), half(sp.w_minus), rr, tuple(ap), tuple(am),
-    )  # fmt: skip
+        law,
+        sp.V_SK,
+        sp.w_plus,
+        sp.w_minus,
+        sp.branch,
+        sp.driving_force,
+        time.perf_counter() - t0,
+        half(sp.w_plus),
+        half(sp.w_minus),
+        rr,
+        tuple(ap),
+        tuple(am),
+    )
 
 
 __all__ = ["Arc", "PLSolitary", "PLSuperkink", "solitary", "superkink", "EPS"]

@@ -80,19 +80,32 @@ def finalize_events(y, L, thr, obs: Observer) -> None:
             ev_n[n] += 1
 
 
-def _observer(L: int, w0: np.ndarray, thr: float, level: float, n_events: int, probe_idx,
-              probe_t) -> Observer:  # fmt: skip
+def _observer(
+    L: int, w0: np.ndarray, thr: float, level: float, n_events: int, probe_idx, probe_t
+) -> Observer:
     zz = np.empty((3, L))  # per site: extremum candidate, running min, running max
     zz[:] = w0
     probe_out = np.full((probe_idx.size, probe_t.size), np.nan)
     probe_out[:, 0] = w0[probe_idx]
     return Observer(
-        thr, level, zz, np.zeros(L), np.zeros(L, np.int8),
-        np.full((L, n_events), np.nan), np.full((L, n_events), np.nan),
-        np.zeros((L, n_events), np.int8), np.zeros(L, np.int64),
-        np.full((L, 4), np.nan), np.zeros((L, 4), np.int8), np.zeros(L, np.int64),
-        probe_idx, probe_t, probe_out, np.ones(1, np.int64), np.zeros(8),
-    )  # fmt: skip
+        thr,
+        level,
+        zz,
+        np.zeros(L),
+        np.zeros(L, np.int8),
+        np.full((L, n_events), np.nan),
+        np.full((L, n_events), np.nan),
+        np.zeros((L, n_events), np.int8),
+        np.zeros(L, np.int64),
+        np.full((L, 4), np.nan),
+        np.zeros((L, 4), np.int8),
+        np.zeros(L, np.int64),
+        probe_idx,
+        probe_t,
+        probe_out,
+        np.ones(1, np.int64),
+        np.zeros(8),
+    )
 
 
 def _null_observer(L: int) -> Observer:
@@ -104,13 +117,42 @@ def _null_observer(L: int) -> Observer:
     zz[1] = -np.inf
     zz[2] = np.inf
     return Observer(
-        np.inf, np.nan, zz, np.zeros(L), np.zeros(L, np.int8), e, e, ei, en, e, ei, en,
-        np.zeros(0, np.int64), np.zeros(0), np.zeros((0, 0)), np.zeros(1, np.int64), np.zeros(8),
-    )  # fmt: skip
+        np.inf,
+        np.nan,
+        zz,
+        np.zeros(L),
+        np.zeros(L, np.int8),
+        e,
+        e,
+        ei,
+        en,
+        e,
+        ei,
+        en,
+        np.zeros(0, np.int64),
+        np.zeros(0),
+        np.zeros((0, 0)),
+        np.zeros(1, np.int64),
+        np.zeros(8),
+    )
 
 
-def _advance(stepper, state, y, t, stop, h, ctl, chain, work, obs, max_steps, slice_steps,
-             deadline: Deadline, on_slice):  # fmt: skip
+def _advance(
+    stepper,
+    state,
+    y,
+    t,
+    stop,
+    h,
+    ctl,
+    chain,
+    work,
+    obs,
+    max_steps,
+    slice_steps,
+    deadline: Deadline,
+    on_slice,
+):
     """Step from t to ``stop`` in slices of at most ``slice_steps`` steps; between slices check
     the deadline (→ ST_TIME_BUDGET) and call ``on_slice(t)``.  Returns (t, h, status)."""
     stats = work.stats
@@ -197,8 +239,9 @@ def run_chain(
     chain = Chain(L, law.law_id, law.params, bc_code, fL, fR)
     ctl = Control(cfg.rtol, cfg.atol, lo, hi)
 
-    sch = output_schedule(t_end, cfg.n_snapshots, cfg.late_fraction, cfg.n_track, cfg.track,
-                          extra_times)  # fmt: skip
+    sch = output_schedule(
+        t_end, cfg.n_snapshots, cfg.late_fraction, cfg.n_track, cfg.track, extra_times
+    )
     if L <= cfg.max_sites_out:
         site_idx = np.arange(L)
     else:
@@ -209,8 +252,9 @@ def run_chain(
     y[L : 2 * L + 1] = v0
     thr_ev = 0.5 * threshold
     level = float(law.w_star) if level is None else float(level)
-    obs = _observer(L, w0, thr_ev, level, cfg.n_events, cfg.probe_idx,
-                    np.linspace(0.0, t_end, cfg.n_probe_t))  # fmt: skip
+    obs = _observer(
+        L, w0, thr_ev, level, cfg.n_events, cfg.probe_idx, np.linspace(0.0, t_end, cfg.n_probe_t)
+    )
     snaps = np.full((sch.t_out.size, site_idx.size), np.nan)
     snaps[0] = w0[site_idx]
     energy = np.full(sch.t_out.size, np.nan)
@@ -231,8 +275,22 @@ def run_chain(
     t = 0.0
     status = ck.ST_OK
     for stop in sch.stops:
-        t, h, status = _advance(stepper, state, y, t, float(stop), h, ctl, chain, work, obs,
-                                cfg.max_steps, slice_steps, deadline, on_slice)  # fmt: skip
+        t, h, status = _advance(
+            stepper,
+            state,
+            y,
+            t,
+            float(stop),
+            h,
+            ctl,
+            chain,
+            work,
+            obs,
+            cfg.max_steps,
+            slice_steps,
+            deadline,
+            on_slice,
+        )
         if status != ck.ST_OK:
             break
         key = float(stop)
@@ -258,8 +316,9 @@ def run_chain(
     if not stepper.adaptive:  # the fixed-step method's error: step doubling
         err_est = math.nan
         if cfg.estimate_error and st == "ok":
-            err_est, st2 = _step_doubling(law, w0, v0, sch.t_out, chain, cfg, snaps, site_idx,
-                                          deadline)  # fmt: skip
+            err_est, st2 = _step_doubling(
+                law, w0, v0, sch.t_out, chain, cfg, snaps, site_idx, deadline
+            )
             if st2 == ST_TIME_BUDGET:
                 st = "time_budget"
     else:
@@ -268,9 +327,18 @@ def run_chain(
     zz = obs.zz
     w_min, w_max = float(zz[1].min()), float(zz[2].max())  # the strain range over all steps
     outcome = Outcome(
-        st, float(t), int(stats[0]), int(stats[1]), float(work.bad[0]), int(work.bad[1]),
-        (w_min, w_max), conv, (lo, hi), rest, _clipped_note(law, (lo, hi)),
-    )  # fmt: skip
+        st,
+        float(t),
+        int(stats[0]),
+        int(stats[1]),
+        float(work.bad[0]),
+        int(work.bad[1]),
+        (w_min, w_max),
+        conv,
+        (lo, hi),
+        rest,
+        _clipped_note(law, (lo, hi)),
+    )
     msg = status_message(outcome, cfg, deadline)
     if st == "time_budget" and t >= t_end:
         msg += " (the run itself reached t_end; the step-doubling error estimate was cut)"
@@ -285,8 +353,10 @@ def run_chain(
 
     waves = []
     if cfg.track and st == "ok" and deadline.expired():  # tracking would run past the budget
-        msg += ("; wave tracking skipped: the time budget ran out as the run reached t_end "
-                "(raise time_budget_s, CLI: --time-budget)")  # fmt: skip
+        msg += (
+            "; wave tracking skipped: the time budget ran out as the run reached t_end "
+            "(raise time_budget_s, CLI: --time-budget)"
+        )
     elif cfg.track and st == "ok":
         waves = tracking.track(
             law,
@@ -338,9 +408,12 @@ def run_chain(
     }
     if cfg.pwl:  # event location at the breakpoints (fpucore.simulate.pwl_rkn)
         n_cross, resid, n_tan = stepper.event_counts(state)
-        res["details"].update(breakpoint_crossings=n_cross, location_residual=resid,
-                              unlocated_tangencies=n_tan,
-                              event_location=bool(stepper.locate))  # fmt: skip
+        res["details"].update(
+            breakpoint_crossings=n_cross,
+            location_residual=resid,
+            unlocated_tangencies=n_tan,
+            event_location=bool(stepper.locate),
+        )
     internals = dict(
         ext_t=sch.t_extra,
         ext_w=ext_w,
@@ -360,8 +433,9 @@ _ENERGY_NAME = {
 }
 
 
-def _step_doubling(law, w0, v0, t_out, chain: Chain, cfg: RunConfig, snaps, site_idx,
-                   deadline: Deadline) -> tuple[float, int]:  # fmt: skip
+def _step_doubling(
+    law, w0, v0, t_out, chain: Chain, cfg: RunConfig, snaps, site_idx, deadline: Deadline
+) -> tuple[float, int]:
     """(max |w_h − w_2h| / (2⁴ − 1) over the output snapshots, status): the companion run at
     step 2·dt (Yoshida is 4th order), under the same time budget (NaN if it did not finish)."""
     L = w0.size
@@ -376,9 +450,22 @@ def _step_doubling(law, w0, v0, t_out, chain: Chain, cfg: RunConfig, snaps, site
     worst = 0.0
     t = 0.0
     for k in range(1, t_out.size):
-        t, _, status = _advance(stepper, None, y, t, float(t_out[k]), 2.0 * cfg.dt, ctl, chain,  # type: ignore[operator]
-                                work, obs, cfg.max_steps, slice_steps, deadline,
-                                lambda _t: None)  # fmt: skip
+        t, _, status = _advance(
+            stepper,
+            None,
+            y,
+            t,
+            float(t_out[k]),
+            2.0 * cfg.dt,
+            ctl,
+            chain,  # type: ignore[operator]
+            work,
+            obs,
+            cfg.max_steps,
+            slice_steps,
+            deadline,
+            lambda _t: None,
+        )
         if status != ck.ST_OK:
             return math.nan, status
         worst = max(worst, float(np.max(np.abs(y[site_idx] - snaps[k]))))

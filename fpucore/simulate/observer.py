@@ -153,8 +153,12 @@ def observe(t0, h, y0, k0, a0, y1, k1, a1, chain, obs):
     ev_t, ev_w, ev_s, ev_n = obs.ev_t, obs.ev_w, obs.ev_s, obs.ev_n
     cr_t, cr_s, cr_n = obs.cr_t, obs.cr_s, obs.cr_n
     probe_idx, probe_t, probe_out, pcount, c = (
-        obs.probe_idx, obs.probe_t, obs.probe_out, obs.pcount, obs.c
-    )  # fmt: skip
+        obs.probe_idx,
+        obs.probe_t,
+        obs.probe_out,
+        obs.pcount,
+        obs.c,
+    )
     for n0 in range(0, L, _OBS_BLOCK):
         n1 = min(n0 + _OBS_BLOCK, L)
         hit = 0

@@ -171,9 +171,11 @@ def seeded(
     L_min = N + int(math.ceil(V * t_end)) + 2 * margin
     if L is None and L_min > MAX_L:
         raise ParameterError(
-            "t_end", t_end, f"(0, {(MAX_L - N - 2 * margin) / V:.6g}]",
+            "t_end",
+            t_end,
+            f"(0, {(MAX_L - N - 2 * margin) / V:.6g}]",
             f"the wave's path V·t_end needs a chain longer than L = {MAX_L}",
-        )  # fmt: skip
+        )
     L = L_min if L is None else require_L(L)
     if L < L_min:
         raise ParameterError(
@@ -186,9 +188,20 @@ def seeded(
     if r.kind == "superkink":
         thr_scale = abs(r.w_left - r.w_right)
     thr = detection_threshold(threshold, thr_scale)
-    cfg = configure(law, L, t_end, boundary, method, rtol, n_snapshots=n_snapshots,
-                    max_sites_out=max_sites_out, probes=probes, n_probe_t=n_probe_t,
-                    n_extra=len(extra), **opts)  # fmt: skip
+    cfg = configure(
+        law,
+        L,
+        t_end,
+        boundary,
+        method,
+        rtol,
+        n_snapshots=n_snapshots,
+        max_sites_out=max_sites_out,
+        probes=probes,
+        n_probe_t=n_probe_t,
+        n_extra=len(extra),
+        **opts,
+    )
     wl, wr = float(r.w_left), float(r.w_right)
     i0 = margin  # chain index of the first computed site (n = −N/2)
     w0 = np.full(L, wr)
@@ -207,9 +220,18 @@ def seeded(
         wM = float(np.asarray(r.w)[N // 2])
         level = 0.5 * (wM + wr)
     res, internals = run_chain(
-        law, "seeded", w0, v0, cfg, (wl, wr), origin=float(i0 - 1), threshold=thr,
-        extra_times=extra, level=level, **run,
-    )  # fmt: skip
+        law,
+        "seeded",
+        w0,
+        v0,
+        cfg,
+        (wl, wr),
+        origin=float(i0 - 1),
+        threshold=thr,
+        extra_times=extra,
+        level=level,
+        **run,
+    )
     details = {"kind": r.kind, "V_prescribed": V, "N": N, "periods": K_per, "threshold": thr}
     if res["stop_reason"] == "ok":
         details.update(_seeded_check(r, internals, site0, i0, N, T, K_per, w0, t_end, law))

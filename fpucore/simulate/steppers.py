@@ -90,8 +90,13 @@ class RknStepper:
         work = Work(K, W, np.zeros(L + 2), np.zeros(6), np.zeros(2))
         crk.y_to_rkn(y, L, qv, K[s + 1])
         crk.accel(qv, L, chain.law_id, chain.p, chain.bc, chain.fL, chain.fR, work.g, K[0])
-        h = initial_step(np.concatenate([qv, K[s + 1]]), np.concatenate([K[s + 1], K[0]]),
-                          cfg.rtol, cfg.atol, cfg.t_end)  # fmt: skip
+        h = initial_step(
+            np.concatenate([qv, K[s + 1]]),
+            np.concatenate([K[s + 1], K[0]]),
+            cfg.rtol,
+            cfg.atol,
+            cfg.t_end,
+        )
         pair = RknPair(rk.c, rk.A, rk.b, rk.bp, rk.e, rk.ep, rk.fsal, -1.0 / (rk.err_order + 1))
         return (pair, qv), work, h
 
@@ -118,14 +123,22 @@ class PwlRknStepper(RknStepper):
         s = self.stages
         nw = 2 * s + 6  # the window of 2R + 1 bonds, R = s + 2, and u_0
         L = chain.L
-        ev = (np.zeros(L, np.int64), np.zeros((2, L)), np.zeros(L), np.zeros((s + 3, nw)),
-              np.zeros((5, nw)), np.zeros(3), bool(self.locate))  # fmt: skip
+        ev = (
+            np.zeros(L, np.int64),
+            np.zeros((2, L)),
+            np.zeros(L),
+            np.zeros((s + 3, nw)),
+            np.zeros((5, nw)),
+            np.zeros(3),
+            bool(self.locate),
+        )
         return (pair, qv, ev), work, h
 
     def advance(self, state, y, t, stop, h, limit, ctl, chain, work, obs):
         pair, qv, (pc, pb, cf, KW, WW, evs, locate) = state
-        out = pwl_rkn.pwl_rkn_chunk(qv, t, stop, h, limit, pair, ctl, chain, work, obs, pc,
-                                    pb, cf, KW, WW, evs, locate)  # fmt: skip
+        out = pwl_rkn.pwl_rkn_chunk(
+            qv, t, stop, h, limit, pair, ctl, chain, work, obs, pc, pb, cf, KW, WW, evs, locate
+        )
         crk.rkn_to_y(qv, work.K[self.stages + 1], chain.L, y)
         return out
 
@@ -150,8 +163,9 @@ class YoshidaStepper:
 
     def start(self, law, y: np.ndarray, chain: Chain, cfg):
         n = y.size
-        work = Work(np.zeros((2, n)), np.zeros((3, n)), np.zeros(chain.L + 2), np.zeros(6),
-                    np.zeros(2))  # fmt: skip
+        work = Work(
+            np.zeros((2, n)), np.zeros((3, n)), np.zeros(chain.L + 2), np.zeros(6), np.zeros(2)
+        )
         ck.rhs(y, chain.L, chain.law_id, chain.p, chain.bc, chain.fL, chain.fR, work.g, work.K[0])
         return None, work, cfg.dt
 

@@ -135,9 +135,14 @@ class WaveSolve:
         self.floor = max(self.floor, floor)
         res_tol = max(self.tols.res_tol, floor)
         o = newton(
-            sys_, x, res_tol, self.max_iter, self.jacobian, max(1.0, budget),
+            sys_,
+            x,
+            res_tol,
+            self.max_iter,
+            self.jacobian,
+            max(1.0, budget),
             step_tol=self.tols.step_tol,
-        )  # fmt: skip
+        )
         self.history.extend(o.residual_history)
         if o.converged:
             te = wt.tail_error(o.x[0::2], o.x[1::2], self.spec.w_left, self.spec.w_right)
@@ -215,8 +220,9 @@ class WaveSolve:
             return None
         xs = sub.out.x
         b = wb.error_bounds(sub.system, xs, sub.out.factorization, True)
-        b = wb.embedded(b, self.law, xs[0::2], xs[1::2], self.spec.V, self.spec.w_left,
-                        self.spec.w_right)  # fmt: skip
+        b = wb.embedded(
+            b, self.law, xs[0::2], xs[1::2], self.spec.V, self.spec.w_left, self.spec.w_right
+        )
         route = (
             f"{sub.route}; solved on N = {N_w} (the chain the flat top needs), padded with "
             f"w_B to N = {self.N}: residual on N = {self.N} checked, bounds from N = {N_w} "
@@ -224,8 +230,19 @@ class WaveSolve:
         )
         hist = tuple(sub.history) + tuple(self.history)
         floor = max(sub.residual_floor, self.floor)
-        return Solved(out, self.system, hist, route, self.m, self.K, self.N, floor, sub.note,
-                      sub.front_uncertainty, b)  # fmt: skip
+        return Solved(
+            out,
+            self.system,
+            hist,
+            route,
+            self.m,
+            self.K,
+            self.N,
+            floor,
+            sub.note,
+            sub.front_uncertainty,
+            b,
+        )
 
     def refine_m(self, out: NewtonOutcome) -> NewtonOutcome:
         """Step-doubling error at the solution; more RK steps if the guess-based m was optimistic
@@ -319,9 +336,15 @@ class WaveSolve:
                 "plateau route: no converged short-plateau start wave"
             )
         path = wp.continue_in_mass(
-            spec, start.out.x, start.system.V, self.N, self.m, self.K,
-            self.tols.res_tol, t_end,
-        )  # fmt: skip
+            spec,
+            start.out.x,
+            start.system.V,
+            self.N,
+            self.m,
+            self.K,
+            self.tols.res_tol,
+            t_end,
+        )
         note = (
             f"plateau route from a start wave at V - V_SK = {start.system.V - v_sk:+.2g} to "
             f"V - V_SK = {spec.V - v_sk:+.2g}: {path.note}"

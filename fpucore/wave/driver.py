@@ -227,11 +227,17 @@ def _bounds(spec: Spec, done: Solved):
     if out.factorization is None:
         x = out.x
         ierr = pm.step_doubling_error(S.law, x[0::2], x[1::2], S.T, S.m, spec.w_left, spec.w_right)
-        e = renormalized_energy(S.law, x[0::2], x[1::2], S.V, spec.w_left, spec.w_right,
-                                spec.w_left) if solitary else math.nan  # fmt: skip
+        e = (
+            renormalized_energy(
+                S.law, x[0::2], x[1::2], S.V, spec.w_left, spec.w_right, spec.w_left
+            )
+            if solitary
+            else math.nan
+        )
         inf = math.inf
-        return wb.WaveBounds(inf, inf if solitary else 0.0, inf if solitary else math.nan, e,
-                             ierr, inf, inf, inf)  # fmt: skip
+        return wb.WaveBounds(
+            inf, inf if solitary else 0.0, inf if solitary else math.nan, e, ierr, inf, inf, inf
+        )
     return wb.error_bounds(S, out.x, out.factorization, solitary)
 
 
@@ -256,8 +262,10 @@ def crossing_note(spec: Spec, w: np.ndarray, wd: np.ndarray, m: int) -> str:
     if r.crossings == 0:
         return "; no breakpoint crossing in a period"
     scale = spec.V * max(spec.amplitude_qc, abs(spec.w_left - spec.w_right))
-    note = (f"; {r.crossings} breakpoint crossings located per period, smallest |wdot| at a "
-            f"crossing {r.crossing_speed:.3g}")  # fmt: skip
+    note = (
+        f"; {r.crossings} breakpoint crossings located per period, smallest |wdot| at a "
+        f"crossing {r.crossing_speed:.3g}"
+    )
     if r.crossing_speed < 1e-3 * scale:
         return note + " (near-tangential: the located map's order is not guaranteed there)"
     return note + " (transversal)"

@@ -57,8 +57,10 @@ class Family(Result):
         n, bad = len(self.results), [r for r in self.results if not r.converged]
         if not bad:
             return f"{n} waves converged"
-        return (f"{len(bad)} of {n} waves did not converge (first at V = {bad[0].V:.10g}: "
-                f"{bad[0].message})")  # fmt: skip
+        return (
+            f"{len(bad)} of {n} waves did not converge (first at V = {bad[0].V:.10g}: "
+            f"{bad[0].message})"
+        )
 
 
 def require_V_values(V_values) -> np.ndarray:

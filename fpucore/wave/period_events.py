@@ -122,9 +122,29 @@ def _earliest(w, w1, bps):
 
 @njit(cache=True, nogil=True)
 def _events_kernel(
-    w0, wd0, T, m, A, B, law_id, p, bps, w_left, w_right, periodic, locate, w, wd, work, counts,
-    store, hs, sl, nsub, speed,
-):  # fmt: skip
+    w0,
+    wd0,
+    T,
+    m,
+    A,
+    B,
+    law_id,
+    p,
+    bps,
+    w_left,
+    w_right,
+    periodic,
+    locate,
+    w,
+    wd,
+    work,
+    counts,
+    store,
+    hs,
+    sl,
+    nsub,
+    speed,
+):
     """Integrate over [0, T] with m nominal steps, restarting at located breakpoint crossings.
     work : (6, N) scratch rows; counts = [crossings located, largest |w − b| at them, times…].
     store (with locate): every sub-step taken, in order, as hs[k] (its size) and sl[k, n] (the
@@ -313,16 +333,42 @@ def integrate_events(
         speed = np.full(1, np.inf)
         hs, sl = np.empty(cap), np.empty((cap, N) if store else (1, 1))
         _events_kernel(
-            w0, wd0, T, m, tableau.A, tableau.B, law.law_id, law.params,
-            np.asarray(law.breakpoints, dtype=np.float64), w_left, w_right, bool(periodic),
-            bool(locate), w, wd, np.empty((6, N)), counts, store, hs, sl, nsub, speed,
-        )  # fmt: skip
+            w0,
+            wd0,
+            T,
+            m,
+            tableau.A,
+            tableau.B,
+            law.law_id,
+            law.params,
+            np.asarray(law.breakpoints, dtype=np.float64),
+            w_left,
+            w_right,
+            bool(periodic),
+            bool(locate),
+            w,
+            wd,
+            np.empty((6, N)),
+            counts,
+            store,
+            hs,
+            sl,
+            nsub,
+            speed,
+        )
         k = int(nsub[0])
         if not store or k <= cap:
             break
         cap = k  # deterministic: the same run again, with room for every sub-step
     return EventPeriodResult(
-        w, wd, int(counts[0]), T, m, float(counts[1]), counts[2 : 2 + int(counts[0])].copy(),
-        hs[:k].copy() if store else None, sl[:k, None, :].copy() if store else None,
+        w,
+        wd,
+        int(counts[0]),
+        T,
+        m,
+        float(counts[1]),
+        counts[2 : 2 + int(counts[0])].copy(),
+        hs[:k].copy() if store else None,
+        sl[:k, None, :].copy() if store else None,
         float(speed[0]),
-    )  # fmt: skip
+    )

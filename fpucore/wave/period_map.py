@@ -235,10 +235,10 @@ def integrate(
     if events is None:
         events = bool(getattr(law, "breakpoints", ()))
     if events:
-        e = integrate_events(law, w0, wd0, T, m, w_left, w_right, periodic, True, tableau,
-                             store_df)  # fmt: skip
-        return PeriodResult(e.w, e.wd, e.dfs, e.T, e.m, tableau, e.hs, e.crossings,
-                            e.crossing_speed)  # fmt: skip
+        e = integrate_events(law, w0, wd0, T, m, w_left, w_right, periodic, True, tableau, store_df)
+        return PeriodResult(
+            e.w, e.wd, e.dfs, e.T, e.m, tableau, e.hs, e.crossings, e.crossing_speed
+        )
     w0, wd0 = check_state(w0, wd0)
     T = require_finite("T", T)
     if T <= 0:
@@ -249,10 +249,26 @@ def integrate(
     w, wd = np.empty(N), np.empty(N)
     dfs = np.empty((m, s, N)) if store_df else np.empty((1, 1, 1))
     _rk_period_kernel(
-        w0, wd0, T, m, tableau.A, tableau.B, law.law_id, law.params, w_left, w_right,
-        bool(periodic), bool(store_df), w, wd, dfs, np.empty((s, N)), np.empty((s, N)),
-        np.empty(N), np.empty(N + 2),
-    )  # fmt: skip
+        w0,
+        wd0,
+        T,
+        m,
+        tableau.A,
+        tableau.B,
+        law.law_id,
+        law.params,
+        w_left,
+        w_right,
+        bool(periodic),
+        bool(store_df),
+        w,
+        wd,
+        dfs,
+        np.empty((s, N)),
+        np.empty((s, N)),
+        np.empty(N),
+        np.empty(N + 2),
+    )
     return PeriodResult(w, wd, dfs if store_df else None, T, m, tableau)
 
 

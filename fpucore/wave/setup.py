@@ -206,9 +206,14 @@ class Spec:
         """The chain (sites) on which the QC tails decay to within tail_tol (strain units) of
         the boundary states at both ends (:mod:`.tails`)."""
         L = wt.required_half_width(
-            self.law, self.V, self.qcw.profile, self.w_left, self.w_right, self.amplitude_qc,
+            self.law,
+            self.V,
+            self.qcw.profile,
+            self.w_left,
+            self.w_right,
+            self.amplitude_qc,
             tail_tol,
-        )  # fmt: skip
+        )
         return wt.auto_N(L)
 
     def auto_N(self, tol: float) -> int:
