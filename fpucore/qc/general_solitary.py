@@ -207,7 +207,7 @@ def solitary(
 
     kind = "tensile" if dM > 0 else "compressive"
     sw = QCSolitaryGeneral(
-        law,
+        law,  # type: ignore[arg-type]
         V,
         w_plus,
         wB,
@@ -220,7 +220,7 @@ def solitary(
         cp,
         cm,
         energy,
-        energy_err,  # type: ignore[arg-type]
+        energy_err,
         math.nan,
         0.0,
         wB_err,

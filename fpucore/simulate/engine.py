@@ -456,9 +456,9 @@ def _step_doubling(
             y,
             t,
             float(t_out[k]),
-            2.0 * cfg.dt,
+            2.0 * cfg.dt,  # type: ignore[operator]
             ctl,
-            chain,  # type: ignore[operator]
+            chain,
             work,
             obs,
             cfg.max_steps,
