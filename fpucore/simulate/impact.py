@@ -44,7 +44,7 @@ def velocity_jump(
     t_end: float,
     method: str = "rkn12",
     rtol: float = 1e-10,
-    boundary: str = "free",
+    boundary: str = "fixed_strain",
     n_snapshots: int = 200,
     max_sites_out: int = 1000,
     probes: Sequence[int] = (),
@@ -54,8 +54,8 @@ def velocity_jump(
 ) -> SimulationResult:
     """Riemann data with a velocity jump (module docstring): strains w_left | w_right as
     :func:`fpucore.simulate.riemann`, the particles j < L/2 moving with velocity ``v_left``, the
-    others at rest.  L even.  The end particle 0 moves, so ``boundary`` is "free" (default) or
-    "fixed_strain".  ``threshold`` (tracker) defaults to 2 % of max(|w_left − w_right|,
+    others at rest.  L even.  The end particle 0 moves, so ``boundary`` is "fixed_strain" (default:
+    the dead loads f(w_left), f(w_right) of a prestressed background) or "free".  ``threshold`` (tracker) defaults to 2 % of max(|w_left − w_right|,
     |v_left|).  Further keywords, parameters and the result as for
     :func:`fpucore.simulate.riemann`, and
 
