@@ -54,10 +54,10 @@ def velocity_jump(
 ) -> SimulationResult:
     """Riemann data with a velocity jump (module docstring): strains w_left | w_right as
     :func:`fpucore.simulate.riemann`, the particles j < L/2 moving with velocity ``v_left``, the
-    others at rest.  L even.  The end particle 0 moves, so ``boundary`` is "fixed_strain" (default:
-    the dead loads f(w_left), f(w_right) of a prestressed background) or "free".  ``threshold`` (tracker) defaults to 2 % of max(|w_left − w_right|,
-    |v_left|).  Further keywords, parameters and the result as for
-    :func:`fpucore.simulate.riemann`, and
+    others at rest.  L even.  The end particle 0 moves, so ``boundary`` is "fixed_strain"
+    (default: the dead loads f(w_left), f(w_right) hold a prestressed background) or "free".
+    ``threshold`` (tracker) defaults to 2 % of max(|w_left − w_right|, |v_left|).  Further
+    keywords, parameters and the result as for :func:`fpucore.simulate.riemann`, and
 
     Parameters
     ----------

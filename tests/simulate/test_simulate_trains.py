@@ -1,5 +1,6 @@
-"""Trains of compact solitary waves in the degenerate trilinear law's Riemann problem with a velocity
-jump (fpucore.simulate.impact.velocity_jump; tracked by fpucore.simulate.trains.track_train).
+"""Trains of compact solitary waves in the degenerate trilinear law's Riemann problem with a
+velocity jump (fpucore.simulate.impact.velocity_jump), tracked by
+fpucore.simulate.trains.track_train.
 
 References, independent of the simulation: every tracked wave against the EXPLICIT compact wave
 of the same measured V (fpucore.wave.compact, derived from eq. TW_discrete): its crest b + C,
