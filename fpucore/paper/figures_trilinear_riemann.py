@@ -34,7 +34,7 @@ FIG = "tri_riemann"
 
 
 def _sizes(reduced: bool) -> tuple[int, float]:
-    return (200, 60.0) if reduced else (800, 300.0)
+    return (200, 60.0) if reduced else (600, 200.0)
 
 
 def _crest_slope(V: float, h: float = 1e-6) -> float:

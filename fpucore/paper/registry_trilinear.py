@@ -37,7 +37,7 @@ _F = [
     ("tri_floquet", "Floquet", fw.fig_tri_floquet, 5.0,
      "Maximum modulus of the Floquet multipliers of trilinear superkinks against V at a modest N "
      "(64 reduced, 128 full), crossings located in the monodromy."),
-    ("tri_riemann", "simulation", fr.fig_tri_riemann, 3.0,
+    ("tri_riemann", "simulation", fr.fig_tri_riemann, 90.0,
      "The degenerate Riemann run, E₁ = 0: a velocity jump on w_B = 0.2 sends out periodic "
      "trains of compact solitary waves (a Whitham shock into the sonic vacuum), each wave the "
      "explicit compact wave of its measured V at spacing 2; (d) the data at rest w = 0.6 | 0: "
