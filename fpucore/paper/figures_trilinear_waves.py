@@ -84,7 +84,7 @@ def _compact_grid(reduced: bool) -> np.ndarray:
             else np.round(np.linspace(0.1, 0.85, 7) * vm, 4))  # fmt: skip
 
 
-SLOW_PROBE = 0.05  # the slowest: m = 128 steps per period, the largest; its status in the notes
+SLOW_PROBE = 0.09  # m = 128 steps per period (the largest in M_STEPS); its status in the notes
 
 
 def fig_tri_compact(reduced: bool):

@@ -24,7 +24,7 @@ def state(w, wd):
     return x
 
 
-@pytest.mark.parametrize("V", [0.05, 0.09, 0.15, 0.3, 0.5, 0.7])
+@pytest.mark.parametrize("V", [0.09, 0.15, 0.3, 0.5, 0.7])
 def test_degenerate_solitary_waves_are_the_explicit_compact_waves(V):
     r = F.wave.solve_solitary(DEGENERATE, WB, V)
     cw = compact_wave(DEGENERATE, V, WB)
