@@ -265,14 +265,10 @@ class Spec:
 
     def choose_m_floor(self, x: np.ndarray, int_tol: float, m_min: int = 6) -> int:
         """Smallest m in M_STEPS (≥ m_min) whose step-doubling error at x is ≤ max(int_tol,
-        FLOOR_FACTOR × round-off level of the map), and the next m's too: no more steps once
-        round-off dominates.  One m alone can pass by accident: on a zero-modulus regime a
-        bond's excursion through the hard regime lasts π/√(2E) (the compact wave's core), and
-        a step about that long gives m and 2m the same wrong map (measured at V = 0.15, m = 6:
-        estimate 5e-15, true error 1e-6, the next m's estimate 1e-6).  For a piecewise-linear
-        law the step is also kept below 1/ω_max, ω_max = 2√(max E) the highest frequency of
-        the stiffest regime's lattice (at V = 0.09 the estimates of m = 8 and 10 agree by
-        accident too)."""
+        FLOOR_FACTOR × round-off level of the map), and the next m's too; a PL law's step also
+        below 1/ω_max, ω_max = 2√(max E).  A step as long as a bond's passage through a regime
+        gives m and 2m the same wrong map by accident (a compact wave at V = 0.15, m = 6:
+        estimate 5e-15, true error 1e-6; at V = 0.09 m = 8 and 10 both agree)."""
         w, wd = x[0::2], x[1::2]
         T = 1.0 / self.V
         if hasattr(self.law, "slopes"):
