@@ -2,6 +2,9 @@
 
     fpu simulate riemann  --w-left 4.6 --w-right 0 --L 3600 --t-end 300 [--json]
     fpu simulate gaussian --w-B 1 --A 6 --L 2400 --t-end 200 --guard bounded [--json]
+    fpu simulate velocity-jump --law 'trilinear(w1=0.5, w2=1.5, E1=0, E2=4, E3=0.2)' \
+        --w-left 0.2 --w-right 0.2 --v-left -0.2 --L 200 --t-end 60 --guard bounded \
+        --probes 104 105 ... 115 --train right [--json]
     fpu simulate wave superkink --V 5.2 [--branch lower] [--periods 50] [--json]
     fpu simulate wave solitary --w-plus 1 --V 5 [--json]
 
@@ -119,6 +122,19 @@ def register(sub) -> None:
     _add_run_args(r)
     r.set_defaults(func=run_riemann)
 
+    j = ss.add_parser("velocity-jump", help="Riemann data with a velocity jump (an impact)")
+    j.add_argument("--w-left", type=float, required=True)
+    j.add_argument("--w-right", type=float, required=True)
+    j.add_argument("--v-left", type=float, required=True,
+                   help="velocity of the particles j < L/2 (the others at rest)")  # fmt: skip
+    j.add_argument("--L", type=int, required=True, help="number of sites (even)")
+    j.add_argument("--t-end", type=float, required=True)
+    j.add_argument("--train", choices=("right", "left"), default=None,
+                   help="track the train of waves moving that way (needs >= 4 --probes in it; "
+                        "a law with a zero-modulus regime)")  # fmt: skip
+    _add_run_args(j)
+    j.set_defaults(func=run_velocity_jump)
+
     g = ss.add_parser("gaussian", help="Gaussian data (eq. GaussIC)")
     g.add_argument("--w-B", type=float, required=True, help="background strain")
     g.add_argument("--A", type=float, required=True, help="signed amplitude")
@@ -201,6 +217,22 @@ def run_riemann(args) -> int:
     prog = _progress(args, law, args.L, args.t_end, kw["method"], kw["rtol"])
     s = simulate.riemann(law, args.w_left, args.w_right, args.L, args.t_end, progress=prog, **kw)
     return _emit(args, s)
+
+
+def run_velocity_jump(args) -> int:
+    from fpucore.simulate.impact import velocity_jump  # heavy: Numba
+    from fpucore.simulate.trains import track_train
+
+    law = law_from_args(args)
+    kw = _common(args, "fixed_strain", 1e-10)
+    prog = _progress(args, law, args.L, args.t_end, kw["method"], kw["rtol"])
+    s = velocity_jump(law, args.w_left, args.w_right, args.v_left, args.L, args.t_end,
+                      progress=prog, **kw)  # fmt: skip
+    extra = None
+    if args.train is not None:
+        tr = track_train(s, law, side=1 if args.train == "right" else -1)
+        extra = {"train": tr.as_dict() if args.json else tr.message}
+    return _emit(args, s, extra)
 
 
 def run_gaussian(args) -> int:

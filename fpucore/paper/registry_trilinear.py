@@ -7,14 +7,14 @@ entries as the paper's, computed by fpucore.paper.figures_trilinear and figures_
 
 The rows compare computed values with the trilinear closed forms (QC speeds, equal areas, the
 explicit compact waves of the E₁ = 0 case) or with a second method; there are no printed
-numbers to match, so ``printed`` holds the formula.  The degenerate Riemann run is not here
-(simulations of PL laws are a separate piece of work).
+numbers to match, so ``printed`` holds the formula.
 """
 
 from __future__ import annotations
 
 from fpucore.errors import ParameterError
 from fpucore.paper import figures_trilinear as ft
+from fpucore.paper import figures_trilinear_riemann as fr
 from fpucore.paper import figures_trilinear_waves as fw
 from fpucore.paper.figure import FigureResult
 from fpucore.paper.registry import Figure
@@ -37,6 +37,11 @@ _F = [
     ("tri_floquet", "Floquet", fw.fig_tri_floquet, 5.0,
      "Maximum modulus of the Floquet multipliers of trilinear superkinks against V at a modest N "
      "(64 reduced, 128 full), crossings located in the monodromy."),
+    ("tri_riemann", "simulation", fr.fig_tri_riemann, 90.0,
+     "The degenerate Riemann run, E₁ = 0: a velocity jump on w_B = 0.2 sends out periodic "
+     "trains of compact solitary waves (a Whitham shock into the sonic vacuum), each wave the "
+     "explicit compact wave of its measured V at spacing 2; (d) the data at rest w = 0.6 | 0: "
+     "a front followed by a modulated train of pulses."),
 ]  # fmt: skip
 
 FIGURES: dict[str, Figure] = {

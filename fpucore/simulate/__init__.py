@@ -7,7 +7,9 @@ layout (state vector, end conditions, status codes)  →  observer (events, prob
 allocating, output schedule)  →  messages (status text)  →  tracking (fronts and pulses in
 space–time)  →  engine (run_chain: the loop)  →  result (SimulationResult)
 →  scenarios (riemann, gaussian; the end conditions, methods, guards and budgets of every run)
-and seeded (a run seeded with a computed traveling wave, checked against it);
+and seeded (a run seeded with a computed traveling wave, checked against it); impact
+(velocity_jump: Riemann data with a velocity jump); trains (track_train: the trains of compact
+waves of a zero-modulus law, each wave with its velocity and crest);
 field (extreme_blocks: a field reduced for drawing with its extremes kept)
 """
 
@@ -20,16 +22,22 @@ from fpucore.simulate.config import (
     work_estimate,
 )
 from fpucore.simulate.field import Blocks, extreme_blocks
+from fpucore.simulate.impact import velocity_jump
 from fpucore.simulate.result import SimulationResult, TrackedWave
 from fpucore.simulate.scenarios import gaussian, riemann
 from fpucore.simulate.seeded import seeded, whole_periods
 from fpucore.simulate.steppers import METHODS
+from fpucore.simulate.trains import TrainResult, track_train, train_velocity
 
 __all__ = [
     "SimulationResult",
     "TrackedWave",
     "riemann",
     "gaussian",
+    "velocity_jump",
+    "track_train",
+    "train_velocity",
+    "TrainResult",
     "seeded",
     "extreme_blocks",
     "Blocks",

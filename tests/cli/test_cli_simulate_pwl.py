@@ -54,3 +54,32 @@ def test_a_method_without_event_location_is_refused_naming_method():
     )  # fmt: skip
     assert p.returncode == 2
     assert "method" in p.stderr and "event location" in p.stderr
+
+
+def test_velocity_jump_from_the_cli_tracks_the_train_of_compact_waves():
+    """`fpu simulate velocity-jump ... --train right`: the train's velocity against the mass
+    balance written out here, V δ/(1 − πV/(2√(2E₂))) = |v_left| (spacing 2), δ = w₁ − w_B."""
+    p = subprocess.run(
+        [sys.executable, "-m", "fpucore", "simulate", "velocity-jump", "--law", E1_ZERO,
+         "--w-left", "0.2", "--w-right", "0.2", "--v-left", "-0.2", "--L", "200", "--t-end", "60",
+         "--guard", "bounded", "--probes", *map(str, range(104, 116)), "--train", "right",
+         "--json"],
+        capture_output=True, text=True, timeout=900,
+    )  # fmt: skip
+    assert p.returncode == 0, p.stderr
+    tr = json.loads(p.stdout)["train"]
+    delta, q = 0.5 - 0.2, 0.2
+    V = q / (delta + q * 3.141592653589793 / (2 * 8**0.5))
+    assert tr["converged"] and tr["n_waves"] >= 8
+    assert abs(tr["velocity"] - V) <= tr["velocity_error"]
+    assert abs(tr["spacing"] - 2) <= tr["spacing_error"]
+
+
+def test_velocity_jump_bad_velocity_refused_naming_it():
+    p = subprocess.run(
+        [sys.executable, "-m", "fpucore", "simulate", "velocity-jump", "--law", E1_ZERO,
+         "--w-left", "0.2", "--w-right", "0.2", "--v-left", "nan", "--L", "64", "--t-end", "1",
+         "--guard", "bounded"],
+        capture_output=True, text=True, timeout=300,
+    )  # fmt: skip
+    assert p.returncode == 2 and "v_left" in p.stderr

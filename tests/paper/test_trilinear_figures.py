@@ -79,8 +79,8 @@ def test_bad_family_or_label_refused_by_name():
 def test_cli_lists_the_family(capsys):
     assert main(["paper", "--family", "trilinear", "--list"]) == 0
     lines = capsys.readouterr().out.strip().splitlines()
-    assert len(lines) == len(reg.LABELS) == 5
-    assert "tri_law" in lines[0] and "tri_floquet" in lines[-1]
+    assert len(lines) == len(reg.LABELS) == 6
+    assert "tri_law" in lines[0] and "tri_riemann" in lines[-1]
 
 
 def test_cli_writes_one_figure_with_its_rows(tmp_path, capsys):
@@ -97,6 +97,22 @@ def test_cli_writes_one_figure_with_its_rows(tmp_path, capsys):
     assert main(["paper", "--family", "trilinear", "--figure", "tri_law", "--reduced",
                  "--workers", "1", "--out", str(svg)]) == 0  # fmt: skip
     assert svg.stat().st_size > 10_000
+
+
+def test_the_degenerate_riemann_figure_tracks_the_train_and_writes(tmp_path):
+    """tri_riemann carries the train's rows (crest, velocity, spacing, count against the
+    explicit compact waves and the mass balance), not only the runs' energy rows, and
+    `fpu paper --family trilinear --figure tri_riemann --out x.html` writes it."""
+    r = reg.compute("tri_riemann", True)
+    rows = {c.quantity.split(" (")[0]: c for c in r.comparisons}
+    for q in ("crest of the train's waves", "train velocity V", "spacing of the train",
+              "waves in the right train"):  # fmt: skip
+        assert q in rows and rows[q].agrees, q
+    assert rows["waves in the right train"].ours >= 8
+    out = tmp_path / "x.html"
+    assert main(["paper", "--family", "trilinear", "--figure", "tri_riemann", "--reduced",
+                 "--workers", "1", "--out", str(out)]) == 0  # fmt: skip
+    assert "Bokeh" in out.read_text()
 
 
 @pytest.mark.parametrize(

@@ -8,6 +8,7 @@ import pytest
 
 import fpucore as F
 from fpucore.law import TrilinearLaw, law_from_expression
+from fpucore.wave import period_map
 from fpucore.wave.compact import compact_wave
 from fpucore.wave.setup import resize, superkink_spec
 from fpucore.wave.system import newton
@@ -23,7 +24,7 @@ def state(w, wd):
     return x
 
 
-@pytest.mark.parametrize("V", [0.3, 0.5, 0.7])
+@pytest.mark.parametrize("V", [0.09, 0.15, 0.3, 0.5, 0.7])
 def test_degenerate_solitary_waves_are_the_explicit_compact_waves(V):
     r = F.wave.solve_solitary(DEGENERATE, WB, V)
     cw = compact_wave(DEGENERATE, V, WB)
@@ -37,6 +38,19 @@ def test_degenerate_solitary_waves_are_the_explicit_compact_waves(V):
     # the compact support: sites beyond 1 + a are exactly the background
     far = np.abs(xi) > 1 + cw.a + 1e-9
     assert np.max(np.abs(r.w[far] - WB)) <= r.profile_error
+
+
+def test_the_step_count_is_not_fooled_by_a_step_as_long_as_the_core():
+    """At V = 0.15 a period of 6 steps lasts 1.11 ≈ π/√(2E₂), one bond's passage through the hard
+    regime, and the step-doubling estimate at m = 6 agrees by accident (5e-15): the chosen m must
+    give the exact compact wave's period-and-shift (w_n(T) = w_{n−1}(0)) to the tolerance."""
+    V, N, tol = 0.15, 64, 1e-12
+    cw = compact_wave(DEGENERATE, V, WB)
+    w, wd = cw.lattice(np.arange(N) - N // 2)
+    spec = F.wave.solitary_spec(DEGENERATE, WB, V)
+    m = spec.choose_m_floor(state(w, wd), tol)
+    r = period_map.integrate(DEGENERATE, w, wd, 1.0 / V, m, WB, WB)
+    assert np.max(np.abs(r.w[1:] - w[:-1])) <= 1e3 * tol
 
 
 def test_newton_reaches_the_compact_wave_from_another_velocitys_wave():
