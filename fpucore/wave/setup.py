@@ -270,17 +270,20 @@ class Spec:
 
     def choose_m_floor(self, x: np.ndarray, int_tol: float, m_min: int = 6) -> int:
         """Smallest m in M_STEPS (≥ m_min) whose step-doubling error at x is ≤ max(int_tol,
-        FLOOR_FACTOR × round-off level of the map), and the next m's too; a PL law's step also
-        below 1/ω_max, ω_max = 2√(max E).  A step as long as a bond's passage through a regime
-        gives m and 2m the same wrong map by accident (a compact wave at V = 0.15, m = 6:
-        estimate 5e-15, true error 1e-6; at V = 0.09 m = 8 and 10 both agree)."""
+        FLOOR_FACTOR × round-off level of the map).  A piecewise-linear law's m must also pass
+        with the next m, and its step stay below 1/ω_max, ω_max = 2√(max E): a step as long as
+        a bond's passage through a regime gives m and 2m the same wrong map by accident (a
+        compact wave at V = 0.15, m = 6: estimate 5e-15, true error 1e-6; at V = 0.09 m = 8
+        and 10 both agree).  Smooth laws keep the plain rule (their estimate is asymptotic)."""
         w, wd = x[0::2], x[1::2]
         T = 1.0 / self.V
-        if hasattr(self.law, "slopes"):
+        piecewise = hasattr(self.law, "slopes")
+        if piecewise:
             m_min = max(m_min, math.ceil(2.0 * T * math.sqrt(max(self.law.slopes))))
         ms = [m for m in M_STEPS if m >= m_min]
         for m, m_next in zip(ms, ms[1:] + [None]):
-            if all(self._doubling_ok(w, wd, T, k, int_tol) for k in (m, m_next) if k is not None):
+            checked = (m, m_next) if piecewise and m_next is not None else (m,)
+            if all(self._doubling_ok(w, wd, T, k, int_tol) for k in checked):
                 return m
         return M_STEPS[-1]
 
