@@ -8,7 +8,8 @@ Flow of this subpackage:
     banded Jacobian)  →  tails (N from the decay)  →  setup (Spec: the wave, its law and what
     derives from them: tolerances, N, m, K, the system, the predictor)  →  plateau
     (flat tops near V_SK)  →  continuation  →  attempt (one solve: tolerances, routes,
-    rescues)  →  bounds (error bounds, E_ren)  →  driver (solve_superkink / solve_solitary)
+    rescues)  →  bounds (error bounds, E_ren)  →  observables (particle velocities,
+    E_ren^D)  →  wave_result (WaveResult)  →  driver (solve_superkink / solve_solitary)
     →  family (families over V)
 
     r = wave.solve_superkink(law, V, branch="lower", N=None, tol=1e-12)
