@@ -8,7 +8,9 @@ function each)  →  multipliers (FloquetResult: spectrum = those steps, the fin
 and the verdict)
 →  checks (quartet symmetry, homogeneous closed form, phonon gap)  →  finite_size (is an
 excess |μ| − 1 an artefact of the finite ring?)  →  decision (the one Decision record and its
-words)  →  energy (extrema of E_ren(V) along solitary families, where stability may change)
+words)  →  energy_result  →  energy_extrema (extrema of E_ren(V) located from samples),
+energy_changes (a sweep's classes checked against them)  →  energy (the criterion along
+solitary families: where stability may change)
 
 Sweeps of max|μ| along V are one-row atlases and live in the atlas stage
 (:func:`fpucore.atlas.sweep`): this package imports nothing above it.

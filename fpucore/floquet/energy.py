@@ -22,18 +22,26 @@ intervals (c₊, V_SK) and (V_SK, c₋) are treated separately (E_ren diverges a
 
 from __future__ import annotations
 
-import math
 import time
-from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, ClassVar
+from typing import TYPE_CHECKING
 
 import numpy as np
-from scipy.optimize import minimize_scalar
 
 from fpucore import qc
 from fpucore.errors import ParameterError, require_finite
-from fpucore.floquet.finite_size import CLASSES
-from fpucore.result import Result
+from fpucore.floquet.energy_changes import (
+    QC_DISCRETE_ALLOWANCE,
+    StabilityChange,
+    changes_summary,
+    stability_changes,
+)
+from fpucore.floquet.energy_extrema import (
+    locate_extrema,
+    qc_energy_grid,
+    qc_interval_extrema,
+    wave_energy_error,
+)
+from fpucore.floquet.energy_result import EnergyCriterion
 from fpucore.wave import Family, solitary_family
 from fpucore.wave.family import require_V_values
 
@@ -42,136 +50,22 @@ if TYPE_CHECKING:
 
     from fpucore.law.base import HardeningSofteningLaw
 
+# public names, with those of its topic modules (callers import them from here)
+__all__ = [
+    "QC_SAMPLES",
+    "QC_DISCRETE_ALLOWANCE",
+    "EnergyCriterion",
+    "StabilityChange",
+    "changes_summary",
+    "criterion_from_samples",
+    "energy_criterion",
+    "locate_extrema",
+    "qc_energy_grid",
+    "stability_changes",
+    "wave_energy_error",
+]
+
 QC_SAMPLES = 400  # QC grid points per velocity interval (cubic: one vectorised closed form)
-_END_MARGIN = 1e-4  # relative distance from the interval ends (sonic / V_SK) on the QC grid
-
-
-@dataclass(frozen=True)
-class EnergyCriterion(Result):
-    """Extrema of E_ren(V) along a solitary-wave family, discrete and QC.
-
-    V, energy, energy_error : (n,) the discrete family (energy_error: the wave's own bound,
-    ``WaveResult.energy_error`` where present, else a residual-based indicator, see
-    :func:`wave_energy_error`); wave_converged : (n,) bool.
-    extrema_V, extrema_V_error, extrema_energy : (k,) located extrema of the discrete E_ren;
-    extrema_kind : ("min" | "max", …).
-    qc_V, qc_energy : (m,) the QC closed form on a grid over both intervals;
-    qc_extrema_V, qc_extrema_V_error, qc_extrema_energy, qc_extrema_kind : the same for E_ren^QC.
-    stability_may_change : True where any extremum was found (in the discrete family, or in the
-    QC family inside the sampled V range); the criterion is necessary, not sufficient.
-    location_error : the largest error bar on V of all extrema found (0 when none).
-    """
-
-    w_plus: float
-    V: np.ndarray
-    energy: np.ndarray
-    energy_error: np.ndarray
-    wave_converged: np.ndarray
-    extrema_V: np.ndarray
-    extrema_V_error: np.ndarray
-    extrema_energy: np.ndarray
-    extrema_kind: tuple
-    qc_V: np.ndarray
-    qc_energy: np.ndarray
-    qc_extrema_V: np.ndarray
-    qc_extrema_V_error: np.ndarray
-    qc_extrema_energy: np.ndarray
-    qc_extrema_kind: tuple
-    stability_may_change: bool
-    location_error: float
-    elapsed_s: float
-    converged: bool
-    message: str
-    family: Family | None = field(default=None, repr=False)
-
-    ERROR_FIELDS: ClassVar = ("location_error",)
-    DERIVED: ClassVar = ("status",)
-    EXCLUDE: ClassVar = ("family",)
-
-    @property
-    def status(self) -> str:
-        return "ok" if self.converged else "not_converged"
-
-
-def wave_energy_error(r) -> float:
-    """The wave's E_ren error bar: ``r.energy_error`` when the result carries one, else the
-    indicator N·δw·(1 + max|f(w)| + max|v|), δw = max(residual, tail_error, integrator_error)
-    (each of the N summands of eq. Eren_D moves by ≤ (|f| + |v|)·δw)."""
-    e = float(getattr(r, "energy_error", math.nan))
-    if math.isfinite(e):
-        return e
-    dw = max(float(r.residual), float(r.tail_error), float(r.integrator_error or 0.0))
-    scale = 1.0 + float(np.max(np.abs(r.law.f(r.w)))) + float(np.max(np.abs(r.v)))
-    return r.N * dw * scale
-
-
-def _vertex(v: np.ndarray, e: np.ndarray) -> tuple[float, float]:
-    """(V*, E″) of the parabola through three points."""
-    c2, c1, _ = np.polyfit(v - v[1], e, 2)
-    return float(v[1] - c1 / (2.0 * c2)), float(2.0 * c2)
-
-
-def locate_extrema(V: np.ndarray, E: np.ndarray, dE: np.ndarray) -> list[tuple]:
-    """Extrema of sampled E(V) (V ascending, one velocity interval): list of
-    (V*, δV*, E*, "min" | "max") from sign changes of successive differences (see module doc)."""
-    out = []
-    d = np.diff(E)
-    for i in range(1, V.size - 1):
-        if d[i - 1] == 0.0 or np.sign(d[i - 1]) == np.sign(d[i]):
-            continue
-        sl = slice(i - 1, i + 2)
-        v_star, e2 = _vertex(V[sl], E[sl])
-        alts = []
-        if i + 2 < V.size:
-            alts.append(_vertex(V[i : i + 3], E[i : i + 3])[0])
-        if i - 2 >= 0:
-            alts.append(_vertex(V[i - 2 : i + 1], E[i - 2 : i + 1])[0])
-        stencil = max((abs(a - v_star) for a in alts), default=float(V[i + 1] - V[i - 1]))
-        noise = 2.0 * math.sqrt(float(np.max(dE[sl])) / abs(e2)) if e2 != 0 else math.inf
-        e_star = float(np.polyval(np.polyfit(V[sl] - V[i], E[sl], 2), v_star - V[i]))
-        # kind from the curvature (a tie d[i] == 0 next to the extremum must not flip it)
-        out.append((v_star, stencil + noise, e_star, "min" if e2 > 0 else "max"))
-    return out
-
-
-def qc_energy_grid(law, w_plus: float, lo: float, hi: float, n: int):
-    """(V, E_ren^QC, its error bound) on n points of (lo, hi) (one velocity interval, the ends
-    moved in by _END_MARGIN of its width).  The cubic: all at once by the closed form
-    (:func:`fpucore.qc.solitary_closed_form`, the formulas of :func:`fpucore.qc.solitary`;
-    background w₊ below V_SK, w_S(V) above it); other laws point by point."""
-    span = hi - lo
-    V = np.linspace(lo + _END_MARGIN * span, hi - _END_MARGIN * span, n)
-    if qc.is_closed_form(law):
-        v_sk = qc.sound_speeds(law, w_plus)[1]
-        w_B = np.full_like(V, w_plus) if hi <= v_sk else qc.w_S(law, w_plus, V)
-        _, _, _, E, dE, ok = qc.solitary_closed_form(law, w_B, V)
-        if np.all(ok):
-            return V, np.asarray(E, float), np.asarray(dE, float)
-    sols = [qc.solitary(law, w_plus, float(v)) for v in V]
-    return V, np.array([s.energy for s in sols]), np.array([s.energy_error for s in sols])
-
-
-def _qc_interval(law, w_plus: float, lo: float, hi: float, n: int):
-    """QC grid on (lo, hi) and its refined extrema."""
-    V, E, dE = qc_energy_grid(law, w_plus, lo, hi, n)
-    ext = []
-    for v0, _, _, kind in locate_extrema(V, E, dE):
-        j = int(np.clip(np.searchsorted(V, v0), 1, V.size - 1))
-        a, b = float(V[max(j - 2, 0)]), float(V[min(j + 1, V.size - 1)])
-        sgn = 1.0 if kind == "min" else -1.0
-        res = minimize_scalar(
-            lambda v, s=sgn: s * qc.solitary(law, w_plus, v).energy,
-            bounds=(a, b),
-            method="bounded",
-            options={"xatol": 1e-12 * b},
-        )
-        h = 1e-3 * (b - a)
-        es = [qc.solitary(law, w_plus, float(res.x) + k * h).energy for k in (-1, 0, 1)]
-        e2 = (es[0] - 2 * es[1] + es[2]) / (h * h)
-        de = qc.solitary(law, w_plus, float(res.x)).energy_error
-        dv = 1e-12 * b + (2.0 * math.sqrt(de / abs(e2)) if e2 != 0 else math.inf)
-        ext.append((float(res.x), dv, float(es[1]), kind))
-    return V, E, ext
 
 
 def _check_qc_samples(qc_samples) -> None:
@@ -327,7 +221,7 @@ def criterion_from_samples(
             order = np.argsort(V[sel])
             ext += locate_extrema(V[sel][order], E[sel][order], dE[sel][order])
         if qc_samples:
-            gv, ge, ge_ext = _qc_interval(law, w_plus, lo, hi, int(qc_samples))
+            gv, ge, ge_ext = qc_interval_extrema(law, w_plus, lo, hi, int(qc_samples))
             qV.append(gv)
             qE.append(ge)
             qext += ge_ext
@@ -362,132 +256,4 @@ def criterion_from_samples(
         converged=n_bad == 0,
         message=msg,
         family=family,
-    )
-
-
-#: allowance on V (relative) when a QC extremum stands in for the discrete one: measured
-#: |V*_QC − V*_D| / V* ≈ 0.9 % on the soft family w₊ = −0.04 (tests/floquet/test_energy_criterion)
-QC_DISCRETE_ALLOWANCE = 0.02
-
-
-@dataclass(frozen=True)
-class StabilityChange:
-    """A change of the Floquet classification between two neighbouring velocities of one
-    velocity interval, across the stable/unstable line ("stable" and "finite_size" both mean
-    stable for the infinite chain).  explained : an extremum of E_ren lies in
-    [V_from, V_to] within its error bar (QC extrema also within QC_DISCRETE_ALLOWANCE·V*);
-    extremum_V : that extremum (NaN if none)."""
-
-    V_from: float
-    V_to: float
-    class_from: str
-    class_to: str
-    explained: bool
-    extremum_V: float
-
-
-def stability_changes(
-    law: HardeningSofteningLaw,
-    w_plus: float,
-    V: Sequence[float] | np.ndarray,
-    classification: Sequence[str],
-    criterion: EnergyCriterion,
-) -> list[StabilityChange]:
-    """Cross-check of a sweep's classifications (fpucore.atlas.sweep rows, any order) against
-    the energy criterion: every change across the stable/unstable line between neighbouring
-    classified velocities of one interval, and whether an extremum of E_ren explains it.  A
-    change no extremum explains is not a change of stability through the translation mode:
-    an oscillatory instability (a complex quartet needs no extremum) or a finite-size effect
-    the window did not resolve (paper §6: the spurious oscillatory instabilities), to be
-    checked at a larger N.  Returns a list of
-    :class:`StabilityChange`, in order of V.
-
-    Parameters
-    ----------
-    law : HardeningSofteningLaw
-        The spring law f(w).
-    w_plus : float
-        Strain w₊ of the solitary family.
-    V : array_like, shape (n,)
-        Velocities of the sweep's rows, sites per unit time.
-    classification : sequence of str, length n
-        Floquet class of each row (one of :data:`CLASSES`; others are ignored).
-    criterion : EnergyCriterion
-        The energy criterion of the same family (:func:`energy_criterion`).
-
-    Returns
-    -------
-    list of StabilityChange
-        Changes across the stable/unstable line, in order of V, per velocity interval.
-
-    Raises
-    ------
-    ParameterError
-        When ``w_plus`` is not finite, ``classification`` does not have one class per velocity,
-        or w₊ has no solitary family.
-    """
-    w_plus = require_finite("w_plus", w_plus)
-    V = np.atleast_1d(np.asarray(V, dtype=float))
-    cls = np.array([str(c) for c in classification])
-    if cls.size != V.size:
-        raise ParameterError("classification", cls.size, f"one class per velocity ({V.size})")
-    marks = [(v, dv) for v, dv in zip(criterion.extrema_V, criterion.extrema_V_error)]
-    marks += [
-        (v, dv + QC_DISCRETE_ALLOWANCE * abs(v))
-        for v, dv in zip(criterion.qc_extrema_V, criterion.qc_extrema_V_error)
-    ]
-    out = []
-    for lo, hi in qc.solitary_intervals(law, w_plus):
-        # an undetermined velocity has no class to change from or to
-        sel = (V > lo) & (V < hi) & np.isin(cls, CLASSES) & (cls != "undetermined")
-        order = np.argsort(V[sel])
-        v, c = V[sel][order], cls[sel][order]
-        for i in range(v.size - 1):
-            if (c[i] == "unstable") == (c[i + 1] == "unstable"):
-                continue
-            near = [x for x, dx in marks if v[i] - dx <= x <= v[i + 1] + dx]
-            x0 = float(near[0]) if near else math.nan
-            out.append(
-                StabilityChange(
-                    float(v[i]), float(v[i + 1]), str(c[i]), str(c[i + 1]), bool(near), x0
-                )
-            )
-    return out
-
-
-def changes_summary(changes: list[StabilityChange]) -> str:
-    """The cross-check of a sweep against the energy criterion in one line (plain text).
-
-    Parameters
-    ----------
-    changes : list of StabilityChange
-        The changes found by :func:`stability_changes`.
-
-    Returns
-    -------
-    str
-        One sentence: no change, or how many changes lie at an extremum of E_ren (with their V).
-    """
-    k = len(changes)
-    if k == 0:
-        return (
-            "No change between stable and unstable along the sweep: consistent with the "
-            "energy criterion."
-        )
-    at = [c for c in changes if c.explained]
-    what = f"{k} change{'s' if k > 1 else ''} of class across the stable/unstable line"
-    # an "unstable" row has passed the window test (present on every ring, converged), so an
-    # unexplained change is not called a finite-size effect: it is no change through the
-    # translation mode, and an oscillatory (complex-quartet) instability needs no extremum
-    other = (
-        "not through the translation mode (that needs dE_ren/dV = 0): an oscillatory "
-        "instability or an unresolved finite-size effect - check those rows at 2N"
-    )
-    if not at:
-        return f"{what}, none at an extremum of E_ren: {other}."
-    where = ", ".join(f"{c.extremum_V:.6g}" for c in at)
-    rest = k - len(at)
-    return (
-        f"{what}, {len(at)} at an extremum of E_ren (V = {where}): consistent with a change "
-        "of stability there" + (f"; {rest} elsewhere: {other}." if rest else ".")
     )

@@ -10,7 +10,8 @@ handle ``(law_id, params)`` that the Numba kernels in :mod:`.kernels` take.
     →  expression (text → law: a polynomial, else a smooth law)
     ·  smooth_parse (allow-listed AST → SymPy) → smooth_eval (closures: float, longdouble,
     mpmath) → smooth_class (α, β, w*) → chebyshev (the LAW_CHEB data and its measured error)
-    → smooth (SmoothLaw) → presets (the explorer's laws)
+    → smooth_build (class check, represented interval, representation) → smooth (SmoothLaw)
+    → presets (the explorer's laws)
     ·  piecewise (continuous piecewise-linear laws, the soft–hard–soft trilinear family)
 """
 

@@ -3,6 +3,7 @@ numerically for any hardening–softening law, the phase plane and the existence
 velocity–amplitude diagrams.  The modules, in import order::
 
     cubic_speeds (eqs. cplus, cubic_cond2, cminus_cubic, V_bounds_cubic, Rline, wS)
+    → first_integrals (eq. TW_QC_gen3: H(w, w′) and its residual on an orbit)
     → closed_forms (eqs. zero_G, cubic_cond1/2, SKsoln_cubic, SWsoln_cubic, E_ren)
     → general_roots (quadrature rules, cancellation-free integrals, bracketed roots)
     → general_speeds (c₊, V_SK, c₋, partner states, existence ranges)

@@ -45,154 +45,14 @@ from fpucore.qc.piecewise import (
     speeds,
     w_S,
 )
+from fpucore.qc.piecewise_arcs import (
+    Arc,
+    evaluate_arcs,
+    half_orbit,
+    orbit_moments,
+    orbit_potential,
+)
 from fpucore.result import Result, status_of
-
-
-def _P(law, wB: float, V2: float, w: float) -> float:
-    """P(w) = −∫_{w_B}^w (f − R): trapezoids between the breakpoints (exact for a PL law)."""
-    fB = float(law.f(wB))
-    g = lambda x: float(law.f(x)) - fB - V2 * (x - wB)  # noqa: E731
-    lo, hi = min(wB, w), max(wB, w)
-    pts = [lo, *[x for x in law._b if lo < x < hi], hi]
-    tot = sum(0.5 * (g(a) + g(c)) * (c - a) for a, c in zip(pts[:-1], pts[1:]))
-    return -tot if w >= wB else tot
-
-
-@dataclass(frozen=True)
-class Arc:
-    """One regime's arc: entry at ξ_a (level w_a, slope dw_a), exit at ξ_b (∞ for a tail)."""
-
-    j: int
-    lam: float
-    e: float
-    K: float
-    xi_a: float
-    xi_b: float
-    w_a: float
-    dw_a: float
-    w_b: float
-    dw_b: float
-    c: float = 0.0  # w″ on a λ = 0 arc
-
-    def w(self, s):
-        """w at ξ = ξ_a + s (s ≥ 0 within the arc)."""
-        u_a = self.w_a - self.e
-        if self.lam > 0:
-            r = math.sqrt(self.lam)
-            if math.isinf(self.xi_b):  # tail: pure decay
-                return self.e + u_a * np.exp(-r * s)
-            p, q = _pq(u_a, self.dw_a, r, self.K)
-            return self.e + (p * np.exp(r * s) - q * np.exp(-r * s)) / (2.0 * r)
-        if self.lam < 0:
-            nu = math.sqrt(-self.lam)
-            return self.e + u_a * np.cos(nu * s) + self.dw_a / nu * np.sin(nu * s)
-        return self.w_a + self.dw_a * s + 0.5 * self.c * s * s
-
-    def dw(self, s):
-        """w′ at ξ = ξ_a + s."""
-        u_a = self.w_a - self.e
-        if self.lam > 0:
-            r = math.sqrt(self.lam)
-            if math.isinf(self.xi_b):
-                return -r * u_a * np.exp(-r * s)
-            p, q = _pq(u_a, self.dw_a, r, self.K)
-            return 0.5 * (p * np.exp(r * s) + q * np.exp(-r * s))
-        if self.lam < 0:
-            nu = math.sqrt(-self.lam)
-            return -u_a * nu * np.sin(nu * s) + self.dw_a * np.cos(nu * s)
-        return self.dw_a + self.c * s
-
-
-def _pq(u: float, du: float, r: float, K: float) -> tuple[float, float]:
-    """(u′ + r u, u′ − r u), the one with equal signs evaluated, the other as K/it."""
-    if (du >= 0) == (u >= 0):
-        p = du + r * u
-        return p, (K / p if p != 0 else du - r * u)
-    q = du - r * u
-    return (K / q if q != 0 else du + r * u), q
-
-
-def _half_orbit(law, wB: float, V2: float, w0: float, target: float, turning=False) -> list[Arc]:
-    """Arcs from ξ = 0 at level w0 (w′ from Q, sign toward the target; exactly 0 at a turning
-    point, where Q(w0) is zero only to rounding and √Q would start the arc with a spurious
-    slope ~1e-8) to the limit ``target`` (a double zero of Q, approached exponentially)."""
-    d = 1.0 if target > w0 else -1.0
-    b = law._b
-    arcs: list[Arc] = []
-    xi, w_a = 0.0, w0
-    dw_a = 0.0 if turning else d * math.sqrt(max(24.0 * _P(law, wB, V2, w0) / V2, 0.0))
-    j = int(law.piece(w0)) - int(d < 0 and bool(np.any(b == w0)))  # a corner: the piece ahead
-    jt = int(law.piece(target))
-    fB = float(law.f(wB))
-    while True:
-        s = float(law._s[j])
-        lam = 12.0 * (V2 - s) / V2
-        if j == jt:  # the tail: e = target, K = 0 exactly
-            arcs.append(Arc(j, lam, target, 0.0, xi, math.inf, w_a, dw_a, target, 0.0))
-            return arcs
-        w_b = float(b[j] if d > 0 else b[j - 1])
-        Qb = 24.0 * _P(law, wB, V2, w_b) / V2
-        dw_b = d * math.sqrt(max(Qb, 0.0))
-        if s != V2:
-            g_b = float(law.f(w_b)) - fB - V2 * (w_b - wB)
-            e = w_b - g_b / (s - V2)
-            K = Qb - lam * (w_b - e) ** 2
-            if lam > 0:
-                r = math.sqrt(lam)
-                pa, qa = _pq(w_a - e, dw_a, r, K)
-                pb, qb = _pq(w_b - e, dw_b, r, K)
-                # u′ + r u ∝ e^{rξ}, u′ − r u ∝ e^{−rξ}: the larger pair decides
-                if min(abs(pa), abs(pb)) >= min(abs(qa), abs(qb)):
-                    dxi = math.log(pb / pa) / r
-                else:
-                    dxi = -math.log(qb / qa) / r
-            else:
-                nu = math.sqrt(-lam)
-                th_a = math.atan2(nu * (w_a - e), dw_a)
-                th_b = math.atan2(nu * (w_b - e), dw_b)
-                dxi = ((th_b - th_a) % (2 * math.pi)) / nu  # u′ + iνu ∝ e^{iνξ}
-            arcs.append(Arc(j, lam, e, K, xi, xi + dxi, w_a, dw_a, w_b, dw_b))
-        else:
-            dxi = 2.0 * (w_b - w_a) / (dw_a + dw_b)
-            c = (dw_b - dw_a) / dxi
-            arcs.append(Arc(j, 0.0, math.nan, 0.0, xi, xi + dxi, w_a, dw_a, w_b, dw_b, c))
-        xi, w_a, dw_a = xi + dxi, w_b, dw_b
-        j += 1 if d > 0 else -1
-
-
-def _moments(arcs: list[Arc], wB: float) -> tuple[float, float]:
-    """(∫(w − w_B) dξ, ∫(w − w_B)² dξ) over a half orbit, in closed form (module docstring)."""
-    m1 = m2 = 0.0
-    for a in arcs:
-        if math.isinf(a.xi_b):
-            r = math.sqrt(a.lam)
-            u = a.w_a - a.e
-            dl = a.e - wB
-            m1 += u / r + (0.0 if dl == 0 else math.inf)
-            m2 += u * u / (2 * r)
-            continue
-        L = a.xi_b - a.xi_a
-        if a.lam == 0.0:  # polynomial arc: 3-point Gauss–Legendre is exact to degree 5
-            x, wt = np.polynomial.legendre.leggauss(3)
-            y = np.array([a.w(0.5 * L * (1 + t)) for t in x]) - wB
-            m1 += 0.5 * L * float(np.dot(wt, y))
-            m2 += 0.5 * L * float(np.dot(wt, y * y))
-            continue
-        ua, ub = a.w_a - a.e, a.w_b - a.e
-        I1 = (a.dw_b - a.dw_a) / a.lam
-        I2 = (ub * a.dw_b - ua * a.dw_a - a.K * L) / (2 * a.lam)
-        dl = a.e - wB
-        m1 += dl * L + I1
-        m2 += dl * dl * L + 2 * dl * I1 + I2
-    return m1, m2
-
-
-def _evaluate(arcs: list[Arc], xi: np.ndarray, derivative: bool = False) -> np.ndarray:
-    out = np.empty_like(xi)
-    for a in arcs:
-        m = (xi >= a.xi_a) & (xi <= a.xi_b)
-        out[m] = (a.dw if derivative else a.w)(xi[m] - a.xi_a)
-    return out
 
 
 @dataclass(frozen=True)
@@ -237,12 +97,12 @@ class PLSolitary(Result):
     def profile(self, xi):
         """w(ξ) (even in ξ), vectorised."""
         xi = np.asarray(xi, dtype=float)
-        return _evaluate(list(self.arcs), np.abs(xi))
+        return evaluate_arcs(list(self.arcs), np.abs(xi))
 
     def dprofile(self, xi):
         """w′(ξ) (odd in ξ)."""
         xi = np.asarray(xi, dtype=float)
-        return np.sign(xi) * _evaluate(list(self.arcs), np.abs(xi), derivative=True)
+        return np.sign(xi) * evaluate_arcs(list(self.arcs), np.abs(xi), derivative=True)
 
     @property
     def converged(self) -> bool:
@@ -271,7 +131,7 @@ def _turning_point(law, wB: float, V2: float, d: float, count: int = 1):
         lo = b[j - 1] if j > 0 else -math.inf
         hi = b[j] if j < b.size else math.inf
         a = lo if d > 0 else hi
-        Qa = 24.0 * _P(law, wB, V2, a) / V2
+        Qa = 24.0 * orbit_potential(law, wB, V2, a) / V2
         s = float(law._s[j])
         ga = float(law.f(a)) - fB - V2 * (a - wB)
         if s == V2:  # Q linear: Q(a) − (24/V²) g (w − a)
@@ -309,18 +169,21 @@ def solitary(law, w_plus: float, V: float) -> PLSolitary:
     V2 = V * V
     d = 1.0 if wB < law.w_star else -1.0
     wM, wT = _turning_point(law, wB, V2, d, count=2)
-    arcs = _half_orbit(law, wB, V2, wM, wB, turning=True)
-    m1, m2 = _moments(arcs, wB)
+    arcs = half_orbit(law, wB, V2, wM, wB, turning=True)
+    m1, m2 = orbit_moments(arcs, wB)
     fB = float(law.f(wB))
     energy = 2.0 * ((V2 * wB + fB) * m1 + V2 * m2)
     energy_error = 64 * EPS * 2.0 * (abs((V2 * wB + fB) * m1) + V2 * m2)
     gamma = math.sqrt(12.0 * (V2 - float(law.df(wB))) / V2)
-    qs = max(24.0 * _P(law, wB, V2, a.w_a) / V2 for a in arcs) or 1.0
+    qs = max(24.0 * orbit_potential(law, wB, V2, a.w_a) / V2 for a in arcs) or 1.0
     res = (
-        max((abs(a.dw_a**2 - 24.0 * _P(law, wB, V2, a.w_a) / V2) for a in arcs[1:]), default=0.0)
+        max(
+            (abs(a.dw_a**2 - 24.0 * orbit_potential(law, wB, V2, a.w_a) / V2) for a in arcs[1:]),
+            default=0.0,
+        )
         / qs
     )
-    res = max(res, abs(_P(law, wB, V2, wM)) * 24.0 / V2 / qs)
+    res = max(res, abs(orbit_potential(law, wB, V2, wM)) * 24.0 / V2 / qs)
     return PLSolitary(
         law,
         V,
@@ -382,8 +245,8 @@ class PLSuperkink(EqualAreaChecked):
         xi = np.asarray(xi, dtype=float)
         out = np.empty_like(xi)
         pos = xi >= 0
-        out[pos] = _evaluate(list(self.arcs_plus), xi[pos])
-        out[~pos] = _evaluate(list(self.arcs_minus), -xi[~pos])
+        out[pos] = evaluate_arcs(list(self.arcs_plus), xi[pos])
+        out[~pos] = evaluate_arcs(list(self.arcs_minus), -xi[~pos])
         return out
 
     def dprofile(self, xi):
@@ -391,8 +254,8 @@ class PLSuperkink(EqualAreaChecked):
         xi = np.asarray(xi, dtype=float)
         out = np.empty_like(xi)
         pos = xi >= 0
-        out[pos] = _evaluate(list(self.arcs_plus), xi[pos], derivative=True)
-        out[~pos] = -_evaluate(list(self.arcs_minus), -xi[~pos], derivative=True)
+        out[pos] = evaluate_arcs(list(self.arcs_plus), xi[pos], derivative=True)
+        out[~pos] = -evaluate_arcs(list(self.arcs_minus), -xi[~pos], derivative=True)
         return out
 
 
@@ -402,8 +265,8 @@ def superkink(law, w_plus: float) -> PLSuperkink:
     sp = speeds(law, w_plus)
     V2 = sp.V_SK**2
     wc = 0.5 * (sp.w_plus + sp.w_minus)
-    ap = _half_orbit(law, sp.w_plus, V2, wc, sp.w_plus)
-    am = _half_orbit(law, sp.w_plus, V2, wc, sp.w_minus)
+    ap = half_orbit(law, sp.w_plus, V2, wc, sp.w_plus)
+    am = half_orbit(law, sp.w_plus, V2, wc, sp.w_minus)
     half = lambda w: math.sqrt(12.0 * (V2 - float(law.df(w)))) / (2.0 * sp.V_SK)  # noqa: E731
     fp, fm = float(law.f(sp.w_plus)), float(law.f(sp.w_minus))
     rr = abs(fp - fm - V2 * (sp.w_plus - sp.w_minus)) / max(abs(fp) + abs(fm), EPS)

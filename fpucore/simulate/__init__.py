@@ -5,7 +5,8 @@ layout (state vector, end conditions, status codes)  →  observer (events, prob
 (pwl_rkn: the RKN steppers with event location at a piecewise-linear law's breakpoints)
 →  steppers (the METHODS table)  →  config (validation, memory and work estimates before
 allocating, output schedule)  →  messages (status text)  →  tracking (fronts and pulses in
-space–time)  →  engine (run_chain: the loop)  →  result (SimulationResult)
+space–time)  →  observer_arrays (the observer allocated and finished), chain_energy (H per end
+condition)  →  engine (run_chain: the loop)  →  result (SimulationResult)
 →  scenarios (riemann, gaussian; the end conditions, methods, guards and budgets of every run)
 and seeded (a run seeded with a computed traveling wave, checked against it); impact
 (velocity_jump: Riemann data with a velocity jump); trains (track_train: the trains of compact

@@ -28,9 +28,11 @@ from fpucore.errors import ParameterError
 from fpucore.law import HardeningSofteningLaw, interval_note
 from fpucore.simulate import kernels as ck
 from fpucore.simulate import tracking
+from fpucore.simulate.chain_energy import ENERGY_NAME, energy_terms
 from fpucore.simulate.config import RunConfig, output_schedule, restoring_interval
-from fpucore.simulate.layout import Chain, Control, Observer
+from fpucore.simulate.layout import Chain, Control
 from fpucore.simulate.messages import Outcome, status_message
+from fpucore.simulate.observer_arrays import finalize_events, make_observer, null_observer
 
 ST_TIME_BUDGET = 6  # set here (between slices), never by a kernel
 _STATUS = {
@@ -48,95 +50,6 @@ SLICE_SITE_EVALS = 3e7
 
 
 # --------------------------------------------------------------------------- helpers
-def _energy_terms(law, y: np.ndarray, L: int, bc: str, fL: float, fR: float):
-    """(H, E_scale) for the state y; see the module docstring of scenarios for H per boundary."""
-    w = y[:L]
-    v = y[L : 2 * L + 1]
-    phi = law.phi(w)
-    kin = 0.5 * v * v
-    if bc == "fixed_particles":
-        kin = kin[1:-1]
-    terms = [kin.sum(), phi.sum()]
-    scale = float(np.abs(kin).sum() + np.abs(phi).sum())
-    if bc == "fixed_strain":
-        u0 = y[2 * L + 1]
-        lin = -fR * w.sum()
-        load = (fL - fR) * u0
-        terms += [lin, load]
-        scale += abs(lin) + abs(load)
-    return float(math.fsum(terms)), scale
-
-
-def finalize_events(y, L, thr, obs: Observer) -> None:
-    """Confirm the pending extremum candidate of every site if the strain has since moved away
-    from it by more than the prominence threshold (otherwise a wave that passed a site shortly
-    before the end, with no later opposite extremum, would be missed)."""
-    K = obs.ev_t.shape[1]
-    zz, ev_n = obs.zz, obs.ev_n
-    for n in np.nonzero(obs.zdir)[0]:
-        if ev_n[n] < K and abs(zz[0, n] - y[n]) > thr:
-            k = ev_n[n]
-            obs.ev_t[n, k], obs.ev_w[n, k], obs.ev_s[n, k] = obs.zt[n], zz[0, n], obs.zdir[n]
-            ev_n[n] += 1
-
-
-def _observer(
-    L: int, w0: np.ndarray, thr: float, level: float, n_events: int, probe_idx, probe_t
-) -> Observer:
-    zz = np.empty((3, L))  # per site: extremum candidate, running min, running max
-    zz[:] = w0
-    probe_out = np.full((probe_idx.size, probe_t.size), np.nan)
-    probe_out[:, 0] = w0[probe_idx]
-    return Observer(
-        thr,
-        level,
-        zz,
-        np.zeros(L),
-        np.zeros(L, np.int8),
-        np.full((L, n_events), np.nan),
-        np.full((L, n_events), np.nan),
-        np.zeros((L, n_events), np.int8),
-        np.zeros(L, np.int64),
-        np.full((L, 4), np.nan),
-        np.zeros((L, 4), np.int8),
-        np.zeros(L, np.int64),
-        probe_idx,
-        probe_t,
-        probe_out,
-        np.ones(1, np.int64),
-        np.zeros(8),
-    )
-
-
-def _null_observer(L: int) -> Observer:
-    """An observer that records nothing (infinite prominence, NaN level, no probes)."""
-    e = np.zeros((L, 1))
-    ei = np.zeros((L, 1), np.int8)
-    en = np.zeros(L, np.int64)
-    zz = np.zeros((3, L))
-    zz[1] = -np.inf
-    zz[2] = np.inf
-    return Observer(
-        np.inf,
-        np.nan,
-        zz,
-        np.zeros(L),
-        np.zeros(L, np.int8),
-        e,
-        e,
-        ei,
-        en,
-        e,
-        ei,
-        en,
-        np.zeros(0, np.int64),
-        np.zeros(0),
-        np.zeros((0, 0)),
-        np.zeros(1, np.int64),
-        np.zeros(8),
-    )
-
-
 def _advance(
     stepper,
     state,
@@ -252,13 +165,13 @@ def run_chain(
     y[L : 2 * L + 1] = v0
     thr_ev = 0.5 * threshold
     level = float(law.w_star) if level is None else float(level)
-    obs = _observer(
+    obs = make_observer(
         L, w0, thr_ev, level, cfg.n_events, cfg.probe_idx, np.linspace(0.0, t_end, cfg.n_probe_t)
     )
     snaps = np.full((sch.t_out.size, site_idx.size), np.nan)
     snaps[0] = w0[site_idx]
     energy = np.full(sch.t_out.size, np.nan)
-    H0, E_scale = _energy_terms(law, y, L, boundary, fL, fR)
+    H0, E_scale = energy_terms(law, y, L, boundary, fL, fR)
     energy[0] = H0
     trk_w = np.full((sch.t_trk.size, L), np.nan)
     ext_w = np.full((sch.t_extra.size, L), np.nan)
@@ -297,7 +210,7 @@ def run_chain(
         if key in sch.out:
             k = sch.out[key]
             snaps[k] = y[site_idx]
-            energy[k] = _energy_terms(law, y, L, boundary, fL, fR)[0]
+            energy[k] = energy_terms(law, y, L, boundary, fL, fR)[0]
         if key in sch.trk:
             trk_w[sch.trk[key]] = y[:L]
         if key in sch.ext:
@@ -385,7 +298,7 @@ def run_chain(
         energy=energy,
         energy_drift=drift,
         energy_drift_abs=drift_abs,
-        energy_name=_ENERGY_NAME[boundary],
+        energy_name=ENERGY_NAME[boundary],
         error_estimate=err_est,
         n_steps=int(stats[0]),
         n_rejected=int(stats[1]),
@@ -423,16 +336,6 @@ def run_chain(
     return res, internals
 
 
-_ENERGY_NAME = {
-    "fixed_particles": "H = sum_{j=1}^{L-1} v_j^2/2 + sum_n Phi(w_n) (end particles at rest)",
-    "free": "H = sum_{j=0}^{L} v_j^2/2 + sum_n Phi(w_n)",
-    "fixed_strain": (
-        "H = sum_{j=0}^{L} v_j^2/2 + sum_n [Phi(w_n) - f(w_right) w_n] "
-        "+ (f(w_left) - f(w_right)) u_0 (dead-load potential included)"
-    ),
-}
-
-
 def _step_doubling(
     law, w0, v0, t_out, chain: Chain, cfg: RunConfig, snaps, site_idx, deadline: Deadline
 ) -> tuple[float, int]:
@@ -445,7 +348,7 @@ def _step_doubling(
     stepper = cfg.stepper
     _, work, _ = stepper.start(law, y, chain, cfg)
     ctl = Control(cfg.rtol, cfg.atol, law.alpha, law.beta)
-    obs = _null_observer(L)
+    obs = null_observer(L)
     slice_steps = _slice_steps(stepper, L)
     worst = 0.0
     t = 0.0

@@ -4,11 +4,13 @@ Flow of this subpackage:
 
     period_map (RK integration over one period, tangent columns; a piecewise-linear law's
     period through period_events: crossings located, tangent on the same sub-steps; its
-    explicit compact waves: compact)  →  system (Newton system,
-    banded Jacobian)  →  tails (N from the decay)  →  setup (Spec: the wave, its law and what
-    derives from them: tolerances, N, m, K, the system, the predictor)  →  plateau
-    (flat tops near V_SK)  →  continuation  →  attempt (one solve: tolerances, routes,
-    rescues)  →  bounds (error bounds, E_ren)  →  driver (solve_superkink / solve_solitary)
+    explicit compact waves: compact)  →  system (Newton system, banded Jacobian)  →  tails
+    (N from the decay, resize)  →  tolerances (strain scale, Tolerances)  →  setup (Spec: the
+    wave, its law and what derives from them: tolerances, N, m, K, the system, the predictor)
+    →  plateau_newton (the bordered Newton system in plateau mass)  →  plateau (flat tops
+    near V_SK)  →  continuation  →  attempt (one solve: tolerances, routes, rescues)
+    →  bounds (error bounds, E_ren)  →  observables (particle velocities, E_ren^D)
+    →  wave_result (WaveResult)  →  driver (solve_superkink / solve_solitary)
     →  family (families over V)
 
     r = wave.solve_superkink(law, V, branch="lower", N=None, tol=1e-12)

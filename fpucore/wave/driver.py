@@ -20,8 +20,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass
-from typing import TYPE_CHECKING, ClassVar
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -30,12 +29,13 @@ from fpucore.budget import require_time_budget
 from fpucore.errors import ParameterError, require_finite, require_int, require_tol
 from fpucore.law import require_law
 from fpucore.parallel.threads import on_budget
-from fpucore.result import Result, status_of
 from fpucore.wave import bounds as wb
 from fpucore.wave import period_map as pm
 from fpucore.wave import tails as wt
 from fpucore.wave.attempt import Solved, WaveSolve
+from fpucore.wave.observables import particle_velocities, renormalized_energy
 from fpucore.wave.setup import Spec, solitary_spec, superkink_spec
+from fpucore.wave.wave_result import WaveResult
 
 if TYPE_CHECKING:
     from collections.abc import Callable
@@ -43,178 +43,11 @@ if TYPE_CHECKING:
     from fpucore.law.base import HardeningSofteningLaw
 
 
-@dataclass(frozen=True)
-class WaveResult(Result):
-    """A discrete traveling wave at t = 0 and its error budget.
-
-    kind : "superkink" | "tensile" | "compressive".  V : velocity.  N : sites n = −N/2 … N/2−1.
-    n : (N,) int64 site indices; w, wdot : (N,) w_n(0), ẇ_n(0).  w_left, w_right : the fixed
-    boundary strains w_{−N/2−1}, w_{N/2} (eq. fixedBCs).  w_plus : state ahead (the superkink's
-    w₊ for solitary waves, whose background is w_B = w_left = w_right).
-    residual : max-norm of eq. nonlin_system; dropped_residual : |ẇ_{N/2}(T) − ẇ_{N/2−1}(0)|.
-    profile_error : a-posteriori BOUND on max_n |w_n(0) − w_n*(0)| against the exact traveling
-    wave of the infinite chain with the same pinning (Newton stopping point and RK error through
-    J⁻¹, round-off through ‖J⁻¹‖, truncation by N: :mod:`fpucore.wave.bounds`).
-    amplitude_error, energy_error : bounds on |Δ amplitude|, |Δ E_ren^D| derived the same way
-    (solitary waves; a superkink's amplitude |w₋ − w₊| is exact: 0; its energy_error is NaN like
-    its energy).  residual_floor : the round-off level of the residual (× FLOOR_FACTOR) that
-    Newton accepted when it exceeded tol·scale (stiff laws) — the achievable tolerance.
-    tail_error : |w − w_∞|, |ẇ| at the 3 outermost sites per end (truncation by finite N).
-    integrator_error : step-doubling |Φ_m − Φ_2m| at the solution (m RK steps per period).
-    jacobian_truncation : largest tangent-window edge value (neglected Jacobian entries < it).
-    amplitude : |w(0) − w_B| (solitary, paper's w_amp) or |w_left − w_right| (superkink).
-    energy : E_ren^D of eq. Eren_D (solitary waves; NaN for superkinks, whose two backgrounds
-    differ).  qc_max_deviation : max_n |w_n − w_QC(n)|.  route : how it converged.
-    """
-
-    kind: str
-    V: float
-    N: int
-    n: np.ndarray
-    w: np.ndarray
-    wdot: np.ndarray
-    w_left: float
-    w_right: float
-    w_plus: float
-    law: HardeningSofteningLaw
-    residual: float
-    dropped_residual: float
-    converged: bool
-    iterations: int
-    residual_history: tuple
-    elapsed_s: float
-    message: str
-    amplitude: float
-    energy: float
-    qc_max_deviation: float
-    tail_error: float
-    integrator_error: float
-    jacobian_truncation: float
-    profile_error: float
-    amplitude_error: float
-    energy_error: float
-    residual_floor: float
-    m: int
-    K: int
-    jacobian: str
-    route: str
-    v: np.ndarray
-    branch: str | None = None
-    front_uncertainty: float = math.nan  # sites; flat-top waves near V_SK only (wave_plateau)
-
-    ERROR_FIELDS: ClassVar = (
-        "residual",
-        "dropped_residual",
-        "tail_error",
-        "integrator_error",
-        "jacobian_truncation",
-        "profile_error",
-        "amplitude_error",
-        "energy_error",
-    )
-    DERIVED: ClassVar = ("status",)
-
-    @property
-    def status(self) -> str:
-        return status_of(self.converged)
-
-    @property
-    def T(self) -> float:
-        return 1.0 / self.V
-
-    def errors(self) -> dict[str, float]:
-        """The error fields that apply to this wave: a superkink has no E_ren^D (two different
-        backgrounds), so its energy_error (NaN, like its energy) is left out."""
-        out = Result.errors(self)
-        if self.kind == "superkink":
-            del out["energy_error"]
-        return out
-
-    def as_dict(self, profile: bool = True, arrays: bool | None = None) -> dict:  # type: ignore[override]
-        """Every field (see :meth:`fpucore.result.Result.as_dict`); ``profile=False`` leaves out the
-        arrays n, w, wdot, v."""
-        return Result.as_dict(self, arrays=profile if arrays is None else arrays)
-
-
 # =============================================================================== solver core
 def _solve(spec: Spec, N, tol, jacobian, max_iter, time_budget_s, predictor=None):
     t0 = time.perf_counter()
     done = WaveSolve(spec, N, tol, jacobian, max_iter, time_budget_s, predictor).solve()
     return _result(spec, done, jacobian, tol, t0)
-
-
-def particle_velocities(w: np.ndarray, wdot: np.ndarray, V: float, w_left: float) -> np.ndarray:
-    """Particle velocities v_n(0) for n = −N/2−1 … N/2−1 (N+1 values) of a traveling wave.
-
-    Derivation: eq. FPUsystem gives ẇ_n = v_n − v_{n−1} at every t, so at t = 0::
-
-        v_n = v_{−N/2−1} + Σ_{k=−N/2}^{n} ẇ_k(0).
-
-    The boundary strain w_{−N/2−1} is held fixed, so particle −N/2−1 moves with the constant
-    far-field velocity v_−.  The traveling-wave ansatz u_n(t) = U(n − Vt) gives v = −V U′ and
-    w(ξ) = U(ξ) − U(ξ−1), which fixes v only up to a Galilean constant; the Rankine–Hugoniot
-    condition (eq. RHconds) −V(w₊ − w₋) = v₊ − v₋ holds for v_± = −V w_±, the normalisation the
-    paper's renormalisation (−½V² w_B², eqs. Eren_QC, Eren_D) assumes.  Hence
-    v_{−N/2−1} = −V w_left; the other end then returns v_{N/2−1} ≈ −V w_right up to the tail
-    error (checked in tests).
-
-    Parameters
-    ----------
-    w : ndarray, shape (N,)
-        Strains w_n(0) of the wave, n = −N/2 … N/2−1 (``WaveResult.w``).
-    wdot : ndarray, shape (N,)
-        Strain rates ẇ_n(0), per unit time (``WaveResult.wdot``).
-    V : float
-        Wave velocity, sites per unit time.
-    w_left : float
-        Boundary strain w_{−N/2−1} (far field behind the wave, w₋ or w_B).
-
-    Returns
-    -------
-    ndarray, shape (N+1,)
-        Particle velocities v_n(0), n = −N/2−1 … N/2−1, normalised by v_{−N/2−1} = −V w_left.
-    """
-    v = np.empty(w.size + 1)
-    v[0] = -V * w_left
-    v[1:] = v[0] + np.cumsum(wdot)
-    return v
-
-
-def renormalized_energy(
-    law: HardeningSofteningLaw,
-    w: np.ndarray,
-    wdot: np.ndarray,
-    V: float,
-    w_left: float,
-    w_right: float,
-    w_B: float,
-) -> float:
-    """E_ren^D (eq. Eren_D): Σ_n {½v_n² + ½(Φ(w_n) + Φ(w_{n+1})) − Φ(w_B) − ½V²w_B²} over the
-    particles n = −N/2−1 … N/2−1 (particle n sits between springs w_n and w_{n+1}), summed
-    relative to the background with the far field beyond the chain added
-    (:func:`fpucore.wave.bounds.energy`; solitary waves, w_left = w_right = w_B).
-
-    Parameters
-    ----------
-    law : HardeningSofteningLaw
-        The spring law f(w), with potential Φ.
-    w : array_like, shape (N,)
-        Strains w_n(0) of the wave.
-    wdot : array_like, shape (N,)
-        Strain rates ẇ_n(0), per unit time.
-    V : float
-        Wave velocity, sites per unit time.
-    w_left, w_right : float
-        Boundary strains (equal to w_B for a solitary wave; ``w_right`` is not used by the sum).
-    w_B : float
-        Background strain the energy is measured against.
-
-    Returns
-    -------
-    float
-        E_ren^D, nondimensional energy (eq. Eren_D).
-    """
-    return wb.energy(law, np.asarray(w, float), np.asarray(wdot, float), V, w_B)[0]
 
 
 def _bounds(spec: Spec, done: Solved):

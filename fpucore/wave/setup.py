@@ -24,13 +24,15 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from fpucore import qc
-from fpucore.errors import ParameterError, fmt_interval, require_finite
+from fpucore.errors import ParameterError, fmt_interval
 from fpucore.law import require_law
 from fpucore.law.scale import require_discrete
 from fpucore.wave import period_map as pm
 from fpucore.wave import tails as wt
 from fpucore.wave.compact import compact_wave
 from fpucore.wave.system import WaveSystem
+from fpucore.wave.tails import fmt_N, resize
+from fpucore.wave.tolerances import FLOOR_FACTOR, Tolerances, strain_scale
 
 if TYPE_CHECKING:
     from collections.abc import Callable
@@ -39,29 +41,6 @@ if TYPE_CHECKING:
 
 M_STEPS = (6, 8, 10, 12, 14, 16, 20, 24, 32, 40, 48, 64, 80, 96, 128)
 """Candidate RK steps per period, tried in order by :meth:`Spec.choose_m`."""
-FLOOR_FACTOR = 4.0  # accept residuals / step-doubling errors up to this × the round-off level
-
-
-def strain_scale(w_left: float, w_right: float) -> float:
-    """s = max(1, |w_left|, |w_right|): the round-off of eq. nonlin_system grows with |w|, so
-    every tolerance of a solve is relative to s (:class:`Tolerances`).
-
-    Parameters
-    ----------
-    w_left, w_right : float
-        Boundary strains of the wave.
-
-    Returns
-    -------
-    float
-        The strain scale s >= 1.
-
-    Raises
-    ------
-    ParameterError
-        When ``w_left`` or ``w_right`` is not finite.
-    """
-    return max(1.0, abs(require_finite("w_left", w_left)), abs(require_finite("w_right", w_right)))
 
 
 @dataclass(frozen=True)
@@ -405,68 +384,3 @@ def solitary_spec(law: HardeningSofteningLaw, w_plus: float, V: float) -> Spec:
     require_discrete(require_law(law))
     sw = qc.solitary(law, w_plus, V)  # validates w_plus and V
     return Spec(law, sw.kind, sw.V, sw.w_B, sw.w_B, sw.w_plus, "wd", 0.0, sw, sw.amplitude, None)
-
-
-def resize(x: np.ndarray, N_old: int, N_new: int, w_left: float, w_right: float) -> np.ndarray:
-    """Re-centre an interleaved state on a chain of N_new sites (pad with the tail states).
-
-    Parameters
-    ----------
-    x : ndarray, shape (2 N_old,)
-        Interleaved state (w_n, ẇ_n) on N_old sites, n = −N_old/2 … N_old/2−1.
-    N_old, N_new : int
-        Site counts of ``x`` and of the result.
-    w_left, w_right : float
-        Strains given to new sites left (n < 0) and right (n >= 0) of the old chain; their ẇ is 0.
-
-    Returns
-    -------
-    ndarray, shape (2 N_new,)
-        The interleaved state on N_new sites, aligned on site n = 0.
-    """
-    n_new = np.arange(N_new) - N_new // 2
-    y = np.empty(2 * N_new)
-    y[0::2] = np.where(n_new < 0, w_left, w_right)
-    y[1::2] = 0.0
-    idx = n_new + N_old // 2
-    ok = (idx >= 0) & (idx < N_old)
-    y[0::2][ok] = x[0::2][idx[ok]]
-    y[1::2][ok] = x[1::2][idx[ok]]
-    return y
-
-
-def fmt_N(N: int) -> str:
-    return str(N) if N < 10**9 else "unbounded"
-
-
-@dataclass(frozen=True)
-class Tolerances:
-    """Every tolerance of one solve (absolute unless said), from the user's relative ``tol``.
-
-    Its fields::
-
-        scale     strain scale s = max(1, |w_left|, |w_right|) (:func:`strain_scale`): round-off of
-                  eq. nonlin_system grows with |w| (b = 100 or a = −0.01 stagnate at ~3e-14·s).
-        res_tol   Newton accepts max-norm residual ≤ res_tol = tol·s (raised to the round-off
-                  level of the system where that is larger: see :class:`.attempt.WaveSolve`).
-        step_tol  Newton keeps stepping until its next correction (strain units, max(|δw|, T|δẇ|))
-                  is ≤ step_tol = tol·s, or the corrections stop shrinking (round-off).
-        int_tol   step count m: step-doubling error of the period map ≤ int_tol = tol·s.
-        tail_tol  automatic N: the tails decay to tail_tol = 0.1·tol·s at the chain's ends.
-        tail_ok   a converged wave whose tails miss the boundary states by more than
-                  1e-5·A_QC + 1e3·tol·s is another wave (rejected).
-    """
-
-    tol: float
-    scale: float
-    res_tol: float
-    step_tol: float
-    int_tol: float
-    tail_tol: float
-    tail_ok: float
-
-    @classmethod
-    def of(cls, spec: Spec, tol: float) -> Tolerances:
-        s = spec.scale
-        t = tol * s
-        return cls(tol, s, t, t, t, 0.1 * t, 1e-5 * spec.amplitude_qc + 1e3 * t)

@@ -8,7 +8,8 @@ which has a real root λ > 0 exactly when the wave is supersonic, V² > f′(w_�
 rate, λ_QC² = 12 (V² − c²)/c², is its small-λ approximation and overestimates it).  The chain must
 reach from the core of the wave (taken from the QC profile) to where the tail has decayed to the
 requested tolerance; the waves widen without bound near V_SK (plateau) and near the sonic limits
-(λ → 0), so N is chosen per wave rather than fixed.
+(λ → 0), so N is chosen per wave rather than fixed; a state is moved to another N by
+:func:`resize` (padded with the tail states).
 """
 
 from __future__ import annotations
@@ -96,3 +97,36 @@ def tail_error(w: np.ndarray, wd: np.ndarray, w_left: float, w_right: float, k: 
             np.max(np.abs(wd[-k:])),
         )
     )
+
+
+def resize(x: np.ndarray, N_old: int, N_new: int, w_left: float, w_right: float) -> np.ndarray:
+    """Re-centre an interleaved state on a chain of N_new sites (pad with the tail states).
+
+    Parameters
+    ----------
+    x : ndarray, shape (2 N_old,)
+        Interleaved state (w_n, ẇ_n) on N_old sites, n = −N_old/2 … N_old/2−1.
+    N_old, N_new : int
+        Site counts of ``x`` and of the result.
+    w_left, w_right : float
+        Strains given to new sites left (n < 0) and right (n >= 0) of the old chain; their ẇ is 0.
+
+    Returns
+    -------
+    ndarray, shape (2 N_new,)
+        The interleaved state on N_new sites, aligned on site n = 0.
+    """
+    n_new = np.arange(N_new) - N_new // 2
+    y = np.empty(2 * N_new)
+    y[0::2] = np.where(n_new < 0, w_left, w_right)
+    y[1::2] = 0.0
+    idx = n_new + N_old // 2
+    ok = (idx >= 0) & (idx < N_old)
+    y[0::2][ok] = x[0::2][idx[ok]]
+    y[1::2][ok] = x[1::2][idx[ok]]
+    return y
+
+
+def fmt_N(N: int) -> str:
+    """A site count as the messages print it ("unbounded" from 10⁹ on)."""
+    return str(N) if N < 10**9 else "unbounded"

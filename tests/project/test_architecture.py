@@ -66,7 +66,7 @@ LATE_OK: set[tuple[str, str]] = {
         "fpucore/law/smooth.py",
         "from fpucore.law.smooth_eval import UnsupportedNode, diagnose, to_node",
     ),
-    ("fpucore/law/smooth.py", "import mpmath"),
+    ("fpucore/law/smooth_build.py", "import mpmath"),
     ("fpucore/law/chebyshev.py", "import mpmath"),
     ("fpucore/law/smooth_class.py", "import mpmath"),
     ("fpucore/law/smooth_class.py", "from scipy.optimize import brentq"),
