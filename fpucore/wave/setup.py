@@ -256,9 +256,10 @@ class Spec:
         and 10 both agree).  Smooth laws keep the plain rule (their estimate is asymptotic)."""
         w, wd = x[0::2], x[1::2]
         T = 1.0 / self.V
-        piecewise = hasattr(self.law, "slopes")
+        slopes = getattr(self.law, "slopes", None)
+        piecewise = slopes is not None
         if piecewise:
-            m_min = max(m_min, math.ceil(2.0 * T * math.sqrt(max(self.law.slopes))))
+            m_min = max(m_min, math.ceil(2.0 * T * math.sqrt(max(slopes))))
         ms = [m for m in M_STEPS if m >= m_min]
         for m, m_next in zip(ms, ms[1:] + [None]):
             checked = (m, m_next) if piecewise and m_next is not None else (m,)
