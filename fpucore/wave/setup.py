@@ -258,7 +258,7 @@ class Spec:
         T = 1.0 / self.V
         slopes = getattr(self.law, "slopes", None)
         piecewise = slopes is not None
-        if piecewise:
+        if slopes is not None:
             m_min = max(m_min, math.ceil(2.0 * T * math.sqrt(max(slopes))))
         ms = [m for m in M_STEPS if m >= m_min]
         for m, m_next in zip(ms, ms[1:] + [None]):
