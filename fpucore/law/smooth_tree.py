@@ -14,6 +14,8 @@ float64), ``"long"`` (NumPy longdouble) or ``"mp"`` (mpmath at the current preci
 
 from __future__ import annotations
 
+import decimal
+
 import numpy as np
 
 _NP = {
@@ -24,6 +26,14 @@ _NP = {
     "cosh": np.cosh,
     "atan": np.arctan,
 }
+
+
+def _ratio(dt, p: int, q: int):
+    """p/q in ``dt``.  An exact rational of thousands of digits (e.g. 1.000…01**131 simplified)
+    is divided in 40-digit decimal: ``str`` of an int over 4300 digits raises ValueError."""
+    if max(abs(p).bit_length(), abs(q).bit_length()) < 3000:
+        return dt(str(p)) / dt(str(q))
+    return dt(str(decimal.Context(prec=40).divide(decimal.Decimal(p), decimal.Decimal(q))))
 
 
 def compile_node(node: tuple, values: dict, backend: str):
@@ -47,7 +57,7 @@ def compile_node(node: tuple, values: dict, backend: str):
     else:
         dt = np.float64 if backend == "float" else np.longdouble
         fns = _NP
-        num = lambda p, q: dt(str(p)) / dt(str(q))  # noqa: E731
+        num = lambda p, q: _ratio(dt, p, q)  # noqa: E731
         flt = dt
         const = dt
         sqrt, power = np.sqrt, np.power

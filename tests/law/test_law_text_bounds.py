@@ -212,6 +212,17 @@ def test_rational_coefficients_are_exact():
     assert law.coeffs[1] == 2**0.5  # a 30-digit constant rounds to the nearest double
 
 
+def test_a_rational_of_thousands_of_digits_in_a_smooth_law_is_evaluated():
+    """1.000…01**131 simplifies to an exact rational of ~4500 digits; Python refuses ``str`` of
+    an int that long (ValueError), which escaped as a bare error (found by the grammar fuzz).
+    Reference: the binomial expansion, (1 + 1e-33)**131 = 1 + 1.31e-31 + O(1e-62)."""
+    head = "w + 10*w**2 - w**3*exp(w/0.5)"
+    law = law_from_expression(head + " + 1e-3*((1.000000000000000000000000000000001)**(131))*w")
+    ref = law_from_expression(head + " + 0.001000000000000000000000000000131*w")
+    for w in (-0.04, 0.3, 0.8):
+        assert law.f(w) == pytest.approx(ref.f(w), rel=1e-15, abs=0)
+
+
 def test_degree_limit_is_the_same_for_text_and_coefficients():
     assert MAX_DEGREE == 16
     with pytest.raises(ValueError, match="degree 17 of w\\*\\*17 exceeds the maximum 16"):
