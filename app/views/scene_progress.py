@@ -30,9 +30,10 @@ log = logging.getLogger("fpu-explorer")
 
 #: renders faster than this show no busy indicators (s)
 SPINNER_DELAY_S = 0.25
-#: the busy indicators' styles: hidden keeps their place (no layout change in the browser)
-HIDDEN = {"visibility": "hidden"}
-SHOWN = {"visibility": "visible"}
+#: the busy indicators' styles: hidden keeps their place (no layout change in the browser);
+#: opacity too, since a text pane makes its inner box visible by a style of its own
+HIDDEN = {"visibility": "hidden", "opacity": "0"}
+SHOWN = {"visibility": "visible", "opacity": "1"}
 
 
 class SceneProgress:
@@ -50,8 +51,9 @@ class SceneProgress:
         # the request in flight, by its own parameters: the status above keeps the last result
         # and the parameters it was computed with until the new result replaces both
         self.computing_text = pn.pane.Str(
-            "", css_classes=["scene-computing"], margin=(0, 10), **{**fixed, "styles": clip,
-            "height": 36}, stylesheets=["pre { white-space: pre-wrap; margin: 0; }"],
+            "", css_classes=["scene-computing"], margin=(0, 10), **{**fixed, "height": 48,
+            "styles": {**clip, "overflow-y": "auto"}},  # three lines, the rest scrolled
+            stylesheets=["pre { white-space: pre-wrap; margin: 0; }"],
         )  # fmt: skip
         self._computing = ""
         self.cancel_btn = pn.widgets.Button(
