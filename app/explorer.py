@@ -97,6 +97,7 @@ class Explorer(pn.viewable.Viewer):
         self.tabs.active = TABS.index(self.state.tab)
         self.tabs.param.watch(self._on_tab, "active")
         self.state.param.watch(self._on_state, list(STATE_PARAMS) + ["note"])
+        self.state.param.watch(self._on_figure_shown, "figure_shown")
         self._sync_widgets()
 
     # ------------------------------------------------------------------ widgets
@@ -283,14 +284,24 @@ class Explorer(pn.viewable.Viewer):
             for s in self.scenes:
                 if names & set(s.depends):
                     s.stale = True
-            self.active_scene().request()
+            # only a change the scene depends on renders it (the URL's own sim_shown, set by the
+            # Simulation scene's render, rendered it again and re-sent its image), and none of
+            # a paper figure's steps (a render of half its state was shown, then replaced)
+            scene = self.active_scene()
+            if scene.stale and not self.state.showing_figure:
+                scene.request()
         if "tab" in names:
             idx = TABS.index(self.state.tab)
             if self.tabs.active != idx:
                 self.tabs.active = idx
             scene = self.active_scene()
-            if scene.stale:
+            if scene.stale and not self.state.showing_figure:
                 scene.request()
+
+    def _on_figure_shown(self, _event) -> None:
+        """A paper figure's state is set: its scene renders once, unless a request of its own
+        (the Simulation scene's run) is already on its way."""
+        self.active_scene().request_if_stale()
 
     def _on_tab(self, event):
         key = TABS[event.new]

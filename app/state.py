@@ -71,17 +71,17 @@ class ExplorerState(param.Parameterized):
     scenario = param.Dict(None, allow_None=True)
     simulation = param.String("", doc="the Simulation scene's inputs, app.sim_url (URL sim=)")
     sim_shown = param.Boolean(False, doc="their run is on screen (URL run=1: a link reruns it)")
+    figure_shown = param.Event(doc="show_figure has set the state (its steps rendered nothing)")
     #: what the state changed by itself (e.g. V moved with w_plus), shown in the sidebar
     note = param.String("")
 
     def __init__(self, **params):
         super().__init__(**params)
-        #: a session's handler threads (and the law worker's answers) change the state and
-        #: sync the sidebar one at a time (app.widgets.user_action, Syncing)
+        #: handler threads and law answers change the state one at a time (app.widgets)
         self.lock = threading.RLock()
         self._tying = False
         self._in_tie = False
-        self._showing_figure = False
+        self.showing_figure = False  # while show_figure sets the state in its steps
         self._solitary_V = self.V if self.mode == "solitary" else None
         self.param.watch(self._tie, ["w_plus", "V", "mode", "a", "b", "expression"])
         self.param.watch(self._leave_figure, [*FIGURE_PARAMS, "simulation"])
@@ -347,15 +347,15 @@ class ExplorerState(param.Parameterized):
     def show_figure(self, label: str) -> None:
         """The state of paper figure ``label`` (app.paper_figures): in steps — the tab first,
         alone, so that a scene not built yet is built and sent to the browser exactly as on a
-        tab click, before any render of it (a render of a scene built in the same update as
-        the parameters sent patches for models the browser did not have yet: "reference …
-        isn't known"); then the law and mode, so that the tie of V to w₊ in superkink mode acts
-        on the new mode; then w₊, N and V; then the held curves, the figure and the Simulation
-        scene's initial data.  ParameterError for an unknown label."""
+        tab click, before any render of it (built in the same update as the parameters, its
+        render's patches named models the browser did not have); then the law and mode (the
+        tie of V to w₊ acts on the new mode); then w₊, N and V; then the held curves, the
+        figure and the Simulation scene's initial data; then ``figure_shown`` (the views render
+        once, not at each step).  ParameterError for an unknown label."""
         if label not in paper_figures.FIGURE_STATE:
             raise ParameterError("fig", label, "one of " + ", ".join(paper_figures.FIGURE_STATE))
         tab, mode, w_plus, V, N = paper_figures.FIGURE_STATE[label]
-        self._showing_figure = True
+        self.showing_figure = True
         try:
             self.tab = tab
             self.param.update(a=-1.0, b=10.0, expression="", mode=mode)
@@ -367,23 +367,23 @@ class ExplorerState(param.Parameterized):
             held = [HeldWave(*h) for h in paper_figures.FIGURE_HELD.get(label, ())]
             self.param.update(held=held, figure=label)
             sc = paper_figures.FIGURE_SCENARIO.get(label)
-            if sc is not None:  # the widgets' values, and whether the click starts the run
+            if sc is not None:  # the widgets' values, whether the click starts the run, the URL
                 sc = {k: v for k, v in sc.items() if k != "run_s"}
                 sc["run"] = paper_figures.scenario_runs(label)
-            if sc is not None:  # the scene's inputs in the URL (run: once it is on screen)
                 self.param.update(simulation=format_sim(**sc_inputs(sc)), sim_shown=False)
             if sc is not None and sc == self.scenario:
                 self.param.trigger("scenario")  # the same figure again: its widgets again
             else:
                 self.scenario = sc
         finally:
-            self._showing_figure = False
+            self.showing_figure = False
+            self.param.trigger("figure_shown")  # the views render the figure's state once
         self.note = paper_figures.FIGURE_NOTE.get(label, "")
 
     def _leave_figure(self, *events) -> None:
         """A change the figure did not make: the view is no longer the figure's (the URL drops
         its ``fig``), and a Simulation scene built later keeps its own initial data."""
-        if self._showing_figure or not self.figure:
+        if self.showing_figure or not self.figure:
             return
         self.figure = ""
         self.scenario = None

@@ -102,10 +102,7 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
             self.wait.line,
             self.wait.probe,
             self.wait.token,
-            self.computing_text,
-            self.progress,
-            self.progress_text,
-            self.cancel_btn,
+            *self.busy_widgets(),
             *self.controls(),
             pn.Row(self.download, self.copy_btn),
             *([pn.Row(*self.exporters)] if self.exporters else []),
@@ -200,10 +197,9 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
         ctx = self._doc.session_context
         if ctx is None:
             return True
-        # The browser left: its websocket closed, but Bokeh destroys the session only when it
-        # has been unused for --unused-session-lifetime (15 s, checked every 17 s), and a job
-        # ran on for up to half a minute for nobody.  A served page never reconnects to its
-        # session (a reload opens a new one), so once connected, no connection means gone.
+        # The browser left: Bokeh destroys the session only when unused for 15 s (checked every
+        # 17 s), and a job ran on for nobody.  A served page never reconnects to its session
+        # (a reload opens a new one), so once connected, no connection means gone.
         session = getattr(ctx, "_session", None)
         n = getattr(session, "connection_count", None)
         if n is None:
@@ -212,10 +208,6 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
             self._connected = True
             return False
         return self._connected
-
-    def cancel(self) -> None:
-        """The Cancel button: stop waiting for the running job (killed if nobody else waits)."""
-        self._cancel = True
 
     # ------------------------------------------------------------------ refresh machinery
     def request(self, prepare=None) -> None:
@@ -235,6 +227,13 @@ class Scene(SceneFiles, SceneProgress, pn.viewable.Viewer):
                 return
             self._running = True
         threading.Thread(target=self._loop, name=f"scene-{self.key}", daemon=True).start()
+
+    def request_if_stale(self) -> None:
+        """:meth:`request` if the scene is stale and no request waits already."""
+        with self._lock:
+            if not self.stale or self._pending:
+                return
+        self.request()
 
     def _loop(self) -> None:
         """Worker thread: render until no request is pending.  Catches everything, so the

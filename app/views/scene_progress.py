@@ -1,6 +1,13 @@
-"""What a user sees while a scene renders: a spinner, a progress bar with the running job's
-stage, percentage and time left, and the Cancel button — shown only if the render takes longer
-than :data:`SPINNER_DELAY_S`.
+"""What a user sees while a scene renders: the request's parameters, a progress bar with the
+running job's stage, percentage and time left, and the Cancel button — shown only if the render
+takes longer than :data:`SPINNER_DELAY_S`.
+
+They sit in a box of fixed size and are shown and hidden by style (``visibility``), never by
+their models' ``visible`` nor a size change: BokehJS answers each change of a model's
+visibility, CSS classes or size by laying out the whole tab again, which redraws every figure
+in it — 0.3–1.2 s each in the browser beside the Simulation scene's figures, and a Paper click
+into a simulation made ten such changes for these indicators and the plot's loading spinner
+(measured with a hook on BokehJS's ``invalidate_layout``).  The place stays empty when idle.
 
 :class:`SceneProgress` is mixed into :class:`.scene.Scene`, which owns the render loop (its
 ``cancel``, ``plot`` and session document).  Kept apart from that loop: these indicators live
@@ -21,32 +28,60 @@ from .formatting import fmt_time
 
 log = logging.getLogger("fpu-explorer")
 
-#: renders faster than this show no loading spinner (s)
+#: renders faster than this show no busy indicators (s)
 SPINNER_DELAY_S = 0.25
+#: the busy indicators' styles: hidden keeps their place (no layout change in the browser);
+#: opacity too, since a text pane makes its inner box visible by a style of its own
+HIDDEN = {"visibility": "hidden", "opacity": "0"}
+SHOWN = {"visibility": "visible", "opacity": "1"}
 
 
 class SceneProgress:
     """The scene's busy indicators and progress reporting (a mixin of Scene)."""
 
     def _make_progress_widgets(self) -> None:
-        self.progress = pn.indicators.Progress(
-            value=-1, max=100, visible=False, sizing_mode="stretch_width", bar_color="info"
-        )
+        fixed = {"styles": HIDDEN, "height": 20, "sizing_mode": "stretch_width"}
+        clip = {**HIDDEN, "overflow": "hidden"}  # a long line is cut, the box keeps its size
+        self.progress = pn.indicators.Progress(value=-1, max=100, bar_color="info", **fixed)
         # the running job's stage, its percentage and the time left (plain text: no markup)
         self.progress_text = pn.pane.Str(
-            "", visible=False, css_classes=["scene-progress"], margin=(0, 10)
+            "", css_classes=["scene-progress"], margin=(0, 10), **{**fixed, "styles": clip}
         )
         self._stage = ("", 0.0, 0.0)  # (name, start of the stage, last text update)
         # the request in flight, by its own parameters: the status above keeps the last result
         # and the parameters it was computed with until the new result replaces both
         self.computing_text = pn.pane.Str(
-            "", visible=False, css_classes=["scene-computing"], margin=(0, 10)
-        )
+            "", css_classes=["scene-computing"], margin=(0, 10), **{**fixed, "height": 48,
+            "styles": {**clip, "overflow-y": "auto"}},  # three lines, the rest scrolled
+            stylesheets=["pre { white-space: pre-wrap; margin: 0; }"],
+        )  # fmt: skip
         self._computing = ""
         self.cancel_btn = pn.widgets.Button(
-            label="Cancel", color="warning", visible=False, css_classes=["scene-cancel"]
-        )
+            label="Cancel", color="warning", css_classes=["scene-cancel"], styles=HIDDEN,
+            height=32,
+        )  # fmt: skip
         self.cancel_btn.on_click(lambda _: self.cancel())
+        #: the indicators are shown (by style; see the module docstring)
+        self.busy_shown = False
+
+    def busy_widgets(self) -> list:
+        """The indicators, in the order the scene's side column shows them."""
+        return [self.computing_text, self.progress, self.progress_text, self.cancel_btn]
+
+    def _show_busy(self, on: bool) -> None:
+        """Show or hide the indicators by style (no layout change; see the module docstring)."""
+        self.busy_shown = on
+        for w in self.busy_widgets():
+            w.styles = {**w.styles, **(SHOWN if on else HIDDEN)}
+
+    def cancel(self) -> None:
+        """The Cancel button: the render stops waiting for its job (killed if nobody else waits,
+        within the job's 50 ms poll).  The page says so at once, from the click's handler, before
+        the render's cleanup: one text change, no layout change (the cleanup's message follows;
+        at load 9 it came 7.3 s after the click, behind the indicators' layout changes)."""
+        self._cancel = True
+        if self.busy_shown:
+            self.computing_text.object = "cancelled: stopping the job …"
 
     def set_progress(self, done: float, total: float | None = None, stage: str = "") -> None:
         """Progress of the running job: the fraction ``done`` (or done / total) of ``stage``;
@@ -77,7 +112,7 @@ class SceneProgress:
         """The parameters of the request in flight (shown with the spinner): a render that
         learns them late (the Simulation scene's run) names them here."""
         self._computing = stamp
-        if self.computing_text.visible:
+        if self.busy_shown:
             self.computing_text.object = f"computing … for {stamp}"
 
     def set_stage(self, stage: str) -> None:
@@ -99,13 +134,9 @@ class SceneProgress:
                 if not flags["done"]:
                     flags["on"] = True
                     try:
-                        self.plot.loading = True
-                        self.computing_text.param.update(
-                            object=f"computing … for {self._computing}", visible=True
-                        )
-                        self.progress.param.update(value=-1, visible=True)
-                        self.progress_text.visible = True
-                        self.cancel_btn.visible = True
+                        self.computing_text.object = f"computing … for {self._computing}"
+                        self.progress.value = -1
+                        self._show_busy(True)
                     except Exception:  # noqa: BLE001 - cosmetic; never kill the timer's caller
                         log.exception("scene %s: busy indicator", self.key)
 
@@ -118,11 +149,7 @@ class SceneProgress:
             with lock:
                 flags["done"] = True
                 if flags["on"]:
-                    self.plot.loading = False
-                    self.computing_text.visible = False
-                    self.progress.visible = False
-                    self.progress_text.visible = False
-                    self.cancel_btn.visible = False
+                    self._show_busy(False)
                 self._stage = ("", 0.0, 0.0)
 
         return stop

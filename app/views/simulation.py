@@ -122,7 +122,6 @@ class SimulationScene(SimulationInputs, BokehScene):
             tw[1].name = f"sim-probe-wave-{k}"
             entries = [("w_k(t)", [site[0]]), ("TW at measured V, w_B", [tw[0]])]
             self.probe_legend.append(add_legend(f, "below", entries))
-            f.visible = False
             self.fig_probe.append(f)
             self.r_probe.append(site)
             self.r_probe_wave.append(tw)
@@ -135,8 +134,10 @@ class SimulationScene(SimulationInputs, BokehScene):
         self.prof_legend = add_legend(
             fp, "right", [("t = 0", [self.r_first[0]]), ("final", [self.r_last[0]])]
         )
-        probes = column(*self.fig_probe, sizing_mode="stretch_width")
-        return column(fi, fp, probes, sizing_mode="stretch_width")
+        # shown and hidden as one (a visibility change lays out the whole tab in the browser:
+        # 0.7-1 s each beside these figures, three per tracked run)
+        self.probe_col = column(*self.fig_probe, sizing_mode="stretch_width", visible=False)
+        return column(fi, fp, self.probe_col, sizing_mode="stretch_width")
 
     def _tracked_sites(self, info: Info, up: Updates, sim) -> None:
         """Panels (c)–(e): each tracked site's history against the wave computed at the
@@ -144,10 +145,11 @@ class SimulationScene(SimulationInputs, BokehScene):
         sites = list(np.asarray(getattr(sim, "probe_sites", []), int))
         self._probe_waves = []
         s = self.state
+        up.set(self.probe_col, visible=bool(sites))
         for k in range(MAX_PROBES):
             fig = self.fig_probe[k]
+            up.set(fig, visible=k < len(sites) or not sites)  # (a change only if it differs)
             if k >= len(sites):
-                up.set(fig, visible=False)
                 continue
             site, t = sites[k], np.asarray(sim.probe_t, float)
             w_k = np.asarray(sim.probe_series[k], float)
@@ -175,7 +177,6 @@ class SimulationScene(SimulationInputs, BokehScene):
                     x, y = tt[near], ww[near]
                     title += f", w_B = {fmt_pm(wv.background, wv.background_error)}"
             self._probe_waves.append((site, wv, call))
-            up.set(fig, visible=True)
             up.set(fig.title, text=title)
             up.data(self.r_probe[k][1], x=t[keep], y=w_k[keep])
             up.data(self.r_probe_wave[k][1], x=x, y=y)

@@ -59,5 +59,5 @@ def test_a_running_spectrum_shows_its_stage_and_time_left_and_cancel_answers_wit
         time.sleep(0.05)
     assert any(t.startswith("discrete wave") for t in texts), texts
     assert any(re.match(r"Floquet spectrum: \d+ % · about .+ left", t) for t in texts), texts
-    assert sc.progress_text.visible and sc.cancel_btn.visible
+    assert sc.busy_shown
     assert_cancel_answers_within(sc, 1.0)

@@ -21,12 +21,12 @@ def sample(sc, timeout: float = 300.0) -> list[tuple[str, bool, str]]:
     seen = []
     t_end = time.monotonic() + timeout
     while time.monotonic() < t_end:
-        seen.append((sc.status.object, sc.computing_text.visible, sc.computing_text.object))
+        seen.append((sc.status.object, sc.busy_shown, sc.computing_text.object))
         with sc._lock:
             if not sc._running and not sc._pending:
                 break
         time.sleep(0.005)
-    seen.append((sc.status.object, sc.computing_text.visible, sc.computing_text.object))
+    seen.append((sc.status.object, sc.busy_shown, sc.computing_text.object))
     return seen
 
 

@@ -12,4 +12,4 @@ def assert_cancel_answers_within(sc, limit_s: float = 1.0) -> None:
         time.sleep(0.01)
     assert (sc.last_message or "").startswith("Cancelled")
     assert time.perf_counter() - t0 < limit_s
-    assert sc.wait_idle(10) and not sc.progress_text.visible
+    assert sc.wait_idle(10) and not sc.busy_shown
