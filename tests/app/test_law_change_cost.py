@@ -47,7 +47,7 @@ def counted(monkeypatch):
 @pytest.mark.parametrize("preset", ["tanh", "rational", "exponential"])
 def test_a_smooth_preset_change_draws_the_force_law_without_solitary_profiles(counted, preset):
     text = preset_text(preset)
-    compute.trusted_expression_law(text)  # built (as at the warm-up): no law worker here
+    compute.laws.trusted_expression_law(text)  # built (as at the warm-up): no law worker here
     ex = Explorer()
     assert ex.state.tab == "force"
     scene = ex.active_scene()
