@@ -176,8 +176,9 @@ def test_a_family_request_is_the_fpucore_family_its_code_shows():
 #: compute.workers, compute.cache, compute.requests, compute.energy), never beside the road.
 ROAD = {"run", "is_cached", "job_key", "Computed", "CACHE",
         "ParameterError", "CancelledError", "Superseded"}  # fmt: skip
-#: about 25: the road and one request per computation the explorer starts
-MAX_PUBLIC = 25
+#: about 25 (the 8 names of the road and 17 requests): room for a few new requests; a longer
+#: list means names that belong in a namespace (the 57 names before the QC requests)
+MAX_PUBLIC = 30
 
 
 def public_names(module) -> set[str]:
