@@ -139,7 +139,7 @@ def _spectrum(lw, sreq: SpectrumRequest, stop=None, progress=None) -> Computed:
     wk = job_key(lw, req)
     rc = CACHE.lookup(wk)
     staged = None if progress is None else SpectrumProgress(progress, req.N)
-    c = run_job(job_key(lw, sreq), floquet_job, (lw, req), stop, staged)
+    c = run_job(job_key(lw, sreq), sreq.job, (lw,), stop, staged)
     r, fr = c.value
     if fr is not None and not c.cached:  # the job's spectra take one route (the default)
         spent = fr.monodromy_s + fr.check_s + fr.eig_s
