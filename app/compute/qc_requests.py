@@ -2,7 +2,7 @@
 server process and cached exactly (:class:`~app.compute.request_base.LocalRequest`, run by
 :func:`app.compute.run` like every request).
 
-    QCWaveRequest(mode, w_plus, V)            the QC superkink (from w₊) or solitary wave
+    QCWaveRequest(mode, w_plus, V=None)       the QC superkink (from w₊) or solitary wave
     QCFamilyRequest(w_plus, n)                the QC solitary family of w₊ (amplitude, E_ren)
     ExistenceRequest(n)                       the existence diagram (w₊, c₊, V_SK, c₋)
     PhasePlaneRequest(w_plus, V, n_grid)      the phase plane of the traveling-wave ODE
@@ -37,18 +37,19 @@ GRID = (2, 100_000)
 
 @dataclass(frozen=True)
 class QCWaveRequest(LocalRequest):
-    """The QC superkink of w₊'s branch (mode "superkink": V follows from w₊, the field V is
-    not used) or the QC solitary wave (w₊, V) (mode "solitary")."""
+    """The QC superkink of w₊'s branch (mode "superkink": V follows from w₊; the field V is
+    not used and set to None) or the QC solitary wave (w₊, V) (mode "solitary")."""
 
     mode: str
     w_plus: float
-    V: float
+    V: float | None = None
 
     def __post_init__(self):
         if self.mode not in MODES:
             raise ParameterError("mode", self.mode, " | ".join(map(repr, MODES)))
         self._set("w_plus", require_finite("w_plus", self.w_plus))
-        self._set("V", require_finite("V", self.V))
+        superkink = self.mode == "superkink"  # a held superkink has no V (None)
+        self._set("V", None if superkink else require_finite("V", self.V))
 
     def call(self) -> Call:
         """fpucore.qc.superkink_from_w_plus or fpucore.qc.solitary."""
