@@ -9,7 +9,8 @@ per constant.
   enters the state: the previous valid law stays on screen.
 
 * A typed law (box or a choice) is built in a worker process within a time and memory budget
-  (:func:`app.compute.request_law`) and applied from its answer; never in a handler or the build.
+  (:func:`app.compute.laws.request_law`) and applied from its answer; never in a handler or
+  the build.
   Meanwhile :attr:`LawEditor.checking` names it (the page says it is being checked).
 * An expression (fpucore.law_from_expression, e.g. ``w + 10*w**2 - w**3 - 0.01*w**4``) gets one
   slider per coefficient; a coefficient slider rewrites the expression (exact reprs), so the text,
@@ -161,7 +162,7 @@ class LawEditor(pn.viewable.Viewer):
     def _offer(self, text: str, outcome=None) -> None:
         """A law built (or refused) for ``text``: a refusal is shown and the state keeps its
         law; a law enters the state."""
-        outcome = compute.lookup_law(text) if outcome is None and text else outcome
+        outcome = compute.laws.lookup_law(text) if outcome is None and text else outcome
         if isinstance(outcome, ParameterError):
             self.refused = f"{outcome}"
             self.refusal.param.update(
@@ -192,7 +193,7 @@ class LawEditor(pn.viewable.Viewer):
             return
         consts = {n: float(s.value) for n, s in self.const_sliders.items()}
         consts[name] = float(f"{float(value):.6g}")
-        self.apply(compute.join_law(self._const_anchor[0], consts))
+        self.apply(compute.laws.join_law(self._const_anchor[0], consts))
 
     def _on_pool_coeff(self, slider, value) -> None:
         k = next((k for k, s in enumerate(self.coeff_sliders) if s is slider), None)
@@ -209,7 +210,7 @@ class LawEditor(pn.viewable.Viewer):
         """A trilinear slider moved: its law text (5 numbers, parse only) is built here at once
         and applied, or refused with fpucore's reason while the previous law stays."""
         try:
-            compute.trusted_expression_law(text)
+            compute.laws.trusted_expression_law(text)
         except ParameterError:
             pass  # remembered: _offer shows the refusal
         self._law_wanted = text
@@ -228,11 +229,11 @@ class LawEditor(pn.viewable.Viewer):
             text = self._last_expression
             if not text:
                 try:
-                    text = compute.law(st.a, st.b).as_polynomial().expression
+                    text = compute.laws.law(st.a, st.b).as_polynomial().expression
                 except ParameterError:
                     text = "w + 10*w**2 - w**3 - 0.01*w**4"
                 try:  # written by the app: bounded, built here at once
-                    compute.trusted_expression_law(text)
+                    compute.laws.trusted_expression_law(text)
                 except ParameterError:
                     pass
             self.apply(text)
@@ -246,7 +247,7 @@ class LawEditor(pn.viewable.Viewer):
         coeffs[k] = float(f"{float(value):.6g}")  # no 10.059999999999999 from the slider step
         text = expression_of(coeffs)
         try:  # written by the app from ≤ MAX_COEFF_SLIDERS floats: bounded, built here at once
-            compute.trusted_expression_law(text)
+            compute.laws.trusted_expression_law(text)
         except ParameterError:
             pass  # the state shows why
         self._law_wanted = text
@@ -259,14 +260,14 @@ class LawEditor(pn.viewable.Viewer):
     @user_action
     def apply(self, text: str | None) -> None:
         """A law typed in the box (or chosen; "" for the cubic): applied once it is built.  A
-        typed text is built in the law worker within its budgets (app.compute.request_law), never
-        in this handler: a law not built yet is applied from the worker's answer (if it is still
-        the one wanted), and :attr:`checking` names it meanwhile."""
+        typed text is built in the law worker within its budgets (app.compute.laws.request_law),
+        never in this handler: a law not built yet is applied from the worker's answer (if it is
+        still the one wanted), and :attr:`checking` names it meanwhile."""
         if text is None:
             return
         text = text.strip()
         self._law_wanted = text
-        if not text or compute.lookup_law(text) is not None:
+        if not text or compute.laws.lookup_law(text) is not None:
             self._offer(text)
             return
         self.checking = text
@@ -282,7 +283,7 @@ class LawEditor(pn.viewable.Viewer):
                 if not document_gone(doc):
                     log.exception("applying the law %r", text[:60])
 
-        compute.request_law(text).add_done_callback(built)
+        compute.laws.request_law(text).add_done_callback(built)
 
     # ------------------------------------------------------------------ state → widgets
     @contextlib.contextmanager
@@ -321,7 +322,7 @@ class LawEditor(pn.viewable.Viewer):
     def _sync_constants(self) -> None:
         """One slider per named constant of the state's law (none for a law without)."""
         try:
-            expr, consts = compute.split_law(self.state.expression)
+            expr, consts = compute.laws.split_law(self.state.expression)
         except ParameterError:
             expr, consts = "", {}
         if not consts:

@@ -77,7 +77,7 @@ def preset_text(name: str) -> str:
     if name == "cubic":
         return ""
     p = PRESETS[name]
-    return compute.join_law(p.text, p.constants_dict)
+    return compute.laws.join_law(p.text, p.constants_dict)
 
 
 def preset_of(text: str) -> str:
@@ -86,7 +86,7 @@ def preset_of(text: str) -> str:
     if trilinear_values(text) is not None:
         return TRILINEAR
     try:
-        expr, _ = compute.split_law(text) if ";" in text else (text, {})
+        expr, _ = compute.laws.split_law(text) if ";" in text else (text, {})
     except ParameterError:
         return ""
     return next((n for n, p in PRESETS.items() if p.text == expr and n != "cubic"), "")

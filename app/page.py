@@ -28,7 +28,7 @@ def build_page() -> None:
 
     pn.extension(loading_indicator=True, notifications=False, throttled=True)
 
-    with compute.building_page():  # on the event loop: a law being built is not waited for
+    with compute.laws.building_page():  # on the event loop: a law being built is not waited for
         explorer = from_url()  # the validated URL parameters, before the first render
         explorer.first_render()
     pn.state.onload(explorer.start)

@@ -92,10 +92,10 @@ class ExplorerState(param.Parameterized):
     def law(self):
         """CubicLaw(a, b), or the PolynomialLaw of ``expression`` when it is set; raises
         ParameterError for invalid a, b or an expression outside the law class."""
-        return compute.make_law(self.a, self.b, self.expression)
+        return compute.laws.make_law(self.a, self.b, self.expression)
 
     def law_key(self) -> tuple:
-        return compute.law_key(self.law())  # the exact cache-key form of the law
+        return compute.laws.law_key(self.law())  # the exact cache-key form of the law
 
     def w_plus_range(self) -> tuple[float, float, float]:
         """(lo, w*, hi): w_plus ranges over (lo, hi) without w*, where superkinks of either

@@ -86,7 +86,7 @@ def parse_url_value(name: str, raw: str):
         # built in the law worker; a page build (on the server's event loop) waits for it at
         # most URL_LAW_WAIT_S — a law still being built then is kept, and the explorer
         # re-renders (or names it in the URL message) once its outcome is known
-        fut = compute.request_law(text)
+        fut = compute.laws.request_law(text)
         try:
             outcome = fut.result(timeout=URL_LAW_WAIT_S)
         except TimeoutError:

@@ -47,7 +47,7 @@ def from_url(lazy: bool = True) -> Explorer:
     text = state.expression
     # a law still being built (see parse_url_value): the page is built meanwhile, and once the
     # law's outcome is known (maybe during this build) the explorer shows it or names it
-    pending = bool(text) and compute.lookup_law(text) is None
+    pending = bool(text) and compute.laws.lookup_law(text) is None
     explorer = Explorer(state, url_errors=errors, lazy=lazy)
     if pending:
         doc = pn.state.curdoc
@@ -62,7 +62,7 @@ def from_url(lazy: bool = True) -> Explorer:
                 if not document_gone(doc):
                     log.exception("applying the URL's law %r", text[:60])
 
-        compute.request_law(text).add_done_callback(built)
+        compute.laws.request_law(text).add_done_callback(built)
     loc = pn.state.location
     if loc is not None:
         st = explorer.state

@@ -4,7 +4,7 @@ connections, so no visitor waits for Numba compilation or for the default view.
 
 1. fpucore's JIT warm-up (loads or compiles every Numba kernel; with cache=True and a writable
    NUMBA_CACHE_DIR the compiled code is reused from disk across restarts), in the server process
-   and in every worker process of the heavy computations (app.compute.warm_workers);
+   and in every worker process of the heavy computations (app.compute.workers.warm_workers);
 2. renders every scene once for the default parameters, which fills the process-wide result
    cache (QC scenes, the default discrete wave and its Floquet spectrum) and imports/initializes
    HoloViews' Bokeh backend.
@@ -46,7 +46,7 @@ WARM_LAW = "w + 10*w**2 - w**3 - 0.01*w**4"
 
 def _warm_background() -> None:
     t = time.perf_counter()
-    compute.warm_workers()
+    compute.workers.warm_workers()
     log.info("fpu-explorer: workers warm in %.2f s", time.perf_counter() - t)
     try:  # lowest priority: it must not slow the first pages (measured 4.6 s -> 15 s at load 6)
         p = subprocess.Popen(
@@ -62,7 +62,7 @@ def request_preset_laws() -> list[str]:
     here); returns their texts."""
     texts = preset_texts()
     for text in texts:
-        compute.request_law(text)
+        compute.laws.request_law(text)
     return texts
 
 
@@ -93,7 +93,7 @@ def warm(verbose: bool = True, scenes: str | None = None) -> dict[str, float]:
     threading.Thread(target=_warm_background, name="fpu-warm-workers", daemon=True).start()
     # the law worker starts and imports SymPy now, not at the first typed law or law link; then
     # it builds every preset's law (0.04-0.5 s each), so a preset chosen is applied at once
-    compute.request_law(WARM_LAW)
+    compute.laws.request_law(WARM_LAW)
     request_preset_laws()
 
     explorer = Explorer()
@@ -119,6 +119,6 @@ def setup() -> None:
     install_content_security_policy()  # before the server's first page
     # On exit (Bokeh stops its loop on SIGTERM and Ctrl-C) the worker pool stops first: a worker
     # start cut short by the exit would make the fork server print a traceback.
-    atexit.register(compute.shutdown_executor)
-    atexit.register(compute.shutdown_law_executor)
+    atexit.register(compute.workers.shutdown_executor)
+    atexit.register(compute.laws.shutdown_law_executor)
     warm()

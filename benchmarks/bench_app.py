@@ -115,8 +115,9 @@ def heavy_in_background() -> threading.Thread:
     """Another session: a Floquet spectrum at N = 1400 in a worker process (not cached)."""
     V = 5.15 + 1e-6 * (time.time() % 1)  # a new V each run: never answered from the cache
     th = threading.Thread(
-        target=lambda: compute.floquet_spectrum(
-            compute.law(-1.0, 10.0), compute.WaveRequest("solitary", 1.0, V, 1400, 1e-10)
+        target=lambda: compute.run(
+            compute.laws.law(-1.0, 10.0),
+            compute.SpectrumRequest(compute.WaveRequest("solitary", 1.0, V, 1400, 1e-10)),
         ),
         daemon=True,
     )
@@ -128,7 +129,7 @@ def heavy_in_background() -> threading.Thread:
 def bench_concurrent(n: int) -> None:
     print(f"QC slider moves while another session's Floquet spectrum (N = 1400) runs ({n} moves)")
     print(f"  {'scene':<10}{'alone':>12}{'with heavy':>14}{'max':>12}{'ratio':>8}")
-    compute.warm_workers()
+    compute.workers.warm_workers()
     for key in ("force", "phase"):
         st, sc = attached(key)
         alone = statistics.median(moves(st, sc, "V", [4.5 + 0.011 * k for k in range(n)]))

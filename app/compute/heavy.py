@@ -1,9 +1,11 @@
-"""The one road from a scene to a worker: :func:`run` takes the law and a typed request
-(:mod:`app.compute.requests`) and runs the request's job in a worker process through
-:func:`~app.compute.workers.run_job`, cached exactly on :func:`job_key`; :func:`is_cached` says
-whether it would answer from the cache.  The Floquet spectrum of a wave request
-(:func:`floquet_spectrum`) is the one job that fills two cache entries (the wave's and the
-spectrum's), with a time-left estimate for its silent eigenvalue call.
+"""The one road from a scene to a result: :func:`run` takes the law and a typed request and
+computes the request's job, cached exactly on :func:`job_key`; :func:`is_cached` says whether
+it would answer from the cache.  A heavy request (:mod:`app.compute.requests`) runs in a worker
+process through :func:`~app.compute.workers.run_job`; a cheap one
+(:class:`~app.compute.request_base.LocalRequest`: the QC requests, the energy criterion) in
+this process.  The Floquet spectrum of a wave (:class:`SpectrumRequest`) is the one job that
+fills two cache entries (the wave's and the spectrum's), with a time-left estimate for its
+silent eigenvalue call.
 
 Views never build keys themselves: a request's key is the request.
 """
@@ -13,16 +15,45 @@ from __future__ import annotations
 import threading
 import time
 from collections.abc import Callable, Hashable
+from dataclasses import dataclass
 
+from fpucore import floquet as fq
 from fpucore.errors import ParameterError
 
 from .cache import CACHE, Computed
 from .jobs import floquet_job, stage_of
 from .laws import law_key
-from .requests import Request, WaveRequest
+from .request_base import Call, Request
+from .requests import WaveRequest
 from .workers import run_job
 
-__all__ = ["run", "is_cached", "job_key", "spectrum_key", "floquet_spectrum"]
+__all__ = ["run", "is_cached", "job_key", "SpectrumRequest"]
+
+
+@dataclass(frozen=True)
+class SpectrumRequest(Request):
+    """The Floquet spectrum (fpucore.floquet.spectrum) of the discrete wave ``wave``: one
+    worker job computes the wave and its spectrum, and its value under :func:`run` is the pair
+    (the wave's Computed, the spectrum's Computed or None if the wave did not converge); the
+    wave also goes into the wave request's own cache entry."""
+
+    wave: WaveRequest
+
+    def __post_init__(self):
+        if not isinstance(self.wave, WaveRequest):
+            raise ParameterError("wave", self.wave, "a WaveRequest")
+
+    def call(self) -> Call:
+        """The spectrum's call on the wave's result (``floquet.spectrum(r)``)."""
+        return Call("floquet", fq.spectrum)
+
+    def job_key(self, lw) -> tuple:
+        return ("floquet", self.wave.job_key(lw))
+
+    def job(self, lw, progress=None):
+        """(WaveResult, FloquetResult or None), in stages
+        (:func:`~app.compute.jobs.floquet_job`)."""
+        return floquet_job(lw, self.wave, progress)
 
 
 def job_key(lw, req: Request) -> Hashable:
@@ -32,17 +63,26 @@ def job_key(lw, req: Request) -> Hashable:
     return (law_key(lw), req.job_key(lw))
 
 
-def spectrum_key(lw, req: WaveRequest) -> Hashable:
-    """The exact cache key of the Floquet spectrum of the wave ``req``."""
-    return ("floquet", job_key(lw, req))
+def run(lw, req: Request, stop=None, progress=None) -> Computed | None:
+    """``req``'s job under the law ``lw``, cached exactly: the same request again (from any
+    session) is answered from the cache, two sessions asking at once share one computation.
 
-
-def run(lw, req: Request, stop=None, progress=None) -> Computed:
-    """``req``'s job under the law ``lw`` in a worker process, cached exactly: the same request
-    again (from any session) is answered from the cache, two sessions asking at once share one
-    job.  ``stop()``: the caller no longer wants it (:class:`~app.compute.workers.Superseded`);
-    ``progress(fraction)``: the job's progress."""
-    return run_job(job_key(lw, req), req.job, (lw,), stop, progress)
+    A heavy request runs in a worker process: ``stop()`` says the caller no longer wants it
+    (:class:`~app.compute.workers.Superseded`), ``progress(fraction)`` gets its progress (a
+    SpectrumRequest's: ``progress(done, stage=...)``).  A local one (``req.local``) is computed
+    here; one with a ``source`` request is computed from the source's cached result, None
+    while that is not cached."""
+    if isinstance(req, SpectrumRequest):
+        return _spectrum(lw, req, stop, progress)
+    if not req.local:
+        return run_job(job_key(lw, req), req.job, (lw,), stop, progress)
+    source = getattr(req, "source", None)
+    if source is None:
+        return CACHE.get(job_key(lw, req), lambda: req.job(lw))
+    value = CACHE.peek(job_key(lw, source))
+    if value is None:
+        return None
+    return CACHE.get(job_key(lw, req), lambda: req.from_source(lw, value))
 
 
 def is_cached(lw, req: Request) -> bool:
@@ -90,15 +130,16 @@ class SpectrumProgress:
         self.progress(done, stage=stage)
 
 
-def floquet_spectrum(lw, req: WaveRequest, stop=None, progress=None):
-    """(wave Computed, spectrum Computed or None) of the wave ``req``: the wave from the shared
-    cache if there (the entry :func:`run` fills), else wave and spectrum in one worker job.
+def _spectrum(lw, sreq: SpectrumRequest, stop=None, progress=None) -> Computed:
+    """Computed((wave Computed, spectrum Computed or None)): the wave from the shared cache if
+    there (the entry :func:`run` fills), else wave and spectrum in one worker job.
     ``progress(done, stage=...)``: its stages (:data:`~app.compute.jobs.FLOQUET_STAGES`).  The
     one job that answers two requests: its wave goes into the wave's own cache entry."""
+    req = sreq.wave
     wk = job_key(lw, req)
     rc = CACHE.lookup(wk)
     staged = None if progress is None else SpectrumProgress(progress, req.N)
-    c = run_job(spectrum_key(lw, req), floquet_job, (lw, req), stop, staged)
+    c = run_job(job_key(lw, sreq), sreq.job, (lw,), stop, staged)
     r, fr = c.value
     if fr is not None and not c.cached:  # the job's spectra take one route (the default)
         spent = fr.monodromy_s + fr.check_s + fr.eig_s
@@ -108,4 +149,4 @@ def floquet_spectrum(lw, req: WaveRequest, stop=None, progress=None):
         CACHE.put(wk, r, r.elapsed_s)
         rc = Computed(r, r.elapsed_s, c.cached)
     spec = None if fr is None else Computed(fr, fr.elapsed_s, c.cached)
-    return rc, spec
+    return Computed((rc, spec), c.elapsed_s, c.cached)

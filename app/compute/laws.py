@@ -23,6 +23,7 @@ from concurrent.futures import Future
 
 import numpy as np
 
+from fpucore import qc
 from fpucore.errors import ParameterError
 from fpucore.law import (
     CubicLaw,
@@ -51,6 +52,7 @@ __all__ = [
     "split_law",
     "join_law",
     "law_from_text",
+    "qc_method",
 ]
 
 CONSTANTS_VALID = "name=value pairs separated by commas after ';', e.g. 'w + b*w**2; b=10'"
@@ -312,3 +314,9 @@ def law_key(lw: HardeningSofteningLaw) -> tuple:
     if isinstance(lw, (TrilinearLaw, PiecewiseLinearLaw)):  # PL: breakpoints and slopes
         return ("pl", tuple(exact(b) for b in lw.breakpoints), tuple(exact(s) for s in lw.slopes))
     raise ParameterError("law", lw, "a CubicLaw, PolynomialLaw, SmoothLaw or piecewise-linear law")
+
+
+def qc_method(lw) -> str:
+    """How fpucore computes this law's QC waves: "closed form" (the cubic, paper §4) or
+    "quadrature" (any other law, §3) — for the timing labels."""
+    return "closed form" if qc.is_closed_form(lw) else "quadrature"

@@ -6,11 +6,11 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, fields
-from typing import Any
+from typing import Any, ClassVar
 
 from .cache import exact
 
-__all__ = ["Call", "Request", "key_of", "fraction"]
+__all__ = ["Call", "Request", "LocalRequest", "key_of", "fraction"]
 
 
 def key_of(value) -> Any:
@@ -36,6 +36,10 @@ class Request:
     """What every request has: its exact key (the class name and each field's exact value),
     the key of its result under a law, and the job a worker runs."""
 
+    #: where :func:`app.compute.run` computes the job: in a worker process (False) or, for a
+    #: cheap one (closed forms, quadratures, fits: milliseconds), in this process (True)
+    local: ClassVar[bool] = False
+
     def key(self) -> tuple:
         items = ((f.name, key_of(getattr(self, f.name))) for f in fields(self))
         return (type(self).__name__, *items)
@@ -51,6 +55,25 @@ class Request:
 
     def _set(self, name: str, value) -> None:  # a frozen dataclass normalises its own fields
         object.__setattr__(self, name, value)
+
+
+class LocalRequest(Request):
+    """A cheap request computed in the server process (no worker round trip), cached exactly
+    like a worker's: its job is its fpucore call on the law.  A request that reads another
+    request's cached result (a field ``source``) is computed from that value
+    (:meth:`from_source`) and never recomputes it: no value while the source is not cached."""
+
+    local = True
+
+    def call(self) -> Call:  # pragma: no cover - abstract
+        raise NotImplementedError
+
+    def job(self, lw, progress=None):
+        return self.call().run(lw)
+
+    def from_source(self, lw, value):  # pragma: no cover - only requests with a source
+        """The result computed from the source request's cached ``value``."""
+        raise NotImplementedError
 
 
 @dataclass(frozen=True)

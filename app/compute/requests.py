@@ -36,9 +36,9 @@ from fpucore.wave.tails import N_MAX, N_MIN
 
 from .request_base import Call, Request, fraction
 
+#: the request classes (app.compute re-exports them: a new request needs no line there); the
+#: Call and the atlas limits stay here (``compute.requests.SMALL_ATLAS_N``)
 __all__ = [
-    "Call",
-    "Request",
     "WaveRequest",
     "FamilyRequest",
     "SweepRequest",
@@ -47,8 +47,6 @@ __all__ = [
     "GaussianRequest",
     "SeededRequest",
     "AtlasRequest",
-    "SMALL_ATLAS_POINTS",
-    "SMALL_ATLAS_N",
 ]
 
 MODES = ("solitary", "superkink")

@@ -112,10 +112,10 @@ class AtlasScene(BokehScene):
             value=self.state.atlas, width=280,
         )  # fmt: skip
         self.quantity = pn.widgets.Select(name="quantity", options=list(QUANTITIES), width=200)
-        lo, hi = compute.SMALL_ATLAS_POINTS
+        lo, hi = compute.requests.SMALL_ATLAS_POINTS
         self.n_w = pn.widgets.IntInput(name="w₊ rows", value=8, start=lo, end=hi, width=130)
         self.n_V = pn.widgets.IntInput(name="velocities", value=8, start=lo, end=hi, width=130)
-        N_lo, N_hi = compute.SMALL_ATLAS_N
+        N_lo, N_hi = compute.requests.SMALL_ATLAS_N
         self.N_run = pn.widgets.IntInput(name="N", value=200, start=N_lo, end=N_hi, step=20,
                                          width=130)  # fmt: skip
         self.run_btn = pn.widgets.Button(

@@ -30,7 +30,7 @@ from bokeh.layouts import column, row
 from panel.io.state import set_curdoc
 
 from .. import compute
-from ..compute import exact
+from ..compute.cache import exact
 from ..paper_figures import FIGURE_PARTS
 from .bokeh_scene import (
     BokehScene,
@@ -236,10 +236,10 @@ class DiagramScene(DiagramFiles, BranchViews, BokehScene):
     def _existence(self, info: Info, up: Updates) -> None:
         s = self.state
         lw = s.law()
-        c = compute.existence_diagram(lw)
+        c = compute.run(lw, compute.ExistenceRequest())
         d = c.value
         info.time("existence diagram", c)
-        key = compute.law_key(lw)
+        key = compute.laws.law_key(lw)
         k = 0
         for side in (d.w_plus < d.w_star, d.w_plus > d.w_star):
             x = d.w_plus[side]
@@ -268,7 +268,7 @@ class DiagramScene(DiagramFiles, BranchViews, BokehScene):
             info.notes.append("discrete dots: press 'Add discrete points'")
             return None
         self._want_discrete = False
-        self._family = (lw, req)
+        self._family = (lw, compute.SampledEnergyRequest(req))  # its energy criterion
         c = compute.run(
             lw, req, stop=self.superseded, progress=self.stage_progress("discrete family")
         )
@@ -293,7 +293,7 @@ class DiagramScene(DiagramFiles, BranchViews, BokehScene):
             raise SceneMessage(str(exc)) from None
         problem = s.problem() if s.mode == "solitary" else None
         try:
-            c = compute.qc_family(s.law(), s.w_plus)
+            c = compute.run(s.law(), compute.QCFamilyRequest(s.w_plus))
         except compute.ParameterError as exc:
             info.warning = str(exc)
             info.shown = "existence diagram only (w₊ invalid)"
@@ -307,7 +307,7 @@ class DiagramScene(DiagramFiles, BranchViews, BokehScene):
         colors = [TSW if kind == "tensile" else CSW_LINE for kind in kinds]
         cur = None
         if s.mode == "solitary" and problem is None:
-            q = compute.qc_wave(s.law(), "solitary", s.w_plus, s.V)
+            q = compute.run(s.law(), compute.QCWaveRequest("solitary", s.w_plus, s.V))
             info.error("QC first-integral residual", q.value.first_integral_residual)
             info.error("QC energy round-off", q.value.energy_error)
             cur = q.value
@@ -364,7 +364,7 @@ class DiagramScene(DiagramFiles, BranchViews, BokehScene):
         s = self.state
         self._ec_qc = self._ec_d = None
         try:
-            c = compute.energy_extrema_qc(s.law(), s.w_plus)
+            c = compute.run(s.law(), compute.EnergyRequest(s.w_plus))
         except compute.ParameterError as exc:
             info.notes.append(f"energy criterion not shown: {md_literal(exc)}")
             self.ext_qc.update(up, [], [], (), *ylim, self.ext_legend[0])
@@ -379,7 +379,7 @@ class DiagramScene(DiagramFiles, BranchViews, BokehScene):
             label = "E_ren^QC " + "; ".join(fmt_extremum(k, v, d) for k, v, d in zip(kinds, V, dV))
             up.set(self.ext_legend[0], label={"value": label})
         words = [criterion_words(V, dV, kinds, "the QC family", "between c₊ and c₋")]
-        cd = compute.family_energy_extrema(*self._family) if with_discrete else None
+        cd = compute.run(*self._family) if with_discrete else None
         if cd is not None:
             ed = self._ec_d = cd.value
             info.time("energy criterion (discrete dots)", cd)

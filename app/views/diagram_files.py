@@ -120,13 +120,13 @@ class DiagramFiles:
     def python_code(self) -> str:
         s = self.state
         try:
-            qc_n = compute.energy_qc_samples(s.law())
+            qc_n = compute.energy.energy_qc_samples(s.law())
         except compute.ParameterError:
-            qc_n = compute.ENERGY_QC_SAMPLES[True]
+            qc_n = compute.energy.ENERGY_QC_SAMPLES[True]
         code = python_preamble(s) + (
             "from fpucore.qc import diagram\n"
-            f"fam = diagram.solitary_family(law, {float(s.w_plus)!r}, n=160)\n"
-            "d = diagram.existence_diagram(law, n=400)\n"
+            f"fam = {compute.QCFamilyRequest(s.w_plus).call().code()}\n"
+            f"d = {compute.ExistenceRequest().call().code()}\n"
             "print(fam.c_plus, fam.V_SK, fam.c_minus)\n"
             "# energy criterion: extrema of E_ren^QC(V), where stability may change\n"
             f"ec = floquet.energy_criterion(law, {float(s.w_plus)!r}, qc_samples={qc_n})\n"

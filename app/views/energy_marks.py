@@ -6,7 +6,7 @@ the Floquet scene (panel (c), max |μ| against V).
 :class:`ExtremumMarks` draws each extremum as a vertical line at V* over a band V* ± δV (its
 error bar; a hover shows both), built once like every figure model; :func:`criterion_words`
 says what was found in words a student understands.  Nothing here computes: the extrema come
-from :mod:`app.compute` (``energy_extrema_qc``, ``sampled_energy_extrema``).
+from :mod:`app.compute` (``EnergyRequest``, ``SampledEnergyRequest``).
 """
 
 from __future__ import annotations

@@ -253,7 +253,7 @@ class FloquetScene(FloquetFiles, BokehScene):
         c = None
         if kind == "solitary":  # the sweep's own request (_sweep: the solitary one is "lower")
             req = compute.SweepRequest(kind, wp, Vs, s.N, "lower")
-            c = compute.sweep_energy_check(s.law(), req)
+            c = compute.run(s.law(), compute.SampledEnergyRequest(req))
         if c is None:
             for marks, item in ((self.ext_d, self.sw_legend[1]), (self.ext_q, self.sw_legend[2])):
                 marks.update(up, [], [], (), *ylim, item)
@@ -297,9 +297,10 @@ class FloquetScene(FloquetFiles, BokehScene):
         self.require_valid()
         self._fr = self._r = None
         req = compute.WaveRequest(s.mode, s.w_plus, s.V, s.N, s.tol)
-        rc, fc = compute.floquet_spectrum(
-            s.law(), req, stop=self.superseded, progress=self.set_progress
-        )
+        spectrum = compute.SpectrumRequest(req)
+        rc, fc = compute.run(
+            s.law(), spectrum, stop=self.superseded, progress=self.set_progress
+        ).value
         r = rc.value
         info.time(f"discrete wave N={r.N}", rc)
         info.error("wave residual", r.residual)
@@ -316,7 +317,7 @@ class FloquetScene(FloquetFiles, BokehScene):
         up = Updates()
         mu = np.asarray(fr.multipliers)
         unstable = np.asarray(fr.unstable)
-        key = compute.spectrum_key(s.law(), req)
+        key = compute.job_key(s.law(), spectrum)
         up.data(self.r_mu[1], key, x=mu.real, y=mu.imag)
         up.data(self.r_unst[1], key, x=unstable.real, y=unstable.imag)
         up.show(self.r_unst[0], self.legend_a[1], unstable.size > 0)

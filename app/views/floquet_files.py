@@ -26,7 +26,7 @@ class FloquetFiles:
         code = python_preamble(s) + (
             f"r = {req.call(s.law()).code()}\n"
             "print(r.converged, r.residual)\n"
-            "fr = floquet.spectrum(r)\n"
+            f"fr = {compute.SpectrumRequest(req).call().code('r')}\n"
             "print(len(fr.multipliers), fr.max_modulus, fr.error, fr.classification)\n"
             "print(fr.verdict)\n"
         )

@@ -17,7 +17,7 @@ from fpucore import qc
 from fpucore.law.smooth import SmoothLaw
 
 from .. import compute
-from ..compute import exact
+from ..compute.cache import exact
 from .bokeh_scene import (
     BokehScene,
     Updates,
@@ -110,7 +110,7 @@ class ForceLawScene(BokehScene):
         lw = s.law()
         alpha, ws, beta = lw.alpha, lw.w_star, lw.beta
         try:
-            sk_c = compute.qc_wave(lw, "superkink", s.w_plus, s.V)
+            sk_c = compute.run(lw, compute.QCWaveRequest("superkink", s.w_plus, s.V))
         except compute.ParameterError as exc:
             raise SceneMessage(str(exc)) from None
         sk = sk_c.value
@@ -118,7 +118,7 @@ class ForceLawScene(BokehScene):
         info.error("Rayleigh residual", sk.rayleigh_residual)
         info.error("equal-area residual |G|", sk.driving_force)
         up = Updates()
-        law_key = compute.law_key(lw)
+        law_key = compute.laws.law_key(lw)
         wp_key = law_key + (exact(sk.w_plus),)
 
         corners = getattr(lw, "breakpoints", None)  # a piecewise-linear law's corners
@@ -269,7 +269,8 @@ class ForceLawScene(BokehScene):
     def python_code(self) -> str:
         s = self.state
         code = python_preamble(s) + (
-            f"sk = qc.superkink_from_w_plus(law, {float(s.w_plus)!r})  # equal areas, V_SK\n"
+            f"sk = {compute.QCWaveRequest('superkink', s.w_plus, s.V).call().code()}"
+            "  # equal areas, V_SK\n"
             "print(sk.V, sk.w_minus, sk.rayleigh_residual)\n"
         )
         if s.mode == "solitary":

@@ -16,7 +16,7 @@ import panel as pn
 from bokeh.events import Tap
 
 from .. import compute
-from ..compute import exact
+from ..compute.cache import exact
 from .bokeh_scene import BokehScene, Updates, add_legend, add_line, add_points, new_figure
 from .formatting import as_csv, fmt_num, provenance
 from .held import Held, HeldCurves
@@ -108,8 +108,8 @@ class PhasePlaneScene(BokehScene):
     def _held_curve(self, wave) -> Held:
         """A held wave's orbit(s) (the superkink's pair) from its own phase plane (cached)."""
         lw = self.state.law()
-        V = compute.qc_wave(lw, wave.mode, wave.w_plus, wave.V).value.V
-        pp = compute.phase_plane(lw, wave.w_plus, V).value
+        V = compute.run(lw, compute.QCWaveRequest(wave.mode, wave.w_plus, wave.V)).value.V
+        pp = compute.run(lw, compute.PhasePlaneRequest(wave.w_plus, V)).value
         xs, ys = [], []
         for o in pp.orbits:
             xs += [o.w, [np.nan]]
@@ -147,7 +147,9 @@ class PhasePlaneScene(BokehScene):
         for w0, wp0 in self.clicks:
             if not (pp.w[0] <= w0 <= pp.w[-1] and pp.wp[0] <= wp0 <= pp.wp[-1]):
                 continue  # the window moved with w₊ or V: this point is off the plot now
-            c = compute.phase_orbit(lw, s.w_plus, s.V, w0, wp0, (pp.w[0], pp.w[-1]))
+            c = compute.run(
+                lw, compute.PhaseOrbitRequest(s.w_plus, s.V, w0, wp0, (pp.w[0], pp.w[-1]))
+            )
             o = c.value
             xs += [o.w, [np.nan]]
             ys += [o.wp, [np.nan]]
@@ -164,14 +166,14 @@ class PhasePlaneScene(BokehScene):
         s = self.state
         self.require_valid()
         lw = s.law()
-        c = compute.phase_plane(lw, s.w_plus, s.V)
+        c = compute.run(lw, compute.PhasePlaneRequest(s.w_plus, s.V))
         pp = c.value
         info.time("phase plane (QC)", c)
         info.error("H on orbit / H range", pp.orbit_residual)
         if not np.all(np.isfinite(pp.H)):
             raise SceneMessage("the first integral is not finite on this grid")
         up = Updates()
-        key = (compute.law_key(lw), exact(s.w_plus), exact(s.V))
+        key = (compute.laws.law_key(lw), exact(s.w_plus), exact(s.V))
 
         qs = np.quantile(pp.H, np.linspace(0.02, 0.6, 12))
         levels = sorted(set(np.round(np.concatenate([qs, pp.separatrix_levels]), 14)))
@@ -249,7 +251,7 @@ class PhasePlaneScene(BokehScene):
         wv = f"{float(s.w_plus)!r}, {float(s.V)!r}"
         code = python_preamble(s) + (
             "from fpucore.qc import phase\n"
-            f"pp = phase.phase_plane(law, {wv}, n_grid=241)\n"
+            f"pp = {compute.PhasePlaneRequest(s.w_plus, s.V).call().code()}\n"
             "print(pp.regime, [(c.kind, c.w) for c in pp.critical_points])\n"
         )
         for w0, wp0 in self.clicks:  # the orbits through the clicked points

@@ -14,7 +14,7 @@ import numpy as np
 import panel as pn
 
 from .. import compute
-from ..compute import exact
+from ..compute.cache import exact
 from ..state import N_RANGE
 from .bokeh_scene import (
     BokehScene,
@@ -105,7 +105,7 @@ class ProfilesScene(BokehScene):
         the current N and tol (both through app.compute, cached)."""
         s = self.state
         lw = s.law()
-        q = compute.qc_wave(lw, wave.mode, wave.w_plus, wave.V).value
+        q = compute.run(lw, compute.QCWaveRequest(wave.mode, wave.w_plus, wave.V)).value
         wp = float(wave.w_plus)
         if wave.mode == "superkink":
             qcall = f"qc.superkink_from_w_plus(law, {wp!r})"
@@ -136,7 +136,7 @@ class ProfilesScene(BokehScene):
 
         def cached(h) -> bool:
             try:
-                V = compute.qc_wave(lw, h.mode, h.w_plus, h.V).value.V
+                V = compute.run(lw, compute.QCWaveRequest(h.mode, h.w_plus, h.V)).value.V
             except compute.ParameterError:
                 return True  # no wave under this law: nothing to solve (the notes say why)
             try:
@@ -149,9 +149,9 @@ class ProfilesScene(BokehScene):
     def _qc_part(self, info: Info, up: Updates):
         s = self.state
         lw = s.law()
-        c = compute.qc_wave(lw, s.mode, s.w_plus, s.V)
+        c = compute.run(lw, compute.QCWaveRequest(s.mode, s.w_plus, s.V))
         qcw = c.value
-        info.time(f"QC {compute.qc_method(lw)}", c)
+        info.time(f"QC {compute.laws.qc_method(lw)}", c)
         if s.mode == "superkink":
             info.error("QC Rayleigh residual", qcw.rayleigh_residual)
             what = (
@@ -168,7 +168,7 @@ class ProfilesScene(BokehScene):
         self._half_shown = half
         xi = np.linspace(-half, half, 1601)
         wq = qcw.profile(xi)
-        key = (s.mode, compute.law_key(lw), exact(s.w_plus), exact(s.V), exact(half))
+        key = (s.mode, compute.laws.law_key(lw), exact(s.w_plus), exact(s.V), exact(half))
         up.data(self.r_qc[1], key, x=xi, y=wq)
         self._cols = {"xi": xi, "w_qc": wq}
         fronts = []
@@ -185,7 +185,7 @@ class ProfilesScene(BokehScene):
         """Kink and antikink (QC superkinks of the same w₊) placed at the bundle's layers,
         shown when the solitary wave has a plateau (amplitude within 5% of |w₋ − w₊|)."""
         s = self.state
-        sk = compute.qc_wave(s.law(), "superkink", s.w_plus, s.V).value
+        sk = compute.run(s.law(), compute.QCWaveRequest("superkink", s.w_plus, s.V)).value
         if abs(sw.amplitude - sk.amplitude) > 0.05 * sk.amplitude:
             return []
         w = sw.profile(xi)
@@ -242,7 +242,7 @@ class ProfilesScene(BokehScene):
             if exc.name != "N":
                 raise
             # N too small for the wave's tails (near c₊): keep the QC curve, advise an N
-            need = compute.n_needed(lw, s.mode, s.w_plus, s.V, s.tol)
+            need = compute.QCWaveRequest(s.mode, s.w_plus, s.V).n_needed(lw, s.tol)
             info.warning = (
                 f"No discrete wave at N = {s.N}: the wave's tails need {exc.valid}. "
                 + n_advice(need, s.N)
@@ -260,7 +260,7 @@ class ProfilesScene(BokehScene):
             info.error("amplitude error bound", r.amplitude_error)
         if not r.converged:
             # an unconverged profile is never drawn as if it were a wave
-            need = compute.n_needed(lw, s.mode, s.w_plus, s.V, s.tol)
+            need = compute.QCWaveRequest(s.mode, s.w_plus, s.V).n_needed(lw, s.tol)
             info.warning = (
                 f"The discrete solve did not converge at N = {r.N}, so its points are not drawn. "
                 f"{n_advice(need, r.N)} (fpucore: {r.message.split(':')[0]})"
@@ -311,10 +311,8 @@ class ProfilesScene(BokehScene):
     def python_code(self) -> str:
         s = self.state
         code = python_preamble(s)
-        if s.mode == "superkink":
-            code += f"q = qc.superkink_from_w_plus(law, {float(s.w_plus)!r})  # QC superkink\n"
-        else:
-            code += f"q = qc.solitary(law, {float(s.w_plus)!r}, {float(s.V)!r})  # QC wave\n"
+        what = "QC superkink" if s.mode == "superkink" else "QC wave"
+        code += f"q = {compute.QCWaveRequest(s.mode, s.w_plus, s.V).call().code()}  # {what}\n"
         code += "print(q.V, q.amplitude)\n"
         if self.show_discrete.value:
             req = compute.WaveRequest(s.mode, s.w_plus, s.V, s.N, s.tol)
@@ -329,7 +327,7 @@ class ProfilesScene(BokehScene):
         r = getattr(self, "_discrete", None)
         if r is not None:
             s = self.state
-            qcw = compute.qc_wave(s.law(), s.mode, s.w_plus, s.V).value
+            qcw = compute.run(s.law(), compute.QCWaveRequest(s.mode, s.w_plus, s.V)).value
             hdr = provenance(
                 self.state,
                 f"discrete {r.kind} wave w_n(0), wdot_n(0) (fixed ends w_left={r.w_left!r}, "

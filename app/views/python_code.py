@@ -11,7 +11,7 @@ import panel as pn
 
 import fpucore
 
-from ..compute import split_law
+from ..compute.laws import split_law
 from ..state import ExplorerState
 
 #: the code box: monospace, no soft wrap (a long call scrolls instead of breaking)

@@ -3,7 +3,7 @@
 A scene renders only when it is visible (the app calls :meth:`Scene.request` for the active
 tab and marks the others stale).  Rendering runs in a per-scene worker thread that coalesces
 requests (latest parameters win); heavy fpucore calls run in worker processes
-(:func:`app.compute.run_job`) and a newer request or the Cancel button makes the thread stop
+(:func:`app.compute.workers.run_job`) and a newer request or the Cancel button makes the thread stop
 waiting (the job is killed if nobody else waits for it), so slider drags never queue stale work.
 
 Root-cause rules:

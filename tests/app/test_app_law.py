@@ -151,21 +151,21 @@ def test_invalid_expression_state_is_explained_everywhere():
 # ---------------------------------------------------------------------------- cache keys
 def test_cache_keys_tell_the_laws_apart():
     cubic, as_poly = CubicLaw(-1.0, 10.0), PolynomialLaw((1.0, 10.0, -1.0))
-    quartic = compute.expression_law(Q)
-    keys = {compute.law_key(lw) for lw in (cubic, as_poly, quartic)}
+    quartic = compute.laws.expression_law(Q)
+    keys = {compute.laws.law_key(lw) for lw in (cubic, as_poly, quartic)}
     assert len(keys) == 3  # the same cubic by two routes is two entries
     req = compute.WaveRequest("solitary", 1.0, 5.0, 200, 1e-10)
     wk = {compute.job_key(lw, req) for lw in (cubic, quartic)}
     assert len(wk) == 2
-    qc_c = compute.qc_wave(cubic, "solitary", 1.0, 5.0).value
-    qc_q = compute.qc_wave(quartic, "solitary", 1.0, 5.0).value
+    qc_c = compute.run(cubic, compute.QCWaveRequest("solitary", 1.0, 5.0)).value
+    qc_q = compute.run(quartic, compute.QCWaveRequest("solitary", 1.0, 5.0)).value
     assert qc_c is not qc_q and qc_c.amplitude != qc_q.amplitude
     # the closed form and the general route agree for the cubic (fpucore's ≤ 1e-12 contract)
-    qc_p = compute.qc_wave(as_poly, "solitary", 1.0, 5.0).value
+    qc_p = compute.run(as_poly, compute.QCWaveRequest("solitary", 1.0, 5.0)).value
     assert qc_p.amplitude == pytest.approx(qc_c.amplitude, rel=1e-12)
     # keys are exact: a coefficient 1e-15 away is another law
-    other = compute.expression_law("w + 10*w**2 - w**3 - 0.010000000000000002*w**4")
-    assert compute.law_key(other) != compute.law_key(quartic)
+    other = compute.laws.expression_law("w + 10*w**2 - w**3 - 0.010000000000000002*w**4")
+    assert compute.laws.law_key(other) != compute.laws.law_key(quartic)
 
 
 def test_changing_the_law_makes_every_scene_stale_and_redraws_the_force_law():
@@ -254,7 +254,7 @@ def test_a_typed_law_is_named_as_being_checked_until_the_law_worker_has_built_it
     ex = Explorer()
     law = ex.law_editor
     text = "w + 9.25*w**2 - w**3"  # typed nowhere else: not built yet
-    assert compute.lookup_law(text) is None
+    assert compute.laws.lookup_law(text) is None
     law.law_kind.value = "expression"
     # every text of the sidebar's ranges pane, recorded (a warm law worker answers within ms)
     shown: list[str] = []
@@ -316,7 +316,9 @@ def test_copy_as_python_builds_the_law_and_reproduces_the_force_scene():
     assert f"law = fpucore.law_from_expression({Q!r})" in code
     lines = run_code(code)
     V, wm, _ = (float(x) for x in lines[1].split())
-    sk = compute.qc_wave(st.law(), "superkink", 1.0, st.V).value  # what the scene drew
+    sk = compute.run(
+        st.law(), compute.QCWaveRequest("superkink", 1.0, st.V)
+    ).value  # what the scene drew
     assert (V, wm) == (sk.V, sk.w_minus)
     # independent: the equal-area and Rayleigh conditions hold for (1, w₋, V)
     r_line, area = equal_area_residuals(QC, 1.0, wm, V)

@@ -30,7 +30,7 @@ from fpucore.law.presets import PRESETS  # noqa: E402
 from fpucore.law.smooth import SmoothLaw  # noqa: E402
 
 TANH = PRESETS["tanh"]
-TANH_TEXT = compute.join_law(TANH.text, TANH.constants_dict)
+TANH_TEXT = compute.laws.join_law(TANH.text, TANH.constants_dict)
 
 
 def tanh_marks(c=0.1, k=1.0, m=1.0, s=0.3) -> tuple[float, float, float]:
@@ -105,7 +105,9 @@ def test_constant_slider_rebuilds_the_law_and_the_force_scene_redraws():
     y_before = list(scene.r_f[1].data["y"])
     move(law.const_sliders["s"], 0.4)
     settle(ex, lambda: "s=0.4" in ex.state.expression and "checking" not in ex.ranges.object)
-    assert ex.state.expression == compute.join_law(TANH.text, {**TANH.constants_dict, "s": 0.4})
+    assert ex.state.expression == compute.laws.join_law(
+        TANH.text, {**TANH.constants_dict, "s": 0.4}
+    )
     lw = ex.state.law()
     for got, ref in zip((lw.alpha, lw.w_star, lw.beta), tanh_marks(s=0.4)):
         assert got == pytest.approx(ref, abs=1e-12)
@@ -144,7 +146,9 @@ def test_a_refused_law_is_named_and_the_previous_law_stays():
 
 
 def test_url_and_copy_as_python_carry_the_constants():
-    st = ExplorerState(expression=compute.join_law(TANH.text, {**TANH.constants_dict, "s": 0.4}))
+    st = ExplorerState(
+        expression=compute.laws.join_law(TANH.text, {**TANH.constants_dict, "s": 0.4})
+    )
     q = url_query(st)
     assert q["law"].endswith("; c=0.1, k=1.0, m=1.0, s=0.4")
     values, errors = parse_url(q)

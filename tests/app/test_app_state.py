@@ -21,7 +21,7 @@ from app.url_state import parse_url  # noqa: E402
 
 C2 = 1.0 + 100.0 / 3.0  # c_max² = 1 + b²/(3|a|)
 W_STAR = 10.0 / 3.0
-CUBIC = compute.law(-1.0, 10.0)  # the paper's law, a = -1, b = 10
+CUBIC = compute.laws.law(-1.0, 10.0)  # the paper's law, a = -1, b = 10
 
 
 def test_defaults_are_valid_and_ranges_follow_the_theory():
@@ -103,7 +103,7 @@ def test_url_query_reproduces_the_state():
 
 
 def test_cache_deduplicates_inflight_work_and_keys_are_exact():
-    cache = compute.ResultCache()
+    cache = compute.cache.ResultCache()
     calls = []
 
     def slow():
@@ -119,15 +119,17 @@ def test_cache_deduplicates_inflight_work_and_keys_are_exact():
         t.join()
     assert len(calls) == 1 and [c.value for c in out] == [42] * 4
     assert sum(c.cached for c in out) == 3
-    assert compute.exact(5.0000000000001) != compute.exact(5.0)
-    assert compute.exact(5.21749194749) != compute.exact(5.2174919476)  # Fig. stabSW's two waves
+    assert compute.cache.exact(5.0000000000001) != compute.cache.exact(5.0)
+    assert compute.cache.exact(5.21749194749) != compute.cache.exact(
+        5.2174919476
+    )  # Fig. stabSW's two waves
 
 
 def test_qc_results_are_shared_only_for_identical_inputs():
     compute.CACHE.clear()
-    a = compute.qc_wave(CUBIC, "solitary", 1.0, 5.0)
-    b = compute.qc_wave(CUBIC, "solitary", 1.0, 5.0)
-    c = compute.qc_wave(CUBIC, "solitary", 1.0 + 1e-15, 5.0)
+    a = compute.run(CUBIC, compute.QCWaveRequest("solitary", 1.0, 5.0))
+    b = compute.run(CUBIC, compute.QCWaveRequest("solitary", 1.0, 5.0))
+    c = compute.run(CUBIC, compute.QCWaveRequest("solitary", 1.0 + 1e-15, 5.0))
     assert not a.cached and b.cached and a.value is b.value
     assert not c.cached and c.value is not a.value
     assert a.value.amplitude > 0

@@ -118,10 +118,14 @@ def test_sliders_follow_the_theory():
 
 
 def test_qc_profile_scene_never_solves_the_discrete_problem_when_off(monkeypatch):
-    def boom(*a, **k):
-        raise AssertionError("discrete solve triggered")
+    real_run = compute.run
 
-    monkeypatch.setattr(compute, "run", boom)  # the road of every worker job
+    def boom(lw, req, **kw):  # the road of every job: a worker's is refused
+        if not req.local:
+            raise AssertionError("discrete solve triggered")
+        return real_run(lw, req, **kw)
+
+    monkeypatch.setattr(compute, "run", boom)
     _, sc = scene("profiles")
     sc.show_discrete.value = False
     sc.wait_idle(30)

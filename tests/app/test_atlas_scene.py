@@ -131,7 +131,7 @@ def test_the_small_atlas_is_a_cached_job_and_its_code_reproduces_it():
     label, c = info.timings[0]
     assert label == "atlas run (6 points)" and not c.cached
     req = sc.atlas_request()
-    assert compute.is_cached(compute.law(-1.0, 10.0), req)
+    assert compute.is_cached(compute.laws.law(-1.0, 10.0), req)
     first = sc.atlas_data
     t0 = time.perf_counter()
     again = small_run(AtlasScene(ExplorerState()), 2, 3, 80)  # another session, same request
@@ -169,7 +169,7 @@ def test_a_running_atlas_shows_its_progress_and_cancel_frees_its_worker_within_a
     show = sc.set_progress
     sc.set_progress = lambda done, *a, **k: (seen.append(done), show(done, *a, **k))
     sc.n_w.value, sc.n_V.value, sc.N_run.value = 6, 4, 400  # rows of 4 spectra at N = 400
-    cancelled = compute.CANCELLED[0]
+    cancelled = compute.workers.CANCELLED[0]
     sc._want_run = True
     sc.request()
     t_end = time.monotonic() + 300
@@ -178,10 +178,10 @@ def test_a_running_atlas_shows_its_progress_and_cancel_frees_its_worker_within_a
     assert any(0 < x < 1 for x in seen), seen  # a row done: the bar moved
     assert seen == sorted(seen)
     assert re.match(r"atlas points: \d+ %", sc.progress_text.object), sc.progress_text.object
-    assert compute.jobs_in_flight() == 1 and sc.busy_shown
+    assert compute.workers.jobs_in_flight() == 1 and sc.busy_shown
     assert_cancel_answers_within(sc, 1.0)
-    assert compute.CANCELLED[0] == cancelled + 1 and compute.jobs_in_flight() == 0
-    assert not compute.is_cached(compute.law(-1.0, 10.0), sc.atlas_request())
+    assert compute.workers.CANCELLED[0] == cancelled + 1 and compute.workers.jobs_in_flight() == 0
+    assert not compute.is_cached(compute.laws.law(-1.0, 10.0), sc.atlas_request())
     assert sc.atlas_data is None  # nothing half-done on screen
 
 

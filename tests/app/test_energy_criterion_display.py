@@ -67,18 +67,19 @@ def test_diagram_says_so_when_the_family_has_no_extremum():
 
 def test_sweep_energy_check_locates_the_discrete_minimum_from_the_sweeps_own_waves():
     Vs = [0.66, 0.71, 0.76, 0.81, 0.86]
-    lw = compute.law(-1.0, 10.0)
+    lw = compute.laws.law(-1.0, 10.0)
     req = compute.SweepRequest("solitary", W_SOFT, Vs, 100)
-    assert compute.sweep_energy_check(lw, req) is None  # nothing swept: nothing
+    check = compute.SampledEnergyRequest(req)
+    assert compute.run(lw, check) is None  # nothing swept: nothing
     compute.run(lw, req)
-    c = compute.sweep_energy_check(lw, req)
+    c = compute.run(lw, check)
     ec, changes = c.value
     assert ec.extrema_kind == ("min",) and ec.qc_extrema_kind == ("min",)
     ref = fq.energy_criterion(LAW, W_SOFT, np.linspace(0.72, 0.82, 5), N=100, qc_samples=0)
     assert abs(ec.extrema_V[0] - ref.extrema_V[0]) <= ec.extrema_V_error[0] + ref.extrema_V_error[0]
     assert abs(ec.qc_extrema_V[0] - qc_minimum_on_a_dense_grid()) < 2e-5
     assert all(ch.explained for ch in changes)
-    assert compute.sweep_energy_check(lw, req).cached
+    assert compute.run(lw, check).cached
 
 
 def test_floquet_sweep_panel_shows_the_criterion_and_the_cross_check():
@@ -134,8 +135,9 @@ def test_diagram_marks_the_discrete_minimum_once_its_dots_exist():
     assert abs(d["x"][0] - v_qc) <= dv + fq.energy.QC_DISCRETE_ALLOWANCE * v_qc
     assert "E_ren(V) of the discrete dots has a minimum" in sc.status.object
     assert (
-        compute.family_energy_extrema(
-            st.law(), compute.FamilyRequest(st.w_plus, [0.5, 0.6], 200, 1e-8)
+        compute.run(
+            st.law(),
+            compute.SampledEnergyRequest(compute.FamilyRequest(st.w_plus, [0.5, 0.6], 200, 1e-8)),
         )
         is None
     )  # not cached

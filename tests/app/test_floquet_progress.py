@@ -34,7 +34,7 @@ def test_stage_and_fraction_survive_the_one_number_the_pool_forwards():
 
 def test_the_job_reports_its_stages_in_order():
     seen: list[float] = []
-    law = compute.law(-1.0, 10.0)
+    law = compute.laws.law(-1.0, 10.0)
     r, fr = floquet_job(law, WaveRequest("superkink", 1.0, 0.0, 200, 1e-10), progress=seen.append)
     assert fr is not None
     stages = [stage_of(x)[0] for x in seen]
@@ -45,10 +45,9 @@ def test_the_job_reports_its_stages_in_order():
 
 
 def test_a_running_spectrum_shows_its_stage_and_time_left_and_cancel_answers_within_a_second():
-    law = compute.law(-1.0, 10.0)
-    compute.floquet_spectrum(
-        law, WaveRequest("solitary", 1.0, 5.0, 300, 1e-10)
-    )  # times one spectrum here
+    law = compute.laws.law(-1.0, 10.0)
+    wave = WaveRequest("solitary", 1.0, 5.0, 300, 1e-10)
+    compute.run(law, compute.SpectrumRequest(wave))  # times one spectrum here
     assert heavy.spectrum_time_estimate(1000) > 0
     sc = BY_KEY["floquet"](ExplorerState(N=1000, tol=1e-10))
     texts: list[str] = []

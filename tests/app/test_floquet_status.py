@@ -40,9 +40,8 @@ WINDOWS = {
 @pytest.fixture(scope="module")
 def real():
     st = ExplorerState(N=N, tol=1e-8)
-    return compute.floquet_spectrum(
-        st.law(), compute.WaveRequest(st.mode, st.w_plus, st.V, st.N, st.tol)
-    )
+    wave = compute.WaveRequest(st.mode, st.w_plus, st.V, st.N, st.tol)
+    return compute.run(st.law(), compute.SpectrumRequest(wave)).value
 
 
 @pytest.mark.parametrize("cls", list(WINDOWS))
@@ -57,8 +56,8 @@ def test_status_words_agree_with_the_numbers(cls, real, monkeypatch):
         finite_size_N=WIN.astype(np.int64), finite_size_excess=e, finite_size_error=err,
         finite_size_exponent=fit["p"], finite_size_exponent_error=fit["p_error"],
     )  # fmt: skip
-    monkeypatch.setattr(compute, "floquet_spectrum",
-                        lambda *a, **k: (rc, dataclasses.replace(fc, value=fr)))  # fmt: skip
+    pair = compute.Computed((rc, dataclasses.replace(fc, value=fr)), 0.0, True)
+    monkeypatch.setattr(compute, "run", lambda *a, **k: pair)
     st = ExplorerState(N=N, tol=1e-8)
     sc = BY_KEY["floquet"](st)
     sc.panel.get_root(Document())
@@ -128,8 +127,17 @@ def test_sweep_panel_says_which_velocities_are_missing_and_why(real, monkeypatch
         classification=("", "", "finite_size"), rows=rows, converged=False, stopped=True,
         message="time budget", elapsed_s=0.1,
     )  # fmt: skip
-    monkeypatch.setattr(compute, "floquet_spectrum", lambda *a, **k: (rc, fc))
-    monkeypatch.setattr(compute, "run", lambda *a, **k: Computed(sw, 0.1, False))
+
+    real_run = compute.run
+
+    def run(lw, req, **kw):  # the spectrum as computed, the sweep above
+        if isinstance(req, compute.SpectrumRequest):
+            return Computed((rc, fc), 0.1, True)
+        if isinstance(req, compute.SampledEnergyRequest):  # the sweep above is not cached
+            return real_run(lw, req, **kw)
+        return Computed(sw, 0.1, False)
+
+    monkeypatch.setattr(compute, "run", run)
     st = ExplorerState(N=N, tol=1e-8)
     sc = BY_KEY["floquet"](st)
     sc.panel.get_root(Document())
@@ -163,8 +171,8 @@ def test_measured_windows_render_words_that_agree(key, real, monkeypatch):
         finite_size_N=n.astype(np.int64), finite_size_excess=e, finite_size_error=err,
         finite_size_exponent=fit["p"], finite_size_exponent_error=fit["p_error"],
     )  # fmt: skip
-    monkeypatch.setattr(compute, "floquet_spectrum",
-                        lambda *a, **k: (rc, dataclasses.replace(fc, value=fr)))  # fmt: skip
+    pair = compute.Computed((rc, dataclasses.replace(fc, value=fr)), 0.0, True)
+    monkeypatch.setattr(compute, "run", lambda *a, **k: pair)
     sc = BY_KEY["floquet"](ExplorerState(N=N, tol=1e-8))
     sc.panel.get_root(Document())
     sc.refresh()

@@ -47,7 +47,7 @@ def counted(monkeypatch):
 @pytest.mark.parametrize("preset", ["tanh", "rational", "exponential"])
 def test_a_smooth_preset_change_draws_the_force_law_without_solitary_profiles(counted, preset):
     text = preset_text(preset)
-    compute.trusted_expression_law(text)  # built (as at the warm-up): no law worker here
+    compute.laws.trusted_expression_law(text)  # built (as at the warm-up): no law worker here
     ex = Explorer()
     assert ex.state.tab == "force"
     scene = ex.active_scene()
@@ -64,7 +64,7 @@ def test_a_smooth_preset_change_draws_the_force_law_without_solitary_profiles(co
 
 def test_the_warm_up_builds_every_preset_a_choice_applies(monkeypatch):
     requested: list[str] = []
-    monkeypatch.setattr(compute, "request_law", lambda text: requested.append(text))
+    monkeypatch.setattr(compute.laws, "request_law", lambda text: requested.append(text))
     assert warmup.request_preset_laws() == requested
     applied: list[str] = []
     ex = Explorer()

@@ -197,11 +197,11 @@ def test_the_riemann_figure_runs_once_and_gives_the_papers_velocities():
     from app import compute
 
     ex = Explorer(lazy=True)
-    cancelled = compute.CANCELLED[0]
+    cancelled = compute.workers.CANCELLED[0]
     ex.scene("paper").open("Riemann1")
     sc = ex.scene("simulation")
     assert sc.wait_idle(300.0) and sc.last_message is None, sc.last_message
-    assert compute.CANCELLED[0] == cancelled
+    assert compute.workers.CANCELLED[0] == cancelled
     sim = sc._sim[-1]
     for printed in (-5.7209, -5.6159, 4.6404):
         best = min(sim.waves, key=lambda w: abs(w.velocity - printed))
@@ -212,8 +212,8 @@ def test_the_riemann_figure_runs_once_and_gives_the_papers_velocities():
 def test_a_superseded_caller_submits_no_job():
     from app import compute
 
-    cancelled, n = compute.CANCELLED[0], compute.jobs_in_flight()
+    cancelled, n = compute.workers.CANCELLED[0], compute.workers.jobs_in_flight()
     with pytest.raises(compute.Superseded):
         req = compute.RiemannRequest(L=400, t_end=1.0 + 1e-9, w_left=4.6, w_right=0.0)
-        compute.run(compute.law(-1.0, 10.0), req, stop=lambda: True)
-    assert compute.CANCELLED[0] == cancelled and compute.jobs_in_flight() == n
+        compute.run(compute.laws.law(-1.0, 10.0), req, stop=lambda: True)
+    assert compute.workers.CANCELLED[0] == cancelled and compute.workers.jobs_in_flight() == n

@@ -34,7 +34,7 @@ from app.views import SCENES  # noqa: E402
 ROOT = Path(__file__).resolve().parents[2]
 BY_KEY = {cls.key: cls for cls in SCENES}
 V_SK1 = 2 * math.sqrt(65) / 3
-CUBIC = compute.law(-1.0, 10.0)  # the paper's law, a = -1, b = 10
+CUBIC = compute.laws.law(-1.0, 10.0)  # the paper's law, a = -1, b = 10
 
 
 def attached(key: str, **params):
@@ -99,7 +99,7 @@ def test_worker_thread_survives_any_exception_and_clears_its_running_flag():
 # --------------------------------------------------------- heavy work in worker processes
 def test_heavy_work_runs_in_another_process_and_a_superseded_job_is_killed():
     compute.CACHE.clear()
-    pid = compute.run_job(("pid", time.time()), os.getpid, ()).value
+    pid = compute.workers.run_job(("pid", time.time()), os.getpid, ()).value
     assert pid != os.getpid()
     t0 = time.monotonic()
     latencies = []
@@ -107,18 +107,17 @@ def test_heavy_work_runs_in_another_process_and_a_superseded_job_is_killed():
     def stop():
         # meanwhile the server answers QC requests (another "session")
         t = time.perf_counter()
-        compute.qc_wave(CUBIC, "solitary", 1.0, 4.3 + 1e-3 * len(latencies))
+        compute.run(CUBIC, compute.QCWaveRequest("solitary", 1.0, 4.3 + 1e-3 * len(latencies)))
         latencies.append(time.perf_counter() - t)
         return time.monotonic() - t0 > 1.5  # a newer slider value arrives
 
-    cancelled = compute.CANCELLED[0]
+    cancelled = compute.workers.CANCELLED[0]
     with pytest.raises(compute.Superseded):
-        compute.floquet_spectrum(
-            CUBIC, compute.WaveRequest("solitary", 1.0, 5.1, 1400, 1e-10), stop=stop
-        )
+        wave = compute.WaveRequest("solitary", 1.0, 5.1, 1400, 1e-10)
+        compute.run(CUBIC, compute.SpectrumRequest(wave), stop=stop)
     assert time.monotonic() - t0 < 10  # left at once, not after the spectrum
-    assert compute.CANCELLED[0] == cancelled + 1  # the job was cancelled, not left queued
-    assert compute.jobs_in_flight() == 0
+    assert compute.workers.CANCELLED[0] == cancelled + 1  # the job was cancelled, not left queued
+    assert compute.workers.jobs_in_flight() == 0
     assert latencies and max(latencies) < 0.5  # generous: not a benchmark
 
 
@@ -130,7 +129,7 @@ def test_near_c_plus_the_qc_curve_stays_and_an_N_the_dashboard_can_set_is_advise
     assert len(sc.r_qc[1].data["x"]) > 0 and len(sc.r_dots[1].data["x"]) == 0
     text = sc.alert.object
     assert sc.alert.visible and "N=None" not in text
-    need = compute.n_needed(CUBIC, "solitary", 1.0, 4.245, 1e-10)
+    need = compute.QCWaveRequest("solitary", 1.0, 4.245).n_needed(CUBIC, 1e-10)
     assert N_RANGE[0] <= need <= N_RANGE[1] and need % 2 == 0 and need > 200
     assert f"N = {need}" in text
 
@@ -262,8 +261,8 @@ def test_cache_never_returns_a_result_for_different_inputs():
     k1 = compute.job_key(CUBIC, compute.WaveRequest("solitary", 1.0, V1, 400, 1e-10))
     k2 = compute.job_key(CUBIC, compute.WaveRequest("solitary", 1.0, V2, 400, 1e-10))
     assert k1 != k2
-    q1 = compute.qc_wave(CUBIC, "solitary", 1.0, V1)
-    q2 = compute.qc_wave(CUBIC, "solitary", 1.0, V2)
+    q1 = compute.run(CUBIC, compute.QCWaveRequest("solitary", 1.0, V1))
+    q2 = compute.run(CUBIC, compute.QCWaveRequest("solitary", 1.0, V2))
     assert q1.value is not q2.value
     kinds = {q1.value.kind, q2.value.kind}
     assert kinds == {"tensile", "compressive"}  # below / above V_SK (Fig. 4)
@@ -274,7 +273,7 @@ def test_odd_inputs_give_messages_not_tracebacks():
     values, errors = parse_url({"N": "9" * 5000, "b": "1e200", "V": "1" * 5000})
     assert len(errors) == 3 and values == {}
     with pytest.raises(compute.ParameterError):
-        compute.law(-1.0, 1e200)  # used to be an OverflowError
+        compute.laws.law(-1.0, 1e200)  # used to be an OverflowError
     st, sc = attached("force", b=1e200)
     sc.refresh()
     msg = sc.last_message or ""

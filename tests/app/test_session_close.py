@@ -103,9 +103,9 @@ def test_a_job_stopped_by_the_server_shutting_down_logs_no_traceback(caplog):
     t_end = time.monotonic() + 240
     while not sc.busy_shown and time.monotonic() < t_end:
         time.sleep(0.05)
-    assert compute.jobs_in_flight() >= 1
+    assert compute.workers.jobs_in_flight() >= 1
     with caplog.at_level(logging.ERROR, logger="fpu-explorer"):
-        compute.shutdown_executor()
+        compute.workers.shutdown_executor()
         assert sc.wait_idle(30)
     assert not [r for r in caplog.records if r.levelno >= logging.ERROR], caplog.text
     assert (sc.last_message or "").startswith("Stopped: the server's worker processes"), (
@@ -132,14 +132,16 @@ def test_a_job_stops_as_soon_as_the_browser_leaves():
     doc, st, sc = served("floquet", ctx, w_plus=1.0, V=5.0, N=1300, tol=1e-10)
     assert not sc.session_closed  # built, not yet connected: a page being loaded is not gone
     ctx._session.connection_count = 1  # the page's websocket
-    cancelled = compute.CANCELLED[0]
+    cancelled = compute.workers.CANCELLED[0]
     sc.request()
     t_end = time.monotonic() + 240
     while not sc.busy_shown and time.monotonic() < t_end:
         time.sleep(0.05)
-    assert compute.jobs_in_flight() >= 1 and not sc.session_closed
+    assert compute.workers.jobs_in_flight() >= 1 and not sc.session_closed
     ctx._session.connection_count = 0  # the browser left; the session is not destroyed yet
     t0 = time.perf_counter()
     assert sc.wait_idle(10)
     assert time.perf_counter() - t0 < 1.0
-    assert sc.session_closed and compute.CANCELLED[0] == cancelled + 1  # its worker was freed
+    assert (
+        sc.session_closed and compute.workers.CANCELLED[0] == cancelled + 1
+    )  # its worker was freed

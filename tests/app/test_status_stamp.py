@@ -89,16 +89,16 @@ def test_a_state_moved_during_a_render_is_never_drawn_under_the_old_stamp(monkey
 
     ex = Explorer(ExplorerState(tab="diagram"), lazy=True)
     sc = ex.scene("diagram")
-    original = compute.existence_diagram
+    original = compute.run
     moved = []
 
-    def existence_diagram(lw, *a, **kw):  # runs after the stamp, before the point is read
-        if not moved:
+    def run(lw, req, *a, **kw):  # the existence diagram: after the stamp, before the point
+        if isinstance(req, compute.ExistenceRequest) and not moved:
             moved.append(True)
             ex.state.V = 5.1  # as the server's event loop does while the worker renders
-        return original(lw, *a, **kw)
+        return original(lw, req, *a, **kw)
 
-    monkeypatch.setattr(compute, "existence_diagram", existence_diagram)
+    monkeypatch.setattr(compute, "run", run)
     shown = []
     write = sc._write_status
 

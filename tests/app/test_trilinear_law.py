@@ -39,7 +39,7 @@ def move(slider, value: float) -> None:
 
 @pytest.fixture
 def ex():
-    compute.trusted_expression_law(TEXT)  # built, as at the server's warm-up: no law worker
+    compute.laws.trusted_expression_law(TEXT)  # built, as at the server's warm-up: no law worker
     ex = Explorer()
     ex.law_editor.preset.value = "trilinear"
     assert ex.state.expression == TEXT
@@ -103,14 +103,14 @@ def test_a_bad_slider_combination_is_refused_with_the_reason(ex, name, value, re
 def test_a_typed_negative_modulus_is_refused_with_the_reason(ex):
     text = trilinear_text({**TRILINEAR_DEFAULTS, "E3": -0.1})
     with pytest.raises(compute.ParameterError, match="E3"):
-        compute.trusted_expression_law(text)
+        compute.laws.trusted_expression_law(text)
     ex.law_editor.apply(text)
     assert ex.state.expression == TEXT
     assert "negative modulus" in ex.law_editor.refused
 
 
 def state() -> ExplorerState:
-    compute.trusted_expression_law(TEXT)
+    compute.laws.trusted_expression_law(TEXT)
     st = ExplorerState()
     st.param.update(expression=TEXT)
     return st
