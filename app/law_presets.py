@@ -20,8 +20,13 @@ from . import compute
 #: soft-hard-soft law with w1 < w2, E2 > E1, E3) and slider ranges
 TRILINEAR = "trilinear"
 TRILINEAR_DEFAULTS = {"w1": 0.5, "w2": 1.5, "E1": 1.0, "E2": 4.0, "E3": 0.2}
-TRILINEAR_RANGES = {"w1": (0.05, 3.0), "w2": (0.1, 5.0), "E1": (0.0, 5.0), "E2": (0.1, 10.0),
-                    "E3": (0.0, 5.0)}  # fmt: skip
+TRILINEAR_RANGES = {
+    "w1": (0.05, 3.0),
+    "w2": (0.1, 5.0),
+    "E1": (0.0, 5.0),
+    "E2": (0.1, 10.0),
+    "E3": (0.0, 5.0),
+}
 TRILINEAR_DESCRIPTION = "soft-hard-soft piecewise-linear (breakpoints w1 < w2, moduli E1, E2, E3)"
 
 #: the law editor's help: which laws are accepted

@@ -27,16 +27,24 @@ class TrilinearSliders:
         for name, v in TRILINEAR_DEFAULTS.items():
             lo, hi = TRILINEAR_RANGES[name]
             sl = FloatSlider(
-                label=name, start=lo, end=hi, step=(hi - lo) / 500, value=v,
-                css_classes=[f"w-pl-{name}"], format="0.0[000]", sizing_mode="stretch_width",
+                label=name,
+                start=lo,
+                end=hi,
+                step=(hi - lo) / 500,
+                value=v,
+                css_classes=[f"w-pl-{name}"],
+                format="0.0[000]",
+                sizing_mode="stretch_width",
                 show_value=True,
-            )  # fmt: skip
+            )
             sl.param.watch(lambda e, n=name: self.moved(n, e.new), "value_throttled")
             self.sliders[name] = sl
         self.box = pn.Column(
-            *self.sliders.values(), visible=False, sizing_mode="stretch_width",
+            *self.sliders.values(),
+            visible=False,
+            sizing_mode="stretch_width",
             css_classes=["law-trilinear"],
-        )  # fmt: skip
+        )
 
     def moved(self, name: str, value) -> None:
         """Slider ``name`` released at ``value``: the law text of all five sliders."""

@@ -81,18 +81,46 @@ _T50_SW = 50.0 * (1.0 / 5.2174919476)  # (computed as it computes it, to the las
 FIGURE_SCENARIO: dict[str, dict] = {
     # seeded with the current superkink V = 5.2 (panel (b)) for 50 periods; L = fpucore's
     # default chain for N = 64 (N + ⌈V t_end⌉ + 2·100 sites): fpucore.paper's run exactly
-    "stabSK": {"kind": "seeded", "L": 314, "t_end": _T50_SK, "guard": "convex", "probes": (),
-               "run_s": 0.4},
+    "stabSK": {
+        "kind": "seeded",
+        "L": 314,
+        "t_end": _T50_SK,
+        "guard": "convex",
+        "probes": (),
+        "run_s": 0.4,
+    },
     # Riemann data w^l = 4.6, w^r = 0, L = 3600 to t = 300, tracked sites 100, 200, 3000
-    "Riemann1": {"kind": "riemann", "w_left": 4.6, "w_right": 0.0, "L": 3600, "t_end": 300.0,
-                 "guard": "convex", "probes": (100, 200, 3000), "run_s": 2.7},
+    "Riemann1": {
+        "kind": "riemann",
+        "w_left": 4.6,
+        "w_right": 0.0,
+        "L": 3600,
+        "t_end": 300.0,
+        "guard": "convex",
+        "probes": (100, 200, 3000),
+        "run_s": 2.7,
+    },
     # seeded with the tensile wave V = 5.2174919476 at w₊ = 6 (panel (b)) for 50 periods
-    "stabSW": {"kind": "seeded", "L": 314, "t_end": _T50_SW, "guard": "convex", "probes": (),
-               "run_s": 2.2},
+    "stabSW": {
+        "kind": "seeded",
+        "L": 314,
+        "t_end": _T50_SW,
+        "guard": "convex",
+        "probes": (),
+        "run_s": 2.2,
+    },
     # Gaussian data (a): w_B = 1, A = 6, L = 2400, t = 200 (leaves (α, β): guard "bounded")
-    "SWdyn": {"kind": "gaussian", "w_B": 1.0, "A": 6.0, "L": 2400, "t_end": 200.0,
-              "guard": "bounded", "probes": (), "run_s": 0.5},
-}  # fmt: skip
+    "SWdyn": {
+        "kind": "gaussian",
+        "w_B": 1.0,
+        "A": 6.0,
+        "L": 2400,
+        "t_end": 200.0,
+        "guard": "bounded",
+        "probes": (),
+        "run_s": 0.5,
+    },
+}
 
 #: the part of a figure its scene computes only on demand elsewhere (a button), computed as part
 #: of the click while the view is the figure's: the discrete dots of Figs. SWamp/SWenergy_cubic_

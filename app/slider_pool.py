@@ -34,9 +34,16 @@ class SliderPool:
         new = []
         for _ in range(n - len(self.sliders)):
             sl = FloatSlider(
-                label="", start=0.0, end=1.0, step=0.001, value=0.0, visible=False,
-                format="0.0[000]", sizing_mode="stretch_width", show_value=True,
-            )  # fmt: skip
+                label="",
+                start=0.0,
+                end=1.0,
+                step=0.001,
+                value=0.0,
+                visible=False,
+                format="0.0[000]",
+                sizing_mode="stretch_width",
+                show_value=True,
+            )
             sl.param.watch(lambda e, s=sl: self.on_move(s, e.new), "value_throttled")
             new.append(sl)
         if new:

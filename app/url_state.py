@@ -191,9 +191,11 @@ def _check_held(law, wave: HeldWave) -> None:
         cp, vsk, cm = qc.sound_speeds(law, wave.w_plus)
         if wave.V == vsk:
             raise ParameterError(
-                "V", wave.V, f"({cp:.10g}, {vsk:.10g}) or ({vsk:.10g}, {cm:.10g})",
+                "V",
+                wave.V,
+                f"({cp:.10g}, {vsk:.10g}) or ({vsk:.10g}, {cm:.10g})",
                 "V = V_SK is the superkink: sk@w_plus holds it",
-            )  # fmt: skip
+            )
         qc.solitary(law, wave.w_plus, wave.V)
     except ParameterError as exc:
         why = f"the held wave's {exc.name}" + (f": {exc.reason}" if exc.reason else "")

@@ -74,8 +74,11 @@ class SampledEnergyRequest(LocalRequest):
 
     def __post_init__(self):
         src = self.source
-        if not (isinstance(src, FamilyRequest) or isinstance(src, SweepRequest)
-                and src.kind == "solitary"):  # fmt: skip
+        if not (
+            isinstance(src, FamilyRequest)
+            or isinstance(src, SweepRequest)
+            and src.kind == "solitary"
+        ):
             raise ParameterError("source", src, "a FamilyRequest or a solitary SweepRequest")
 
     def job_key(self, lw) -> tuple:

@@ -73,9 +73,12 @@ def split_law(text: str) -> tuple[str, dict[str, float]]:
             consts[name] = float(value)
         except ValueError:
             # named as the law the user typed (a URL's law=, the law box), the pair in the reason
-            raise ParameterError("law", _short(text), CONSTANTS_VALID,
-                                 f"{_short(pair)!r} after ';' is not a name=value "
-                                 "pair") from None  # fmt: skip
+            raise ParameterError(
+                "law",
+                _short(text),
+                CONSTANTS_VALID,
+                f"{_short(pair)!r} after ';' is not a name=value pair",
+            ) from None
     return expr.strip(), consts
 
 
@@ -268,9 +271,12 @@ def expression_law(expression: str) -> PolynomialLaw:
     if outcome is None:
         fut = request_law(expression)
         if _on_event_loop() and not fut.done():
-            raise ParameterError("law", _short(expression), "a law whose check has finished",
-                                 f"still being checked in a worker process (at most "
-                                 f"{LAW_TIME_S:g} s)")  # fmt: skip
+            raise ParameterError(
+                "law",
+                _short(expression),
+                "a law whose check has finished",
+                f"still being checked in a worker process (at most {LAW_TIME_S:g} s)",
+            )
         outcome = fut.result()
     if isinstance(outcome, ParameterError):
         # a fresh exception: re-raising the stored one would grow its traceback

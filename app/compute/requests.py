@@ -149,8 +149,13 @@ class SweepRequest(Request):
             raise ParameterError("branch", self.branch, "'lower' | 'upper'")
 
     def call(self) -> Call:
-        kw = (("kind", self.kind), ("V_values", list(self.V_values)), ("w_plus", self.w_plus),
-              ("N", self.N), ("branch", self.branch))  # fmt: skip
+        kw = (
+            ("kind", self.kind),
+            ("V_values", list(self.V_values)),
+            ("w_plus", self.w_plus),
+            ("N", self.N),
+            ("branch", self.branch),
+        )
         return Call("atlas", atlas.sweep, (), kw)
 
     def job(self, lw, progress=None):
@@ -273,8 +278,9 @@ class SeededRequest(SimulationRequest):
         """The seeding wave, which must converge (ParameterError otherwise)."""
         r = self.wave.job(lw)
         if not r.converged:
-            raise ParameterError("N", self.wave.N, "a converged seeding wave",
-                                 f"did not converge: {r.message}")  # fmt: skip
+            raise ParameterError(
+                "N", self.wave.N, "a converged seeding wave", f"did not converge: {r.message}"
+            )
         return r
 
 
@@ -310,8 +316,13 @@ class AtlasRequest(Request):
 
     def call(self) -> Call:
         """fpucore.atlas.run (rows "LO:HI:K": the floats by repr, read back exactly)."""
-        kw = (("rows", f"{self.w_lo!r}:{self.w_hi!r}:{self.n_w}"), ("V", self.n_V),
-              ("N", self.N), ("floquet", True), ("finite_size", False))  # fmt: skip
+        kw = (
+            ("rows", f"{self.w_lo!r}:{self.w_hi!r}:{self.n_w}"),
+            ("V", self.n_V),
+            ("N", self.N),
+            ("floquet", True),
+            ("finite_size", False),
+        )
         return Call("atlas", atlas.run, ("solitary",), kw)
 
     def job(self, lw, progress=None):

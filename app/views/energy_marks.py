@@ -37,13 +37,25 @@ class ExtremumMarks:
         self.src = ColumnDataSource(dict(EMPTY))
         self.src.name = name  # read by the tests
         self.band = fig.quad(
-            left="left", right="right", bottom="lo", top="hi", source=self.src,
-            fill_color=color, fill_alpha=0.2, line_alpha=0.0,
-        )  # fmt: skip
+            left="left",
+            right="right",
+            bottom="lo",
+            top="hi",
+            source=self.src,
+            fill_color=color,
+            fill_alpha=0.2,
+            line_alpha=0.0,
+        )
         self.line = fig.segment(
-            x0="x", y0="lo", x1="x", y1="hi", source=self.src, line_color=color,
-            line_dash=dash, line_width=2,
-        )  # fmt: skip
+            x0="x",
+            y0="lo",
+            x1="x",
+            y1="hi",
+            source=self.src,
+            line_color=color,
+            line_dash=dash,
+            line_width=2,
+        )
         fig.add_tools(HoverTool(renderers=[self.line, self.band], tooltips=[("E_ren", "@label")]))
         self.renderers = [self.line, self.band]
 
@@ -54,10 +66,16 @@ class ExtremumMarks:
         labels = [fmt_extremum(k, v, d) for k, v, d in zip(kinds, V, dV)]
         up.set(
             self.src,
-            data={"x": V, "y": np.full(n, 0.5 * (y_lo + y_hi)), "left": V - dV,
-                  "right": V + dV, "lo": np.full(n, float(y_lo)), "hi": np.full(n, float(y_hi)),
-                  "label": labels},
-        )  # fmt: skip
+            data={
+                "x": V,
+                "y": np.full(n, 0.5 * (y_lo + y_hi)),
+                "left": V - dV,
+                "right": V + dV,
+                "lo": np.full(n, float(y_lo)),
+                "hi": np.full(n, float(y_hi)),
+                "label": labels,
+            },
+        )
         for r in self.renderers:
             up.set(r, visible=n > 0)
         if item is not None:

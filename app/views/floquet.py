@@ -154,11 +154,13 @@ class FloquetScene(FloquetFiles, BokehScene):
         self.sw_legend = add_legend(
             fc,
             "right",
-            [("max |μ| − 1", [self.r_sw[0]]),
-             ("E_ren extremum (sweep's waves)", self.ext_d.renderers),
-             ("E_ren^QC extremum", self.ext_q.renderers)]
+            [
+                ("max |μ| − 1", [self.r_sw[0]]),
+                ("E_ren extremum (sweep's waves)", self.ext_d.renderers),
+                ("E_ren^QC extremum", self.ext_q.renderers),
+            ]
             + [(CLASS_STYLE[c][0], [self.r_cls[c][0]]) for c in CLASSES],
-        )  # fmt: skip
+        )
         fc.visible = False
         # (d) the decision's evidence: max|μ| − 1 ± error on the window of rings in [N/2, N]
         fd = new_figure(
@@ -234,11 +236,13 @@ class FloquetScene(FloquetFiles, BokehScene):
         lost = np.array([r["status"] == "not_converged" and not r["converged"] for r in sw.rows])
         if (~ok & lost).any():
             k = int((~ok & lost).sum())
-            info.notes.append(f"sweep: {k} velocit{'y' if k == 1 else 'ies'} did not converge "
-                              "(not drawn)")  # fmt: skip
+            info.notes.append(
+                f"sweep: {k} velocit{'y' if k == 1 else 'ies'} did not converge (not drawn)"
+            )
         if (~ok & ~lost).any():
-            why = {str(r.get("message") or "not computed") for r, k in zip(sw.rows, ~ok & ~lost)
-                   if k}  # fmt: skip
+            why = {
+                str(r.get("message") or "not computed") for r, k in zip(sw.rows, ~ok & ~lost) if k
+            }
             info.notes.append(
                 f"sweep: {int((~ok & ~lost).sum())} of {len(sw.rows)} velocities "
                 f"not computed (not drawn): {md_literal('; '.join(sorted(why))[:200])}"
@@ -263,11 +267,23 @@ class FloquetScene(FloquetFiles, BokehScene):
         ec, changes = self._ec = c.value
         info.time("energy criterion", c)
         for marks, item, V, dV, kinds, what in (
-            (self.ext_d, self.sw_legend[1], ec.extrema_V, ec.extrema_V_error, ec.extrema_kind,
-             "E_ren (sweep's waves)"),
-            (self.ext_q, self.sw_legend[2], ec.qc_extrema_V, ec.qc_extrema_V_error,
-             ec.qc_extrema_kind, "E_ren^QC"),
-        ):  # fmt: skip
+            (
+                self.ext_d,
+                self.sw_legend[1],
+                ec.extrema_V,
+                ec.extrema_V_error,
+                ec.extrema_kind,
+                "E_ren (sweep's waves)",
+            ),
+            (
+                self.ext_q,
+                self.sw_legend[2],
+                ec.qc_extrema_V,
+                ec.qc_extrema_V_error,
+                ec.qc_extrema_kind,
+                "E_ren^QC",
+            ),
+        ):
             marks.update(up, V, dV, kinds, *ylim, item)
             if len(V):
                 text = "; ".join(fmt_extremum(k, v, d) for k, v, d in zip(kinds, V, dV))
@@ -282,13 +298,22 @@ class FloquetScene(FloquetFiles, BokehScene):
             )
         else:
             info.notes.append(
-                criterion_words(ec.extrema_V, ec.extrema_V_error, ec.extrema_kind,
-                                "the sweep's discrete waves",
-                                "that the swept velocities resolve (more may find one)")
+                criterion_words(
+                    ec.extrema_V,
+                    ec.extrema_V_error,
+                    ec.extrema_kind,
+                    "the sweep's discrete waves",
+                    "that the swept velocities resolve (more may find one)",
+                )
                 + " "
-                + criterion_words(ec.qc_extrema_V, ec.qc_extrema_V_error, ec.qc_extrema_kind,
-                                  "the QC family", "between c₊ and c₋")
-            )  # fmt: skip
+                + criterion_words(
+                    ec.qc_extrema_V,
+                    ec.qc_extrema_V_error,
+                    ec.qc_extrema_kind,
+                    "the QC family",
+                    "between c₊ and c₋",
+                )
+            )
         # the cross-check in one line (fpucore.floquet.changes_summary)
         info.notes.append(f"Cross-check with the energy criterion: {changes_summary(changes)}")
 

@@ -76,23 +76,28 @@ class FloquetFiles:
         }
         sw = self._sweep_result
         if sw is not None:
-            out["sweep"] = {"V": sw.V, "max_modulus": sw.max_modulus,
-                            "max_modulus_error": sw.max_modulus_error,
-                            "classification": sw.classification,
-                            "headline": [r.get("headline") for r in sw.rows],
-                            "energy": sw.energy,
-                            "energy_error": sw.energy_error}  # fmt: skip
+            out["sweep"] = {
+                "V": sw.V,
+                "max_modulus": sw.max_modulus,
+                "max_modulus_error": sw.max_modulus_error,
+                "classification": sw.classification,
+                "headline": [r.get("headline") for r in sw.rows],
+                "energy": sw.energy,
+                "energy_error": sw.energy_error,
+            }
         ec = getattr(self, "_ec", None)
         if ec is not None:
             crit, changes = ec
             out["energy_criterion"] = {
-                "extrema_V": crit.extrema_V, "extrema_V_error": crit.extrema_V_error,
-                "extrema_kind": crit.extrema_kind, "qc_extrema_V": crit.qc_extrema_V,
+                "extrema_V": crit.extrema_V,
+                "extrema_V_error": crit.extrema_V_error,
+                "extrema_kind": crit.extrema_kind,
+                "qc_extrema_V": crit.qc_extrema_V,
                 "qc_extrema_V_error": crit.qc_extrema_V_error,
                 "qc_extrema_kind": crit.qc_extrema_kind,
                 "unexplained_changes": [(c.V_from, c.V_to) for c in changes if not c.explained],
                 "cross_check": changes_summary(changes),
-            }  # fmt: skip
+            }
         return "floquet.json", as_json(out)
 
     def notebook_plot(self) -> str:

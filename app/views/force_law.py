@@ -66,9 +66,16 @@ class ForceLawScene(BokehScene):
         self.r_f[1].name = "force-curve"
         # each special point named beside it; hovering gives its role and exact coordinates
         fig.add_layout(
-            LabelSet(x="x", y="y", text="label", source=self.r_pts[1], x_offset=6,
-                     y_offset=-16, text_font_size="10pt")
-        )  # fmt: skip
+            LabelSet(
+                x="x",
+                y="y",
+                text="label",
+                source=self.r_pts[1],
+                x_offset=6,
+                y_offset=-16,
+                text_font_size="10pt",
+            )
+        )
         fig.add_tools(
             HoverTool(
                 renderers=[self.r_pts[0]],
@@ -80,9 +87,13 @@ class ForceLawScene(BokehScene):
             sp.name = f"force-{name}"  # read by the browser tests
         # a smooth law's represented interval (f, f', f'' from its Chebyshev kernel there)
         self.rep_box = BoxAnnotation(
-            left=0.0, right=0.0, fill_color="#2ca02c", fill_alpha=0.07, visible=False,
+            left=0.0,
+            right=0.0,
+            fill_color="#2ca02c",
+            fill_alpha=0.07,
+            visible=False,
             name="force-represented",
-        )  # fmt: skip
+        )
         fig.add_layout(self.rep_box)
         self.rep_label = add_label(fig, color="#2ca02c", align="left")
         self.labels = [add_label(fig) for _ in range(3)]
@@ -123,8 +134,13 @@ class ForceLawScene(BokehScene):
 
         corners = getattr(lw, "breakpoints", None)  # a piecewise-linear law's corners
         if corners is not None:  # α, β often infinite: the corners and the states in view
-            near = [*corners, 0.0, sk.w_plus, sk.w_minus, *(x for x in (alpha, beta)
-                                                             if np.isfinite(x))]  # fmt: skip
+            near = [
+                *corners,
+                0.0,
+                sk.w_plus,
+                sk.w_minus,
+                *(x for x in (alpha, beta) if np.isfinite(x)),
+            ]
             left, right = min(near), max(near)
         else:  # alpha = −inf (a law hardening for every w < 0): the w₊ window's end instead
             left = alpha if np.isfinite(alpha) else s.w_plus_range()[0]
@@ -171,8 +187,11 @@ class ForceLawScene(BokehScene):
 
         if corners is not None:
             slopes = lw.slopes
-            names = ("w₁", "w₂") if len(corners) == 2 else tuple(f"b{k + 1}" for k in
-                                                                 range(len(corners)))  # fmt: skip
+            names = (
+                ("w₁", "w₂")
+                if len(corners) == 2
+                else tuple(f"b{k + 1}" for k in range(len(corners)))
+            )
             for k, (c, name) in enumerate(zip(corners, names)):
                 pts["w"].append(c)
                 pts["f"].append(float(lw.f(c)))

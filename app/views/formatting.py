@@ -141,8 +141,10 @@ def ranges_markdown(st: ExplorerState, s: dict) -> str:
             f"({s['alpha']:.5g}, {s['beta']:.5g}))"
         )
     if "hard" in s:  # a piecewise-linear law: no wave from its hard regime
-        lines = [f"{where}, the hard regime **[w₁, w₂] = [{s['hard'][0]:.6g}, "
-                 f"{s['hard'][1]:.6g}]** excluded"]  # fmt: skip
+        lines = [
+            f"{where}, the hard regime **[w₁, w₂] = [{s['hard'][0]:.6g}, "
+            f"{s['hard'][1]:.6g}]** excluded"
+        ]
     else:
         lines = [f"{where}, **w\\* = {s['w_star']:.6g}** excluded"]
     if "V_SK" in s:

@@ -119,9 +119,12 @@ class PaperScene(Scene):
                 "", sizing_mode="stretch_width", css_classes=[f"paper-cmp-{label}"], margin=(0, 10)
             )
             self.cmp_panes[label] = cmp
-            rows.append(pn.Row(pn.Column(btn, thumbnail(label)),
-                               pn.Column(LiteralMarkdown(text), cmp,
-                                         sizing_mode="stretch_width")))  # fmt: skip
+            rows.append(
+                pn.Row(
+                    pn.Column(btn, thumbnail(label)),
+                    pn.Column(LiteralMarkdown(text), cmp, sizing_mode="stretch_width"),
+                )
+            )
         return pn.Column(*rows, sizing_mode="stretch_width", css_classes=["paper-list"])
 
     def comparison_rows(self) -> dict[str, str]:

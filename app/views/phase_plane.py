@@ -95,10 +95,12 @@ class PhasePlaneScene(BokehScene):
         self.clear_btn = pn.widgets.Button(label="Clear orbits", css_classes=["phase-clear"])
         self.held = HeldCurves(self.state, self.request, "phase")
         self.held.set_source(self._orbit_shown)
-        return [LiteralMarkdown("_Click in the plane: the orbit through that point._"),
-                self.clear_btn, LiteralMarkdown("_Hold keeps the current orbit on the plot "
-                                                 "while V and w₊ move._"),
-                *self.held.widgets()]  # fmt: skip
+        return [
+            LiteralMarkdown("_Click in the plane: the orbit through that point._"),
+            self.clear_btn,
+            LiteralMarkdown("_Hold keeps the current orbit on the plot while V and w₊ move._"),
+            *self.held.widgets(),
+        ]
 
     def _orbit_shown(self) -> bool:
         """Whether the current wave's orbit is on screen (what Hold holds)."""

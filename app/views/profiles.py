@@ -235,9 +235,11 @@ class ProfilesScene(BokehScene):
             up = Updates()
         try:
             c = compute.run(
-                lw, compute.WaveRequest(s.mode, s.w_plus, s.V, s.N, s.tol),
-                stop=self.superseded, progress=self.stage_progress("discrete wave"),
-            )  # fmt: skip
+                lw,
+                compute.WaveRequest(s.mode, s.w_plus, s.V, s.N, s.tol),
+                stop=self.superseded,
+                progress=self.stage_progress("discrete wave"),
+            )
         except compute.ParameterError as exc:
             if exc.name != "N":
                 raise
@@ -282,8 +284,10 @@ class ProfilesScene(BokehScene):
             info.time(f"{len(s.held)} held (discrete)", time.perf_counter() - t0)
             missing = [h.label for h in self.held.items if len(h.px) == 0]
             if missing:
-                info.notes.append("held without discrete points (no converged wave at this N): "
-                                  + "; ".join(missing))  # fmt: skip
+                info.notes.append(
+                    "held without discrete points (no converged wave at this N): "
+                    + "; ".join(missing)
+                )
         return self._frame(up, half, ys, r.n[sel].astype(float), r.w[sel])
 
     def notebook_plot(self) -> str:

@@ -51,15 +51,24 @@ class SceneProgress:
         # the request in flight, by its own parameters: the status above keeps the last result
         # and the parameters it was computed with until the new result replaces both
         self.computing_text = pn.pane.Str(
-            "", css_classes=["scene-computing"], margin=(0, 10), **{**fixed, "height": 48,
-            "styles": {**clip, "overflow-y": "auto"}},  # three lines, the rest scrolled
+            "",
+            css_classes=["scene-computing"],
+            margin=(0, 10),
+            **{
+                **fixed,
+                "height": 48,
+                "styles": {**clip, "overflow-y": "auto"},
+            },  # three lines, the rest scrolled
             stylesheets=["pre { white-space: pre-wrap; margin: 0; }"],
-        )  # fmt: skip
+        )
         self._computing = ""
         self.cancel_btn = pn.widgets.Button(
-            label="Cancel", color="warning", css_classes=["scene-cancel"], styles=HIDDEN,
+            label="Cancel",
+            color="warning",
+            css_classes=["scene-cancel"],
+            styles=HIDDEN,
             height=32,
-        )  # fmt: skip
+        )
         self.cancel_btn.on_click(lambda _: self.cancel())
         #: the indicators are shown (by style; see the module docstring)
         self.busy_shown = False

@@ -68,10 +68,20 @@ class SimulationInputs:
             probes = self._probe_sites()
         except SceneMessage:
             return None
-        data = {"w_left": self.w_l.value, "w_right": self.w_r.value, "w_B": self.w_B.value,
-                "A": self.A.value}  # fmt: skip
-        return dict(kind=self.kind.value, L=self.L.value, t_end=self.t_end.value,
-                    guard=self.guard.value, probes=probes, **data)  # fmt: skip
+        data = {
+            "w_left": self.w_l.value,
+            "w_right": self.w_r.value,
+            "w_B": self.w_B.value,
+            "A": self.A.value,
+        }
+        return dict(
+            kind=self.kind.value,
+            L=self.L.value,
+            t_end=self.t_end.value,
+            guard=self.guard.value,
+            probes=probes,
+            **data,
+        )
 
     def _inputs_to_url(self) -> None:
         """The widgets into the state's ``simulation`` (the URL's sim=): a change the figure
@@ -93,8 +103,15 @@ class SimulationInputs:
         ("seeded", "riemann", "gaussian"), L, t_end, guard, w_left, w_right (Riemann), w_B, A
         (Gaussian) and the tracked sites; ``run``: the next render runs it (as "Run").  The
         caller renders (the scene's base class: at once if the scene is shown)."""
-        widgets = {"L": self.L, "t_end": self.t_end, "guard": self.guard, "w_left": self.w_l,
-                   "w_right": self.w_r, "w_B": self.w_B, "A": self.A}  # fmt: skip
+        widgets = {
+            "L": self.L,
+            "t_end": self.t_end,
+            "guard": self.guard,
+            "w_left": self.w_l,
+            "w_right": self.w_r,
+            "w_B": self.w_B,
+            "A": self.A,
+        }
         self._applying = True
         try:
             self.kind.value = kind
@@ -113,8 +130,12 @@ class SimulationInputs:
         """The run the widgets ask for (ParameterError for a value it cannot take)."""
         s = self.state
         kind = self.kind.value
-        run = dict(L=int(self.L.value), t_end=float(self.t_end.value), guard=self.guard.value,
-                   probes=self._probe_sites())  # fmt: skip
+        run = dict(
+            L=int(self.L.value),
+            t_end=float(self.t_end.value),
+            guard=self.guard.value,
+            probes=self._probe_sites(),
+        )
         if kind == "riemann":
             return compute.RiemannRequest(
                 w_left=float(self.w_l.value), w_right=float(self.w_r.value), **run

@@ -71,8 +71,9 @@ class WaitLine:
     def served(self, server_s: float, render_s: float) -> None:
         """``server_s``: first unanswered request → published; ``render_s``: the last render."""
         self._published += 1  # (a new value each time: the browser runs the script on change)
-        self.token.value = json.dumps({"n": self._published, "server_s": server_s,
-                                       "render_s": render_s})  # fmt: skip
+        self.token.value = json.dumps(
+            {"n": self._published, "server_s": server_s, "render_s": render_s}
+        )
 
     def _reported(self, event) -> None:
         try:
