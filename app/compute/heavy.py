@@ -63,19 +63,20 @@ def job_key(lw, req: Request) -> Hashable:
     return (law_key(lw), req.job_key(lw))
 
 
-def run(lw, req: Request, stop=None, progress=None) -> Computed | None:
+def run(lw, req: Request, stop=None, progress=None, queued=None) -> Computed | None:
     """``req``'s job under the law ``lw``, cached exactly: the same request again (from any
     session) is answered from the cache, two sessions asking at once share one computation.
 
     A heavy request runs in a worker process: ``stop()`` says the caller no longer wants it
     (:class:`~app.compute.workers.Superseded`), ``progress(fraction)`` gets its progress (a
-    SpectrumRequest's: ``progress(done, stage=...)``).  A local one (``req.local``) is computed
+    SpectrumRequest's: ``progress(done, stage=...)``), ``queued(n)`` the number of earlier jobs
+    it waits behind (0 once a worker took it).  A local one (``req.local``) is computed
     here; one with a ``source`` request is computed from the source's cached result, None
     while that is not cached."""
     if isinstance(req, SpectrumRequest):
-        return _spectrum(lw, req, stop, progress)
+        return _spectrum(lw, req, stop, progress, queued)
     if not req.local:
-        return run_job(job_key(lw, req), req.job, (lw,), stop, progress)
+        return run_job(job_key(lw, req), req.job, (lw,), stop, progress, queued=queued)
     source = getattr(req, "source", None)
     if source is None:
         return CACHE.get(job_key(lw, req), lambda: req.job(lw))
@@ -130,7 +131,7 @@ class SpectrumProgress:
         self.progress(done, stage=stage)
 
 
-def _spectrum(lw, sreq: SpectrumRequest, stop=None, progress=None) -> Computed:
+def _spectrum(lw, sreq: SpectrumRequest, stop=None, progress=None, queued=None) -> Computed:
     """Computed((wave Computed, spectrum Computed or None)): the wave from the shared cache if
     there (the entry :func:`run` fills), else wave and spectrum in one worker job.
     ``progress(done, stage=...)``: its stages (:data:`~app.compute.jobs.FLOQUET_STAGES`).  The
@@ -139,7 +140,7 @@ def _spectrum(lw, sreq: SpectrumRequest, stop=None, progress=None) -> Computed:
     wk = job_key(lw, req)
     rc = CACHE.lookup(wk)
     staged = None if progress is None else SpectrumProgress(progress, req.N)
-    c = run_job(job_key(lw, sreq), sreq.job, (lw,), stop, staged)
+    c = run_job(job_key(lw, sreq), sreq.job, (lw,), stop, staged, queued=queued)
     r, fr = c.value
     if fr is not None and not c.cached:  # the job's spectra take one route (the default)
         spent = fr.monodromy_s + fr.check_s + fr.eig_s

@@ -74,13 +74,16 @@ def run_job(
     stop: Callable[[], bool] | None = None,
     progress: Callable[[float], None] | None = None,
     poll_s: float = 0.05,
+    queued: Callable[[int], None] | None = None,
 ) -> Computed:
     """``fn(*args)`` in a worker process, through the cache.
 
     Waits polling ``stop()`` every ``poll_s``: when it returns True the caller leaves
     (:class:`Superseded`) and, if no other caller waits for the same key, the job is
     cancelled (its worker killed).  ``progress(x)`` gets the job's progress in [0, 1].
-    Exceptions of ``fn`` (ParameterError ...) are re-raised here.
+    Exceptions of ``fn`` (ParameterError ...) are re-raised here.  ``queued(n)`` hears, while
+    the job waits for a free worker, the number n of earlier jobs still running or waiting
+    (other sessions' runs), and ``queued(0)`` once a worker has taken it.
     """
     hit = CACHE.lookup(key)
     if hit is not None:
@@ -93,10 +96,18 @@ def run_job(
             entry = _INFLIGHT[key] = [executor().submit(fn, *args), 0, time.perf_counter()]
         entry[1] += 1
     job = entry[0]
+    ahead = -1
     try:
         while True:
+            if queued is not None and ahead != 0:
+                n = _jobs_ahead(entry)
+                if n != ahead:
+                    ahead = n
+                    queued(n)
             try:
                 value = job.result(timeout=poll_s)
+                if queued is not None and ahead > 0:
+                    queued(0)  # taken and finished between two polls
                 break
             except TimeoutError:
                 if stop is not None and stop():
@@ -114,6 +125,16 @@ def run_job(
     elapsed = time.perf_counter() - entry[2]
     CACHE.put(key, value, elapsed)
     return Computed(value, elapsed, False)
+
+
+def _jobs_ahead(entry: list) -> int:
+    """Jobs submitted before ``entry``'s that are not done, if its job has no worker yet."""
+    if entry[0].state != "pending":
+        return 0
+    with _INFLIGHT_LOCK:
+        return sum(
+            1 for e in _INFLIGHT.values() if e is not entry and not e[0].done() and e[2] <= entry[2]
+        )
 
 
 def warm_job() -> float:

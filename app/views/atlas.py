@@ -178,8 +178,7 @@ class AtlasScene(BokehScene):
     def run_small(self, info: Info) -> AtlasData:
         req = self.atlas_request()
         self.set_stage("atlas points")
-        c = compute.run(self.state.law(), req, stop=self.superseded,
-                        progress=self.stage_progress("atlas points"))  # fmt: skip
+        c = compute.run(self.state.law(), req, **self.job_hooks("atlas points"))
         res = c.value
         label = f"atlas run ({res.n_computed} points)"
         self._run = (req, label, c.elapsed_s)

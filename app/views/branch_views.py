@@ -81,9 +81,7 @@ class BranchViews:
             # the request is the mode's own: a cached solitary sweep redrawn in superkink mode
             # leaves the button's request to the superkink sweep
             self._want_branch = self._want_branch and not want
-            c = compute.run(
-                lw, req, stop=self.superseded, progress=self.stage_progress("Floquet sweep")
-            )
+            c = compute.run(lw, req, **self.job_hooks("Floquet sweep"))
             self._branch = c.value
             info.time(f"Floquet sweep ({len(req.V_values)} V)", c)
         sw = self._branch
@@ -127,9 +125,7 @@ class BranchViews:
         if args is not None and (want or compute.is_cached(*args)):
             self._want_branch = self._want_branch and not want
             lw, req = args
-            c = compute.run(
-                lw, req, stop=self.superseded, progress=self.stage_progress("superkink sweep")
-            )
+            c = compute.run(lw, req, **self.job_hooks("superkink sweep"))
             sw, branch = c.value, req.branch
             info.time(f"superkink Floquet sweep ({len(req.V_values)} V)", c)
             amp = np.array([_sk_amplitude(lw, v, branch) for v in sw.V])

@@ -269,9 +269,7 @@ class DiagramScene(DiagramFiles, BranchViews, BokehScene):
             return None
         self._want_discrete = False
         self._family = (lw, compute.SampledEnergyRequest(req))  # its energy criterion
-        c = compute.run(
-            lw, req, stop=self.superseded, progress=self.stage_progress("discrete family")
-        )
+        c = compute.run(lw, req, **self.job_hooks("discrete family"))
         info.time(f"{len(Vs)} discrete waves", c)
         rows = [r for r in c.value if hasattr(r, "amplitude")]
         bad = [r for r in rows if not r.converged]

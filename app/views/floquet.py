@@ -209,7 +209,7 @@ class FloquetScene(FloquetFiles, BokehScene):
             self._sweep_result = self._ec = None
             return False
         self._want_sweep = False
-        c = compute.run(lw, req, stop=self.superseded, progress=self.set_progress)
+        c = compute.run(lw, req, **self.job_hooks(progress=self.set_progress))
         sw = c.value
         info.time(f"sweep ({len(Vs)} V)", c)
         self._sweep_result = sw
@@ -323,9 +323,7 @@ class FloquetScene(FloquetFiles, BokehScene):
         self._fr = self._r = None
         req = compute.WaveRequest(s.mode, s.w_plus, s.V, s.N, s.tol)
         spectrum = compute.SpectrumRequest(req)
-        rc, fc = compute.run(
-            s.law(), spectrum, stop=self.superseded, progress=self.set_progress
-        ).value
+        rc, fc = compute.run(s.law(), spectrum, **self.job_hooks(progress=self.set_progress)).value
         r = rc.value
         info.time(f"discrete wave N={r.N}", rc)
         info.error("wave residual", r.residual)

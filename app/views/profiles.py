@@ -118,7 +118,7 @@ class ProfilesScene(BokehScene):
         if dots:
             try:
                 req = compute.WaveRequest(wave.mode, wp, q.V, s.N, s.tol)
-                r = compute.run(lw, req, stop=self.superseded)
+                r = compute.run(lw, req, **self.job_hooks())
             except compute.ParameterError:  # N too small for its tails: no points (noted)
                 r = None
             if r is not None and r.value.converged:
@@ -237,8 +237,7 @@ class ProfilesScene(BokehScene):
             c = compute.run(
                 lw,
                 compute.WaveRequest(s.mode, s.w_plus, s.V, s.N, s.tol),
-                stop=self.superseded,
-                progress=self.stage_progress("discrete wave"),
+                **self.job_hooks("discrete wave"),
             )
         except compute.ParameterError as exc:
             if exc.name != "N":

@@ -113,6 +113,24 @@ class SceneProgress:
         self._stage = (name, t0, now)
         self.progress_text.object = text
 
+    def note_queue(self, ahead: int) -> None:
+        """The job waits for a free worker behind ``ahead`` earlier jobs (other sessions' runs;
+        the pool has one worker per core): said before it starts, cleared when it starts."""
+        if ahead > 0:
+            jobs = "job" if ahead == 1 else "jobs"
+            self.progress_text.object = (
+                f"waiting for a free worker: {ahead} {jobs} ahead (other runs on this server)"
+            )
+        elif self.progress_text.object.startswith("waiting for a free worker"):
+            self.progress_text.object = "started …"
+
+    def job_hooks(self, stage: str = "", progress=None) -> dict:
+        """The keywords of ``compute.run`` for this scene's heavy job: Cancel and newer requests
+        (``stop``), the queue note, and ``progress`` (or a named stage's progress)."""
+        if progress is None and stage:
+            progress = self.stage_progress(stage)
+        return {"stop": self.superseded, "queued": self.note_queue, "progress": progress}
+
     def stage_progress(self, stage: str):
         """The progress callback (a fraction in [0, 1]) of one named stage."""
         return lambda x: self.set_progress(x, stage=stage)

@@ -238,7 +238,7 @@ class SimulationScene(SimulationInputs, BokehScene):
         else:
             mode, w_plus = "solitary", float(wv.background)
         req = compute.WaveRequest(mode, w_plus, V, s.N, s.tol)
-        c = compute.run(s.law(), req, stop=self.superseded)
+        c = compute.run(s.law(), req, **self.job_hooks())
         r = c.value
         info.time(f"wave at V = {V:.6g}", c)
         return r, req.call(s.law()).code()
@@ -258,9 +258,7 @@ class SimulationScene(SimulationInputs, BokehScene):
         # wave; a seeded one uses the wave of the moment Run was pressed)
         info.stamp = run_stamp(state_stamp(s), req)
         self.computing_for(info.stamp)
-        c = compute.run(
-            s.law(), req, stop=self.superseded, progress=self.stage_progress("simulation")
-        )
+        c = compute.run(s.law(), req, **self.job_hooks("simulation"))
         sim = c.value
         info.time(f"simulation ({req.kind})", c)
         info.error("relative energy drift", sim.energy_drift)
