@@ -125,13 +125,21 @@ def register(sub) -> None:
     j = ss.add_parser("velocity-jump", help="Riemann data with a velocity jump (an impact)")
     j.add_argument("--w-left", type=float, required=True)
     j.add_argument("--w-right", type=float, required=True)
-    j.add_argument("--v-left", type=float, required=True,
-                   help="velocity of the particles j < L/2 (the others at rest)")  # fmt: skip
+    j.add_argument(
+        "--v-left",
+        type=float,
+        required=True,
+        help="velocity of the particles j < L/2 (the others at rest)",
+    )
     j.add_argument("--L", type=int, required=True, help="number of sites (even)")
     j.add_argument("--t-end", type=float, required=True)
-    j.add_argument("--train", choices=("right", "left"), default=None,
-                   help="track the train of waves moving that way (needs >= 4 --probes in it; "
-                        "a law with a zero-modulus regime)")  # fmt: skip
+    j.add_argument(
+        "--train",
+        choices=("right", "left"),
+        default=None,
+        help="track the train of waves moving that way (needs >= 4 --probes in it; "
+        "a law with a zero-modulus regime)",
+    )
     _add_run_args(j)
     j.set_defaults(func=run_velocity_jump)
 
@@ -220,17 +228,17 @@ def run_riemann(args) -> int:
 
 
 def run_velocity_jump(args) -> int:
-    from fpucore.simulate.impact import velocity_jump  # heavy: Numba
-    from fpucore.simulate.trains import track_train
+    from fpucore import simulate  # heavy: Numba
 
     law = law_from_args(args)
     kw = _common(args, "fixed_strain", 1e-10)
     prog = _progress(args, law, args.L, args.t_end, kw["method"], kw["rtol"])
-    s = velocity_jump(law, args.w_left, args.w_right, args.v_left, args.L, args.t_end,
-                      progress=prog, **kw)  # fmt: skip
+    s = simulate.velocity_jump(
+        law, args.w_left, args.w_right, args.v_left, args.L, args.t_end, progress=prog, **kw
+    )
     extra = None
     if args.train is not None:
-        tr = track_train(s, law, side=1 if args.train == "right" else -1)
+        tr = simulate.track_train(s, law, side=1 if args.train == "right" else -1)
         extra = {"train": tr.as_dict() if args.json else tr.message}
     return _emit(args, s, extra)
 

@@ -55,28 +55,80 @@ def _train_rows(r, tr) -> list:
     cw = compact_wave(DEGENERATE, tr.velocity, W_B)
     excess = float(np.sum(r.final_w[r.L // 2 :] - W_B))
     return [
-        compare(FIG, f"crest of the train's waves (worst, V = {V:.8g})", "w₁ + δ/(ω(1 − a))",
-                ref, c, err, rounding=0, source=src, elapsed_s=el),
-        compare(FIG, "train velocity V", "V M(V) = P|v_left|/2, P = 2",
-                train_velocity(DEGENERATE, W_B, V_LEFT), tr.velocity, tr.velocity_error,
-                rounding=0, source=src, elapsed_s=el),
-        compare(FIG, "spacing of the train (sites)", "2", 2.0, tr.spacing, tr.spacing_error,
-                rounding=0, source=src, elapsed_s=el),
+        compare(
+            FIG,
+            f"crest of the train's waves (worst, V = {V:.8g})",
+            "w₁ + δ/(ω(1 − a))",
+            ref,
+            c,
+            err,
+            rounding=0,
+            source=src,
+            elapsed_s=el,
+        ),
+        compare(
+            FIG,
+            "train velocity V",
+            "V M(V) = P|v_left|/2, P = 2",
+            train_velocity(DEGENERATE, W_B, V_LEFT),
+            tr.velocity,
+            tr.velocity_error,
+            rounding=0,
+            source=src,
+            elapsed_s=el,
+        ),
+        compare(
+            FIG,
+            "spacing of the train (sites)",
+            "2",
+            2.0,
+            tr.spacing,
+            tr.spacing_error,
+            rounding=0,
+            source=src,
+            elapsed_s=el,
+        ),
         # the wave straddling the jump is counted whole or not: ±1
-        compare(FIG, "waves in the right train", "Σ(w_n − w_B)/M, M = δ/(1 − a)",
-                excess / cw.mass, tr.n_waves, 1.0, rounding=0, source=src, elapsed_s=el),
-    ]  # fmt: skip
+        compare(
+            FIG,
+            "waves in the right train",
+            "Σ(w_n − w_B)/M, M = δ/(1 − a)",
+            excess / cw.mass,
+            tr.n_waves,
+            1.0,
+            rounding=0,
+            source=src,
+            elapsed_s=el,
+        ),
+    ]
 
 
 def _run_rows(r, what: str) -> list:
     src = f"simulate.{what}"
     return [
-        compare(FIG, f"energy drift, {what}", "< 1e-10", 1e-10, r.energy_drift, 0.0,
-                source=src, elapsed_s=r.elapsed_s, kind="upper_bound"),
-        compare(FIG, f"steps taken unlocated at a breakpoint, {what}", "0 (< 0.5)", 0.5,
-                r.details.get("unlocated_tangencies", 0), 0.0, source=src,
-                elapsed_s=r.elapsed_s, kind="upper_bound"),
-    ]  # fmt: skip
+        compare(
+            FIG,
+            f"energy drift, {what}",
+            "< 1e-10",
+            1e-10,
+            r.energy_drift,
+            0.0,
+            source=src,
+            elapsed_s=r.elapsed_s,
+            kind="upper_bound",
+        ),
+        compare(
+            FIG,
+            f"steps taken unlocated at a breakpoint, {what}",
+            "0 (< 0.5)",
+            0.5,
+            r.details.get("unlocated_tangencies", 0),
+            0.0,
+            source=src,
+            elapsed_s=r.elapsed_s,
+            kind="upper_bound",
+        ),
+    ]
 
 
 def _explicit_train(tr, x: np.ndarray, origin: float) -> np.ndarray:
@@ -97,8 +149,18 @@ def fig_tri_riemann(reduced: bool):
     Riemann run at rest, w = 0.6 | 0 (module docstring)."""
     L, T = _sizes(reduced)
     probes = list(range(L // 2 + 4, L // 2 + 16))
-    r = velocity_jump(DEGENERATE, W_B, W_B, V_LEFT, L, T, guard="bounded", probes=probes,
-                      n_probe_t=int(T * 100) + 1, max_sites_out=L)  # fmt: skip
+    r = velocity_jump(
+        DEGENERATE,
+        W_B,
+        W_B,
+        V_LEFT,
+        L,
+        T,
+        guard="bounded",
+        probes=probes,
+        n_probe_t=int(T * 100) + 1,
+        max_sites_out=L,
+    )
     tr = track_train(r, DEGENERATE, side=1)
     comps = _run_rows(r, "velocity_jump") + (_train_rows(r, tr) if tr.converged else [])
     rest = simulate.riemann(DEGENERATE, *AT_REST, L, T / 2, guard="bounded", max_sites_out=L)
@@ -110,24 +172,55 @@ def fig_tri_riemann(reduced: bool):
     Vs = np.linspace(0.8, 1.2, 101) * tr.velocity
     cc = [compact_wave(DEGENERATE, float(v), W_B) for v in Vs]
     panels = (
-        Panel(f"(a) velocity jump v_left = {V_LEFT:g} on w_B = {W_B:g}, E₁ = 0", "n", "t",
-              (series("w_n(t)", r.sites, r.t, "image", z=r.snapshots),)),
-        Panel(f"(b) right train at t = {r.t_final:g}: chain (points), explicit waves (curve)",
-              "n", "w",
-              (series("w_n", n[right], r.final_w[right], "points"),
-               series("explicit compact train", x, _explicit_train(tr, x, origin)),
-               series("w₁", [W1], [0.0], "hline"))),
-        Panel("(c) crests of the tracked waves against V", "V", "crest",
-              (series("explicit w₁ + δ/(ω(1 − a))", Vs, [c.b + c.C for c in cc]),
-               series("tracked waves", tr.velocities, tr.crests, "points"))),
-        Panel(f"(d) Riemann data at rest, w = {AT_REST[0]:g} | {AT_REST[1]:g}: front and pulses",
-              "n", "t", (series("w_n(t)", rest.sites, rest.t, "image", z=rest.snapshots),)),
-    )  # fmt: skip
-    params = {"w1": W1, "w2": W2, "E1": 0.0, "E2": E2, "E3": E3, "w_B": W_B, "v_left": V_LEFT,
-              "L": L, "t_end": T, "at_rest": AT_REST}  # fmt: skip
+        Panel(
+            f"(a) velocity jump v_left = {V_LEFT:g} on w_B = {W_B:g}, E₁ = 0",
+            "n",
+            "t",
+            (series("w_n(t)", r.sites, r.t, "image", z=r.snapshots),),
+        ),
+        Panel(
+            f"(b) right train at t = {r.t_final:g}: chain (points), explicit waves (curve)",
+            "n",
+            "w",
+            (
+                series("w_n", n[right], r.final_w[right], "points"),
+                series("explicit compact train", x, _explicit_train(tr, x, origin)),
+                series("w₁", [W1], [0.0], "hline"),
+            ),
+        ),
+        Panel(
+            "(c) crests of the tracked waves against V",
+            "V",
+            "crest",
+            (
+                series("explicit w₁ + δ/(ω(1 − a))", Vs, [c.b + c.C for c in cc]),
+                series("tracked waves", tr.velocities, tr.crests, "points"),
+            ),
+        ),
+        Panel(
+            f"(d) Riemann data at rest, w = {AT_REST[0]:g} | {AT_REST[1]:g}: front and pulses",
+            "n",
+            "t",
+            (series("w_n(t)", rest.sites, rest.t, "image", z=rest.snapshots),),
+        ),
+    )
+    params = {
+        "w1": W1,
+        "w2": W2,
+        "E1": 0.0,
+        "E2": E2,
+        "E3": E3,
+        "w_B": W_B,
+        "v_left": V_LEFT,
+        "L": L,
+        "t_end": T,
+        "at_rest": AT_REST,
+    }
     fronts = ", ".join(f"{w.kind} V = {w.velocity:.4g}" for w in rest.waves if w.velocity > 0)
-    notes = (f"velocity jump: {tr.message}; crossings located "
-             f"{r.details.get('breakpoint_crossings', 0)}.  At rest {AT_REST[0]:g} | "
-             f"{AT_REST[1]:g} (t = {T / 2:g}): {fronts or 'no right-moving wave tracked'}, "
-             "a modulated train of pulses behind it, not compared")  # fmt: skip
+    notes = (
+        f"velocity jump: {tr.message}; crossings located "
+        f"{r.details.get('breakpoint_crossings', 0)}.  At rest {AT_REST[0]:g} | "
+        f"{AT_REST[1]:g} (t = {T / 2:g}): {fronts or 'no right-moving wave tracked'}, "
+        "a modulated train of pulses behind it, not compared"
+    )
     return panels, comps, params, notes

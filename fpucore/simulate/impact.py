@@ -56,14 +56,49 @@ def velocity_jump(
     :func:`fpucore.simulate.riemann`, the particles j < L/2 moving with velocity ``v_left``, the
     others at rest.  L even.  The end particle 0 moves, so ``boundary`` is "fixed_strain"
     (default: the dead loads f(w_left), f(w_right) hold a prestressed background) or "free".
-    ``threshold`` (tracker) defaults to 2 % of max(|w_left − w_right|, |v_left|).  Further
-    keywords, parameters and the result as for :func:`fpucore.simulate.riemann`, and
+    Further keywords as for :func:`fpucore.simulate.riemann`.
 
     Parameters
     ----------
+    law : HardeningSofteningLaw
+        The spring law f(w); a piecewise-linear law with a zero-modulus regime gives trains of
+        compact waves (:func:`fpucore.simulate.track_train`).
+    w_left, w_right : float
+        Strains left (n ≤ L/2) and right (n > L/2) of the jump (a piecewise-linear law with
+        ``guard="bounded"``: any finite strain; else in the convex interval (α, β)).
     v_left : float
         Velocity of the particles 0 … L/2 − 1 (strain per unit time), in [−100, 100], nonzero
         unless w_left ≠ w_right.
+    L : int
+        Number of sites (springs) n = 1 … L, even, in [16, MAX_L].
+    t_end : float
+        Final time (time units), in (0, 1e7].
+    method : str
+        Integrator, one of :data:`fpucore.simulate.METHODS` (a piecewise-linear law: the RKN
+        pairs only).
+    rtol : float
+        Relative tolerance, in [1e-14, 1e-2].
+    boundary : str
+        End condition: "fixed_strain" or "free" (the end particle moves).
+    n_snapshots : int
+        Stored field times, in [2, 100000].
+    max_sites_out : int
+        Sites kept per stored snapshot, in [2, 10⁷].
+    probes : sequence of int
+        Site numbers in [1, L] whose strain is recorded as a time series (a train is measured
+        from at least 4 of them inside it).
+    n_probe_t : int
+        Times of each probe series, in [2, 10⁷].
+    threshold : float or None
+        Detection threshold of the wave tracker (strain units), default 2 % of
+        max(|w_left − w_right|, |v_left|).
+    ``**kw``
+        The further keywords of :func:`fpucore.simulate.riemann`.
+
+    Returns
+    -------
+    SimulationResult
+        As :func:`fpucore.simulate.riemann`, with ``details["v_left"]``.
 
     Raises
     ------
@@ -107,7 +142,8 @@ def velocity_jump(
     w0[: L // 2] = wl
     v0 = np.zeros(L + 1)
     v0[: L // 2] = v
-    res, _ = run_chain(law, "velocity_jump", w0, v0, cfg, (wl, wr), origin=L / 2 - 0.5,
-                       threshold=thr, **run)  # fmt: skip
+    res, _ = run_chain(
+        law, "velocity_jump", w0, v0, cfg, (wl, wr), origin=L / 2 - 0.5, threshold=thr, **run
+    )
     res["details"].update({"w_left": wl, "w_right": wr, "v_left": v, "threshold": thr})
     return SimulationResult(**res)

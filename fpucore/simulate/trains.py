@@ -90,7 +90,24 @@ class TrainResult(Result):
 def train_velocity(law, w_B: float, v_left: float, spacing: float = 2.0) -> float:
     """V of a train of explicit compact waves on w_B with the given spacing behind which the
     particles move with v_left/2 (module docstring): V δ/(1 − πV/(2√(2E))) = P |v_left|/2, i.e.
-    V = q/(|δ| + q π/(2√(2E))) with q = P |v_left|/2."""
+    V = q/(|δ| + q π/(2√(2E))) with q = P |v_left|/2.
+
+    Parameters
+    ----------
+    law : PiecewiseLinearLaw or TrilinearLaw
+        A law with a zero-modulus regime (E₁ = 0 or E₃ = 0); E is the hard regime's modulus.
+    w_B : float
+        Background strain ahead of the train, inside the zero-modulus regime.
+    v_left : float
+        Velocity of the pulled particles of the velocity-jump data (strain per unit time).
+    spacing : float
+        Sites between consecutive waves (2 in the runs).
+
+    Returns
+    -------
+    float
+        The train's velocity V (sites per unit time).
+    """
     side, b, E, _ = zero_modulus_side(law)
     q = 0.5 * spacing * abs(v_left)
     return q / (abs(b - w_B) + q * math.pi / (2.0 * math.sqrt(2.0 * E)))
@@ -114,9 +131,33 @@ def _crests(s: np.ndarray, t: np.ndarray, b: float, sgn: int):
 
 
 def track_train(result, law, side: int = 1, origin: float | None = None) -> TrainResult:
-    """The train moving towards ``side`` (+1: larger n) in ``result`` (a SimulationResult with
-    probe sites inside the train), for a law with a zero-modulus regime (module docstring).
-    ``origin``: site of the data's jump (default L/2 + 1/2)."""
+    """The train moving towards ``side`` (+1: larger n) in ``result``, for a law with a
+    zero-modulus regime (module docstring).
+
+    Parameters
+    ----------
+    result : SimulationResult
+        A run (e.g. :func:`fpucore.simulate.velocity_jump`) with at least 4 probe sites inside
+        the train.
+    law : PiecewiseLinearLaw or TrilinearLaw
+        The run's law, with a zero-modulus regime (E₁ = 0 or E₃ = 0).
+    side : int
+        −1 or 1: the train moving towards smaller or larger n.
+    origin : float or None
+        Site of the data's jump (default L/2 + 1/2).
+
+    Returns
+    -------
+    TrainResult
+        Per wave (leading first): velocities and crests with errors (sites per unit time,
+        strain); the train's velocity, spacing (sites), time period, background, count and the
+        leading wave's position; ``elapsed_s``.
+
+    Raises
+    ------
+    ParameterError
+        For ``side`` not ±1, a law without a zero-modulus regime, or too few probes in the train.
+    """
     t0 = time.perf_counter()
     if side not in (-1, 1):
         raise ParameterError("side", side, "-1 or 1")
@@ -124,8 +165,12 @@ def track_train(result, law, side: int = 1, origin: float | None = None) -> Trai
     sgn = -zside  # E1 = 0: crests above w1; E3 = 0: below w2
     sites = np.asarray(result.probe_sites, dtype=int)
     if sites.size < 4:
-        raise ParameterError("result.probe_sites", sites.size, ">= 4 probe sites",
-                             "the train is measured from probe time series")  # fmt: skip
+        raise ParameterError(
+            "result.probe_sites",
+            sites.size,
+            ">= 4 probe sites",
+            "the train is measured from probe time series",
+        )
     order = np.argsort(side * sites)
     sites = sites[order]
     t = np.asarray(result.probe_t)
@@ -136,8 +181,26 @@ def track_train(result, law, side: int = 1, origin: float | None = None) -> Trai
 
     def empty(msg):
         e = np.zeros(0)
-        return TrainResult(side, 0, nan, nan, e, e, e, e, e, nan, nan, nan, nan, nan, nan, sites,
-                           msg, time.perf_counter() - t0)  # fmt: skip
+        return TrainResult(
+            side,
+            0,
+            nan,
+            nan,
+            e,
+            e,
+            e,
+            e,
+            e,
+            nan,
+            nan,
+            nan,
+            nan,
+            nan,
+            nan,
+            sites,
+            msg,
+            time.perf_counter() - t0,
+        )
 
     firsts = [(n, c[0][0]) for n, c in zip(sites, cr) if c[0].size]
     if len(firsts) < 4:
@@ -183,13 +246,35 @@ def track_train(result, law, side: int = 1, origin: float | None = None) -> Trai
     # the leading wave at t_final, extrapolated along its passage times
     lead = sites[0] + vel_a[0] * (result.t_final - cr[0][0][0])
     n_waves = int(math.floor(abs(lead - origin) / P)) + 1 if P > 0 else 0
-    ahead = final[int(np.clip(round(lead + side * 3), 1, result.L)) - 1 :: 1] if side > 0 else \
-        final[: int(np.clip(round(lead - 3), 1, result.L))]  # fmt: skip
+    ahead = (
+        final[int(np.clip(round(lead + side * 3), 1, result.L)) - 1 :: 1]
+        if side > 0
+        else final[: int(np.clip(round(lead - 3), 1, result.L))]
+    )
     bg = float(np.median(ahead)) if ahead.size else nan
     bg_err = float(np.max(np.abs(ahead - bg))) if ahead.size else nan
     crest_a = np.asarray(crest)
-    msg = (f"{n_waves} waves, V = {Vt:.8g} ± {Vt_err:.2g}, spacing {P:.6g} ± {P_err:.2g} sites, "
-           f"crest {np.median(crest_a):.8g}")  # fmt: skip
-    return TrainResult(side, n_waves, Vt, Vt_err, vel_a, verr_a, crest_a, np.asarray(cerr),
-                       crest_a - bg, P, P_err, tper, bg, bg_err, float(lead), sites, msg,
-                       time.perf_counter() - t0)  # fmt: skip
+    msg = (
+        f"{n_waves} waves, V = {Vt:.8g} ± {Vt_err:.2g}, spacing {P:.6g} ± {P_err:.2g} sites, "
+        f"crest {np.median(crest_a):.8g}"
+    )
+    return TrainResult(
+        side,
+        n_waves,
+        Vt,
+        Vt_err,
+        vel_a,
+        verr_a,
+        crest_a,
+        np.asarray(cerr),
+        crest_a - bg,
+        P,
+        P_err,
+        tper,
+        bg,
+        bg_err,
+        float(lead),
+        sites,
+        msg,
+        time.perf_counter() - t0,
+    )
