@@ -41,7 +41,9 @@ from typing import ClassVar
 import numpy as np
 
 from fpucore.errors import ParameterError
+from fpucore.law import HardeningSofteningLaw
 from fpucore.result import Result, status_of
+from fpucore.simulate.result import SimulationResult
 from fpucore.simulate.tracking import fit_passage
 from fpucore.wave.compact import zero_modulus_side
 
@@ -87,7 +89,9 @@ class TrainResult(Result):
         return status_of(self.converged)
 
 
-def train_velocity(law, w_B: float, v_left: float, spacing: float = 2.0) -> float:
+def train_velocity(
+    law: HardeningSofteningLaw, w_B: float, v_left: float, spacing: float = 2.0
+) -> float:
     """V of a train of explicit compact waves on w_B with the given spacing behind which the
     particles move with v_left/2 (module docstring): V δ/(1 − πV/(2√(2E))) = P |v_left|/2, i.e.
     V = q/(|δ| + q π/(2√(2E))) with q = P |v_left|/2.
@@ -130,7 +134,9 @@ def _crests(s: np.ndarray, t: np.ndarray, b: float, sgn: int):
     return tc, sgn * wc, np.abs(wc - wc2)
 
 
-def track_train(result, law, side: int = 1, origin: float | None = None) -> TrainResult:
+def track_train(
+    result: SimulationResult, law: HardeningSofteningLaw, side: int = 1, origin: float | None = None
+) -> TrainResult:
     """The train moving towards ``side`` (+1: larger n) in ``result``, for a law with a
     zero-modulus regime (module docstring).
 
