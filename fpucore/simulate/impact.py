@@ -18,15 +18,12 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import Any
 
-import numpy as np
-
 from fpucore.errors import ParameterError, require_finite
 from fpucore.law import HardeningSofteningLaw
 from fpucore.parallel.threads import on_budget
-from fpucore.simulate.config import configure, detection_threshold, require_L, split_options
-from fpucore.simulate.engine import run_chain
+from fpucore.simulate.config import detection_threshold, require_L, split_options
 from fpucore.simulate.result import SimulationResult
-from fpucore.simulate.scenarios import require_simulable
+from fpucore.simulate.scenarios import jump_strains, require_simulable, run_jump
 
 __all__ = ["velocity_jump", "MAX_V_JUMP"]
 
@@ -113,11 +110,7 @@ def velocity_jump(
     v = require_finite("v_left", v_left)
     if not -MAX_V_JUMP <= v <= MAX_V_JUMP:
         raise ParameterError("v_left", v, f"[{-MAX_V_JUMP:g}, {MAX_V_JUMP:g}]")
-    if getattr(law, "breakpoints", ()) and opts.get("guard") == "bounded":
-        wl, wr = require_finite("w_left", w_left), require_finite("w_right", w_right)
-    else:
-        wl = law.require_convex("w_left", w_left)
-        wr = law.require_convex("w_right", w_right)
+    wl, wr = jump_strains(law, w_left, w_right, opts)
     if v == 0.0 and wl == wr:
         raise ParameterError("v_left", v, "nonzero when w_left == w_right", "the data have no jump")
     if boundary == "fixed_particles" and v != 0.0:
@@ -125,25 +118,14 @@ def velocity_jump(
             "boundary", boundary, "free | fixed_strain", "the end particle 0 moves with v_left"
         )
     thr = detection_threshold(threshold, max(abs(wl - wr), abs(v)))
-    cfg = configure(
-        law,
-        L,
-        t_end,
-        boundary,
-        method,
-        rtol,
-        n_snapshots=n_snapshots,
-        max_sites_out=max_sites_out,
-        probes=probes,
-        n_probe_t=n_probe_t,
-        **opts,
+    out = {
+        "n_snapshots": n_snapshots,
+        "max_sites_out": max_sites_out,
+        "probes": probes,
+        "n_probe_t": n_probe_t,
+    }
+    s = run_jump(
+        law, "velocity_jump", (wl, wr), v, L, t_end, boundary, method, rtol, thr, out, opts, run
     )
-    w0 = np.full(L, wr)
-    w0[: L // 2] = wl
-    v0 = np.zeros(L + 1)
-    v0[: L // 2] = v
-    res, _ = run_chain(
-        law, "velocity_jump", w0, v0, cfg, (wl, wr), origin=L / 2 - 0.5, threshold=thr, **run
-    )
-    res["details"].update({"w_left": wl, "w_right": wr, "v_left": v, "threshold": thr})
-    return SimulationResult(**res)
+    s.details["v_left"] = v
+    return s

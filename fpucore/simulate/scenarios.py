@@ -75,7 +75,7 @@ from fpucore.simulate.config import (
 from fpucore.simulate.engine import run_chain
 from fpucore.simulate.result import SimulationResult
 
-__all__ = ["riemann", "gaussian"]
+__all__ = ["riemann", "gaussian", "jump_strains", "run_jump"]
 
 
 def require_simulable(law) -> HardeningSofteningLaw:
@@ -164,32 +164,57 @@ def riemann(
     L = require_L(L)
     if L % 2:
         raise ParameterError("L", L, "an even integer", "the Riemann jump sits at n = L/2")
-    if getattr(law, "breakpoints", ()) and opts.get("guard") == "bounded":
-        # a PL law restores everywhere (moduli >= 0): e.g. the soundless zero-modulus regime
-        wl, wr = require_finite("w_left", w_left), require_finite("w_right", w_right)
-    else:
-        wl = law.require_convex("w_left", w_left)
-        wr = law.require_convex("w_right", w_right)
+    wl, wr = jump_strains(law, w_left, w_right, opts)
     thr = detection_threshold(threshold, abs(wl - wr))
-    cfg = configure(
-        law,
-        L,
-        t_end,
-        boundary,
-        method,
-        rtol,
-        n_snapshots=n_snapshots,
-        max_sites_out=max_sites_out,
-        probes=probes,
-        n_probe_t=n_probe_t,
-        **opts,
+    out = {
+        "n_snapshots": n_snapshots,
+        "max_sites_out": max_sites_out,
+        "probes": probes,
+        "n_probe_t": n_probe_t,
+    }
+    return run_jump(
+        law, "riemann", (wl, wr), 0.0, L, t_end, boundary, method, rtol, thr, out, opts, run
     )
+
+
+def jump_strains(law: HardeningSofteningLaw, w_left, w_right, opts: dict) -> tuple[float, float]:
+    """The two strains of jump data (:func:`riemann`, :func:`~.impact.velocity_jump`): any
+    finite strain for a piecewise-linear law with guard="bounded" (it restores everywhere, e.g.
+    in the soundless zero-modulus regime), else inside the convex interval (α, β)."""
+    if getattr(law, "breakpoints", ()) and opts.get("guard") == "bounded":
+        return require_finite("w_left", w_left), require_finite("w_right", w_right)
+    return law.require_convex("w_left", w_left), law.require_convex("w_right", w_right)
+
+
+def run_jump(
+    law: HardeningSofteningLaw,
+    kind: str,
+    sides: tuple[float, float],
+    v_left: float,
+    L: int,
+    t_end: float,
+    boundary: str,
+    method: str,
+    rtol: float,
+    threshold: float,
+    out: dict,
+    opts: dict,
+    run: dict,
+) -> SimulationResult:
+    """The chain run of jump data: strains ``sides`` = (w_left, w_right) for n ≤ L/2 and
+    n > L/2, the particles j < L/2 moving with ``v_left``, the rest at rest; ``out`` the
+    stored-output options (n_snapshots, max_sites_out, probes, n_probe_t), ``opts``/``run``
+    those of :func:`~.config.split_options`."""
+    cfg = configure(law, L, t_end, boundary, method, rtol, **out, **opts)
+    wl, wr = sides
     w0 = np.full(L, wr)
     w0[: L // 2] = wl
     v0 = np.zeros(L + 1)
-    res, _ = run_chain(law, "riemann", w0, v0, cfg, (wl, wr), origin=L / 2 - 0.5, threshold=thr,
-                       **run)  # fmt: skip
-    res["details"].update({"w_left": wl, "w_right": wr, "threshold": thr})
+    v0[: L // 2] = v_left
+    res, _ = run_chain(
+        law, kind, w0, v0, cfg, (wl, wr), origin=L / 2 - 0.5, threshold=threshold, **run
+    )
+    res["details"].update({"w_left": wl, "w_right": wr, "threshold": threshold})
     return SimulationResult(**res)
 
 
@@ -293,7 +318,8 @@ def gaussian(
     nn = np.arange(1, L + 1, dtype=float)
     w0 = wB + A * np.exp(-0.5 * (nn - L / 2) ** 2)
     v0 = np.zeros(L + 1)
-    res, _ = run_chain(law, "gaussian", w0, v0, cfg, (wB, wB), origin=L / 2 - 1.0, threshold=thr,
-                       **run)  # fmt: skip
+    res, _ = run_chain(
+        law, "gaussian", w0, v0, cfg, (wB, wB), origin=L / 2 - 1.0, threshold=thr, **run
+    )
     res["details"].update({"w_B": wB, "A": A, "threshold": thr})
     return SimulationResult(**res)
