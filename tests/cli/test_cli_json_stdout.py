@@ -21,6 +21,7 @@ CHEAP = {
     ("floquet", "sweep"): "superkink --V 5.2 --N 64 --no-cache",
     ("simulate", "riemann"): "--w-left 1 --w-right 0 --L 40 --t-end 1",
     ("simulate", "gaussian"): "--w-B 0 --A 0.1 --L 40 --t-end 1",
+    ("simulate", "velocity-jump"): "--w-left 1 --w-right 1 --v-left -0.2 --L 40 --t-end 1",
     ("simulate", "wave", "superkink"): "--V 5.2 --N 64 --periods 1",
     ("simulate", "wave", "solitary"): "--w-plus 1 --V 5.2 --N 64 --periods 1",
     ("atlas", "superkink"): "--V 5.2:5.3:2 --N 64 --backend inline",
