@@ -13,7 +13,7 @@ import numpy as np
 
 from fpucore.law import chebyshev as cheb
 from fpucore.law.scale import require_computable
-from fpucore.law.smooth_class import ClassFailure, convex_end, inflection
+from fpucore.law.smooth_class import GRID, ClassFailure, convex_end, inflection
 
 MARGIN = 0.5  # represented interval: W/2 beyond each end of the convex interval
 
@@ -53,6 +53,11 @@ def check_and_represent(law, fl, lg, mp, diag_df, diag_f) -> None:
         not_a_pole(r, side, f, df, diag_f, diag_df)
     beta = beta_root.x
     alpha = alpha_root.x if alpha_root is not None else -math.inf
+    if not beta > GRID[0]:  # f' vanishes before the first point of the class check's grid
+        raise ClassFailure(
+            f"the convex interval ends at beta = {beta:.3g}, within {GRID[0]:.0e} of w = 0: "
+            "f'(w) vanishes below the resolution of the class check (a coefficient too large?)"
+        )
     # a lower end that overflows/leaves the domain close to 0 is a domain error in (α, β)
     lo_probe = -np.logspace(-30, math.log10(4 * beta), 400)
     with np.errstate(all="ignore"):

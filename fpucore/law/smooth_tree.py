@@ -29,9 +29,10 @@ _NP = {
 
 
 def _ratio(dt, p: int, q: int):
-    """p/q in ``dt``.  An exact rational of thousands of digits (e.g. 1.000…01**131 simplified)
-    is divided in 40-digit decimal: ``str`` of an int over 4300 digits raises ValueError."""
-    if max(abs(p).bit_length(), abs(q).bit_length()) < 3000:
+    """p/q in ``dt``.  An exact rational of hundreds of digits (e.g. 1.000…01**131 simplified)
+    is divided in 40-digit decimal: p and q beyond ~1e300 would each round to inf (inf/inf =
+    NaN), and ``str`` of an int over 4300 digits raises ValueError."""
+    if max(abs(p).bit_length(), abs(q).bit_length()) < 1000:
         return dt(str(p)) / dt(str(q))
     return dt(str(decimal.Context(prec=40).divide(decimal.Decimal(p), decimal.Decimal(q))))
 

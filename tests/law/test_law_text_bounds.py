@@ -212,13 +212,15 @@ def test_rational_coefficients_are_exact():
     assert law.coeffs[1] == 2**0.5  # a 30-digit constant rounds to the nearest double
 
 
-def test_a_rational_of_thousands_of_digits_in_a_smooth_law_is_evaluated():
-    """1.000…01**131 simplifies to an exact rational of ~4500 digits; Python refuses ``str`` of
-    an int that long (ValueError), which escaped as a bare error (found by the grammar fuzz).
-    Reference: the binomial expansion, (1 + 1e-33)**131 = 1 + 1.31e-31 + O(1e-62)."""
+@pytest.mark.parametrize("k", [12, 131])
+def test_a_rational_of_hundreds_of_digits_in_a_smooth_law_is_evaluated(k):
+    """1.000…01**k simplifies to an exact rational of ~34 k digits: for k = 12 (~400 digits)
+    p and q each rounded to inf in double (inf/inf = NaN), for k = 131 (~4500 digits) Python
+    refuses ``str`` of an int that long (ValueError); both escaped as bare errors (found by the
+    grammar fuzz).  Reference: the binomial expansion, (1 + 1e-33)**k = 1 + k·1e-33 + O(1e-62)."""
     head = "w + 10*w**2 - w**3*exp(w/0.5)"
-    law = law_from_expression(head + " + 1e-3*((1.000000000000000000000000000000001)**(131))*w")
-    ref = law_from_expression(head + " + 0.001000000000000000000000000000131*w")
+    law = law_from_expression(head + f" + 1e-3*((1.000000000000000000000000000000001)**({k}))*w")
+    ref = law_from_expression(head + f" + 0.001000000000000000000000000000{k:03d}*w")
     for w in (-0.04, 0.3, 0.8):
         assert law.f(w) == pytest.approx(ref.f(w), rel=1e-15, abs=0)
 
@@ -327,9 +329,9 @@ def adversarial(draw) -> str:
 
 def answered_fast(worker, text: str) -> None:
     """The API's answer (a law or a ParameterError: the expression's or the law's checks) in
-    <= LIMIT_S, best of three; a refusal also through the CLI (exit 2, one line)."""
+    <= LIMIT_S, best of five; a refusal also through the CLI (exit 2, one line)."""
     best = float("inf")
-    for _ in range(3):
+    for _ in range(5):  # the best of five: the cost of the text, not a loaded machine's noise
         api = worker.ask("api", text)
         assert api["ok"] or api["name"] is not None, (text, api)  # a ParameterError
         best = min(best, api["s"])
@@ -366,6 +368,8 @@ HOLES = [
     "w + 10*w**2 - w**3 + 1e-40*(w+pi)**16",
     "(0)/(w)",  # a zero coefficient of w^-1: IndexError in the coefficient list
     "(" + "9" * 200 + ")**(1/2)",  # SymPy's evaluation factors the integer: 80 ms
+    # f' vanishes within 1e-30 of 0 (beta = 0 on the class check's grid): math domain error
+    "w + 10*w**2 - w**3*exp(w/0.5) + 1e-3*((" + "9" * 49 + ")*(-(w)))*w",
 ]
 
 
