@@ -83,7 +83,7 @@ def run_job(
     cancelled (its worker killed).  ``progress(x)`` gets the job's progress in [0, 1].
     Exceptions of ``fn`` (ParameterError ...) are re-raised here.  ``queued(n)`` hears, while
     the job waits for a free worker, the number n of earlier jobs still running or waiting
-    (other sessions' runs), and ``queued(0)`` once a worker has taken it.
+    (any session's, this one's included), and ``queued(0)`` once a worker has taken it.
     """
     hit = CACHE.lookup(key)
     if hit is not None:

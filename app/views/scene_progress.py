@@ -114,7 +114,7 @@ class SceneProgress:
         self.progress_text.object = text
 
     def note_queue(self, ahead: int) -> None:
-        """The job waits for a free worker behind ``ahead`` earlier jobs (other sessions' runs;
+        """The job waits for a free worker behind ``ahead`` earlier jobs (any session's runs;
         the pool has one worker per core): said before it starts, cleared when it starts."""
         if ahead > 0:
             jobs = "job" if ahead == 1 else "jobs"
