@@ -127,8 +127,11 @@ class SmoothLaw(HardeningSofteningLaw):
             self._refuse(str(exc))
         named = dict(consts)
         fl = tuple(compile_node(t, named, "float") for t in trees)
-        lg = tuple(compile_node(t, named, "long") for t in trees)
-        mp = tuple(compile_node(t, named, "mp") for t in trees)
+        # f, f′ and f″ share their common subtrees (evaluated once per argument)
+        long_shared: dict = {}
+        mp_shared: dict = {}
+        lg = tuple(compile_node(t, named, "long", long_shared) for t in trees)
+        mp = tuple(compile_node(t, named, "mp", mp_shared) for t in trees)
         set_(self, "_fns", fl)
         set_(self, "_trees", trees)
         diag = lambda x: diagnose(exprs[1], w, x, values)  # noqa: E731

@@ -18,7 +18,8 @@ import decimal
 
 import numpy as np
 
-_NP = {
+#: the NumPy functions of the "float" and "long" back ends, by node name
+NUMPY_FNS = {
     "exp": np.exp,
     "log": np.log,
     "tanh": np.tanh,
@@ -37,8 +38,30 @@ def _ratio(dt, p: int, q: int):
     return dt(str(decimal.Context(prec=40).divide(decimal.Decimal(p), decimal.Decimal(q))))
 
 
-def compile_node(node: tuple, values: dict, backend: str):
-    """x ↦ node(x); ``values`` {constant name: float}."""
+def _last_value(fn):
+    """``fn`` remembering its last argument and value: a subtree shared by f, f′ and f″ (sinh(w)
+    in all three of w·sinh(sinh(w))) is evaluated once per argument.  Identity, not equality:
+    the argument is held, so its id cannot be reused, and the back ends that share (longdouble,
+    mpmath) get fresh arrays and immutable numbers, never one buffer changed in place."""
+    last: list = [None, None]
+
+    def cached(x):
+        if last[0] is x:
+            return last[1]
+        v = fn(x)
+        last[0], last[1] = x, v
+        return v
+
+    return cached
+
+
+def compile_node(node: tuple, values: dict, backend: str, shared: dict | None = None):
+    """x ↦ node(x); ``values`` {constant name: float}.  Closures compiled with one ``shared``
+    dict (longdouble and mpmath only: see :func:`_last_value`) evaluate a subtree that occurs
+    several times, in one tree or across them, once per argument; the values are the same
+    operations on the same numbers, bit for bit."""
+    if shared is not None and backend == "float":
+        raise ValueError("shared subtrees are for the 'long' and 'mp' back ends only")
     mp = backend == "mp"
     if mp:
         import mpmath
@@ -57,13 +80,20 @@ def compile_node(node: tuple, values: dict, backend: str):
         sqrt, power = mpmath.sqrt, mpmath.power
     else:
         dt = np.float64 if backend == "float" else np.longdouble
-        fns = _NP
+        fns = NUMPY_FNS
         num = lambda p, q: _ratio(dt, p, q)  # noqa: E731
         flt = dt
         const = dt
         sqrt, power = np.sqrt, np.power
 
     def build(n):
+        if shared is None or n[0] in ("w", "const", "num", "flt"):
+            return build_node(n)
+        if n not in shared:
+            shared[n] = _last_value(build_node(n))
+        return shared[n]
+
+    def build_node(n):
         kind = n[0]
         if kind == "w":
             return lambda x: x
