@@ -128,8 +128,7 @@ class SmoothLaw(HardeningSofteningLaw):
         named = dict(consts)
         fl = tuple(compile_node(t, named, "float") for t in trees)
         # f, f′ and f″ share their common subtrees (evaluated once per argument)
-        long_shared: dict = {}
-        mp_shared: dict = {}
+        long_shared, mp_shared = {}, {}
         lg = tuple(compile_node(t, named, "long", long_shared) for t in trees)
         mp = tuple(compile_node(t, named, "mp", mp_shared) for t in trees)
         set_(self, "_fns", fl)

@@ -15,6 +15,8 @@ float64), ``"long"`` (NumPy longdouble) or ``"mp"`` (mpmath at the current preci
 from __future__ import annotations
 
 import decimal
+from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 
@@ -38,14 +40,14 @@ def _ratio(dt, p: int, q: int):
     return dt(str(decimal.Context(prec=40).divide(decimal.Decimal(p), decimal.Decimal(q))))
 
 
-def _last_value(fn):
+def _last_value(fn: Callable[[Any], Any]) -> Callable[[Any], Any]:
     """``fn`` remembering its last argument and value: a subtree shared by f, f′ and f″ (sinh(w)
     in all three of w·sinh(sinh(w))) is evaluated once per argument.  Identity, not equality:
     the argument is held, so its id cannot be reused, and the back ends that share (longdouble,
     mpmath) get fresh arrays and immutable numbers, never one buffer changed in place."""
     last: list = [None, None]
 
-    def cached(x):
+    def cached(x: Any) -> Any:
         if last[0] is x:
             return last[1]
         v = fn(x)
