@@ -4,7 +4,7 @@ layout (state vector, end conditions, status codes)  →  observer (events, prob
 →  kernels (first-order RHS, DOP853/DOPRI5, Yoshida)  and  rkn (RKN12/RKN8 steppers)
 (pwl_rkn: the RKN steppers with event location at a piecewise-linear law's breakpoints)
 →  steppers (the METHODS table)  →  config (validation, memory and work estimates before
-allocating, output schedule)  →  messages (status text)  →  tracking (fronts and pulses in
+allocating), schedule (the output times)  →  messages (status text)  →  tracking (fronts and pulses in
 space–time)  →  observer_arrays (the observer allocated and finished), chain_energy (H per end
 condition)  →  engine (run_chain: the loop)  →  result (SimulationResult)
 →  scenarios (riemann, gaussian; the end conditions, methods, guards and budgets of every run)
