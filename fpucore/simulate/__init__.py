@@ -2,11 +2,12 @@
 
 layout (state vector, end conditions, status codes)  →  observer (events, probes, guard)
 →  kernels (first-order RHS, DOP853/DOPRI5, Yoshida)  and  rkn (RKN12/RKN8 steppers)
-(pwl_rkn: the RKN steppers with event location at a piecewise-linear law's breakpoints)
-→  steppers (the METHODS table)  →  config (validation, memory and work estimates before
-allocating, output schedule)  →  messages (status text)  →  tracking (fronts and pulses in
-space–time)  →  observer_arrays (the observer allocated and finished), chain_energy (H per end
-condition)  →  engine (run_chain: the loop)  →  result (SimulationResult)
+(pwl_pieces: a piecewise-linear law's frozen pieces and breakpoint crossings  →  pwl_rkn: the
+RKN steppers with event location at them)  →  steppers (the METHODS table)  →  config
+(validation, memory and work estimates before allocating), schedule (the output times)
+→  messages (status text)  →  result (SimulationResult, TrackedWave)  →  tracking (fronts and
+pulses in space–time)  →  observer_arrays (the observer allocated and finished), chain_energy
+(H per end condition)  →  engine (run_chain: the loop)
 →  scenarios (riemann, gaussian; the end conditions, methods, guards and budgets of every run)
 and seeded (a run seeded with a computed traveling wave, checked against it); impact
 (velocity_jump: Riemann data with a velocity jump); trains (track_train: the trains of compact

@@ -1,7 +1,7 @@
 """Configuration of a chain simulation, before anything is allocated: every option validated
 (ParameterError naming it), the memory of the whole request estimated from all its sizes and
-refused above the budget (:mod:`fpucore.budget`), the work estimated (steps × sites, seconds),
-and the output schedule (the stops of the stepper).
+refused above the budget (:mod:`fpucore.budget`), and the work estimated (steps × sites,
+seconds).  The output schedule (the stops of the stepper): :mod:`fpucore.simulate.schedule`.
 """
 
 from __future__ import annotations
@@ -370,53 +370,4 @@ def configure(
         L, t_end, boundary, method, rtol, atol, None if STEPPERS[method].adaptive else dt,
         n_snapshots, max_sites_out, probe_idx, n_probe_t, late_fraction, n_track, max_steps,
         estimate_error, track, n_events, guard, time_budget_s, total, work, pwl,
-    )  # fmt: skip
-
-
-# --------------------------------------------------------------------------- output schedule
-@dataclass(frozen=True)
-class Schedule:
-    """Output times of a run: t_out (n_snapshots,) from 0 to t_end; t_trk (n_track,) the tracking
-    window [t_end (1 − late_fraction), t_end]; t_extra full-resolution profiles; ``stops`` the
-    sorted union of them (> 0), each a stop of the stepper; out/trk/ext map a stop to its row."""
-
-    t_out: np.ndarray
-    t_trk: np.ndarray
-    t_extra: np.ndarray
-    stops: np.ndarray
-    out: dict
-    trk: dict
-    ext: dict
-
-
-def output_schedule(
-    t_end: float,
-    n_snapshots: int,
-    late_fraction: float,
-    n_track: int,
-    track: bool,
-    extra_times: Sequence[float] = (),
-) -> Schedule:
-    """The stops of a run.  An extra time within rounding of t_end (relative 1e-12: e.g. K·(1/V)
-    for t_end = K/V, one ulp above it for ~9 % of velocities) is taken at t_end; one beyond it,
-    or ≤ 0, is an error of the caller (ValueError), never silently dropped."""
-    t_out = np.linspace(0.0, t_end, n_snapshots)
-    t_a = t_end * (1.0 - late_fraction)
-    t_trk = np.linspace(t_a, t_end, n_track) if track else np.empty(0)
-    extra = []
-    for x in extra_times:
-        x = float(x)
-        if x > t_end and x <= t_end * (1.0 + 1e-12):
-            x = t_end
-        if not (0.0 < x <= t_end):
-            raise ValueError(f"extra output time {x!r} outside (0, t_end = {t_end!r}]")
-        extra.append(x)
-    t_extra = np.asarray(sorted(extra), dtype=float)
-    stops = np.unique(np.concatenate([t_out[1:], t_trk, t_extra]))
-    stops = stops[stops > 0]
-    return Schedule(
-        t_out, t_trk, t_extra, stops,
-        {float(x): k for k, x in enumerate(t_out)},
-        {float(x): k for k, x in enumerate(t_trk)},
-        {float(x): k for k, x in enumerate(t_extra)},
     )  # fmt: skip

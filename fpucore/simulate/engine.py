@@ -6,7 +6,7 @@ The scenario drivers (:func:`fpucore.simulate.riemann`, ``gaussian``, ``seeded``
    it), the memory of the whole request estimated from all its sizes *before* anything is
    allocated and refused above the budget (:mod:`fpucore.budget`), and a work estimate;
 2. :func:`run_chain` with the initial data, which builds the output schedule
-   (:func:`fpucore.simulate.config.output_schedule`: snapshots ∪ tracking window ∪ extra times),
+   (:func:`fpucore.simulate.schedule.output_schedule`: snapshots ∪ tracking window ∪ extra times),
    starts the stepper of the method from the table :data:`fpucore.simulate.steppers.STEPPERS`,
    integrates stop by stop in slices of bounded work (the time budget and the progress callback
    are checked between slices), and writes the status message
@@ -29,10 +29,11 @@ from fpucore.law import HardeningSofteningLaw, interval_note
 from fpucore.simulate import kernels as ck
 from fpucore.simulate import tracking
 from fpucore.simulate.chain_energy import ENERGY_NAME, energy_terms
-from fpucore.simulate.config import RunConfig, output_schedule, restoring_interval
+from fpucore.simulate.config import RunConfig, restoring_interval
 from fpucore.simulate.layout import Chain, Control
 from fpucore.simulate.messages import Outcome, status_message
 from fpucore.simulate.observer_arrays import finalize_events, make_observer, null_observer
+from fpucore.simulate.schedule import output_schedule
 
 ST_TIME_BUDGET = 6  # set here (between slices), never by a kernel
 _STATUS = {

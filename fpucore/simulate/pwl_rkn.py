@@ -44,6 +44,8 @@ rkn.rkn_chunk`):
 Crossings are counted (``evs[0]``) with the largest |w − b| at a located crossing before it is
 set (``evs[1]``).  A crossing that no stage value shows (an excursion beyond b shorter than the
 spacing of the stage nodes) is not seen, and keeps the reduced order.
+
+The frozen pieces, their force and the crossing tests: :mod:`fpucore.simulate.pwl_pieces`.
 """
 
 from __future__ import annotations
@@ -55,7 +57,6 @@ from numba import njit
 
 from fpucore.simulate.kernels import combo, step_factor
 from fpucore.simulate.layout import (
-    BC_FIXED_PARTICLES,
     BC_LOAD,
     ST_BUDGET,
     ST_LEFT_CONVEX,
@@ -63,45 +64,17 @@ from fpucore.simulate.layout import (
     ST_STEP_UNDERFLOW,
 )
 from fpucore.simulate.observer import check_convex, observe
+from fpucore.simulate.pwl_pieces import (
+    accel_frozen,
+    cut_fraction,
+    double_crossing,
+    earliest,
+    flip_piece,
+    freeze,
+    mark_outside,
+    snap_crossings,
+)
 from fpucore.simulate.rkn import accel, rkn_err, sumsq2
-
-
-@njit(cache=True, nogil=True)
-def freeze(q, qd, L, p, pc, pb):
-    """pc[n] = the piece of bond n for the coming step: the piece of w_n = q[n]; a strain exactly
-    on a breakpoint takes the piece that ẇ_n = qd[n] moves it into.  pb (2, L): its ends."""
-    m = int(p[0])
-    for n in range(L):
-        x = q[n]
-        j = 0
-        while j < m and x >= p[1 + j]:
-            j += 1
-        if j > 0 and x == p[j] and qd[n] < 0.0:
-            j -= 1
-        pc[n] = j
-        pb[0, n] = p[j] if j > 0 else -math.inf
-        pb[1, n] = p[1 + j] if j < m else math.inf
-
-
-@njit(cache=True, nogil=True)
-def accel_frozen(q, L, p, pc, bc, fL, fR, g, out):
-    """F(q) as :func:`fpucore.simulate.rkn.accel`, each bond's force by the linear formula of its
-    frozen piece pc[n] (also beyond the piece)."""
-    m = int(p[0])
-    for n in range(L):
-        j = pc[n]
-        k = j - 1 if j > 0 else 0
-        g[n + 1] = p[2 + 2 * m + k] + p[1 + m + j] * (q[n] - p[1 + k])
-    if bc == BC_FIXED_PARTICLES:
-        g[0] = g[1]
-        g[L + 1] = g[L]
-        out[L] = 0.0
-    else:
-        g[0] = fL
-        g[L + 1] = fR
-        out[L] = g[1] - g[0]
-    for n in range(L):
-        out[n] = (g[n + 2] - g[n + 1]) - (g[n + 1] - g[n])
 
 
 @njit(cache=True, nogil=True)
@@ -137,7 +110,7 @@ def _trial(cur, hh, pair, pat, K, rows, L, law_id, p, pc, pb, cfirst, frozen, bc
             cf[k + 1] = h2 * A[i, j]
         combo(cur, K, rws, cf, cnt[i] + 1, Y)
         if want_err and frozen:
-            _outside(Y, L, pb, C[i], cfirst)
+            mark_outside(Y, L, pb, C[i], cfirst)
         _F(Y, L, law_id, p, pc, frozen, bc, fL, fR, g, K[i])
     rws[0] = iqd
     cf[0] = hh
@@ -194,108 +167,13 @@ def patterns(pair):
 
 
 @njit(cache=True, nogil=True)
-def exit_bound(x, n, pb):
-    """The end of bond n's frozen piece that the strain x lies beyond (NaN if x is inside)."""
-    if x < pb[0, n]:
-        return pb[0, n]
-    if x >= pb[1, n]:
-        return pb[1, n]
-    return math.nan
-
-
-@njit(cache=True, nogil=True)
-def earliest(w, w1, L, pb):
-    """(fraction, bond, breakpoint) of the earliest crossing in the step w → w1: a bond whose end
-    strain lies outside its frozen piece pb has crossed the end it lies beyond, at the fraction
-    (w − b)/(w − w1) (linear estimate; 0.5 for a bond that started on b, set there by a located
-    crossing, and went back); bond −1 if none."""
-    best, bn, bb = 2.0, -1, 0.0
-    for n in range(L):
-        x = w1[n]
-        if pb[0, n] <= x < pb[1, n]:
-            continue
-        b = exit_bound(x, n, pb)
-        d0 = w[n] - b
-        fr = d0 / (d0 - (x - b)) if d0 != 0.0 else 0.5
-        if fr < best:
-            best, bn, bb = fr, n, b
-    return best, bn, bb
-
-
-@njit(cache=True, nogil=True)
-def _outside(Y, L, pb, c, cfirst):
-    """cfirst[n] = min(cfirst[n], c) for the bonds whose stage value Y[n] left the frozen piece
-    (a branch-free count first: almost always none)."""
-    nout = 0
-    for n in range(L):
-        x = Y[n]
-        nout += 0 if ((x >= pb[0, n]) & (x < pb[1, n])) else 1
-    if nout:
-        for n in range(L):
-            x = Y[n]
-            if not (pb[0, n] <= x < pb[1, n]) and c < cfirst[n]:
-                cfirst[n] = c
-
-
-@njit(cache=True, nogil=True)
-def double_crossing(w1, L, pb, cfirst):
-    """Smallest stage node c_i at which a bond was outside its frozen piece although it is back
-    inside at the step's end w1 — in and out within the step, which :func:`earliest` cannot see
-    (2.0 if none): a step to c_i then ends beyond the breakpoint and the crossing is located."""
-    best = 2.0
-    for n in range(L):
-        c = cfirst[n]
-        if c < best and pb[0, n] <= w1[n] < pb[1, n]:
-            best = c
-    return best
-
-
-#: |w − b| (relative to max(1, |b|)) of a crossing simultaneous with the located one
-SNAP_TOL = 1e-12
-
-
-@njit(cache=True, nogil=True)
-def _cut(w, w1, L, pb, bn):
-    """Fraction (as :func:`earliest`) of the earliest crossing in w → w1 by a bond other than bn
-    that does not end on its breakpoint (to SNAP_TOL); 2.0 if none."""
-    best = 2.0
-    for n in range(L):
-        x = w1[n]
-        if n == bn or pb[0, n] <= x < pb[1, n]:
-            continue
-        b = exit_bound(x, n, pb)
-        if abs(x - b) > SNAP_TOL * max(1.0, abs(b)):
-            d0 = w[n] - b
-            fr = d0 / (d0 - (x - b)) if d0 != 0.0 else 0.5
-            if fr < best:
-                best = fr
-    return best
-
-
-@njit(cache=True, nogil=True)
-def _snap(w1, L, pb, bn, bb, evs):
-    """Set bond bn to its located breakpoint bb, and every other bond that ended outside its
-    frozen piece to the end it crossed, in w1; count them in evs[0], their largest |w1 − b| in
-    evs[1]."""
-    for n in range(L):
-        x = w1[n]
-        if n == bn:
-            b = bb
-        elif pb[0, n] <= x < pb[1, n]:
-            continue
-        else:
-            b = exit_bound(x, n, pb)
-        if abs(x - b) > evs[1]:
-            evs[1] = abs(x - b)
-        evs[0] += 1
-        w1[n] = b
-
-
-@njit(cache=True, nogil=True)
-def _probe(win, hh, cur, bn, b, w0, R, Lw, pair, pat, K, KW, WW, rows, L, law_id, p, pc, pb,
-           cfirst, bc, fL, fR, g, gw, Y, nxt, e, ed, zero):  # fmt: skip
+def _probe(hh, at):
     """w_bn − b after a frozen sub-step of hh: on the window of bonds w0 … w0 + Lw − 1 (copied
-    into WW[0], KW by the caller) if ``win``, else on the whole chain."""
+    into WW[0], KW by the caller) if ``win``, else on the whole chain.  ``at``: the located
+    crossing's arguments (win, cur, bn, b, w0, R, Lw, pair, pat, K, KW, WW, rows, L, law_id, p,
+    pc, pb, cfirst, bc, fL, fR, g, gw, Y, nxt, e, ed, zero), one tuple for every trial θ."""
+    (win, cur, bn, b, w0, R, Lw, pair, pat, K, KW, WW, rows, L, law_id, p, pc, pb, cfirst, bc, fL,
+     fR, g, gw, Y, nxt, e, ed, zero) = at  # fmt: skip
     if win:
         _trial(WW[0], hh, pair, pat, KW, rows, Lw, law_id, p, pc[w0 : w0 + Lw], pb[:, w0 : w0 + Lw],
                cfirst, True, BC_LOAD, 0.0, 0.0, gw, WW[1], WW[2], WW[3], WW[3], WW[4],
@@ -304,16 +182,6 @@ def _probe(win, hh, cur, bn, b, w0, R, Lw, pair, pat, K, KW, WW, rows, L, law_id
     _trial(cur, hh, pair, pat, K, rows, L, law_id, p, pc, pb, cfirst, True, bc, fL, fR, g, Y, nxt,
            e, ed, zero, False)  # fmt: skip
     return nxt[bn] - b
-
-
-@njit(cache=True, nogil=True)
-def _flip(n, b, p, pc, pb):
-    """Bond n, on breakpoint b, into the piece on b's other side."""
-    m = int(p[0])
-    j = pc[n] + 1 if pb[1, n] == b else pc[n] - 1
-    pc[n] = j
-    pb[0, n] = p[j] if j > 0 else -math.inf
-    pb[1, n] = p[1 + j] if j < m else math.inf
 
 
 @njit(cache=True, nogil=True)
@@ -405,41 +273,12 @@ def pwl_rkn_chunk(q, t, t_stop, h, step_limit, pair, ctl, chain, work, obs, pc, 
                 WW[0, Lw] = 0.0
                 KW[f0, Lw] = 0.0
                 KW[iqd, Lw] = 0.0
+            at = (win, cur, bn, b, w0, R, Lw, pair, pat, K, KW, WW, rows, L, law_id, p, pc, pb,
+                  cfirst, bc, fL, fR, g, gw, Y, nxt, e, ed, zero)  # fmt: skip
             if flo == 0.0:  # started on b (a located crossing) and went back: an inside point
                 th = 0.5
                 for _h in range(60):
-                    ft = _probe(
-                        win,
-                        th * hh,
-                        cur,
-                        bn,
-                        b,
-                        w0,
-                        R,
-                        Lw,
-                        pair,
-                        pat,
-                        K,
-                        KW,
-                        WW,
-                        rows,
-                        L,
-                        law_id,
-                        p,
-                        pc,
-                        pb,
-                        cfirst,
-                        bc,
-                        fL,
-                        fR,
-                        g,
-                        gw,
-                        Y,
-                        nxt,
-                        e,
-                        ed,
-                        zero,
-                    )
+                    ft = _probe(th * hh, at)
                     if ft != 0.0 and (ft < 0.0) != (fhi < 0.0):
                         lo, flo = th, ft
                         break
@@ -448,7 +287,7 @@ def pwl_rkn_chunk(q, t, t_stop, h, step_limit, pair, ctl, chain, work, obs, pc, 
                     th *= 0.5
                 if flo == 0.0:  # it leaves at once (ẇ ≈ 0 on b): the other piece, retried
                     if bn != lastflip and nflip <= 2 * L:  # each bond flips once in turn
-                        _flip(bn, b, p, pc, pb)
+                        flip_piece(bn, b, p, pc, pb)
                         nflip += 1
                         lastflip = bn
                     else:  # both pieces leave at once (a bond on b at rest, pushed both ways
@@ -459,38 +298,7 @@ def pwl_rkn_chunk(q, t, t_stop, h, step_limit, pair, ctl, chain, work, obs, pc, 
                 th = lo - flo * (hi - lo) / (fhi - flo)
             side = 0
             for _it in range(100):  # Illinois on θ
-                ft = _probe(
-                    win,
-                    th * hh,
-                    cur,
-                    bn,
-                    b,
-                    w0,
-                    R,
-                    Lw,
-                    pair,
-                    pat,
-                    K,
-                    KW,
-                    WW,
-                    rows,
-                    L,
-                    law_id,
-                    p,
-                    pc,
-                    pb,
-                    cfirst,
-                    bc,
-                    fL,
-                    fR,
-                    g,
-                    gw,
-                    Y,
-                    nxt,
-                    e,
-                    ed,
-                    zero,
-                )
+                ft = _probe(th * hh, at)
                 if ft == 0.0 or hi - lo <= 4e-16:
                     break
                 if (ft < 0.0) == (flo < 0.0):
@@ -507,12 +315,12 @@ def pwl_rkn_chunk(q, t, t_stop, h, step_limit, pair, ctl, chain, work, obs, pc, 
                 if not (lo < th < hi):
                     th = 0.5 * (lo + hi)
             # another bond crossing inside [0, θ] (checked on the located sub-step): simultaneous
-            # (ending on its breakpoint to SNAP_TOL) it is set with bn; earlier, the step is
-            # retried up to it (a fresh trial, so that crossing is located in turn)
+            # (ending on its breakpoint to pwl_pieces.SNAP_TOL) it is set with bn; earlier, the
+            # step is retried up to it (a fresh trial, so that crossing is located in turn)
             _trial(cur, th * hh, pair, pat, K, rows, L, law_id, p, pc, pb, cfirst, True, bc, fL, fR,
                    g, Y, nxt, e, ed, zero, True)  # fmt: skip
             stats[2] += s - 1
-            cut = _cut(cur, nxt, L, pb, bn)
+            cut = cut_fraction(cur, nxt, L, pb, bn)
             if cut < 2.0:
                 h = th * cut * hh
                 hforce = h_next if hforce == 0.0 else hforce
@@ -549,7 +357,7 @@ def pwl_rkn_chunk(q, t, t_stop, h, step_limit, pair, ctl, chain, work, obs, pc, 
         if err > stats[4]:
             stats[4] = err
         if snap >= 0:  # on the breakpoint: the next step starts in the piece it moves into
-            _snap(cur, L, pb, snap, bb, evs)
+            snap_crossings(cur, L, pb, snap, bb, evs)
         if locate and (bn >= 0 or skipped):
             freeze(cur, K[iqd], L, p, pc, pb)
             accel_frozen(cur, L, p, pc, bc, fL, fR, g, K[f0])

@@ -51,7 +51,7 @@ def whole_periods(t_end: float, T: float) -> tuple[int, float]:
     """(K, t_K): the number K of whole periods T in t_end and their time t_K = K·T ≤ t_end up to
     rounding.  t_end = K/V computed in floating point can fall an ulp short of K·(1/V) (for ~9 %
     of velocities): such a t_end counts as K periods, and t_K (≤ t_end (1 + 1e-12)) is taken at
-    t_end by the output schedule (:func:`fpucore.simulate.config.output_schedule`).
+    t_end by the output schedule (:func:`fpucore.simulate.schedule.output_schedule`).
 
     Parameters
     ----------

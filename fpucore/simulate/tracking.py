@@ -32,9 +32,11 @@ Three stages:
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass
+from dataclasses import dataclass
 
 import numpy as np
+
+from fpucore.simulate.result import TrackedWave
 
 #: fit windows besides the tracking window [t_a, t_b] (D = t_b − t_a), as (start, end) in units of
 #: D from t_a: one starting half a window earlier, the later half, the earlier half
@@ -43,53 +45,6 @@ WINDOWS = ((-0.5, 1.0), (0.5, 1.0), (0.0, 0.5))
 THRESHOLDS = (0.5, 2.0)
 #: a wave found at another threshold is the same wave if its final position is this close (sites)
 SAME_WAVE_SITES = 3.0
-
-
-@dataclass(frozen=True)
-class TrackedWave:
-    """A tracked wave at the end of a run.
-
-    Its fields::
-
-        kind : "superkink" | "front" | "solitary" | "dsw_edge".
-        velocity : sites per unit time (signed, > 0 moving to larger n).
-        velocity_error : error of the velocity: the fit's standard error plus the measured spreads
-            over fit windows and detection thresholds (the three parts below).
-        velocity_fit_error : standard error of the velocity fit alone.
-        velocity_window_spread : max |V(window) − V| over :data:`WINDOWS`.
-        velocity_threshold_spread : max |V(threshold) − V| over :data:`THRESHOLDS` (NaN if the wave
-            was found at neither).
-        amplitude : pulses — crest strain minus the state ahead (signed: > 0 tensile, < 0
-            compressive; the crest is the median of the time extrema of w_n(t) at the sites passed,
-            which for a traveling wave all equal its true extremum); fronts — state behind minus
-            state ahead.
-        left_state / right_state : strain on the lower-n / higher-n side (median over a short
-            window; behind a DSW edge, the local mean of the oscillations).
-        background : the state ahead (into which the wave moves).
-        peak : crest strain of a pulse (front: NaN).
-        position : site number n at the end of the window (crest or mid-level crossing).
-        n_fit : number of passage times (or snapshots) in the velocity fit.
-        method : "passage_times" or "snapshots".
-    """
-
-    kind: str
-    velocity: float
-    velocity_error: float
-    amplitude: float
-    left_state: float
-    right_state: float
-    background: float
-    peak: float
-    position: float
-    n_fit: int
-    method: str
-    velocity_fit_error: float = float("nan")
-    velocity_window_spread: float = float("nan")
-    velocity_threshold_spread: float = float("nan")
-    background_error: float = float("nan")
-
-    def as_dict(self) -> dict:
-        return asdict(self)
 
 
 @dataclass

@@ -10,7 +10,7 @@ import pytest
 from fpucore import simulate
 from fpucore.errors import ParameterError
 from fpucore.law import CubicLaw
-from fpucore.simulate import config
+from fpucore.simulate import schedule
 
 LAW = CubicLaw(-1.0, 10.0)
 
@@ -81,7 +81,7 @@ def test_whole_periods_are_always_in_the_schedule(periods):
         K, t_K = simulate.whole_periods(t_end, T)
         assert K == math.floor(periods)
         over += t_K > t_end
-        sch = config.output_schedule(t_end, 200, 1.0 / 3.0, 41, True, (t_K,))
+        sch = schedule.output_schedule(t_end, 200, 1.0 / 3.0, 41, True, (t_K,))
         assert sch.t_extra.size == 1 and sch.t_extra[0] <= t_end
         assert abs(sch.t_extra[0] - t_K) <= 1e-12 * t_end
         assert float(sch.t_extra[0]) in sch.ext and sch.t_extra[0] in sch.stops
@@ -95,7 +95,7 @@ def test_schedule_refuses_times_it_cannot_reach():
     """An extra time beyond rounding of t_end (or ≤ 0) is an error, not silently dropped."""
     for bad in (1.0 + 1e-9, 2.0, 0.0, -1.0):
         with pytest.raises(ValueError):
-            config.output_schedule(1.0, 10, 0.5, 5, True, (bad,))
+            schedule.output_schedule(1.0, 10, 0.5, 5, True, (bad,))
 
 
 def test_whole_periods_just_short_of_t_end():
