@@ -14,7 +14,7 @@ import math
 
 from numba import njit
 
-from fpucore.simulate.layout import BC_FIXED_PARTICLES
+from fpucore.simulate.rkn import accel_from_forces
 
 
 @njit(cache=True, nogil=True)
@@ -43,16 +43,7 @@ def accel_frozen(q, L, p, pc, bc, fL, fR, g, out):
         j = pc[n]
         k = j - 1 if j > 0 else 0
         g[n + 1] = p[2 + 2 * m + k] + p[1 + m + j] * (q[n] - p[1 + k])
-    if bc == BC_FIXED_PARTICLES:
-        g[0] = g[1]
-        g[L + 1] = g[L]
-        out[L] = 0.0
-    else:
-        g[0] = fL
-        g[L + 1] = fR
-        out[L] = g[1] - g[0]
-    for n in range(L):
-        out[n] = (g[n + 2] - g[n + 1]) - (g[n + 1] - g[n])
+    accel_from_forces(L, bc, fL, fR, g, out)
 
 
 @njit(cache=True, nogil=True)

@@ -45,6 +45,14 @@ def accel(q, L, law_id, p, bc, fL, fR, g, out):
     """out = F(q): out[n] = ẅ_{n+1} = (g_{n+2} − g_{n+1}) − (g_{n+1} − g_n), out[L] = ü_0.
     g : (L+2,) work, left holding the forces (ghosts included)."""
     _law.forces_into(law_id, p, q[:L], g[1 : L + 1])
+    accel_from_forces(L, bc, fL, fR, g, out)
+
+
+@njit(cache=True, nogil=True)
+def accel_from_forces(L, bc, fL, fR, g, out):
+    """out = F(q) from the bond forces g[1 … L] (:func:`accel`'s second half, shared with the
+    frozen-piece force of the PL stepper): the ghosts g[0], g[L+1] by the boundary condition,
+    then the second differences."""
     if bc == BC_FIXED_PARTICLES:
         g[0] = g[1]
         g[L + 1] = g[L]
