@@ -2,7 +2,8 @@
 compiled with one ``shared`` dict, each distinct subtree is evaluated once per argument, and
 the values are bit for bit those of the separate trees (the same operations on the same numbers).
 The nested laws that need all 4096 panels were accepted in ~0.75 s before, ~0.3 s now (quiet
-machine, best of five)."""
+machine, best of five; 0.45-0.55 CPU s beside a CI run, so this law is not among the text-bounds
+test's timed holes: its 0.5 s budget for smooth laws is not a margin it keeps under load)."""
 
 from __future__ import annotations
 
