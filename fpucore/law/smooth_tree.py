@@ -40,18 +40,20 @@ def _ratio(dt, p: int, q: int):
     return dt(str(decimal.Context(prec=40).divide(decimal.Decimal(p), decimal.Decimal(q))))
 
 
-def _last_value(fn: Callable[[Any], Any]) -> Callable[[Any], Any]:
+def _last_value(fn: Callable[[Any], Any], context: Callable[[], Any]) -> Callable[[Any], Any]:
     """``fn`` remembering its last argument and value: a subtree shared by f, f′ and f″ (sinh(w)
     in all three of w·sinh(sinh(w))) is evaluated once per argument.  Identity, not equality:
     the argument is held, so its id cannot be reused, and the back ends that share (longdouble,
-    mpmath) get fresh arrays and immutable numbers, never one buffer changed in place."""
-    last: list = [None, None]
+    mpmath) get fresh arrays and immutable numbers, never one buffer changed in place.  A value
+    is reused only in the same ``context()`` (mpmath's working precision)."""
+    last: list = [None, None, None]
 
     def cached(x: Any) -> Any:
-        if last[0] is x:
+        ctx = context()
+        if last[0] is x and last[2] == ctx:
             return last[1]
         v = fn(x)
-        last[0], last[1] = x, v
+        last[0], last[1], last[2] = x, v, ctx
         return v
 
     return cached
@@ -80,6 +82,7 @@ def compile_node(node: tuple, values: dict, backend: str, shared: dict | None = 
         flt = mpmath.mpf
         const = mpmath.mpf
         sqrt, power = mpmath.sqrt, mpmath.power
+        precision = lambda: mpmath.mp.prec  # noqa: E731
     else:
         dt = np.float64 if backend == "float" else np.longdouble
         fns = NUMPY_FNS
@@ -87,12 +90,13 @@ def compile_node(node: tuple, values: dict, backend: str, shared: dict | None = 
         flt = dt
         const = dt
         sqrt, power = np.sqrt, np.power
+        precision = lambda: None  # noqa: E731
 
     def build(n):
         if shared is None or n[0] in ("w", "const", "num", "flt"):
             return build_node(n)
         if n not in shared:
-            shared[n] = _last_value(build_node(n))
+            shared[n] = _last_value(build_node(n), precision)
         return shared[n]
 
     def build_node(n):
@@ -100,11 +104,15 @@ def compile_node(node: tuple, values: dict, backend: str, shared: dict | None = 
         if kind == "w":
             return lambda x: x
         if kind in ("const", "num", "flt"):
-            c = (
-                const(values[n[1]])
-                if kind == "const"
-                else (num(n[1], n[2]) if kind == "num" else flt(n[1]))
-            )
+
+            def constant():
+                if kind == "const":
+                    return const(values[n[1]])
+                return num(n[1], n[2]) if kind == "num" else flt(n[1])
+
+            if mp:  # rounded at the working precision of the call, not of the compile
+                return lambda x: constant()
+            c = constant()
             return lambda x: c
         if kind in ("add", "mul"):
             parts = [build(a) for a in n[1]]

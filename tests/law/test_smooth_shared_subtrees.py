@@ -65,3 +65,24 @@ def test_the_float_back_end_does_not_share():
     tree = law_from_expression(NESTED)._trees[0]
     with pytest.raises(ValueError, match="'long' and 'mp'"):
         smooth_tree.compile_node(tree, {}, "float", {})
+
+
+def test_a_shared_mpmath_value_is_not_reused_at_another_precision():
+    trees = law_from_expression(NESTED)._trees
+    shared: dict = {}
+    f, df = (smooth_tree.compile_node(t, {}, "mp", shared) for t in trees[:2])
+    x = mpmath.mpf("0.3")  # one number, evaluated at 15 and then at 50 digits
+    with mpmath.workdps(15):
+        df(x)
+    with mpmath.workdps(50):
+        assert f(x) == smooth_tree.compile_node(trees[0], {}, "mp")(x)
+
+
+def test_mpmath_constants_are_rounded_at_the_working_precision():
+    # compiled at mpmath's default 15 digits, called at 50: 1/3 and 1e-30 to 50 digits
+    tree = law_from_expression("w + 10*w**2 - w**3/3 - 1e-30*exp(w)*w**2")._trees[0]
+    f = smooth_tree.compile_node(tree, {}, "mp")
+    with mpmath.workdps(50):
+        x = mpmath.mpf("0.3")
+        exact = x + 10 * x**2 - x**3 / 3 - mpmath.mpf(10) ** -30 * mpmath.exp(x) * x**2
+        assert abs(f(x) - exact) <= mpmath.mpf(10) ** -48 * abs(exact)
